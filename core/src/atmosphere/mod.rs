@@ -1,0 +1,49 @@
+//! Atmosphere models behind one trait.
+//!
+//! Every model maps geometric altitude above the reference sphere (`r − R`, metres) to density
+//! (kg/m³) and is generic over [`Real`] so that dynamics and measurement Jacobians can be taken
+//! through it by forward-mode AD.
+//!
+//! | model | source | type |
+//! |---|---|---|
+//! | exponential | seed 000 eq. 3, seed 001 eq. 16 | [`Exponential`] |
+//! | simplified COSPAR | seed 001 eq. 17 | [`Cospar`] |
+//! | ln ρ cubic-spline table (Mars-GRAM / CSV files) | seed 001 §V | [`Tabulated`], [`parse_csv`], [`parse_mars_gram`] |
+//! | built-in non-exponential mean profile | ours (SPEC.md "msl-airdata") | [`mars_mean_profile`] |
+//! | perturbed profile generator | ours (SPEC.md "msl-airdata") | [`Perturbed`] |
+//!
+//! [`AtmosphereModel`] gathers them for scenario-driven code and [`AtmosphereConfig`] /
+//! [`PerturbationConfig`] describe them in scenario files. All failures are [`AtmosphereError`].
+
+use crate::math::Real;
+
+pub mod config;
+pub mod cospar;
+pub mod error;
+pub mod exponential;
+pub mod mars_mean;
+pub mod model;
+pub mod parse;
+pub mod perturbed;
+pub mod tabulated;
+
+pub use config::{AtmosphereConfig, PerturbationConfig, TableFormat};
+pub use cospar::Cospar;
+pub use error::AtmosphereError;
+pub use exponential::{Exponential, exponential_density};
+pub use mars_mean::{
+    MARS_MEAN_GAS_CONSTANT, MARS_MEAN_KNEE_WIDTH_M, MARS_MEAN_SURFACE_PRESSURE_PA,
+    MARS_MEAN_TEMPERATURE_KNOTS, MARS_MEAN_TOP_M, mars_mean_profile, mars_mean_temperature,
+};
+pub use model::AtmosphereModel;
+pub use parse::{
+    DENSITY_ALIASES, HEIGHT_ALIASES, HeightUnit, TableColumns, parse_csv, parse_mars_gram,
+};
+pub use perturbed::{Envelope, PerturbationSpec, Perturbed};
+pub use tabulated::{MIN_TABLE_POINTS, Tabulated};
+
+/// A density model ρ(h).
+pub trait Atmosphere {
+    /// Density (kg/m³) at altitude `altitude_m` (m) above the reference sphere.
+    fn density<T: Real>(&self, altitude_m: T) -> T;
+}

@@ -1,0 +1,182 @@
+//! Entry dynamics: spherical 3-DOF (with or without planet rotation) and Cartesian inertial.
+//!
+//! [`EntryModel`] wraps one of the right-hand sides with a vehicle, an atmosphere and an optional
+//! list of *augmented constant states* (ρ0, L/D, C_D S/m) appended after the six kinematic states,
+//! as the filters of seeds 000 (§2.3.1) and 001 (eq. 34) estimate them. Jacobians are exact, by
+//! forward-mode AD through the same generic code ([`EntryModel::jacobian`]).
+
+pub mod aero;
+pub mod cartesian;
+pub mod integrator;
+pub mod spherical;
+
+use crate::atmosphere::Atmosphere;
+use crate::math::{Real, ad_jacobian};
+use crate::planet::Planet;
+use aero::AeroParams;
+use nalgebra::{SMatrix, SVector};
+use serde::{Deserialize, Serialize};
+
+pub use cartesian::cartesian_rhs;
+pub use integrator::{rk4_integrate, rk4_step};
+pub use spherical::spherical_rhs;
+
+/// Which equations of motion a model uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DynamicsKind {
+    /// Spherical state, non-rotating planet (seed 000 eq. 1 and 7).
+    Spherical,
+    /// Spherical state relative to a rotating planet (seed 001 eq. 4–6; seed 002 eq. 1).
+    SphericalRotating,
+    /// Cartesian inertial position/velocity, wind-frame aerodynamics, rotating atmosphere (seed 003 eq. 1–5).
+    Cartesian,
+}
+
+impl DynamicsKind {
+    /// Whether the six kinematic states are `[x, y, z, vx, vy, vz]` (inertial) rather than spherical.
+    pub fn is_cartesian(self) -> bool {
+        matches!(self, DynamicsKind::Cartesian)
+    }
+}
+
+/// A constant parameter appended to the state vector (zero dynamics; random walk in the filter).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AugmentedParam {
+    /// Reference density ρ0 [kg/m³] of the exponential model (seed 000 state 7).
+    Rho0,
+    /// Lift-to-drag ratio (seed 000 state 8, seed 001 state 8).
+    LiftToDrag,
+    /// C_D S/m [m²/kg] (seed 001 state 7, "B").
+    CdSOverM,
+}
+
+impl AugmentedParam {
+    /// Column name used in reports (SI units in the suffix).
+    pub fn name(self) -> &'static str {
+        match self {
+            AugmentedParam::Rho0 => "rho0_kgm3",
+            AugmentedParam::LiftToDrag => "lift_to_drag",
+            AugmentedParam::CdSOverM => "cd_s_over_m_m2kg",
+        }
+    }
+}
+
+/// The aerodynamic constants of a vehicle.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Vehicle {
+    /// C_D·S/m [m²/kg]; the inverse of the ballistic coefficient m/(C_D S).
+    pub cd_s_over_m: f64,
+    /// Lift-to-drag ratio.
+    pub lift_to_drag: f64,
+}
+
+/// An entry dynamics model: equations, planet, vehicle, atmosphere and augmented states.
+#[derive(Debug, Clone)]
+pub struct EntryModel<A> {
+    /// Equations of motion.
+    pub kind: DynamicsKind,
+    /// Planet constants.
+    pub planet: Planet,
+    /// Density model.
+    pub atmosphere: A,
+    /// Vehicle constants (used where a quantity is not an augmented state).
+    pub vehicle: Vehicle,
+    /// Augmented constant states, in state order after the six kinematic states.
+    pub augmented: Vec<AugmentedParam>,
+    /// The atmosphere model's own reference density; an augmented ρ0 state scales the model
+    /// density by ρ0/`rho0_model`.
+    pub rho0_model: f64,
+    /// Constant density factor 1 + Δ (seed 003 eq. 6: ρ = ρ_model·(1 + Δ)); 1 for the model itself.
+    pub density_factor: f64,
+}
+
+impl<A: Atmosphere> EntryModel<A> {
+    /// Planet rotation rate used by the equations (0 for [`DynamicsKind::Spherical`]).
+    pub fn omega(&self) -> f64 {
+        match self.kind {
+            DynamicsKind::Spherical => 0.0,
+            _ => self.planet.rotation_rate,
+        }
+    }
+
+    /// State dimension: 6 plus the augmented states.
+    pub fn state_dim(&self) -> usize {
+        6 + self.augmented.len()
+    }
+
+    /// Aerodynamic parameters at state `x` (augmented states override the vehicle constants;
+    /// augmented states beyond `N` are ignored and the vehicle constants used instead).
+    pub fn aero_params<T: Real, const N: usize>(
+        &self,
+        x: &SVector<T, N>,
+        bank: f64,
+    ) -> AeroParams<T> {
+        let mut p = AeroParams {
+            cd_s_over_m: T::from(self.vehicle.cd_s_over_m),
+            lift_to_drag: T::from(self.vehicle.lift_to_drag),
+            bank: T::from(bank),
+            density_scale: T::from(self.density_factor),
+        };
+        for (k, a) in self.augmented.iter().enumerate() {
+            let Some(&val) = x.as_slice().get(6 + k) else {
+                break;
+            };
+            match a {
+                AugmentedParam::Rho0 => {
+                    p.density_scale = val * (self.density_factor / self.rho0_model)
+                }
+                AugmentedParam::LiftToDrag => p.lift_to_drag = val,
+                AugmentedParam::CdSOverM => p.cd_s_over_m = val,
+            }
+        }
+        p
+    }
+
+    /// `ẋ = f(x)` for the full (possibly augmented) state; augmented states have zero derivative.
+    pub fn rhs<T: Real, const N: usize>(&self, x: &SVector<T, N>, bank: f64) -> SVector<T, N> {
+        let p = self.aero_params(x, bank);
+        let k: [T; 6] = [x[0], x[1], x[2], x[3], x[4], x[5]];
+        let d = match self.kind {
+            DynamicsKind::Cartesian => {
+                cartesian_rhs(&k, &p, &self.atmosphere, &self.planet, self.omega())
+            }
+            _ => spherical_rhs(&k, &p, &self.atmosphere, &self.planet, self.omega()),
+        };
+        let mut out = SVector::<T, N>::from_element(T::from(0.0));
+        for i in 0..6 {
+            out[i] = d[i];
+        }
+        out
+    }
+
+    /// Exact Jacobian `∂f/∂x` by forward-mode AD, with `f(x)`.
+    pub fn jacobian<const N: usize>(
+        &self,
+        x: &SVector<f64, N>,
+        bank: f64,
+    ) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
+        ad_jacobian(|xd| self.rhs(&xd, bank), x)
+    }
+
+    /// One RK4 step of length `h` with constant bank angle.
+    pub fn step<const N: usize>(&self, x: &SVector<f64, N>, bank: f64, h: f64) -> SVector<f64, N> {
+        rk4_step(|y| self.rhs(y, bank), x, h)
+    }
+
+    /// Altitude above the reference sphere of a state [m].
+    pub fn altitude<const N: usize>(&self, x: &SVector<f64, N>) -> f64 {
+        let r = if self.kind.is_cartesian() {
+            (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt()
+        } else {
+            x[0]
+        };
+        r - self.planet.radius
+    }
+
+    /// Model density at a state [kg/m³], including an augmented ρ0 scale.
+    pub fn density<const N: usize>(&self, x: &SVector<f64, N>) -> f64 {
+        self.atmosphere.density(self.altitude(x)) * self.aero_params(x, 0.0).density_scale
+    }
+}

@@ -1,0 +1,371 @@
+//! From a validated [`ScenarioConfig`] to runtime models, and per-run Monte Carlo draws.
+
+use super::config::*;
+use super::error::ScenarioError;
+use super::validate::StateForm;
+use crate::atmosphere::{AtmosphereModel, Perturbed};
+use crate::beacons::{Beacon, BeaconMotion};
+use crate::dynamics::{DynamicsKind, EntryModel, Vehicle};
+use crate::frames::{HeadingConvention, inertial_to_spherical, spherical_to_inertial};
+use crate::planet::Planet;
+use crate::sensors::{Channel, MeasurementModel};
+use nalgebra::SVector;
+use rand::Rng;
+use rand_distr::{Distribution, StandardNormal};
+
+/// Noise of one channel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Noise {
+    /// Fixed 1σ in the channel's unit.
+    Absolute(f64),
+    /// 1σ as a fraction of the true reading.
+    Relative(f64),
+}
+
+impl Noise {
+    /// 1σ for a true reading `value`.
+    pub fn sigma(&self, value: f64) -> f64 {
+        match *self {
+            Noise::Absolute(s) => s,
+            Noise::Relative(f) => f * value.abs(),
+        }
+    }
+}
+
+/// One measurement channel with its schedule and noise.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChannelSpec {
+    /// What is measured.
+    pub channel: Channel,
+    /// Column name (SI unit suffix).
+    pub name: String,
+    /// Sample period [s].
+    pub period_s: f64,
+    /// Noise model.
+    pub noise: Noise,
+    /// Constant bias added to the truth (accelerometers only).
+    pub bias: f64,
+}
+
+/// A built scenario: everything a simulation or filter needs, in SI units and internal conventions.
+#[derive(Debug, Clone)]
+pub struct Scenario {
+    /// The validated configuration it was built from.
+    pub config: ScenarioConfig,
+    /// Planet constants.
+    pub planet: Planet,
+    /// Truth dynamics with the nominal vehicle and the *mean* atmosphere.
+    pub truth_model: EntryModel<AtmosphereModel>,
+    /// Nominal truth initial state in the truth model's coordinates.
+    pub truth_initial: SVector<f64, 6>,
+    /// Truth bank angle [rad].
+    pub truth_bank: f64,
+    /// Filter dynamics (onboard model).
+    pub filter_model: EntryModel<AtmosphereModel>,
+    /// Filter start: 6 kinematic states in the filter model's coordinates, then augmented states.
+    pub filter_initial: Vec<f64>,
+    /// Beacons, in file order.
+    pub beacons: Vec<Beacon>,
+    /// Beacon names, in file order.
+    pub beacon_names: Vec<String>,
+    /// Deterministic measurement model.
+    pub measurement: MeasurementModel,
+    /// All measurement channels with their schedules and noise.
+    pub channels: Vec<ChannelSpec>,
+}
+
+/// One Monte Carlo realisation of the truth world.
+#[derive(Debug, Clone)]
+pub struct TruthDraw {
+    /// Initial state in the truth model's coordinates.
+    pub initial: SVector<f64, 6>,
+    /// Truth model with dispersed vehicle, density bias and (if configured) perturbed atmosphere.
+    pub model: EntryModel<AtmosphereModel>,
+}
+
+/// Convert a state description to the six kinematic states of a model of `kind`.
+pub fn state_to_model(
+    cfg: &StateConfig,
+    field: &str,
+    convention: HeadingConvention,
+    kind: DynamicsKind,
+    planet: &Planet,
+) -> Result<SVector<f64, 6>, ScenarioError> {
+    let omega = if kind == DynamicsKind::Spherical {
+        0.0
+    } else {
+        planet.rotation_rate
+    };
+    let x = match cfg.form(field)? {
+        StateForm::Spherical => {
+            let s = [
+                cfg.radius_km.unwrap_or_default() * 1e3,
+                cfg.lon_deg.unwrap_or_default().to_radians(),
+                cfg.lat_deg.unwrap_or_default().to_radians(),
+                cfg.speed_mps.unwrap_or_default(),
+                cfg.fpa_deg.unwrap_or_default().to_radians(),
+                convention.to_internal(cfg.heading_deg.unwrap_or_default().to_radians()),
+            ];
+            if kind.is_cartesian() {
+                let (p, v) = spherical_to_inertial(&s, 0.0, omega);
+                [p[0], p[1], p[2], v[0], v[1], v[2]]
+            } else {
+                s
+            }
+        }
+        StateForm::Cartesian => {
+            let p = cfg.position_km.unwrap_or_default().map(|c| c * 1e3);
+            let v = cfg.velocity_mps.unwrap_or_default();
+            if kind.is_cartesian() {
+                [p[0], p[1], p[2], v[0], v[1], v[2]]
+            } else {
+                inertial_to_spherical(&p, &v, 0.0, omega)
+            }
+        }
+    };
+    Ok(SVector::from(x))
+}
+
+impl Scenario {
+    /// Build from a validated configuration. `load(path)` returns the text of a file the scenario
+    /// refers to (tabulated atmospheres); the core never touches the file system itself.
+    pub fn build(
+        config: ScenarioConfig,
+        load: &dyn Fn(&str) -> Result<String, String>,
+    ) -> Result<Scenario, ScenarioError> {
+        config.validate()?;
+        let planet = config.planet.resolve();
+        let conv = config.heading_convention;
+
+        let truth_atm = config.truth.atmosphere.build(&planet, load)?;
+        let truth_model = EntryModel {
+            kind: config.truth.dynamics,
+            planet,
+            atmosphere: truth_atm,
+            vehicle: Vehicle {
+                cd_s_over_m: config.truth.vehicle.cd_s_over_m(),
+                lift_to_drag: config.truth.vehicle.lift_to_drag,
+            },
+            augmented: vec![],
+            rho0_model: config.truth.atmosphere.reference_density().unwrap_or(1.0),
+            density_factor: 1.0 + config.truth.density_bias,
+        };
+        let truth_initial = state_to_model(
+            &config.truth.initial,
+            "truth.initial",
+            conv,
+            config.truth.dynamics,
+            &planet,
+        )?;
+
+        let f = &config.filter;
+        let filter_model = EntryModel {
+            kind: f.dynamics,
+            planet,
+            atmosphere: f.atmosphere.build(&planet, load)?,
+            vehicle: Vehicle {
+                cd_s_over_m: f.vehicle.cd_s_over_m(),
+                lift_to_drag: f.vehicle.lift_to_drag,
+            },
+            augmented: f.augment.clone(),
+            rho0_model: f.atmosphere.reference_density().unwrap_or(1.0),
+            density_factor: 1.0,
+        };
+        let start = f.initial.as_ref().unwrap_or(&config.truth.initial);
+        let kin = state_to_model(start, "filter.initial", conv, f.dynamics, &planet)?;
+        let mut filter_initial: Vec<f64> = kin.iter().copied().collect();
+        filter_initial.extend_from_slice(&f.initial_augmented);
+
+        // Surface beacons turn with the planet only if the truth planet rotates.
+        let mut beacon_planet = planet;
+        beacon_planet.rotation_rate = truth_model.omega();
+        let mut beacons = Vec::with_capacity(config.beacons.len());
+        for b in &config.beacons {
+            beacons.push(b.build(&beacon_planet)?);
+        }
+        let beacon_names: Vec<String> = config
+            .beacons
+            .iter()
+            .map(|b| b.name().to_string())
+            .collect();
+
+        let channels = channel_specs(&config, &beacon_names);
+        Ok(Scenario {
+            measurement: config.sensors.measurement_model(),
+            config,
+            planet,
+            truth_model,
+            truth_initial,
+            truth_bank: 0.0,
+            filter_model,
+            filter_initial,
+            beacons,
+            beacon_names,
+            channels,
+        }
+        .with_bank())
+    }
+
+    fn with_bank(mut self) -> Self {
+        self.truth_bank = self.config.truth.bank_deg.to_radians();
+        self
+    }
+
+    /// Inertial (position, velocity) of every beacon at time `t`.
+    pub fn beacon_states(&self, t: f64) -> Vec<([f64; 3], [f64; 3])> {
+        self.beacons.iter().map(|b| b.state_at(t)).collect()
+    }
+
+    /// Draw one truth realisation from `rng`: initial state, vehicle, density bias, atmosphere.
+    ///
+    /// The draws happen in a fixed order (initial state, C_D S/m, L/D, Δ, atmosphere) so that a
+    /// seed reproduces a run exactly.
+    pub fn draw_truth(&self, rng: &mut impl Rng) -> TruthDraw {
+        let d = &self.config.dispersions;
+        let mut z = || -> f64 { StandardNormal.sample(rng) };
+        let mut initial = self.truth_initial;
+        if let Some(sig) = &d.initial {
+            initial = self.disperse_initial(sig, &mut z);
+        }
+        let mut model = self.truth_model.clone();
+        model.vehicle.cd_s_over_m = (model.vehicle.cd_s_over_m + d.cd_s_over_m_m2kg * z())
+            .max(1e-3 * model.vehicle.cd_s_over_m);
+        model.vehicle.lift_to_drag = (model.vehicle.lift_to_drag + d.lift_to_drag * z()).max(0.0);
+        let mut delta = self.config.truth.density_bias + d.density_bias * z();
+        if d.density_bias_clip > 0.0 {
+            delta = delta.clamp(-d.density_bias_clip, d.density_bias_clip);
+        }
+        model.density_factor = 1.0 + delta;
+        if let Some(p) = &self.config.truth.perturbation {
+            let spec = p.to_spec();
+            model.atmosphere = AtmosphereModel::Perturbed(Box::new(Perturbed::sample(
+                self.truth_model.atmosphere.clone(),
+                &spec,
+                rng,
+            )));
+        }
+        TruthDraw { initial, model }
+    }
+
+    fn disperse_initial(&self, sig: &StateConfig, z: &mut impl FnMut() -> f64) -> SVector<f64, 6> {
+        let kind = self.truth_model.kind;
+        let omega = self.truth_model.omega();
+        let nominal = self.truth_initial;
+        let as_array = |v: &SVector<f64, 6>| -> [f64; 6] { [v[0], v[1], v[2], v[3], v[4], v[5]] };
+        match sig.form("dispersions.initial") {
+            Ok(StateForm::Spherical) => {
+                let mut s = if kind.is_cartesian() {
+                    inertial_to_spherical(
+                        &[nominal[0], nominal[1], nominal[2]],
+                        &[nominal[3], nominal[4], nominal[5]],
+                        0.0,
+                        omega,
+                    )
+                } else {
+                    as_array(&nominal)
+                };
+                let sd = [
+                    sig.radius_km.unwrap_or_default() * 1e3,
+                    sig.lon_deg.unwrap_or_default().to_radians(),
+                    sig.lat_deg.unwrap_or_default().to_radians(),
+                    sig.speed_mps.unwrap_or_default(),
+                    sig.fpa_deg.unwrap_or_default().to_radians(),
+                    sig.heading_deg.unwrap_or_default().to_radians(),
+                ];
+                for k in 0..6 {
+                    s[k] += sd[k] * z();
+                }
+                if kind.is_cartesian() {
+                    let (p, v) = spherical_to_inertial(&s, 0.0, omega);
+                    SVector::from([p[0], p[1], p[2], v[0], v[1], v[2]])
+                } else {
+                    SVector::from(s)
+                }
+            }
+            Ok(StateForm::Cartesian) => {
+                let (mut p, mut v) = if kind.is_cartesian() {
+                    (
+                        [nominal[0], nominal[1], nominal[2]],
+                        [nominal[3], nominal[4], nominal[5]],
+                    )
+                } else {
+                    spherical_to_inertial(&as_array(&nominal), 0.0, omega)
+                };
+                let sp = sig.position_km.unwrap_or_default();
+                let sv = sig.velocity_mps.unwrap_or_default();
+                for k in 0..3 {
+                    p[k] += sp[k] * 1e3 * z();
+                }
+                for k in 0..3 {
+                    v[k] += sv[k] * z();
+                }
+                if kind.is_cartesian() {
+                    SVector::from([p[0], p[1], p[2], v[0], v[1], v[2]])
+                } else {
+                    SVector::from(inertial_to_spherical(&p, &v, 0.0, omega))
+                }
+            }
+            Err(_) => nominal,
+        }
+    }
+}
+
+fn channel_specs(config: &ScenarioConfig, beacon_names: &[String]) -> Vec<ChannelSpec> {
+    let mut out = Vec::new();
+    let s = &config.sensors;
+    if let Some(imu) = &s.imu {
+        for k in 0..3u8 {
+            let channel = Channel::Accel(k);
+            out.push(ChannelSpec {
+                channel,
+                name: channel.name(beacon_names),
+                period_s: 1.0 / imu.rate_hz,
+                noise: Noise::Absolute(imu.noise_sigma_mps2),
+                bias: imu.bias_mps2[k as usize],
+            });
+        }
+    }
+    if let Some(q) = &s.dynamic_pressure {
+        let channel = Channel::DynamicPressure;
+        out.push(ChannelSpec {
+            channel,
+            name: channel.name(beacon_names),
+            period_s: 1.0 / q.rate_hz,
+            noise: Noise::Relative(q.noise_fraction),
+            bias: 0.0,
+        });
+    }
+    if let Some(h) = &s.heating {
+        let channel = Channel::Heating;
+        out.push(ChannelSpec {
+            channel,
+            name: channel.name(beacon_names),
+            period_s: 1.0 / h.rate_hz,
+            noise: Noise::Relative(h.noise_fraction),
+            bias: 0.0,
+        });
+    }
+    for (i, b) in config.beacons.iter().enumerate() {
+        if let (Some(r), Some(sig)) = (&s.range, b.range_sigma_m()) {
+            let channel = Channel::Range(i);
+            out.push(ChannelSpec {
+                channel,
+                name: channel.name(beacon_names),
+                period_s: 1.0 / r.rate_hz,
+                noise: Noise::Absolute(sig),
+                bias: 0.0,
+            });
+        }
+        if let (Some(r), Some(sig)) = (&s.range_rate, b.range_rate_sigma_mps()) {
+            let channel = Channel::RangeRate(i);
+            out.push(ChannelSpec {
+                channel,
+                name: channel.name(beacon_names),
+                period_s: 1.0 / r.rate_hz,
+                noise: Noise::Absolute(sig),
+                bias: 0.0,
+            });
+        }
+    }
+    out
+}

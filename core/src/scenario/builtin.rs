@@ -1,0 +1,28 @@
+//! The built-in scenarios, embedded from the repository's `scenarios/` folder.
+
+/// Names of the built-in scenarios, in listing order.
+pub const BUILTIN_NAMES: [&str; 7] = [
+    "four-beacon-fusion",
+    "four-beacon-fusion-fault",
+    "msl-airdata",
+    "ground-beacons-3",
+    "orbiters-3",
+    "msl-pressure",
+    "msl-pressure-orbiter",
+];
+
+/// TOML text of a built-in scenario, if `name` is one.
+pub fn builtin_toml(name: &str) -> Option<&'static str> {
+    Some(match name {
+        "four-beacon-fusion" => include_str!("../../../scenarios/four-beacon-fusion.toml"),
+        "four-beacon-fusion-fault" => {
+            include_str!("../../../scenarios/four-beacon-fusion-fault.toml")
+        }
+        "msl-airdata" => include_str!("../../../scenarios/msl-airdata.toml"),
+        "ground-beacons-3" => include_str!("../../../scenarios/ground-beacons-3.toml"),
+        "orbiters-3" => include_str!("../../../scenarios/orbiters-3.toml"),
+        "msl-pressure" => include_str!("../../../scenarios/msl-pressure.toml"),
+        "msl-pressure-orbiter" => include_str!("../../../scenarios/msl-pressure-orbiter.toml"),
+        _ => return None,
+    })
+}

@@ -1,0 +1,251 @@
+//! The scenario file format (TOML), as serde structures.
+//!
+//! Units at this boundary are the ones engineers write: km and degrees for geometry, m/s for
+//! speeds, SI for everything else; each field name carries its unit. Field-by-field range checks
+//! live in [`super::validate`]. Every struct rejects unknown fields.
+
+use crate::atmosphere::{AtmosphereConfig, PerturbationConfig};
+use crate::beacons::BeaconConfig;
+use crate::dynamics::{AugmentedParam, DynamicsKind};
+use crate::frames::HeadingConvention;
+use crate::sensors::SensorsConfig;
+use serde::{Deserialize, Serialize};
+
+/// A complete scenario: truth world, onboard filter model, sensors, beacons, dispersions, timing.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ScenarioConfig {
+    /// Short identifier, e.g. `four-beacon-fusion`.
+    pub name: String,
+    /// One-paragraph description.
+    pub description: String,
+    /// Where the numbers come from (paper, tables, equations).
+    pub reference: String,
+    /// Convention of every heading number in this file.
+    pub heading_convention: HeadingConvention,
+    /// Planet constants (overrides of the Mars defaults).
+    #[serde(default)]
+    pub planet: PlanetConfig,
+    /// Durations and steps.
+    pub timing: TimingConfig,
+    /// The simulated world.
+    pub truth: TruthConfig,
+    /// The onboard navigation model.
+    pub filter: FilterConfig,
+    /// Onboard sensors.
+    #[serde(default)]
+    pub sensors: SensorsConfig,
+    /// Radio beacons.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub beacons: Vec<BeaconConfig>,
+    /// Take radio measurements even when a beacon is below the horizon (needed to reproduce
+    /// seed 000, whose beacons are all on the far side of Mars; see SPEC.md).
+    #[serde(default)]
+    pub ignore_visibility: bool,
+    /// Monte Carlo dispersions of the truth (1σ).
+    #[serde(default)]
+    pub dispersions: DispersionConfig,
+    /// Monte Carlo defaults.
+    #[serde(default)]
+    pub monte_carlo: MonteCarloConfig,
+}
+
+/// Optional planet-constant overrides.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct PlanetConfig {
+    /// μ [m³/s²].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mu_m3s2: Option<f64>,
+    /// Reference radius [km].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius_km: Option<f64>,
+    /// Rotation rate [rad/s].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotation_rate_rad_s: Option<f64>,
+}
+
+/// Durations and integration steps.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TimingConfig {
+    /// Length of the entry simulated [s].
+    pub duration_s: f64,
+    /// Fixed RK4 step of the truth integration [s]; every sensor period must be a multiple of it.
+    pub truth_step_s: f64,
+    /// Filter cycle [s].
+    pub filter_step_s: f64,
+    /// Optional parachute-deployment trigger: stop when the planet-relative speed falls below this.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stop_speed_mps: Option<f64>,
+}
+
+/// An initial state, either spherical (planet-relative velocity) or Cartesian inertial.
+///
+/// Exactly one form must be complete. Also used for 1σ dispersions, with the same units.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct StateConfig {
+    /// Radius [km].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius_km: Option<f64>,
+    /// Longitude [deg].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lon_deg: Option<f64>,
+    /// Latitude [deg].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lat_deg: Option<f64>,
+    /// Planet-relative speed [m/s].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub speed_mps: Option<f64>,
+    /// Flight-path angle [deg], positive up.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fpa_deg: Option<f64>,
+    /// Heading [deg] in the file's `heading_convention`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub heading_deg: Option<f64>,
+    /// Inertial position [km].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub position_km: Option<[f64; 3]>,
+    /// Inertial velocity [m/s].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity_mps: Option<[f64; 3]>,
+}
+
+/// Vehicle aerodynamics: give either `cd_s_over_m_m2kg` or `ballistic_coefficient_kgm2`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VehicleConfig {
+    /// C_D·S/m [m²/kg] (seed 000 "CdS/m", seed 001 "B").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cd_s_over_m_m2kg: Option<f64>,
+    /// Ballistic coefficient m/(C_D S) [kg/m²] (seed 003).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ballistic_coefficient_kgm2: Option<f64>,
+    /// Lift-to-drag ratio.
+    pub lift_to_drag: f64,
+}
+
+/// The simulated world.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TruthConfig {
+    /// Equations of motion.
+    pub dynamics: DynamicsKind,
+    /// Nominal initial state.
+    pub initial: StateConfig,
+    /// Vehicle.
+    pub vehicle: VehicleConfig,
+    /// Mean atmosphere.
+    pub atmosphere: AtmosphereConfig,
+    /// Random, altitude-correlated perturbation of the atmosphere, drawn per run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub perturbation: Option<PerturbationConfig>,
+    /// Constant density bias Δ: ρ = ρ_model·(1 + Δ) (seed 003 eq. 6).
+    #[serde(default)]
+    pub density_bias: f64,
+    /// Bank angle [deg] (0 in every paper scenario).
+    #[serde(default)]
+    pub bank_deg: f64,
+}
+
+/// UKF sigma-point constants (seed 001 eq. 41–50).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UkfConfig {
+    /// Spread α.
+    pub alpha: f64,
+    /// Prior-knowledge β (2 for Gaussian).
+    pub beta: f64,
+    /// κ; absent means 3 − L (seed 001 §IV.B).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kappa: Option<f64>,
+}
+
+impl Default for UkfConfig {
+    fn default() -> Self {
+        UkfConfig {
+            alpha: 1.0,
+            beta: 2.0,
+            kappa: None,
+        }
+    }
+}
+
+/// The onboard navigation model. Covariances are in SI units and radians, in state order
+/// `[r|x, lon|y, lat|z, v|vx, fpa|vy, heading|vz, augmented…]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FilterConfig {
+    /// Equations of motion of the filter.
+    pub dynamics: DynamicsKind,
+    /// Filter's vehicle constants (may differ from the truth: seed 000's C_D S/m error).
+    pub vehicle: VehicleConfig,
+    /// Onboard density model.
+    pub atmosphere: AtmosphereConfig,
+    /// Augmented constant states.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub augment: Vec<AugmentedParam>,
+    /// Filter start; absent means the truth's nominal initial state.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub initial: Option<StateConfig>,
+    /// Start values of the augmented states, in `augment` order (SI).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub initial_augmented: Vec<f64>,
+    /// Start covariance diagonal P0 (SI, rad).
+    pub p0_diag: Vec<f64>,
+    /// Process-noise covariance diagonal per filter step Q_k (SI, rad).
+    pub q_diag: Vec<f64>,
+    /// Draw the filter start from N(truth, P0) in Monte Carlo runs (seed 001 §V.B) instead of
+    /// using `initial` as a fixed offset (seed 000 Table 1).
+    #[serde(default)]
+    pub sample_initial_from_p0: bool,
+    /// UKF constants.
+    #[serde(default)]
+    pub ukf: UkfConfig,
+    /// Density biases Δ of a multiple-model bank (seed 003 Table 4).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub model_bank_density_bias: Vec<f64>,
+}
+
+/// Monte Carlo dispersions (1σ) of the truth.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct DispersionConfig {
+    /// 1σ of the initial state, same form and units as `truth.initial`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub initial: Option<StateConfig>,
+    /// 1σ of C_D S/m [m²/kg].
+    #[serde(default)]
+    pub cd_s_over_m_m2kg: f64,
+    /// 1σ of L/D.
+    #[serde(default)]
+    pub lift_to_drag: f64,
+    /// 1σ of the density bias Δ.
+    #[serde(default)]
+    pub density_bias: f64,
+    /// Clip |Δ| to this value (seed 003: 0.10); 0 means no clipping.
+    #[serde(default)]
+    pub density_bias_clip: f64,
+}
+
+fn default_runs() -> usize {
+    100
+}
+
+/// Monte Carlo defaults.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MonteCarloConfig {
+    /// Number of runs when none is given on the command line.
+    #[serde(default = "default_runs")]
+    pub runs: usize,
+}
+
+impl Default for MonteCarloConfig {
+    fn default() -> Self {
+        MonteCarloConfig {
+            runs: default_runs(),
+        }
+    }
+}

@@ -1,0 +1,66 @@
+//! `entrynav`: Mars entry navigation from the command line.
+
+mod load;
+mod simulate;
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+
+/// Mars atmospheric-entry navigation: scenarios, truth simulation, and (in later releases)
+/// filters, trade studies, observability, optimisation and FMUs.
+#[derive(Parser)]
+#[command(name = "entrynav", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// List the built-in scenarios.
+    Scenarios,
+    /// Inspect a scenario.
+    Scenario {
+        #[command(subcommand)]
+        action: ScenarioAction,
+    },
+    /// Simulate the truth trajectory and the sensor measurements of a scenario.
+    Simulate(simulate::SimulateArgs),
+}
+
+#[derive(Subcommand)]
+enum ScenarioAction {
+    /// Print a scenario (built-in name or TOML file), validated, as TOML.
+    Show {
+        /// Built-in name or path to a scenario TOML file.
+        name: String,
+    },
+}
+
+fn main() {
+    let cli = Cli::parse();
+    if let Err(e) = run(cli) {
+        eprintln!("error: {e:#}");
+        std::process::exit(2);
+    }
+}
+
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Scenarios => {
+            for name in entrynav::scenario::BUILTIN_NAMES {
+                let cfg = entrynav::scenario::ScenarioConfig::builtin(name)?;
+                println!("{name:<26} {}", cfg.reference);
+            }
+            Ok(())
+        }
+        Command::Scenario {
+            action: ScenarioAction::Show { name },
+        } => {
+            let (cfg, _) = load::scenario_config(&name)?;
+            print!("{}", cfg.to_toml_string());
+            Ok(())
+        }
+        Command::Simulate(args) => simulate::run(&args),
+    }
+}

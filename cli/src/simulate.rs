@@ -1,0 +1,181 @@
+//! `entrynav simulate`: one truth run with its measurement record.
+
+use crate::load;
+use anyhow::{Context, Result};
+use clap::Args;
+use entrynav::scenario::Scenario;
+use entrynav::sim::{TruthRun, simulate_truth};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use std::io::Write;
+use std::path::PathBuf;
+
+/// Arguments of `entrynav simulate`.
+#[derive(Args)]
+pub struct SimulateArgs {
+    /// Built-in scenario name or path to a scenario TOML file.
+    #[arg(long)]
+    scenario: String,
+    /// Seed of the measurement noise (and of the dispersions with --dispersed).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Draw the truth from the scenario's dispersions (initial state, vehicle, density bias,
+    /// atmosphere perturbation) instead of using the nominal truth.
+    #[arg(long)]
+    dispersed: bool,
+    /// Write the trajectory and measurements as CSV to this file.
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+/// Run the command.
+pub fn run(args: &SimulateArgs) -> Result<()> {
+    let (cfg, dir) = load::scenario_config(&args.scenario)?;
+    let scenario = load::build(cfg, &dir)?;
+    let mut rng = ChaCha8Rng::seed_from_u64(args.seed);
+    let draw = if args.dispersed {
+        scenario.draw_truth(&mut rng)
+    } else {
+        entrynav::scenario::TruthDraw {
+            initial: scenario.truth_initial,
+            model: scenario.truth_model.clone(),
+        }
+    };
+    let run = simulate_truth(&scenario, &draw, &mut rng)?;
+    if let Some(path) = &args.out {
+        if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
+            std::fs::create_dir_all(parent)
+                .with_context(|| format!("cannot create {}", parent.display()))?;
+        }
+        let file = std::fs::File::create(path)
+            .with_context(|| format!("cannot create {}", path.display()))?;
+        let mut w = std::io::BufWriter::new(file);
+        write_csv(&mut w, &scenario, &run)
+            .with_context(|| format!("writing {}", path.display()))?;
+        w.flush()?;
+    }
+    print_summary(&scenario, &run, args);
+    Ok(())
+}
+
+fn fmt_opt(v: Option<f64>) -> String {
+    v.map(|x| x.to_string()).unwrap_or_default()
+}
+
+/// CSV: one row per truth sample (t = 0, every measurement epoch, the final time); measurement
+/// columns are empty where the channel was not sampled or not available.
+pub fn write_csv(w: &mut impl Write, scenario: &Scenario, run: &TruthRun) -> std::io::Result<()> {
+    let mut header = vec![
+        "t_s",
+        "r_m",
+        "lon_rad",
+        "lat_rad",
+        "v_mps",
+        "fpa_rad",
+        "heading_rad",
+        "altitude_m",
+        "density_kgm3",
+        "dynamic_pressure_pa",
+        "heating_wm2",
+        "aero_accel_mps2",
+    ]
+    .into_iter()
+    .map(String::from)
+    .collect::<Vec<_>>();
+    if scenario.truth_model.kind.is_cartesian() {
+        for c in ["x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps"] {
+            header.push(c.into());
+        }
+    }
+    for b in &scenario.beacon_names {
+        header.push(format!("visible_{b}"));
+    }
+    for c in &scenario.channels {
+        header.push(c.name.clone());
+    }
+    writeln!(w, "{}", header.join(","))?;
+    let mut epochs = run.epochs.iter().peekable();
+    for s in &run.samples {
+        let mut row: Vec<String> = vec![s.t.to_string()];
+        row.extend(s.spherical.iter().map(|v| v.to_string()));
+        for v in [
+            s.altitude,
+            s.density,
+            s.dynamic_pressure,
+            s.heating,
+            s.aero_accel,
+        ] {
+            row.push(v.to_string());
+        }
+        if scenario.truth_model.kind.is_cartesian() {
+            row.extend(s.state.iter().map(|v| v.to_string()));
+        }
+        row.extend(s.visible.iter().map(|v| (*v as u8).to_string()));
+        match epochs.peek() {
+            Some(e) if (e.t - s.t).abs() < 1e-9 => {
+                row.extend(e.values.iter().map(|v| fmt_opt(*v)));
+                epochs.next();
+            }
+            _ => row.extend(std::iter::repeat_n(String::new(), scenario.channels.len())),
+        }
+        writeln!(w, "{}", row.join(","))?;
+    }
+    Ok(())
+}
+
+fn print_summary(scenario: &Scenario, run: &TruthRun, args: &SimulateArgs) {
+    let last = run
+        .samples
+        .last()
+        .expect("a run has at least its initial sample");
+    let peak = |f: &dyn Fn(&entrynav::sim::TruthSample) -> f64| {
+        run.samples
+            .iter()
+            .map(|s| (f(s), s.t))
+            .fold(
+                (f64::NEG_INFINITY, 0.0),
+                |a, b| if b.0 > a.0 { b } else { a },
+            )
+    };
+    let (acc, t_acc) = peak(&|s| s.aero_accel);
+    let (q, t_q) = peak(&|s| s.dynamic_pressure);
+    let (h, t_h) = peak(&|s| s.heating);
+    println!(
+        "scenario        {} ({})",
+        scenario.config.name,
+        if args.dispersed {
+            "dispersed truth"
+        } else {
+            "nominal truth"
+        }
+    );
+    println!("seed            {}", args.seed);
+    println!("stopped         at t = {:.2} s ({:?})", last.t, run.stop);
+    println!("final altitude  {:.3} km", last.altitude / 1e3);
+    println!("final speed     {:.2} m/s", last.spherical[3]);
+    println!(
+        "peak decel      {:.2} m/s^2 ({:.2} Earth g) at t = {:.1} s",
+        acc,
+        acc / entrynav::planet::G_EARTH,
+        t_acc
+    );
+    println!("peak dyn. press {:.1} Pa at t = {:.1} s", q, t_q);
+    println!(
+        "peak heating    {:.1} kW/m^2 at t = {:.1} s (R_n = {} m)",
+        h / 1e3,
+        t_h,
+        scenario.measurement.heating.nose_radius
+    );
+    println!(
+        "measurements    {} epochs, {} channels",
+        run.epochs.len(),
+        scenario.channels.len()
+    );
+    for (c, spec) in scenario.channels.iter().enumerate() {
+        let n = run.epochs.iter().filter(|e| e.values[c].is_some()).count();
+        println!("  {:<28} {n} samples", spec.name);
+    }
+    if let Some(out) = &args.out {
+        println!("wrote           {}", out.display());
+    }
+}

@@ -1,0 +1,177 @@
+//! Scenario files: built-ins are valid, round-trip, and bad input gets a clear error.
+
+use entrynav::scenario::{BUILTIN_NAMES, Scenario, ScenarioConfig, ScenarioError};
+
+fn no_files(p: &str) -> Result<String, String> {
+    Err(format!("{p}: no such file (test loader)"))
+}
+
+#[test]
+fn every_builtin_parses_validates_builds_and_round_trips() {
+    for name in BUILTIN_NAMES {
+        let cfg = ScenarioConfig::builtin(name).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(cfg.name, name, "file name and `name` field agree");
+        let text = cfg.to_toml_string();
+        let again = ScenarioConfig::from_toml_str(&text, "roundtrip")
+            .unwrap_or_else(|e| panic!("{name} round trip: {e}"));
+        assert_eq!(cfg, again, "{name}: TOML round trip changes the scenario");
+        let sc = Scenario::build(cfg, &no_files).unwrap_or_else(|e| panic!("{name}: build: {e}"));
+        assert_eq!(sc.filter_initial.len(), sc.filter_model.state_dim());
+        assert!(!sc.channels.is_empty(), "{name} has no measurement channel");
+    }
+}
+
+#[test]
+fn builtin_mirrors_match_the_files_in_scenarios_dir() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios");
+    for name in BUILTIN_NAMES {
+        let on_disk =
+            std::fs::read_to_string(dir.join(format!("{name}.toml"))).expect("mirror file exists");
+        assert_eq!(
+            on_disk,
+            entrynav::scenario::builtin_toml(name).unwrap(),
+            "{name}"
+        );
+    }
+}
+
+fn base() -> String {
+    entrynav::scenario::builtin_toml("four-beacon-fusion")
+        .unwrap()
+        .to_string()
+}
+
+/// Apply `edit` to the four-beacon-fusion text and return the error message.
+fn error_of(edit: impl Fn(String) -> String) -> String {
+    let text = edit(base());
+    match ScenarioConfig::from_toml_str(&text, "edited.toml") {
+        Ok(_) => panic!("edited scenario was accepted:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn unknown_field_is_refused_with_its_name() {
+    let msg = error_of(|s| s.replace("[truth.vehicle]\n", "[truth.vehicle]\nmass_kg = 900.0\n"));
+    assert!(msg.contains("mass_kg"), "{msg}");
+    assert!(msg.contains("edited.toml"), "{msg}");
+    let msg = error_of(|s| {
+        s.replace(
+            "ignore_visibility = true",
+            "ignore_visibility = true\nfoo = 1",
+        )
+    });
+    assert!(msg.contains("foo"), "{msg}");
+}
+
+#[test]
+fn negative_mass_is_refused() {
+    // A negative mass shows up as a negative C_D S/m or ballistic coefficient.
+    let msg = error_of(|s| s.replacen("cd_s_over_m_m2kg = 0.016", "cd_s_over_m_m2kg = -0.016", 1));
+    assert!(
+        msg.contains("truth.vehicle.cd_s_over_m_m2kg")
+            && msg.contains("-0.016")
+            && msg.contains("> 0"),
+        "{msg}"
+    );
+    let msg = error_of(|s| {
+        s.replacen(
+            "cd_s_over_m_m2kg = 0.016",
+            "ballistic_coefficient_kgm2 = -146.0",
+            1,
+        )
+    });
+    assert!(
+        msg.contains("ballistic_coefficient_kgm2") && msg.contains("-146"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn non_positive_density_is_refused() {
+    let msg = error_of(|s| s.replacen("rho_ref_kgm3 = 2e-4", "rho_ref_kgm3 = 0.0", 1));
+    assert!(msg.contains("truth.atmosphere.rho_ref_kgm3"), "{msg}");
+    let msg = error_of(|s| s.replacen("rho_ref_kgm3 = 2e-4", "rho_ref_kgm3 = -2e-4", 1));
+    assert!(
+        msg.contains("rho_ref_kgm3") && msg.contains("-0.0002"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn non_positive_duration_is_refused() {
+    for bad in ["0.0", "-300.0"] {
+        let msg = error_of(|s| s.replace("duration_s = 300.0", &format!("duration_s = {bad}")));
+        assert!(
+            msg.contains("timing.duration_s") && msg.contains("must be > 0"),
+            "{msg}"
+        );
+    }
+}
+
+#[test]
+fn malformed_number_is_refused_with_line() {
+    let msg = error_of(|s| s.replace("duration_s = 300.0", "duration_s = 3x0.0"));
+    assert!(msg.contains("edited.toml") && msg.contains("line"), "{msg}");
+    let msg = error_of(|s| s.replace("speed_mps = 5515.0", "speed_mps = \"fast\""));
+    assert!(
+        msg.contains("line") && msg.contains("speed_mps") || msg.contains("invalid type"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn missing_table_file_is_refused_with_the_file_name() {
+    let text = base().replacen(
+        "model = \"exponential\"\nrho_ref_kgm3 = 2e-4\nref_radius_km = 3437.2\nscale_height_km = 7.5",
+        "model = \"table\"\nfile = \"does-not-exist.csv\"\nformat = \"csv\"",
+        1,
+    );
+    let cfg =
+        ScenarioConfig::from_toml_str(&text, "table.toml").expect("valid until the file is read");
+    let err = Scenario::build(cfg, &no_files).expect_err("missing file must fail");
+    let msg = err.to_string();
+    assert!(msg.contains("does-not-exist.csv"), "{msg}");
+    assert!(matches!(err, ScenarioError::Atmosphere(_)));
+}
+
+#[test]
+fn structural_errors_name_the_field() {
+    let msg = error_of(|s| {
+        s.replace(
+            "q_diag = [1.0e2, 1.0e-8, 1.0e-8, 10.0, 1.0e-4, 1.0e-4, 1.0e-12, 1.0e-4]",
+            "q_diag = [1.0]",
+        )
+    });
+    assert!(msg.contains("filter.q_diag") && msg.contains("8"), "{msg}");
+    let msg = error_of(|s| s.replacen("heading_deg = 5.156\n", "", 1));
+    assert!(
+        msg.contains("truth.initial") && msg.contains("heading_deg"),
+        "{msg}"
+    );
+    let msg = error_of(|s| s.replacen("truth_step_s = 0.1", "truth_step_s = 0.3", 1));
+    assert!(msg.contains("multiple"), "{msg}");
+    let msg = error_of(|s| s.replacen("lat_deg = -28.02", "lat_deg = 95.0", 1));
+    assert!(
+        msg.contains("truth.initial.lat_deg") && msg.contains("95"),
+        "{msg}"
+    );
+    let msg = error_of(|s| s.replacen("radius_km = 3518.2", "radius_km = 3000.0", 1));
+    assert!(
+        msg.contains("truth.initial.radius_km") && msg.contains("above the surface"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn random_text_never_panics() {
+    // A crude fuzz: every prefix of a valid file must give Ok or an Err, never a panic.
+    let text = base();
+    let mut cut = 0;
+    while cut < text.len() {
+        if text.is_char_boundary(cut) {
+            let _ = ScenarioConfig::from_toml_str(&text[..cut], "prefix");
+        }
+        cut += 97;
+    }
+}

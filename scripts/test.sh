@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# The project's test command (README, CI): set up the machine, then format check, lint, tests.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/setup.sh
+
+echo "== cargo fmt --check"
+cargo fmt --all -- --check
+
+echo "== cargo clippy (all targets, warnings are errors)"
+cargo clippy --workspace --all-targets --release -- -D warnings
+
+echo "== cargo test"
+# Release profile: the Monte Carlo and property tests are numerical and run much faster optimised.
+cargo test --workspace --release
+
+echo "== benchmarks compile"
+cargo bench --workspace --no-run
+
+echo "== README main command"
+cargo run --release --quiet --bin entrynav -- simulate --scenario four-beacon-fusion --out target/ci-demo/four-beacon-fusion.csv

@@ -4,8 +4,9 @@
 //! forward-mode dual numbers from `num-dual` (e.g. `DualSVec64<N>`), which gives exact
 //! Jacobians without symbolic algebra.
 
+use nalgebra::Const;
 use nalgebra::{SMatrix, SVector};
-use num_dual::{DualNum, DualVec, jacobian};
+use num_dual::{Derivative, DualNum, DualVec, jacobian};
 
 /// A real scalar the models can be evaluated in: `f64` or a (static-size) dual number.
 pub trait Real: DualNum<Primitive = f64> + Copy + nalgebra::Scalar {}
@@ -70,6 +71,24 @@ pub fn ad_jacobian<const M: usize, const N: usize>(
     x: &SVector<f64, N>,
 ) -> (SVector<f64, M>, SMatrix<f64, M, N>) {
     jacobian(g, x)
+}
+
+/// Forward-mode dual number carrying a gradient with respect to `N` seeded variables.
+pub type Dual<const N: usize> = DualVec<f64, Const<N>>;
+
+/// Seed `x` as `N` independent AD variables: component i carries the unit gradient e_i.
+pub fn seed_duals<const N: usize>(x: &SVector<f64, N>) -> SVector<Dual<N>, N> {
+    SVector::from_fn(|i, _| {
+        DualVec::new(
+            x[i],
+            Derivative::derivative_generic(Const::<N>, Const::<1>, i),
+        )
+    })
+}
+
+/// Gradient (∂/∂x of the seeded variables) carried by a dual number.
+pub fn dual_gradient<const N: usize>(d: &Dual<N>) -> SVector<f64, N> {
+    d.eps.unwrap_generic(Const::<N>, Const::<1>)
 }
 
 /// Central finite-difference Jacobian with per-component steps `h_i = rel·max(|x_i|, floor_i)`.

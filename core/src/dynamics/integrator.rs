@@ -1,5 +1,6 @@
 //! Fixed-step classical Runge–Kutta (RK4) integration.
 
+use crate::math::Real;
 use nalgebra::SVector;
 
 /// One classical RK4 step of `ẋ = f(x)` with step `h`.
@@ -17,6 +18,24 @@ pub fn rk4_step<const N: usize>(
     let k3 = f(&(x + k2 * (0.5 * h)));
     let k4 = f(&(x + k3 * h));
     x + (k1 + k2 * 2.0 + k3 * 2.0 + k4) * (h / 6.0)
+}
+
+/// One RK4 step in any [`Real`] scalar: with dual numbers seeded on `x`, the derivative part of the
+/// result is the exact state-transition matrix of the discrete step (used by the EKF).
+#[inline]
+pub fn rk4_step_generic<T: Real, const N: usize>(
+    f: impl Fn(&SVector<T, N>) -> SVector<T, N>,
+    x: &SVector<T, N>,
+    h: f64,
+) -> SVector<T, N> {
+    let half = T::from(0.5 * h);
+    let full = T::from(h);
+    let k1 = f(x);
+    let k2 = f(&x.zip_map(&k1, |a, b| a + b * half));
+    let k3 = f(&x.zip_map(&k2, |a, b| a + b * half));
+    let k4 = f(&x.zip_map(&k3, |a, b| a + b * full));
+    let sixth = T::from(h / 6.0);
+    SVector::from_fn(|i, _| x[i] + (k1[i] + (k2[i] + k3[i]) * 2.0 + k4[i]) * sixth)
 }
 
 /// Integrate from 0 to `duration` with at most step `h`, ending exactly at `duration`.

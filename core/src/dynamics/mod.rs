@@ -18,7 +18,7 @@ use nalgebra::{SMatrix, SVector};
 use serde::{Deserialize, Serialize};
 
 pub use cartesian::cartesian_rhs;
-pub use integrator::{rk4_integrate, rk4_step};
+pub use integrator::{rk4_integrate, rk4_step, rk4_step_generic};
 pub use spherical::spherical_rhs;
 
 /// Which equations of motion a model uses.
@@ -163,6 +163,16 @@ impl<A: Atmosphere> EntryModel<A> {
     /// One RK4 step of length `h` with constant bank angle.
     pub fn step<const N: usize>(&self, x: &SVector<f64, N>, bank: f64, h: f64) -> SVector<f64, N> {
         rk4_step(|y| self.rhs(y, bank), x, h)
+    }
+
+    /// One RK4 step with its exact state-transition matrix Φ = ∂x(t+h)/∂x(t) (AD through the step).
+    pub fn step_with_stm<const N: usize>(
+        &self,
+        x: &SVector<f64, N>,
+        bank: f64,
+        h: f64,
+    ) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
+        ad_jacobian(|xd| rk4_step_generic(|y| self.rhs(y, bank), &xd, h), x)
     }
 
     /// Altitude above the reference sphere of a state [m].

@@ -1,0 +1,63 @@
+//! Navigation filters.
+//!
+//! The module is layered:
+//! * **algorithms** — the estimators themselves on plain vectors and matrices, independent of
+//!   Mars entry: [`ekf`] (Joseph-form EKF), `ukf` (scaled unscented filter with the Schmidt
+//!   consider form), `ci` (covariance intersection), `mmae` (multiple-model banks);
+//! * **navigation filters** — adapters that wire an algorithm to an entry scenario's dynamics
+//!   and measurement models (`nav`).
+//!
+//! Filters never panic on numerical trouble: every step returns a [`EstimationError`] that the
+//! caller turns into a filter status.
+
+pub mod ci;
+pub mod ekf;
+pub mod mmae;
+pub mod nav;
+pub mod ukf;
+
+use nalgebra::SMatrix;
+use thiserror::Error;
+
+/// Numerical failure of an estimator step.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum EstimationError {
+    /// A covariance (or innovation covariance) is not positive definite.
+    #[error("{what} is not positive definite")]
+    NotPositiveDefinite {
+        /// Which matrix.
+        what: String,
+    },
+    /// A value became NaN or infinite.
+    #[error("{what} became non-finite")]
+    NonFinite {
+        /// Which quantity.
+        what: String,
+    },
+    /// Inputs that do not fit together (lengths, weights, parameters).
+    #[error("invalid input: {0}")]
+    InvalidInput(String),
+}
+
+/// `(P + Pᵀ)/2`.
+pub fn symmetrize<const N: usize>(p: &SMatrix<f64, N, N>) -> SMatrix<f64, N, N> {
+    (p + p.transpose()) * 0.5
+}
+
+/// Check a covariance is finite and positive definite (Cholesky succeeds).
+pub fn check_covariance<const N: usize>(
+    p: &SMatrix<f64, N, N>,
+    what: &str,
+) -> Result<(), EstimationError> {
+    if p.iter().any(|v| !v.is_finite()) {
+        return Err(EstimationError::NonFinite {
+            what: what.to_string(),
+        });
+    }
+    if p.cholesky().is_none() {
+        return Err(EstimationError::NotPositiveDefinite {
+            what: what.to_string(),
+        });
+    }
+    Ok(())
+}

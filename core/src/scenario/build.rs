@@ -41,8 +41,10 @@ pub struct ChannelSpec {
     pub name: String,
     /// Sample period [s].
     pub period_s: f64,
-    /// Noise model.
+    /// Noise of the simulated sensor.
     pub noise: Noise,
+    /// Noise the filters assume (differs from `noise` where the scenario says so).
+    pub filter_noise: Noise,
     /// Constant bias added to the truth (accelerometers only).
     pub bias: f64,
 }
@@ -321,6 +323,9 @@ fn channel_specs(config: &ScenarioConfig, beacon_names: &[String]) -> Vec<Channe
                 name: channel.name(beacon_names),
                 period_s: 1.0 / imu.rate_hz,
                 noise: Noise::Absolute(imu.noise_sigma_mps2),
+                filter_noise: Noise::Absolute(
+                    config.filter.imu_sigma_mps2.unwrap_or(imu.noise_sigma_mps2),
+                ),
                 bias: imu.bias_mps2[k as usize],
             });
         }
@@ -332,6 +337,7 @@ fn channel_specs(config: &ScenarioConfig, beacon_names: &[String]) -> Vec<Channe
             name: channel.name(beacon_names),
             period_s: 1.0 / q.rate_hz,
             noise: Noise::Relative(q.noise_fraction),
+            filter_noise: Noise::Relative(q.noise_fraction),
             bias: 0.0,
         });
     }
@@ -342,6 +348,7 @@ fn channel_specs(config: &ScenarioConfig, beacon_names: &[String]) -> Vec<Channe
             name: channel.name(beacon_names),
             period_s: 1.0 / h.rate_hz,
             noise: Noise::Relative(h.noise_fraction),
+            filter_noise: Noise::Relative(h.noise_fraction),
             bias: 0.0,
         });
     }
@@ -353,6 +360,7 @@ fn channel_specs(config: &ScenarioConfig, beacon_names: &[String]) -> Vec<Channe
                 name: channel.name(beacon_names),
                 period_s: 1.0 / r.rate_hz,
                 noise: Noise::Absolute(sig),
+                filter_noise: Noise::Absolute(sig),
                 bias: 0.0,
             });
         }
@@ -363,6 +371,7 @@ fn channel_specs(config: &ScenarioConfig, beacon_names: &[String]) -> Vec<Channe
                 name: channel.name(beacon_names),
                 period_s: 1.0 / r.rate_hz,
                 noise: Noise::Absolute(sig),
+                filter_noise: Noise::Absolute(sig),
                 bias: 0.0,
             });
         }

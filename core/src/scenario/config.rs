@@ -196,6 +196,11 @@ pub struct FilterConfig {
     pub p0_diag: Vec<f64>,
     /// Process-noise covariance diagonal per filter step Q_k (SI, rad).
     pub q_diag: Vec<f64>,
+    /// Accelerometer noise 1σ the filter assumes [m/s²] (default: the sensor's own). Set it larger
+    /// than the sensor noise to account for errors the filter does not model, e.g. seed 000's
+    /// unestimated −0.03 m/s² bias, which is 30σ of the printed R = 1e-6.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub imu_sigma_mps2: Option<f64>,
     /// Draw the filter start from N(truth, P0) in Monte Carlo runs (seed 001 §V.B) instead of
     /// using `initial` as a fixed offset (seed 000 Table 1).
     #[serde(default)]

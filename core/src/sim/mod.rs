@@ -1,8 +1,14 @@
-//! Simulation: the truth simulator (fixed-step RK4 truth plus sensor records) and, in later
-//! modules, Monte Carlo.
+//! Simulation: the truth simulator (fixed-step RK4 truth plus sensor records), the filter
+//! harness, and the Monte Carlo engine with its metrics.
 
+pub mod metrics;
+pub mod monte_carlo;
+pub mod navigation;
 pub mod truth;
 
+pub use metrics::{FilterReport, nees_bounds_95};
+pub use monte_carlo::{McOptions, TradeError, TradeReport, run_trade, state_names};
+pub use navigation::{FilterOutcome, NavStep, run_filter};
 pub use truth::{MeasurementEpoch, SimError, StopReason, TruthRun, TruthSample, simulate_truth};
 
 /// Seed of run `run` of a Monte Carlo with master seed `seed` (SplitMix64 of both), so every run's

@@ -71,7 +71,7 @@ pub struct MeasurementEpoch {
 /// A complete truth run.
 #[derive(Debug, Clone)]
 pub struct TruthRun {
-    /// Truth samples at t = 0 and at every measurement epoch.
+    /// Truth samples at t = 0, at every measurement epoch, and at the final time.
     pub samples: Vec<TruthSample>,
     /// Measurement epochs (aligned with `samples[1..]`).
     pub epochs: Vec<MeasurementEpoch>,
@@ -146,10 +146,21 @@ pub fn simulate_truth(
         }
         let due: Vec<bool> = periods.iter().map(|p| k % p == 0).collect();
         let is_last = k == n_steps;
+        // Cheap per-step checks; the full sample (visibility of every beacon…) only when recorded.
+        let (altitude, airspeed) = {
+            let kin = kinematics(model, &x, t);
+            let r = (kin.pos[0] * kin.pos[0] + kin.pos[1] * kin.pos[1] + kin.pos[2] * kin.pos[2])
+                .sqrt();
+            (r - model.planet.radius, kin.airspeed)
+        };
+        let ground = altitude <= 0.0;
+        let slow = timing.stop_speed_mps.is_some_and(|v| airspeed < v);
+        let any_due = due.iter().any(|d| *d);
+        if !(any_due || is_last || ground || slow) {
+            continue;
+        }
         let s = sample(scenario, draw, t, &x);
-        let ground = s.altitude <= 0.0;
-        let slow = timing.stop_speed_mps.is_some_and(|v| s.spherical[3] < v);
-        if due.iter().any(|d| *d) {
+        if any_due {
             let beacon_states = scenario.beacon_states(t);
             let kin = kinematics(model, &x, t);
             let mut values = Vec::with_capacity(due.len());
@@ -177,10 +188,8 @@ pub fn simulate_truth(
                 values.push(available.then(|| truth + spec.bias + spec.noise.sigma(truth) * z));
             }
             epochs.push(MeasurementEpoch { t, values });
-            samples.push(s);
-        } else if is_last || ground || slow {
-            samples.push(s);
         }
+        samples.push(s);
         if ground {
             stop = StopReason::Ground;
             break;

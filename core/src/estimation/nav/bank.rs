@@ -1,0 +1,195 @@
+//! Multiple-model banks of EKFs over density biases: classical MMAE and seed 003's modified
+//! mixture of experts.
+
+use super::ekf_nav::EkfNav;
+use super::setup::FilterStart;
+use super::{NavFilter, StepInfo};
+use crate::estimation::EstimationError;
+use crate::estimation::mmae::{
+    ClassicBank, DEFAULT_ETA, DEFAULT_P_MIN, MixtureOfExperts, fuse_bank, gaussian_log_likelihood,
+};
+use crate::math::V3;
+use crate::scenario::Scenario;
+use crate::sensors::Channel;
+use crate::sim::MeasurementEpoch;
+use nalgebra::{DMatrix, DVector, SMatrix, SVector};
+
+/// Mars mean surface pressure used to normalise dynamic pressure for the gating (seed 003 §3.2) [Pa].
+pub const MARS_SURFACE_PRESSURE_PA: f64 = 610.0;
+/// Heating is not in seed 003; we normalise it by a typical peak stagnation heating rate [W/m²].
+pub const HEATING_SCALE_WM2: f64 = 1.0e6;
+
+enum Gate {
+    Classic(ClassicBank),
+    Moe(MixtureOfExperts),
+}
+
+/// A bank of EKFs, model i with density ρ_model·(1 + Δ_i) (seed 003 eq. 6, Table 4).
+///
+/// Each step every member predicts; its prior innovation ν_i and S_i = H P⁻ Hᵀ + R give
+/// ln N(ν_i; 0, S_i); the classical bank updates posterior probabilities by Bayes' rule
+/// (floor `DEFAULT_P_MIN`), the mixture of experts gates on the normalised measurement vector
+/// (pressure / 610 Pa, acceleration / g0, range / R, range-rate / √(g0 R), eq. 17–25). The output
+/// is the probability-weighted mixture of the members' posteriors. A member that fails
+/// numerically gets zero likelihood from then on.
+pub struct BankNav<'a, const N: usize> {
+    members: Vec<Option<EkfNav<'a, N>>>,
+    deltas: Vec<f64>,
+    gate: Gate,
+    scenario: &'a Scenario,
+    fused: (SVector<f64, N>, SMatrix<f64, N, N>),
+    weights: Vec<f64>,
+    t: f64,
+}
+
+impl<'a, const N: usize> BankNav<'a, N> {
+    /// A bank over `filter.model_bank_density_bias`; `moe` selects the mixture-of-experts gating.
+    pub fn new(
+        scenario: &'a Scenario,
+        start: &FilterStart<N>,
+        moe: bool,
+    ) -> Result<Self, EstimationError> {
+        let deltas = scenario.config.filter.model_bank_density_bias.clone();
+        if deltas.len() < 2 {
+            return Err(EstimationError::InvalidInput(
+                "a model bank needs at least two density biases".into(),
+            ));
+        }
+        let members = deltas
+            .iter()
+            .map(|d| EkfNav::new(scenario, start, None, 1.0 + d).map(Some))
+            .collect::<Result<Vec<_>, _>>()?;
+        let n = deltas.len();
+        let gate = if moe {
+            Gate::Moe(MixtureOfExperts::new(
+                n,
+                scenario.channels.len(),
+                DEFAULT_ETA,
+            )?)
+        } else {
+            Gate::Classic(ClassicBank::new(n, DEFAULT_P_MIN)?)
+        };
+        Ok(BankNav {
+            members,
+            deltas,
+            gate,
+            scenario,
+            fused: (start.x0, start.p0),
+            weights: vec![1.0 / n as f64; n],
+            t: 0.0,
+        })
+    }
+
+    /// The density biases of the members.
+    pub fn deltas(&self) -> &[f64] {
+        &self.deltas
+    }
+
+    fn normalised(&self, epoch: &MeasurementEpoch) -> DVector<f64> {
+        let p = &self.scenario.planet;
+        let g0 = p.surface_gravity();
+        DVector::from_iterator(
+            epoch.values.len(),
+            epoch
+                .values
+                .iter()
+                .zip(&self.scenario.channels)
+                .map(|(v, spec)| {
+                    let Some(z) = v else { return 0.0 };
+                    match spec.channel {
+                        Channel::Accel(_) => z / g0,
+                        Channel::DynamicPressure => z / MARS_SURFACE_PRESSURE_PA,
+                        Channel::Heating => z / HEATING_SCALE_WM2,
+                        Channel::Range(_) => z / p.radius,
+                        Channel::RangeRate(_) => z / (g0 * p.radius).sqrt(),
+                    }
+                }),
+        )
+    }
+}
+
+impl<const N: usize> NavFilter<N> for BankNav<'_, N> {
+    fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
+        for slot in self.members.iter_mut() {
+            if let Some(f) = slot
+                && f.predict(t_to).is_err()
+            {
+                *slot = None;
+            }
+        }
+        self.t = t_to;
+        Ok(())
+    }
+
+    fn update(
+        &mut self,
+        epoch: &MeasurementEpoch,
+        beacons: &[(V3<f64>, V3<f64>)],
+    ) -> Result<StepInfo, EstimationError> {
+        let mut loglik = vec![f64::NEG_INFINITY; self.members.len()];
+        for (i, slot) in self.members.iter_mut().enumerate() {
+            let Some(f) = slot else { continue };
+            let (_, items) = f.measurement_items(epoch, beacons);
+            if items.is_empty() {
+                loglik[i] = 0.0;
+                continue;
+            }
+            let (_, p) = f.estimate();
+            let m = items.len();
+            let nu = DVector::from_iterator(m, items.iter().map(|(h0, _, z, _)| z - h0));
+            let s = DMatrix::from_fn(m, m, |a, b| {
+                let v = items[a].1.dot(&(p * items[b].1));
+                if a == b { v + items[a].3 } else { v }
+            });
+            loglik[i] = gaussian_log_likelihood(&nu, &s).unwrap_or(f64::NEG_INFINITY);
+            if f.update(epoch, beacons).is_err() {
+                *slot = None;
+                loglik[i] = f64::NEG_INFINITY;
+            }
+        }
+        if self.members.iter().all(Option::is_none) {
+            return Err(EstimationError::NotPositiveDefinite {
+                what: "every bank member's covariance".into(),
+            });
+        }
+        let z = self.normalised(epoch);
+        self.weights = match &mut self.gate {
+            Gate::Classic(b) => b.update(&loglik)?.to_vec(),
+            Gate::Moe(m) => m.update(&z, &loglik)?.1,
+        };
+        let (w, est): (Vec<f64>, Vec<_>) = self
+            .members
+            .iter()
+            .zip(&self.weights)
+            .filter_map(|(m, w)| m.as_ref().map(|f| (*w, f.estimate())))
+            .unzip();
+        self.fused = fuse_bank(&w, &est)?;
+        Ok(StepInfo {
+            nis: None,
+            n_meas: epoch.values.iter().flatten().count(),
+            innovations: Vec::new(),
+            weights: Some(self.weights.clone()),
+        })
+    }
+
+    fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
+        self.fused
+    }
+
+    fn time(&self) -> f64 {
+        self.t
+    }
+
+    fn density_estimate(&self) -> Option<f64> {
+        let f = self.members.iter().flatten().next()?;
+        let base = f.model().atmosphere.clone();
+        let alt = self.scenario.filter_model.altitude(&self.fused.0);
+        let factor: f64 = self
+            .weights
+            .iter()
+            .zip(&self.deltas)
+            .map(|(w, d)| w * (1.0 + d))
+            .sum();
+        Some(crate::atmosphere::Atmosphere::density(&base, alt) * factor)
+    }
+}

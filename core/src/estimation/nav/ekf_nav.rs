@@ -1,0 +1,219 @@
+//! The EKF navigation filter: centralised over every channel, or local over a channel subset.
+
+use super::setup::FilterStart;
+use super::{NavFilter, StepInfo, channel_sigma};
+use crate::atmosphere::AtmosphereModel;
+use crate::dynamics::EntryModel;
+use crate::estimation::EstimationError;
+use crate::estimation::ekf::{Ekf, LinearizedMeasurement};
+use crate::math::{V3, dual_gradient, seed_duals};
+use crate::scenario::Scenario;
+use crate::sensors::channels::kinematics;
+use crate::sim::MeasurementEpoch;
+use nalgebra::{SMatrix, SVector};
+
+/// EKF navigation filter (seed 000 eq. 17–18).
+///
+/// * Time update: the mean is propagated with the truth's RK4 scheme in sub-steps no longer than
+///   `timing.filter_step_s`; Φ is the exact Jacobian of the discrete RK4 step (AD through the step),
+///   P⁻ = Φ P Φᵀ + Q·(h / filter step).
+/// * Measurement update: all available channels of the epoch, linearised at the prior with one AD
+///   pass, processed sequentially in Joseph form — identical to the batch update with diagonal R.
+///   Relative-noise channels use σ = fraction·|z|.
+#[derive(Debug, Clone)]
+pub struct EkfNav<'a, const N: usize> {
+    scenario: &'a Scenario,
+    model: EntryModel<AtmosphereModel>,
+    ekf: Ekf<N>,
+    q: SMatrix<f64, N, N>,
+    t: f64,
+    channels: Option<Vec<usize>>,
+}
+
+impl<'a, const N: usize> EkfNav<'a, N> {
+    /// A filter on `scenario` from `start`; `channels` restricts it to those channel slots (a local
+    /// filter), `density_factor` scales its density model (a bank member with bias Δ: 1 + Δ).
+    pub fn new(
+        scenario: &'a Scenario,
+        start: &FilterStart<N>,
+        channels: Option<Vec<usize>>,
+        density_factor: f64,
+    ) -> Result<Self, EstimationError> {
+        let mut model = scenario.filter_model.clone();
+        model.density_factor = density_factor;
+        Ok(EkfNav {
+            scenario,
+            model,
+            ekf: Ekf::new(start.x0, start.p0)?,
+            q: start.q,
+            t: 0.0,
+            channels,
+        })
+    }
+
+    /// Replace the estimate (information feedback, seed 000 eq. 22).
+    pub fn set_estimate(&mut self, x: SVector<f64, N>, p: SMatrix<f64, N, N>) {
+        self.ekf.x = x;
+        self.ekf.p = p;
+    }
+
+    /// The RK4 sub-steps `(x_next, Φ, Q_h)` that take the current estimate to `t_to`.
+    pub fn transition(
+        &self,
+        t_to: f64,
+    ) -> Vec<(SVector<f64, N>, SMatrix<f64, N, N>, SMatrix<f64, N, N>)> {
+        let dt = t_to - self.t;
+        if dt <= 0.0 {
+            return Vec::new();
+        }
+        let step = self.scenario.config.timing.filter_step_s;
+        let n = ((dt / step) - 1e-9).ceil().max(1.0) as usize;
+        let h = dt / n as f64;
+        let q = self.q * (h / step);
+        let mut x = self.ekf.x;
+        let mut out = Vec::with_capacity(n);
+        for _ in 0..n {
+            let (x_next, phi) = self.model.step_with_stm(&x, self.scenario.truth_bank, h);
+            out.push((x_next, phi, q));
+            x = x_next;
+        }
+        out
+    }
+
+    /// Apply precomputed sub-steps (from [`EkfNav::transition`] of a filter with the same estimate).
+    pub fn apply_transition(
+        &mut self,
+        t_to: f64,
+        steps: &[(SVector<f64, N>, SMatrix<f64, N, N>, SMatrix<f64, N, N>)],
+    ) -> Result<(), EstimationError> {
+        for (x_next, phi, q) in steps {
+            self.ekf.predict(*x_next, phi, q)?;
+        }
+        self.t = self.t.max(t_to);
+        Ok(())
+    }
+
+    /// Measurement update with precomputed linearised items (channel slot, item); only the slots
+    /// this filter uses are applied.
+    pub fn update_with_items(
+        &mut self,
+        items: &[(usize, LinearizedMeasurement<N>)],
+    ) -> Result<StepInfo, EstimationError> {
+        let mine: Vec<LinearizedMeasurement<N>> = items
+            .iter()
+            .filter(|(c, _)| self.channels.as_ref().is_none_or(|m| m.contains(c)))
+            .map(|(_, it)| *it)
+            .collect();
+        if mine.is_empty() {
+            return Ok(StepInfo::default());
+        }
+        let prior = self.ekf.x;
+        let (innovations, nis) = self.ekf.update_linearized(&prior, &mine)?;
+        if self.ekf.x.iter().any(|v| !v.is_finite()) {
+            return Err(EstimationError::NonFinite {
+                what: "updated state".into(),
+            });
+        }
+        Ok(StepInfo {
+            nis: Some(nis),
+            n_meas: mine.len(),
+            innovations,
+            weights: None,
+        })
+    }
+
+    /// Linearised items for every available channel of the epoch (ignoring this filter's mask).
+    pub fn all_measurement_items(
+        &self,
+        epoch: &MeasurementEpoch,
+        beacons: &[(V3<f64>, V3<f64>)],
+    ) -> Vec<(usize, LinearizedMeasurement<N>)> {
+        let (slots, items) = self.items_for(epoch, beacons, None);
+        slots.into_iter().zip(items).collect()
+    }
+
+    /// The filter's dynamics model.
+    pub fn model(&self) -> &EntryModel<AtmosphereModel> {
+        &self.model
+    }
+
+    /// Linearised measurement items `(h(x⁻), H, z, r)` for the epoch's available channels,
+    /// with the channel slot of each.
+    pub fn measurement_items(
+        &self,
+        epoch: &MeasurementEpoch,
+        beacons: &[(V3<f64>, V3<f64>)],
+    ) -> (Vec<usize>, Vec<LinearizedMeasurement<N>>) {
+        self.items_for(epoch, beacons, self.channels.as_deref())
+    }
+
+    fn items_for(
+        &self,
+        epoch: &MeasurementEpoch,
+        beacons: &[(V3<f64>, V3<f64>)],
+        mask: Option<&[usize]>,
+    ) -> (Vec<usize>, Vec<LinearizedMeasurement<N>>) {
+        let xd = seed_duals(&self.ekf.x);
+        let kin = kinematics(&self.model, &xd, epoch.t);
+        let bank = self.scenario.truth_bank;
+        let mut slots = Vec::new();
+        let mut items = Vec::new();
+        for (c, value) in epoch.values.iter().enumerate() {
+            let Some(z) = *value else { continue };
+            if let Some(mask) = mask
+                && !mask.contains(&c)
+            {
+                continue;
+            }
+            let spec = &self.scenario.channels[c];
+            let d = self.scenario.measurement.evaluate_with(
+                &self.model,
+                &xd,
+                &kin,
+                bank,
+                beacons,
+                spec.channel,
+            );
+            let sigma = channel_sigma(spec, z);
+            slots.push(c);
+            items.push((d.re, dual_gradient(&d), z, sigma * sigma));
+        }
+        (slots, items)
+    }
+}
+
+impl<const N: usize> NavFilter<N> for EkfNav<'_, N> {
+    fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
+        let steps = self.transition(t_to);
+        self.apply_transition(t_to, &steps)
+    }
+
+    fn update(
+        &mut self,
+        epoch: &MeasurementEpoch,
+        beacons: &[(V3<f64>, V3<f64>)],
+    ) -> Result<StepInfo, EstimationError> {
+        let items = self.all_measurement_items(epoch, beacons);
+        self.update_with_items(&items)
+    }
+
+    fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
+        (self.ekf.x, self.ekf.p)
+    }
+
+    fn time(&self) -> f64 {
+        self.t
+    }
+
+    fn density_estimate(&self) -> Option<f64> {
+        if self
+            .model
+            .augmented
+            .contains(&crate::dynamics::AugmentedParam::Rho0)
+        {
+            Some(self.model.density(&self.ekf.x))
+        } else {
+            None
+        }
+    }
+}

@@ -1,0 +1,212 @@
+//! Distributed fusion: one local EKF per beacon (IMU + that beacon), fused by covariance
+//! intersection, with or without information feedback (seed 000 §2.3.3, §3.3–3.4).
+
+use super::ekf_nav::EkfNav;
+use super::setup::FilterStart;
+use super::{NavFilter, StepInfo};
+use crate::dynamics::AugmentedParam;
+use crate::estimation::EstimationError;
+use crate::estimation::ci::{CiWeighting, covariance_intersection, feedback};
+use crate::math::V3;
+use crate::scenario::Scenario;
+use crate::sim::MeasurementEpoch;
+use nalgebra::{SMatrix, SVector};
+
+/// CI fusion of local filters.
+///
+/// * `ci` (no feedback): the local filters run independently from P0; each step their posteriors
+///   are fused with determinant-optimal weights (the paper's "slowest" variant).
+/// * `dcifaif`: fast ∞-norm weights (eq. 21) and information feedback (eq. 22): every local filter
+///   is reset to (x̂_CI, P_CI/ω_i). The locals start from (x̂0, n·P0), the equal-weight feedback of
+///   (x̂0, P0).
+///
+/// A local filter that fails numerically is dropped from the fusion (its subsystem is weakly
+/// observable, seed 000 §2.4); the filter fails only when every local filter has.
+#[derive(Debug, Clone)]
+pub struct FusionNav<'a, const N: usize> {
+    locals: Vec<Option<EkfNav<'a, N>>>,
+    method: CiWeighting,
+    feedback: bool,
+    fused: (SVector<f64, N>, SMatrix<f64, N, N>),
+    t: f64,
+}
+
+impl<'a, const N: usize> FusionNav<'a, N> {
+    /// Local filters over the non-radio channels plus the radio channels of each beacon.
+    pub fn new(
+        scenario: &'a Scenario,
+        start: &FilterStart<N>,
+        with_feedback: bool,
+    ) -> Result<Self, EstimationError> {
+        let common: Vec<usize> = scenario
+            .channels
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| c.channel.beacon().is_none())
+            .map(|(i, _)| i)
+            .collect();
+        let mut locals = Vec::new();
+        let n_beacons = scenario.beacons.len();
+        let radio: Vec<usize> = (0..n_beacons)
+            .filter(|&b| {
+                scenario
+                    .channels
+                    .iter()
+                    .any(|c| c.channel.beacon() == Some(b))
+            })
+            .collect();
+        let mut local_start = start.clone();
+        if with_feedback {
+            local_start.p0 = start.p0 * radio.len() as f64;
+        }
+        for b in radio {
+            let mut mask = common.clone();
+            mask.extend(
+                scenario
+                    .channels
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, c)| c.channel.beacon() == Some(b))
+                    .map(|(i, _)| i),
+            );
+            locals.push(Some(EkfNav::new(scenario, &local_start, Some(mask), 1.0)?));
+        }
+        if locals.len() < 2 {
+            return Err(EstimationError::InvalidInput(
+                "CI fusion needs at least two beacons with radio channels".into(),
+            ));
+        }
+        let method = if with_feedback {
+            CiWeighting::FastInfNorm
+        } else {
+            CiWeighting::OptimalDet
+        };
+        Ok(FusionNav {
+            locals,
+            method,
+            feedback: with_feedback,
+            fused: (start.x0, start.p0),
+            t: 0.0,
+        })
+    }
+}
+
+impl<const N: usize> NavFilter<N> for FusionNav<'_, N> {
+    fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
+        if self.feedback {
+            // After feedback every local filter holds x̂_CI: one transition serves them all.
+            let steps = match self.locals.iter().flatten().next() {
+                Some(f) => f.transition(t_to),
+                None => {
+                    return Err(EstimationError::NotPositiveDefinite {
+                        what: "every local filter's covariance".into(),
+                    });
+                }
+            };
+            for slot in self.locals.iter_mut() {
+                if let Some(f) = slot
+                    && f.apply_transition(t_to, &steps).is_err()
+                {
+                    *slot = None;
+                }
+            }
+            self.t = t_to;
+            return Ok(());
+        }
+        for slot in self.locals.iter_mut() {
+            if let Some(f) = slot
+                && f.predict(t_to).is_err()
+            {
+                *slot = None;
+            }
+        }
+        self.t = t_to;
+        if self.locals.iter().all(Option::is_none) {
+            return Err(EstimationError::NotPositiveDefinite {
+                what: "every local filter's covariance".into(),
+            });
+        }
+        Ok(())
+    }
+
+    fn update(
+        &mut self,
+        epoch: &MeasurementEpoch,
+        beacons: &[(V3<f64>, V3<f64>)],
+    ) -> Result<StepInfo, EstimationError> {
+        let mut nis = 0.0;
+        let mut n_meas = 0;
+        // With feedback the locals share x̂⁻, so one linearisation serves them all.
+        let shared = if self.feedback {
+            self.locals
+                .iter()
+                .flatten()
+                .next()
+                .map(|f| f.all_measurement_items(epoch, beacons))
+        } else {
+            None
+        };
+        for slot in self.locals.iter_mut() {
+            if let Some(f) = slot {
+                let result = match &shared {
+                    Some(items) => f.update_with_items(items),
+                    None => f.update(epoch, beacons),
+                };
+                match result {
+                    Ok(info) => {
+                        nis += info.nis.unwrap_or(0.0);
+                        n_meas += info.n_meas;
+                    }
+                    Err(_) => *slot = None,
+                }
+            }
+        }
+        let alive: Vec<usize> = (0..self.locals.len())
+            .filter(|&i| self.locals[i].is_some())
+            .collect();
+        if alive.is_empty() {
+            return Err(EstimationError::NotPositiveDefinite {
+                what: "every local filter's covariance".into(),
+            });
+        }
+        let estimates: Vec<_> = alive
+            .iter()
+            .filter_map(|&i| self.locals[i].as_ref().map(|f| f.estimate()))
+            .collect();
+        let fused = covariance_intersection(&estimates, self.method)?;
+        if self.feedback {
+            for (&i, (x, p)) in alive.iter().zip(feedback(&fused)) {
+                if let Some(f) = self.locals[i].as_mut() {
+                    f.set_estimate(x, p);
+                }
+            }
+        }
+        let mut weights = vec![0.0; self.locals.len()];
+        for (&i, w) in alive.iter().zip(&fused.weights) {
+            weights[i] = *w;
+        }
+        self.fused = (fused.x, fused.p);
+        Ok(StepInfo {
+            nis: Some(nis),
+            n_meas,
+            innovations: Vec::new(),
+            weights: Some(weights),
+        })
+    }
+
+    fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
+        self.fused
+    }
+
+    fn time(&self) -> f64 {
+        self.t
+    }
+
+    fn density_estimate(&self) -> Option<f64> {
+        let f = self.locals.iter().flatten().next()?;
+        f.model()
+            .augmented
+            .contains(&AugmentedParam::Rho0)
+            .then(|| f.model().density(&self.fused.0))
+    }
+}

@@ -1,0 +1,66 @@
+//! Navigation filters: estimators wired to a scenario's dynamics and sensors.
+//!
+//! Every filter implements [`NavFilter`]: predict to the next measurement epoch, update with the
+//! channels available there, and expose its estimate. The harness in [`crate::sim`] drives the
+//! filters over a truth run; the same filters drive the FMU.
+
+pub mod bank;
+pub mod build;
+pub mod ekf_nav;
+pub mod fusion;
+pub mod kind;
+pub mod setup;
+pub mod ukf_nav;
+
+pub use bank::BankNav;
+pub use build::build_filter;
+pub use ekf_nav::EkfNav;
+pub use fusion::FusionNav;
+pub use kind::{FilterKind, NavError};
+pub use setup::{FilterStart, filter_start, truth_in_filter_coords};
+pub use ukf_nav::UkfNav;
+
+use super::EstimationError;
+use crate::math::V3;
+use crate::sim::MeasurementEpoch;
+use nalgebra::{SMatrix, SVector};
+
+/// What a filter reports after an update.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct StepInfo {
+    /// Normalised innovation squared νᵀS⁻¹ν of the measurements used (None when none were).
+    pub nis: Option<f64>,
+    /// Number of scalar measurements used.
+    pub n_meas: usize,
+    /// Innovations z − h(x̂⁻), in the order of the epoch's available channels.
+    pub innovations: Vec<f64>,
+    /// Fusion weights ω_i (CI filters) or model probabilities (banks).
+    pub weights: Option<Vec<f64>>,
+}
+
+/// A navigation filter over an `N`-dimensional state.
+pub trait NavFilter<const N: usize>: Send {
+    /// Propagate the estimate from its current time to `t_to` [s].
+    fn predict(&mut self, t_to: f64) -> Result<(), EstimationError>;
+    /// Measurement update with the epoch's available channels; `beacons[i]` is the inertial
+    /// (position, velocity) of beacon i at the epoch time.
+    fn update(
+        &mut self,
+        epoch: &MeasurementEpoch,
+        beacons: &[(V3<f64>, V3<f64>)],
+    ) -> Result<StepInfo, EstimationError>;
+    /// Current estimate and covariance.
+    fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>);
+    /// Current time of the estimate [s].
+    fn time(&self) -> f64;
+    /// The filter's density estimate at its current estimate [kg/m³], for filters that estimate
+    /// density (None otherwise).
+    fn density_estimate(&self) -> Option<f64> {
+        None
+    }
+}
+
+/// Noise 1σ the filters assume for a channel with measured value `z`.
+pub(crate) fn channel_sigma(spec: &crate::scenario::build::ChannelSpec, z: f64) -> f64 {
+    spec.filter_noise.sigma(z)
+}

@@ -1,0 +1,135 @@
+//! The UKF navigation filter (seed 001 eq. 41–66; no consider states here).
+
+use super::setup::FilterStart;
+use super::{NavFilter, StepInfo, channel_sigma};
+use crate::atmosphere::AtmosphereModel;
+use crate::dynamics::{AugmentedParam, EntryModel};
+use crate::estimation::EstimationError;
+use crate::estimation::ukf::{Ukf, UkfParams, UkfWorkspace};
+use crate::math::V3;
+use crate::scenario::Scenario;
+use crate::sensors::channels::kinematics;
+use crate::sim::MeasurementEpoch;
+use nalgebra::{DMatrix, DVector, SMatrix, SVector};
+
+/// UKF navigation filter with the scenario's α, β, κ (`filter.ukf`). The sigma points are
+/// propagated with the truth's RK4 scheme in sub-steps no longer than the filter step.
+#[derive(Debug, Clone)]
+pub struct UkfNav<'a, const N: usize> {
+    scenario: &'a Scenario,
+    model: EntryModel<AtmosphereModel>,
+    ukf: Ukf<N>,
+    ws: UkfWorkspace<N>,
+    q: SMatrix<f64, N, N>,
+    t: f64,
+}
+
+impl<'a, const N: usize> UkfNav<'a, N> {
+    /// A UKF on `scenario` from `start`.
+    pub fn new(scenario: &'a Scenario, start: &FilterStart<N>) -> Result<Self, EstimationError> {
+        let u = &scenario.config.filter.ukf;
+        let params = UkfParams {
+            alpha: u.alpha,
+            beta: u.beta,
+            kappa: u.kappa,
+        };
+        Ok(UkfNav {
+            scenario,
+            model: scenario.filter_model.clone(),
+            ukf: Ukf::new(start.x0, start.p0, params, 0)?,
+            ws: UkfWorkspace::default(),
+            q: start.q,
+            t: 0.0,
+        })
+    }
+}
+
+impl<const N: usize> NavFilter<N> for UkfNav<'_, N> {
+    fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
+        let dt = t_to - self.t;
+        if dt <= 0.0 {
+            return Ok(());
+        }
+        let step = self.scenario.config.timing.filter_step_s;
+        let n = ((dt / step) - 1e-9).ceil().max(1.0) as usize;
+        let h = dt / n as f64;
+        let bank = self.scenario.truth_bank;
+        let model = &self.model;
+        let q = self.q * (h / step);
+        for _ in 0..n {
+            self.ukf
+                .predict_with(&mut self.ws, |x| model.step(x, bank, h), &q)?;
+        }
+        self.t = t_to;
+        Ok(())
+    }
+
+    fn update(
+        &mut self,
+        epoch: &MeasurementEpoch,
+        beacons: &[(V3<f64>, V3<f64>)],
+    ) -> Result<StepInfo, EstimationError> {
+        let slots: Vec<usize> = epoch
+            .values
+            .iter()
+            .enumerate()
+            .filter_map(|(c, v)| v.map(|_| c))
+            .collect();
+        if slots.is_empty() {
+            return Ok(StepInfo::default());
+        }
+        let z = DVector::from_iterator(
+            slots.len(),
+            slots.iter().map(|&c| epoch.values[c].unwrap_or(0.0)),
+        );
+        let r = DMatrix::from_diagonal(&DVector::from_iterator(
+            slots.len(),
+            slots
+                .iter()
+                .enumerate()
+                .map(|(i, &c)| channel_sigma(&self.scenario.channels[c], z[i]).powi(2)),
+        ));
+        let (sc, model, t, bank) = (
+            self.scenario,
+            &self.model,
+            epoch.t,
+            self.scenario.truth_bank,
+        );
+        let h = |x: &SVector<f64, N>, out: &mut [f64]| {
+            let kin = kinematics(model, x, t);
+            for (o, &c) in out.iter_mut().zip(&slots) {
+                *o = sc.measurement.evaluate_with(
+                    model,
+                    x,
+                    &kin,
+                    bank,
+                    beacons,
+                    sc.channels[c].channel,
+                );
+            }
+            Ok(())
+        };
+        let upd = self.ukf.update_with(&mut self.ws, h, &z, &r)?;
+        Ok(StepInfo {
+            nis: Some(upd.nis),
+            n_meas: slots.len(),
+            innovations: upd.innovation.iter().copied().collect(),
+            weights: None,
+        })
+    }
+
+    fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
+        (self.ukf.x, self.ukf.p)
+    }
+
+    fn time(&self) -> f64 {
+        self.t
+    }
+
+    fn density_estimate(&self) -> Option<f64> {
+        self.model
+            .augmented
+            .contains(&AugmentedParam::Rho0)
+            .then(|| self.model.density(&self.ukf.x))
+    }
+}

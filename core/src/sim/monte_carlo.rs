@@ -1,0 +1,288 @@
+//! Monte Carlo engine: dispersions, truth, measurements and every filter of a trade, per run.
+//!
+//! Reproducibility (the nyx-space pattern): run `i` draws everything — truth dispersions,
+//! atmosphere perturbation, measurement noise, filter start — from one generator seeded by
+//! `run_seed(seed, i)`, so a run does not depend on which thread executes it. Runs execute in
+//! fixed-size chunks in parallel (rayon) and their records are folded into the accumulators in
+//! run-index order, so 1 or N threads give bit-identical statistics, and memory is bounded by the
+//! chunk size, not the number of runs.
+
+use super::metrics::{EpochRecord, FilterAccumulator, FilterReport, FinalRecord, RunRecord};
+use super::navigation::{FilterOutcome, NavStep, run_filter};
+use super::{SimError, run_seed, simulate_truth};
+use crate::estimation::nav::setup::estimate_spherical;
+use crate::estimation::nav::{FilterKind, NavError, build_filter, filter_start};
+use crate::frames::spherical_to_fixed;
+use crate::math::wrap_pi;
+use crate::scenario::Scenario;
+use nalgebra::SVector;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+use serde::Serialize;
+use thiserror::Error;
+
+/// Why a trade study could not run.
+#[derive(Debug, Error)]
+pub enum TradeError {
+    /// Filter selection problem.
+    #[error(transparent)]
+    Nav(#[from] NavError),
+    /// The truth simulation failed (a scenario problem, reported with the run).
+    #[error("run {run}: {source}")]
+    Truth {
+        /// Run index.
+        run: usize,
+        /// Cause.
+        source: SimError,
+    },
+    /// Bad options.
+    #[error("{0}")]
+    Options(String),
+}
+
+/// Monte Carlo options.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct McOptions {
+    /// Number of runs.
+    pub runs: usize,
+    /// Master seed.
+    pub seed: u64,
+    /// Runs per parallel chunk (memory bound; does not change results).
+    pub chunk: usize,
+}
+
+impl McOptions {
+    /// `runs` runs from `seed` with the default chunk of 64.
+    pub fn new(runs: usize, seed: u64) -> Self {
+        McOptions {
+            runs,
+            seed,
+            chunk: 64,
+        }
+    }
+}
+
+/// A trade study's results.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TradeReport {
+    /// Scenario name.
+    pub scenario: String,
+    /// Runs.
+    pub runs: usize,
+    /// Master seed.
+    pub seed: u64,
+    /// State names of the filter model, in state order (SI units in the suffix).
+    pub states: Vec<String>,
+    /// One report per filter, in the order asked.
+    pub filters: Vec<FilterReport>,
+}
+
+/// State names of a scenario's filter model.
+pub fn state_names(scenario: &Scenario) -> Vec<String> {
+    let fm = &scenario.filter_model;
+    let kin: [&str; 6] = if fm.kind.is_cartesian() {
+        ["x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps"]
+    } else {
+        [
+            "r_m",
+            "lon_rad",
+            "lat_rad",
+            "v_mps",
+            "fpa_rad",
+            "heading_rad",
+        ]
+    };
+    kin.iter()
+        .map(|s| s.to_string())
+        .chain(fm.augmented.iter().map(|a| a.name().to_string()))
+        .collect()
+}
+
+/// Run a trade: `filters` on `scenario`, `opts.runs` runs; `progress(done)` is called as runs finish.
+pub fn run_trade(
+    scenario: &Scenario,
+    filters: &[FilterKind],
+    opts: &McOptions,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<TradeReport, TradeError> {
+    if opts.runs == 0 {
+        return Err(TradeError::Options("--runs must be at least 1".into()));
+    }
+    for f in filters {
+        f.check_fits(scenario)?;
+    }
+    let n = scenario.filter_model.state_dim();
+    let accs = match n {
+        6 => trade_n::<6>(scenario, filters, opts, progress)?,
+        7 => trade_n::<7>(scenario, filters, opts, progress)?,
+        8 => trade_n::<8>(scenario, filters, opts, progress)?,
+        9 => trade_n::<9>(scenario, filters, opts, progress)?,
+        10 => trade_n::<10>(scenario, filters, opts, progress)?,
+        other => return Err(NavError::Dimension(other).into()),
+    };
+    let states = state_names(scenario);
+    Ok(TradeReport {
+        scenario: scenario.config.name.clone(),
+        runs: opts.runs,
+        seed: opts.seed,
+        filters: filters
+            .iter()
+            .zip(&accs)
+            .map(|(k, a)| a.report(k.name(), &states))
+            .collect(),
+        states,
+    })
+}
+
+fn trade_n<const N: usize>(
+    scenario: &Scenario,
+    filters: &[FilterKind],
+    opts: &McOptions,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<Vec<FilterAccumulator>, TradeError> {
+    let mut accs = vec![FilterAccumulator::default(); filters.len()];
+    let chunk = opts.chunk.max(1);
+    let mut done = 0;
+    for start in (0..opts.runs).step_by(chunk) {
+        let end = (start + chunk).min(opts.runs);
+        let records: Vec<Result<Vec<RunRecord>, TradeError>> = (start..end)
+            .into_par_iter()
+            .map(|run| one_run::<N>(scenario, filters, opts.seed, run))
+            .collect();
+        for (i, rec) in records.into_iter().enumerate() {
+            for (acc, r) in accs.iter_mut().zip(rec?.iter()) {
+                acc.add(start + i, r);
+            }
+            done += 1;
+        }
+        progress(done);
+    }
+    Ok(accs)
+}
+
+/// Everything for one run: truth, measurements and each filter's records.
+pub fn one_run<const N: usize>(
+    scenario: &Scenario,
+    filters: &[FilterKind],
+    seed: u64,
+    run: usize,
+) -> Result<Vec<RunRecord>, TradeError> {
+    let mut rng = ChaCha8Rng::seed_from_u64(run_seed(seed, run as u64));
+    let draw = scenario.draw_truth(&mut rng);
+    let truth = simulate_truth(scenario, &draw, &mut rng)
+        .map_err(|source| TradeError::Truth { run, source })?;
+    let start = filter_start::<N>(scenario, &draw, &truth.samples[0], &mut rng);
+    let mut out = Vec::with_capacity(filters.len());
+    for kind in filters {
+        let mut rec = RunRecord {
+            epochs: Vec::new(),
+            times: Vec::new(),
+            final_: None,
+            failure: None,
+            filter_ns: 0,
+            steps: 0,
+        };
+        let mut last: Option<NavStep<N>> = None;
+        match build_filter::<N>(*kind, scenario, &start) {
+            Err(e) => rec.failure = Some((0.0, e.to_string())),
+            Ok(mut filter) => {
+                let summary = run_filter(scenario, &draw, &truth, filter.as_mut(), |step| {
+                    rec.times.push(step.t);
+                    rec.epochs.push(epoch_record(scenario, step));
+                    last = Some(step.clone());
+                });
+                rec.filter_ns = summary.filter_ns;
+                rec.steps = summary.steps;
+                match summary.outcome {
+                    FilterOutcome::Failed { t, reason } => rec.failure = Some((t, reason)),
+                    FilterOutcome::Completed => {
+                        if let Some(step) = &last {
+                            rec.final_ = Some(FinalRecord {
+                                downrange_crossrange: downrange_crossrange(scenario, step),
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        out.push(rec);
+    }
+    Ok(out)
+}
+
+fn epoch_record<const N: usize>(scenario: &Scenario, step: &NavStep<N>) -> EpochRecord {
+    let err: Vec<f64> = step.err.iter().copied().collect();
+    let sigma: Vec<f64> = (0..N).map(|i| step.p[(i, i)].max(0.0).sqrt()).collect();
+    EpochRecord {
+        pos_vel_err: pos_vel_error(scenario, step),
+        nees: nees(step),
+        density_rel_err: step
+            .density_est
+            .map(|d| (d - step.density_true) / step.density_true),
+        weights: step.info.weights.clone(),
+        err,
+        sigma,
+    }
+}
+
+/// NEES eᵀP⁻¹e over the states that have a truth value.
+fn nees<const N: usize>(step: &NavStep<N>) -> Option<(f64, usize)> {
+    let idx: Vec<usize> = (0..N).filter(|&i| step.truth[i].is_finite()).collect();
+    if idx.len() == N {
+        let chol = step.p.cholesky()?;
+        let v = chol.solve(&step.err);
+        return Some((step.err.dot(&v), N));
+    }
+    let m = idx.len();
+    if m == 0 {
+        return None;
+    }
+    let p = nalgebra::DMatrix::from_fn(m, m, |a, b| step.p[(idx[a], idx[b])]);
+    let e = nalgebra::DVector::from_fn(m, |a, _| step.err[idx[a]]);
+    let chol = p.cholesky()?;
+    Some((e.dot(&chol.solve(&e)), m))
+}
+
+fn pos_vel_error<const N: usize>(scenario: &Scenario, step: &NavStep<N>) -> (f64, f64) {
+    if scenario.filter_model.kind.is_cartesian() {
+        let e = &step.err;
+        (
+            (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt(),
+            (e[3] * e[3] + e[4] * e[4] + e[5] * e[5]).sqrt(),
+        )
+    } else {
+        let x: [f64; 6] = [
+            step.x[0], step.x[1], step.x[2], step.x[3], step.x[4], step.x[5],
+        ];
+        let tr: [f64; 6] = [
+            step.truth[0],
+            step.truth[1],
+            step.truth[2],
+            step.truth[3],
+            step.truth[4],
+            step.truth[5],
+        ];
+        let (pe, ve) = spherical_to_fixed(&x);
+        let (pt, vt) = spherical_to_fixed(&tr);
+        let d = |a: [f64; 3], b: [f64; 3]| {
+            ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+        };
+        (d(pe, pt), d(ve, vt))
+    }
+}
+
+/// Downrange/crossrange position error [m] of the estimate at the final epoch, in the local
+/// horizontal plane at the true position, downrange along the true heading.
+fn downrange_crossrange<const N: usize>(scenario: &Scenario, step: &NavStep<N>) -> (f64, f64) {
+    let est = estimate_spherical(
+        scenario,
+        &SVector::<f64, N>::from_fn(|i, _| step.x[i]),
+        step.t,
+    );
+    let tr = step.truth_spherical;
+    let dn = tr[0] * wrap_pi(est[2] - tr[2]);
+    let de = tr[0] * tr[2].cos() * wrap_pi(est[1] - tr[1]);
+    let (s, c) = tr[5].sin_cos();
+    (dn * c + de * s, -dn * s + de * c)
+}

@@ -1,0 +1,124 @@
+//! Drive a navigation filter over one truth run.
+
+use crate::estimation::nav::setup::estimation_error;
+use crate::estimation::nav::{NavFilter, StepInfo, truth_in_filter_coords};
+use crate::scenario::{Scenario, TruthDraw};
+use crate::sim::TruthRun;
+use nalgebra::{SMatrix, SVector};
+use std::time::Instant;
+
+/// The filter's state after one measurement epoch, with the truth it is judged against.
+#[derive(Debug, Clone)]
+pub struct NavStep<const N: usize> {
+    /// Epoch time [s].
+    pub t: f64,
+    /// Posterior estimate.
+    pub x: SVector<f64, N>,
+    /// Posterior covariance.
+    pub p: SMatrix<f64, N, N>,
+    /// Truth in filter coordinates (NaN where a state has no truth counterpart).
+    pub truth: SVector<f64, N>,
+    /// Estimation error x̂ − x (angles wrapped).
+    pub err: SVector<f64, N>,
+    /// What the update reported.
+    pub info: StepInfo,
+    /// Filter's density estimate, if it estimates density [kg/m³].
+    pub density_est: Option<f64>,
+    /// True density at the epoch [kg/m³].
+    pub density_true: f64,
+    /// Planet-relative spherical truth `[r, lon, lat, v, fpa, heading]`.
+    pub truth_spherical: [f64; 6],
+}
+
+/// How a filter run ended.
+#[derive(Debug, Clone, PartialEq)]
+pub enum FilterOutcome {
+    /// Processed every epoch.
+    Completed,
+    /// Stopped on a numerical failure at `t` (the run reports it; nothing panicked).
+    Failed {
+        /// Time of the failure [s].
+        t: f64,
+        /// What failed.
+        reason: String,
+    },
+}
+
+/// Result of driving a filter: outcome, steps processed and CPU time spent in the filter.
+#[derive(Debug, Clone)]
+pub struct FilterRunSummary {
+    /// How it ended.
+    pub outcome: FilterOutcome,
+    /// Epochs processed.
+    pub steps: usize,
+    /// Wall time spent inside predict + update [ns] (not part of reproducible results).
+    pub filter_ns: u128,
+}
+
+/// Run `filter` over `run` (the truth realisation `draw`), calling `sink` after each epoch's update.
+pub fn run_filter<const N: usize>(
+    scenario: &Scenario,
+    draw: &TruthDraw,
+    run: &TruthRun,
+    filter: &mut dyn NavFilter<N>,
+    mut sink: impl FnMut(&NavStep<N>),
+) -> FilterRunSummary {
+    let mut samples = run.samples.iter().peekable();
+    let mut filter_ns = 0u128;
+    let mut steps = 0;
+    for epoch in &run.epochs {
+        while samples.peek().is_some_and(|s| s.t < epoch.t - 1e-9) {
+            samples.next();
+        }
+        let Some(sample) = samples.peek() else { break };
+        let beacons = scenario.beacon_states(epoch.t);
+        let clock = Instant::now();
+        let result = filter
+            .predict(epoch.t)
+            .and_then(|_| filter.update(epoch, &beacons));
+        filter_ns += clock.elapsed().as_nanos();
+        let info = match result {
+            Ok(info) => info,
+            Err(e) => {
+                return FilterRunSummary {
+                    outcome: FilterOutcome::Failed {
+                        t: epoch.t,
+                        reason: e.to_string(),
+                    },
+                    steps,
+                    filter_ns,
+                };
+            }
+        };
+        let (x, p) = filter.estimate();
+        if x.iter().chain(p.iter()).any(|v| !v.is_finite()) {
+            return FilterRunSummary {
+                outcome: FilterOutcome::Failed {
+                    t: epoch.t,
+                    reason: "estimate or covariance became non-finite".into(),
+                },
+                steps,
+                filter_ns,
+            };
+        }
+        steps += 1;
+        let truth = truth_in_filter_coords::<N>(scenario, draw, sample);
+        let err = estimation_error(scenario, &x, &truth);
+        sink(&NavStep {
+            t: epoch.t,
+            x,
+            p,
+            truth,
+            err,
+            info,
+            density_est: filter.density_estimate(),
+            density_true: sample.density,
+            truth_spherical: sample.spherical,
+        });
+    }
+    FilterRunSummary {
+        outcome: FilterOutcome::Completed,
+        steps,
+        filter_ns,
+    }
+}

@@ -23,8 +23,10 @@
 pub mod atmosphere;
 pub mod beacons;
 pub mod dynamics;
+pub mod estimation;
 pub mod frames;
 pub mod math;
+pub mod observability;
 pub mod planet;
 pub mod scenario;
 pub mod sensors;

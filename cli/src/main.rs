@@ -1,13 +1,16 @@
 //! `entrynav`: Mars entry navigation from the command line.
 
 mod load;
+mod observe;
+mod plots;
 mod simulate;
+mod trade;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 
-/// Mars atmospheric-entry navigation: scenarios, truth simulation, and (in later releases)
-/// filters, trade studies, observability, optimisation and FMUs.
+/// Mars atmospheric-entry navigation: scenarios, truth simulation, navigation filters and
+/// Monte Carlo trade studies, observability and Fisher information.
 #[derive(Parser)]
 #[command(name = "entrynav", version, about, long_about = None)]
 struct Cli {
@@ -26,6 +29,10 @@ enum Command {
     },
     /// Simulate the truth trajectory and the sensor measurements of a scenario.
     Simulate(simulate::SimulateArgs),
+    /// Monte Carlo trade study of navigation filters on a scenario.
+    Trade(trade::TradeArgs),
+    /// Degree of observability δ(t) and beacon Fisher information along a scenario's trajectory.
+    Observe(observe::ObserveArgs),
 }
 
 #[derive(Subcommand)]
@@ -62,5 +69,7 @@ fn run(cli: Cli) -> Result<()> {
             Ok(())
         }
         Command::Simulate(args) => simulate::run(&args),
+        Command::Trade(args) => trade::run(&args),
+        Command::Observe(args) => observe::run(&args),
     }
 }

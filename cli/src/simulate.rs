@@ -16,6 +16,10 @@ pub struct SimulateArgs {
     /// Built-in scenario name or path to a scenario TOML file.
     #[arg(long)]
     scenario: String,
+    /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable), e.g.
+    /// `--set truth.density_bias=0.095`.
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    sets: Vec<String>,
     /// Seed of the measurement noise (and of the dispersions with --dispersed).
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -31,6 +35,7 @@ pub struct SimulateArgs {
 /// Run the command.
 pub fn run(args: &SimulateArgs) -> Result<()> {
     let (cfg, dir) = load::scenario_config(&args.scenario)?;
+    let cfg = load::apply_overrides(cfg, &args.sets)?;
     let scenario = load::build(cfg, &dir)?;
     let mut rng = ChaCha8Rng::seed_from_u64(args.seed);
     let draw = if args.dispersed {

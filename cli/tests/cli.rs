@@ -170,3 +170,185 @@ fn bad_inputs_fail_cleanly_with_exit_code_2() {
     );
     assert!(!err.contains("panicked"), "{err}");
 }
+
+#[test]
+fn trade_writes_the_documented_json_csv_and_plots() {
+    let dir = tmpdir("trade");
+    let json = dir.join("t.json");
+    let csv = dir.join("csv");
+    let plots = dir.join("plots");
+    let (code, out, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "four-beacon-fusion-fault",
+        "--filters",
+        "ekf,dcifaif",
+        "--runs",
+        "6",
+        "--seed",
+        "3",
+        "--quiet",
+        "--json",
+        json.to_str().unwrap(),
+        "--csv-dir",
+        csv.to_str().unwrap(),
+        "--plots",
+        plots.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("filter ekf") && out.contains("filter dcifaif") && out.contains("ANEES"),
+        "{out}"
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(v["scenario"], "four-beacon-fusion-fault");
+    assert_eq!(v["runs"], 6);
+    assert_eq!(v["seed"], 3);
+    let filters = v["filters"].as_array().unwrap();
+    assert_eq!(filters.len(), 2);
+    for f in filters {
+        for key in [
+            "name",
+            "rmse_time_avg",
+            "rmse_final",
+            "anees",
+            "nees_in_bounds_frac",
+            "diverged",
+            "us_per_step",
+            "density_rmspe_pct",
+            "ellipse_km",
+        ] {
+            assert!(f.get(key).is_some(), "JSON filter entry lacks {key}: {f}");
+        }
+        for state in [
+            "r_m",
+            "lon_rad",
+            "lat_rad",
+            "v_mps",
+            "fpa_rad",
+            "heading_rad",
+            "pos_m",
+            "vel_mps",
+        ] {
+            assert!(
+                f["rmse_time_avg"][state].is_number(),
+                "{state} missing in {}",
+                f["rmse_time_avg"]
+            );
+        }
+        assert!(
+            f["ellipse_km"]["semi_major_km"].as_f64().unwrap()
+                >= f["ellipse_km"]["semi_minor_km"].as_f64().unwrap()
+        );
+    }
+    assert!(
+        filters[1]["density_rmspe_pct"].is_number(),
+        "rho0 is a state: density is estimated"
+    );
+    let series = std::fs::read_to_string(csv.join("four-beacon-fusion-fault_dcifaif.csv")).unwrap();
+    assert_eq!(series.lines().count(), 301, "header + 300 epochs");
+    assert!(series.lines().next().unwrap().contains("weight_3"));
+    for f in [
+        "four-beacon-fusion-fault_rmse_r_m.svg",
+        "four-beacon-fusion-fault_nees.svg",
+        "four-beacon-fusion-fault_dcifaif_weights.svg",
+    ] {
+        let svg = std::fs::read_to_string(plots.join(f)).unwrap_or_else(|e| panic!("{f}: {e}"));
+        assert!(
+            svg.starts_with("<svg") && svg.contains("<path") || svg.contains("<polyline"),
+            "{f} has no curve"
+        );
+    }
+}
+
+#[test]
+fn trade_refuses_unknown_and_unfit_filters() {
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "msl-airdata",
+        "--filters",
+        "ekf,kalman9000",
+        "--runs",
+        "2",
+    ]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("kalman9000") && err.contains("dcifaif"),
+        "{err}"
+    );
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "msl-airdata",
+        "--filters",
+        "dcifaif",
+        "--runs",
+        "2",
+    ]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("beacon") && err.contains("filters that fit"),
+        "{err}"
+    );
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "msl-pressure",
+        "--set",
+        "truth.density_bias=-3",
+        "--runs",
+        "2",
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("truth.density_bias"), "{err}");
+}
+
+#[test]
+fn observe_reports_raw_and_scaled_degree_and_json() {
+    let dir = tmpdir("observe");
+    let json = dir.join("o.json");
+    let plot = dir.join("o.svg");
+    let (code, out, err) = entrynav(&[
+        "observe",
+        "--scenario",
+        "four-beacon-fusion",
+        "--subsystems",
+        "--step",
+        "10",
+        "--json",
+        json.to_str().unwrap(),
+        "--plot",
+        plot.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("RAW") && out.contains("SCALED"), "{out}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    for key in [
+        "method",
+        "times_s",
+        "delta",
+        "delta_min",
+        "delta_max",
+        "t_delta_min_s",
+        "elapsed_s",
+        "scaling",
+        "subsystems",
+    ] {
+        assert!(v.get(key).is_some(), "observe JSON lacks {key}");
+    }
+    let central_min = v["delta_min"].as_f64().unwrap();
+    assert!(central_min > 0.0);
+    for s in v["subsystems"].as_array().unwrap() {
+        assert!(
+            s["delta_max"].as_f64().unwrap() < central_min,
+            "a subsystem is not weaker than the centralised system"
+        );
+    }
+    assert!(std::fs::read_to_string(&plot).unwrap().starts_with("<svg"));
+    let (code, _, err) = entrynav(&["observe", "--scenario", "msl-airdata", "--fim"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("beacon"), "{err}");
+}

@@ -1,0 +1,235 @@
+//! `entrynav trade`: Monte Carlo comparison of navigation filters on a scenario.
+
+use crate::load;
+use anyhow::{Context, Result};
+use clap::Args;
+use entrynav::estimation::nav::FilterKind;
+use entrynav::sim::{FilterReport, McOptions, TradeReport, run_trade};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Arguments of `entrynav trade`.
+#[derive(Args)]
+pub struct TradeArgs {
+    /// Built-in scenario name or path to a scenario TOML file.
+    #[arg(long)]
+    pub scenario: String,
+    /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable), e.g.
+    /// `--set truth.density_bias=0.095`.
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub sets: Vec<String>,
+    /// Comma-separated filters: ekf, ukf, ci, dcifaif, mmae, mmae-moe.
+    #[arg(long, default_value = "ekf")]
+    pub filters: String,
+    /// Monte Carlo runs (default: the scenario's monte_carlo.runs).
+    #[arg(long)]
+    pub runs: Option<usize>,
+    /// Master seed; the same seed gives the same statistics on any thread count.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Write the summary as JSON.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// Write per-filter time series (RMSE, mean σ, NEES, …) as CSV files into this directory.
+    #[arg(long)]
+    pub csv_dir: Option<PathBuf>,
+    /// Write SVG plots (RMSE vs time, errors with 3σ envelopes, NEES) into this directory.
+    #[arg(long)]
+    pub plots: Option<PathBuf>,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// Run the command.
+pub fn run(args: &TradeArgs) -> Result<()> {
+    let (cfg, dir) = load::scenario_config(&args.scenario)?;
+    let cfg = load::apply_overrides(cfg, &args.sets)?;
+    let scenario = load::build(cfg, &dir)?;
+    let filters = FilterKind::parse_list(&args.filters, &scenario)?;
+    let runs = args.runs.unwrap_or(scenario.config.monte_carlo.runs);
+    let opts = McOptions::new(runs, args.seed);
+    let bar = if args.quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new(runs as u64)
+    };
+    bar.set_style(
+        ProgressStyle::with_template(
+            "{spinner} {msg} [{bar:40}] {pos}/{len} runs ({per_sec}, eta {eta})",
+        )
+        .unwrap_or_else(|_| ProgressStyle::default_bar())
+        .progress_chars("=> "),
+    );
+    bar.set_message(format!("{} × {}", scenario.config.name, args.filters));
+    let clock = std::time::Instant::now();
+    let report = {
+        let progress = |done: usize| bar.set_position(done as u64);
+        let run = || run_trade(&scenario, &filters, &opts, &progress);
+        match args.threads {
+            Some(t) => rayon::ThreadPoolBuilder::new()
+                .num_threads(t.max(1))
+                .build()?
+                .install(run)?,
+            None => run()?,
+        }
+    };
+    bar.finish_and_clear();
+    let elapsed = clock.elapsed().as_secs_f64();
+    print_tables(&report, elapsed);
+    if let Some(path) = &args.json {
+        write_file(path, |w| {
+            Ok(serde_json::to_writer_pretty(&mut *w, &report)?)
+        })?;
+        println!("wrote {}", path.display());
+    }
+    if let Some(dir) = &args.csv_dir {
+        write_csv_dir(dir, &report)?;
+        println!("wrote CSV series to {}", dir.display());
+    }
+    if let Some(dir) = &args.plots {
+        crate::plots::trade_plots(dir, &report)?;
+        println!("wrote plots to {}", dir.display());
+    }
+    Ok(())
+}
+
+fn write_file(path: &Path, body: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
+    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(parent)
+            .with_context(|| format!("cannot create {}", parent.display()))?;
+    }
+    let f =
+        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
+    let mut w = std::io::BufWriter::new(f);
+    body(&mut w).with_context(|| format!("writing {}", path.display()))?;
+    w.flush()?;
+    Ok(())
+}
+
+fn fmt(v: Option<f64>) -> String {
+    match v {
+        Some(x) if x != 0.0 && (x.abs() < 1e-3 || x.abs() >= 1e5) => format!("{x:.4e}"),
+        Some(x) => format!("{x:.4}"),
+        None => "-".into(),
+    }
+}
+
+fn print_tables(report: &TradeReport, elapsed: f64) {
+    println!(
+        "scenario {}  runs {}  seed {}  ({elapsed:.2} s wall)",
+        report.scenario, report.runs, report.seed
+    );
+    for f in &report.filters {
+        println!();
+        println!("filter {}", f.name);
+        println!(
+            "  {:<20} {:>14} {:>14} {:>14} {:>10}",
+            "state", "RMSE time-avg", "RMSE final", "mean err final", "in 3σ"
+        );
+        let mut names: Vec<&String> = report.states.iter().collect();
+        let extra = ["pos_m".to_string(), "vel_mps".to_string()];
+        names.extend(extra.iter());
+        for s in names {
+            let get =
+                |m: &std::collections::BTreeMap<String, Option<f64>>| m.get(s).copied().flatten();
+            let in3 = get(&f.within_3sigma_frac)
+                .map(|v| format!("{:.1}%", 100.0 * v))
+                .unwrap_or_default();
+            println!(
+                "  {:<20} {:>14} {:>14} {:>14} {:>10}",
+                s,
+                fmt(get(&f.rmse_time_avg)),
+                fmt(get(&f.rmse_final)),
+                fmt(get(&f.final_error_mean)),
+                in3
+            );
+        }
+        print_consistency(f);
+    }
+}
+
+fn print_consistency(f: &FilterReport) {
+    println!(
+        "  ANEES {} (dof {}, per-epoch 95% bounds [{:.3}, {:.3}], {} of epochs inside)",
+        fmt(f.anees),
+        f.nees_dof,
+        f.nees_bounds_95[0],
+        f.nees_bounds_95[1],
+        f.nees_in_bounds_frac
+            .map(|v| format!("{:.0}%", 100.0 * v))
+            .unwrap_or_else(|| "-".into())
+    );
+    if let Some(d) = f.density_rmspe_pct {
+        println!("  density RMSPE {d:.4} %");
+    }
+    if let Some(e) = &f.ellipse_km {
+        println!(
+            "  deployment 3σ ellipse: {:.3} × {:.3} km at {:.1}° from downrange, mean offset ({:.3}, {:.3}) km",
+            e.semi_major_km,
+            e.semi_minor_km,
+            e.orientation_deg,
+            e.mean_downrange_km,
+            e.mean_crossrange_km
+        );
+    }
+    println!(
+        "  diverged {} of {} runs; {:.2} µs per filter step",
+        f.diverged, f.runs, f.us_per_step
+    );
+    for m in &f.failures {
+        println!("    {m}");
+    }
+}
+
+fn write_csv_dir(dir: &Path, report: &TradeReport) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    for f in &report.filters {
+        let path = dir.join(format!("{}_{}.csv", report.scenario, f.name));
+        write_file(&path, |w| {
+            let s = &f.series;
+            let mut header = vec!["t_s".to_string()];
+            for st in &report.states {
+                header.push(format!("rmse_{st}"));
+                header.push(format!("sigma_mean_{st}"));
+                header.push(format!("bias_{st}"));
+            }
+            header.extend(
+                ["rmse_pos_m", "rmse_vel_mps", "nees_mean", "density_rms_pct"].map(String::from),
+            );
+            let nw = s.weights_mean.iter().map(|w| w.len()).max().unwrap_or(0);
+            header.extend((0..nw).map(|j| format!("weight_{j}")));
+            writeln!(w, "{}", header.join(","))?;
+            let o = |v: Option<f64>| v.map(|x| x.to_string()).unwrap_or_default();
+            for (k, t) in s.times_s.iter().enumerate() {
+                let mut row = vec![t.to_string()];
+                for i in 0..report.states.len() {
+                    row.push(o(s.rmse[k][i]));
+                    row.push(o(s.sigma_mean[k][i]));
+                    row.push(o(s.bias[k][i]));
+                }
+                row.extend([
+                    o(s.pos_rmse_m[k]),
+                    o(s.vel_rmse_mps[k]),
+                    o(s.nees_mean[k]),
+                    o(s.density_rms_pct[k]),
+                ]);
+                for j in 0..nw {
+                    row.push(
+                        s.weights_mean[k]
+                            .get(j)
+                            .map(|v| v.to_string())
+                            .unwrap_or_default(),
+                    );
+                }
+                writeln!(w, "{}", row.join(","))?;
+            }
+            Ok(())
+        })?;
+    }
+    Ok(())
+}

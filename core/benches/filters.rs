@@ -10,11 +10,13 @@ use rand_chacha::ChaCha8Rng;
 use std::hint::black_box;
 
 fn bench(c: &mut Criterion) {
-    let s = Scenario::build(
-        ScenarioConfig::builtin("four-beacon-fusion").unwrap(),
-        &|p| Err(p.to_string()),
-    )
-    .unwrap();
+    let s = std::sync::Arc::new(
+        Scenario::build(
+            ScenarioConfig::builtin("four-beacon-fusion").unwrap(),
+            &|p| Err(p.to_string()),
+        )
+        .unwrap(),
+    );
     let mut rng = ChaCha8Rng::seed_from_u64(1);
     let draw = s.draw_truth(&mut rng);
     let truth = simulate_truth(&s, &draw, &mut rng).unwrap();

@@ -20,6 +20,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use serde::Serialize;
+use std::sync::Arc;
 use thiserror::Error;
 
 /// Why a trade study could not run.
@@ -113,6 +114,8 @@ pub fn run_trade(
         f.check_fits(scenario)?;
     }
     let n = scenario.filter_model.state_dim();
+    let shared = Arc::new(scenario.clone());
+    let scenario = &shared;
     let accs = match n {
         6 => trade_n::<6>(scenario, filters, opts, progress)?,
         7 => trade_n::<7>(scenario, filters, opts, progress)?,
@@ -136,7 +139,7 @@ pub fn run_trade(
 }
 
 fn trade_n<const N: usize>(
-    scenario: &Scenario,
+    scenario: &Arc<Scenario>,
     filters: &[FilterKind],
     opts: &McOptions,
     progress: &(dyn Fn(usize) + Sync),
@@ -163,7 +166,7 @@ fn trade_n<const N: usize>(
 
 /// Everything for one run: truth, measurements and each filter's records.
 pub fn one_run<const N: usize>(
-    scenario: &Scenario,
+    scenario: &Arc<Scenario>,
     filters: &[FilterKind],
     seed: u64,
     run: usize,

@@ -13,6 +13,7 @@ use crate::scenario::Scenario;
 use crate::sensors::Channel;
 use crate::sim::MeasurementEpoch;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
+use std::sync::Arc;
 
 /// Mars mean surface pressure used to normalise dynamic pressure for the gating (seed 003 §3.2) [Pa].
 pub const MARS_SURFACE_PRESSURE_PA: f64 = 610.0;
@@ -32,20 +33,20 @@ enum Gate {
 /// (pressure / 610 Pa, acceleration / g0, range / R, range-rate / √(g0 R), eq. 17–25). The output
 /// is the probability-weighted mixture of the members' posteriors. A member that fails
 /// numerically gets zero likelihood from then on.
-pub struct BankNav<'a, const N: usize> {
-    members: Vec<Option<EkfNav<'a, N>>>,
+pub struct BankNav<const N: usize> {
+    members: Vec<Option<EkfNav<N>>>,
     deltas: Vec<f64>,
     gate: Gate,
-    scenario: &'a Scenario,
+    scenario: Arc<Scenario>,
     fused: (SVector<f64, N>, SMatrix<f64, N, N>),
     weights: Vec<f64>,
     t: f64,
 }
 
-impl<'a, const N: usize> BankNav<'a, N> {
+impl<const N: usize> BankNav<N> {
     /// A bank over `filter.model_bank_density_bias`; `moe` selects the mixture-of-experts gating.
     pub fn new(
-        scenario: &'a Scenario,
+        scenario: &Arc<Scenario>,
         start: &FilterStart<N>,
         moe: bool,
     ) -> Result<Self, EstimationError> {
@@ -73,7 +74,7 @@ impl<'a, const N: usize> BankNav<'a, N> {
             members,
             deltas,
             gate,
-            scenario,
+            scenario: Arc::clone(scenario),
             fused: (start.x0, start.p0),
             weights: vec![1.0 / n as f64; n],
             t: 0.0,
@@ -108,7 +109,7 @@ impl<'a, const N: usize> BankNav<'a, N> {
     }
 }
 
-impl<const N: usize> NavFilter<N> for BankNav<'_, N> {
+impl<const N: usize> NavFilter<N> for BankNav<N> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
         for slot in self.members.iter_mut() {
             if let Some(f) = slot

@@ -8,13 +8,14 @@ use super::ukf_nav::UkfNav;
 use super::{FilterKind, NavFilter};
 use crate::estimation::EstimationError;
 use crate::scenario::Scenario;
+use std::sync::Arc;
 
 /// Build filter `kind` on `scenario` from `start`.
-pub fn build_filter<'a, const N: usize>(
+pub fn build_filter<const N: usize>(
     kind: FilterKind,
-    scenario: &'a Scenario,
+    scenario: &Arc<Scenario>,
     start: &FilterStart<N>,
-) -> Result<Box<dyn NavFilter<N> + 'a>, EstimationError> {
+) -> Result<Box<dyn NavFilter<N>>, EstimationError> {
     Ok(match kind {
         FilterKind::Ekf => Box::new(EkfNav::new(scenario, start, None, 1.0)?),
         FilterKind::Ukf => Box::new(UkfNav::new(scenario, start)?),

@@ -11,6 +11,7 @@ use crate::scenario::Scenario;
 use crate::sensors::channels::kinematics;
 use crate::sim::MeasurementEpoch;
 use nalgebra::{SMatrix, SVector};
+use std::sync::Arc;
 
 /// EKF navigation filter (seed 000 eq. 17–18).
 ///
@@ -21,8 +22,8 @@ use nalgebra::{SMatrix, SVector};
 ///   pass, processed sequentially in Joseph form — identical to the batch update with diagonal R.
 ///   Relative-noise channels use σ = fraction·|z|.
 #[derive(Debug, Clone)]
-pub struct EkfNav<'a, const N: usize> {
-    scenario: &'a Scenario,
+pub struct EkfNav<const N: usize> {
+    scenario: Arc<Scenario>,
     model: EntryModel<AtmosphereModel>,
     ekf: Ekf<N>,
     q: SMatrix<f64, N, N>,
@@ -30,11 +31,11 @@ pub struct EkfNav<'a, const N: usize> {
     channels: Option<Vec<usize>>,
 }
 
-impl<'a, const N: usize> EkfNav<'a, N> {
+impl<const N: usize> EkfNav<N> {
     /// A filter on `scenario` from `start`; `channels` restricts it to those channel slots (a local
     /// filter), `density_factor` scales its density model (a bank member with bias Δ: 1 + Δ).
     pub fn new(
-        scenario: &'a Scenario,
+        scenario: &Arc<Scenario>,
         start: &FilterStart<N>,
         channels: Option<Vec<usize>>,
         density_factor: f64,
@@ -42,7 +43,7 @@ impl<'a, const N: usize> EkfNav<'a, N> {
         let mut model = scenario.filter_model.clone();
         model.density_factor = density_factor;
         Ok(EkfNav {
-            scenario,
+            scenario: Arc::clone(scenario),
             model,
             ekf: Ekf::new(start.x0, start.p0)?,
             q: start.q,
@@ -182,7 +183,7 @@ impl<'a, const N: usize> EkfNav<'a, N> {
     }
 }
 
-impl<const N: usize> NavFilter<N> for EkfNav<'_, N> {
+impl<const N: usize> NavFilter<N> for EkfNav<N> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
         let steps = self.transition(t_to);
         self.apply_transition(t_to, &steps)

@@ -11,6 +11,7 @@ use crate::math::V3;
 use crate::scenario::Scenario;
 use crate::sim::MeasurementEpoch;
 use nalgebra::{SMatrix, SVector};
+use std::sync::Arc;
 
 /// CI fusion of local filters.
 ///
@@ -23,18 +24,18 @@ use nalgebra::{SMatrix, SVector};
 /// A local filter that fails numerically is dropped from the fusion (its subsystem is weakly
 /// observable, seed 000 §2.4); the filter fails only when every local filter has.
 #[derive(Debug, Clone)]
-pub struct FusionNav<'a, const N: usize> {
-    locals: Vec<Option<EkfNav<'a, N>>>,
+pub struct FusionNav<const N: usize> {
+    locals: Vec<Option<EkfNav<N>>>,
     method: CiWeighting,
     feedback: bool,
     fused: (SVector<f64, N>, SMatrix<f64, N, N>),
     t: f64,
 }
 
-impl<'a, const N: usize> FusionNav<'a, N> {
+impl<const N: usize> FusionNav<N> {
     /// Local filters over the non-radio channels plus the radio channels of each beacon.
     pub fn new(
-        scenario: &'a Scenario,
+        scenario: &Arc<Scenario>,
         start: &FilterStart<N>,
         with_feedback: bool,
     ) -> Result<Self, EstimationError> {
@@ -91,7 +92,7 @@ impl<'a, const N: usize> FusionNav<'a, N> {
     }
 }
 
-impl<const N: usize> NavFilter<N> for FusionNav<'_, N> {
+impl<const N: usize> NavFilter<N> for FusionNav<N> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
         if self.feedback {
             // After feedback every local filter holds x̂_CI: one transition serves them all.

@@ -11,12 +11,13 @@ use crate::scenario::Scenario;
 use crate::sensors::channels::kinematics;
 use crate::sim::MeasurementEpoch;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
+use std::sync::Arc;
 
 /// UKF navigation filter with the scenario's α, β, κ (`filter.ukf`). The sigma points are
 /// propagated with the truth's RK4 scheme in sub-steps no longer than the filter step.
 #[derive(Debug, Clone)]
-pub struct UkfNav<'a, const N: usize> {
-    scenario: &'a Scenario,
+pub struct UkfNav<const N: usize> {
+    scenario: Arc<Scenario>,
     model: EntryModel<AtmosphereModel>,
     ukf: Ukf<N>,
     ws: UkfWorkspace<N>,
@@ -24,9 +25,9 @@ pub struct UkfNav<'a, const N: usize> {
     t: f64,
 }
 
-impl<'a, const N: usize> UkfNav<'a, N> {
+impl<const N: usize> UkfNav<N> {
     /// A UKF on `scenario` from `start`.
-    pub fn new(scenario: &'a Scenario, start: &FilterStart<N>) -> Result<Self, EstimationError> {
+    pub fn new(scenario: &Arc<Scenario>, start: &FilterStart<N>) -> Result<Self, EstimationError> {
         let u = &scenario.config.filter.ukf;
         let params = UkfParams {
             alpha: u.alpha,
@@ -34,7 +35,7 @@ impl<'a, const N: usize> UkfNav<'a, N> {
             kappa: u.kappa,
         };
         Ok(UkfNav {
-            scenario,
+            scenario: Arc::clone(scenario),
             model: scenario.filter_model.clone(),
             ukf: Ukf::new(start.x0, start.p0, params, 0)?,
             ws: UkfWorkspace::default(),
@@ -44,7 +45,7 @@ impl<'a, const N: usize> UkfNav<'a, N> {
     }
 }
 
-impl<const N: usize> NavFilter<N> for UkfNav<'_, N> {
+impl<const N: usize> NavFilter<N> for UkfNav<N> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
         let dt = t_to - self.t;
         if dt <= 0.0 {
@@ -90,7 +91,7 @@ impl<const N: usize> NavFilter<N> for UkfNav<'_, N> {
                 .map(|(i, &c)| channel_sigma(&self.scenario.channels[c], z[i]).powi(2)),
         ));
         let (sc, model, t, bank) = (
-            self.scenario,
+            &*self.scenario,
             &self.model,
             epoch.t,
             self.scenario.truth_bank,

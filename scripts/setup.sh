@@ -1,16 +1,21 @@
 #!/usr/bin/env bash
-# Install what entrynav's build and tests need on a fresh Debian machine with a Rust toolchain.
+# Install what entrynav's build and tests need on a fresh Debian machine with a Rust toolchain:
+# apt packages (C toolchain, OpenBLAS/gfortran for clarabel's SDP cone, Python venv support) and a
+# Python virtual environment in .venv with the FMI tools the tests drive (fmpy, fmutool, libcosimpy).
 # Idempotent: skips what is already present.
 set -euo pipefail
+cd "$(dirname "$0")/.."
 
 need_apt=()
 command -v gcc >/dev/null 2>&1 || need_apt+=(build-essential)
 command -v pkg-config >/dev/null 2>&1 || need_apt+=(pkg-config)
 command -v python3 >/dev/null 2>&1 || need_apt+=(python3 python3-venv)
+[ -e /usr/lib/x86_64-linux-gnu/libopenblas.so ] || [ -e /usr/lib/libopenblas.so ] || need_apt+=(libopenblas-dev)
+ls /usr/lib/gcc/x86_64-linux-gnu/*/libgfortran.so >/dev/null 2>&1 || need_apt+=(libgfortran-12-dev)
 if [ ${#need_apt[@]} -gt 0 ]; then
   if [ "$(id -u)" -eq 0 ]; then
     apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${need_apt[@]}"
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${need_apt[@]}" >/dev/null
   else
     echo "setup: missing ${need_apt[*]}; install them (sudo apt-get install ${need_apt[*]})" >&2
     exit 1
@@ -26,4 +31,13 @@ for comp in rustfmt clippy; do
     rustup component add "$comp"
   fi
 done
-echo "setup: toolchain ready ($(cargo --version))"
+
+# Python tools for the FMU and benchmark tests, pinned.
+if [ ! -x .venv/bin/python ]; then
+  python3 -m venv .venv
+fi
+if ! .venv/bin/python -c "import fmpy, libcosimpy, pytest, numpy, scipy, fmu_manipulation_toolbox" >/dev/null 2>&1; then
+  .venv/bin/pip install --quiet --disable-pip-version-check \
+    "fmpy==0.3.32" "fmu-manipulation-toolbox==2.0" "libcosimpy==0.0.6" pytest numpy scipy
+fi
+echo "setup: toolchain ready ($(cargo --version)); python tools in .venv"

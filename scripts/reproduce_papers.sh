@@ -3,8 +3,10 @@
 # Takes a few minutes on 2 cores. Usage: scripts/reproduce_papers.sh [--quick]  (quick = 1/10 runs)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo build --release --quiet --bin entrynav
-E=target/release/entrynav
+if [ -z "${ENTRYNAV:-}" ]; then
+  cargo build --release --quiet --bin entrynav
+fi
+E=${ENTRYNAV:-target/release/entrynav}
 OUT=docs/results
 mkdir -p "$OUT"
 scale=1

@@ -19,4 +19,4 @@ echo "== benchmarks compile"
 cargo bench --workspace --no-run
 
 echo "== README main command"
-cargo run --release --quiet --bin entrynav -- simulate --scenario four-beacon-fusion --out target/ci-demo/four-beacon-fusion.csv
+cargo run --release --quiet --bin entrynav -- trade --scenario four-beacon-fusion --filters ekf,ci,dcifaif --runs 200 --quiet --plots target/ci-demo/plots

@@ -1,22 +1,19 @@
 //! Filter step benchmarks on `four-beacon-fusion` (8 states, 3 accelerometer axes + 4 ranges):
-//! EKF, UKF and DCIFAIF (4 local EKFs + fast-weight CI + feedback), one predict + update each.
+//! EKF, UKF, DCIFAIF (4 local EKFs + fast-weight CI + feedback) and CI (4 local EKFs +
+//! det-optimal weights): one predict + update each, from a filter state 60 s into a real run.
 
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use entrynav::estimation::nav::{FilterKind, build_filter, filter_start};
 use entrynav::scenario::{Scenario, ScenarioConfig};
 use entrynav::sim::simulate_truth;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::hint::black_box;
+use std::sync::Arc;
 
 fn bench(c: &mut Criterion) {
-    let s = std::sync::Arc::new(
-        Scenario::build(
-            ScenarioConfig::builtin("four-beacon-fusion").unwrap(),
-            &|p| Err(p.to_string()),
-        )
-        .unwrap(),
-    );
+    let cfg = ScenarioConfig::builtin("four-beacon-fusion").unwrap();
+    let s = Arc::new(Scenario::build(cfg, &|p| Err(p.to_string())).unwrap());
     let mut rng = ChaCha8Rng::seed_from_u64(1);
     let draw = s.draw_truth(&mut rng);
     let truth = simulate_truth(&s, &draw, &mut rng).unwrap();
@@ -29,36 +26,20 @@ fn bench(c: &mut Criterion) {
         FilterKind::Dcifaif,
         FilterKind::Ci,
     ] {
-        // Run the filter up to the epoch before, then time one predict + update from a clone-able state.
         let mut f = build_filter::<8>(kind, &s, &start).unwrap();
         for e in &truth.epochs[..60] {
             let b = s.beacon_states(e.t);
             f.predict(e.t).unwrap();
             f.update(e, &b).unwrap();
         }
-        let t_prev = truth.epochs[59].t;
-        let (x, p) = f.estimate();
         c.bench_function(&format!("{}_step_8state_3accel_4range", kind.name()), |b| {
             b.iter_batched(
-                || {
-                    let mut g = build_filter::<8>(
-                        kind,
-                        &s,
-                        &entrynav::estimation::nav::FilterStart {
-                            x0: x,
-                            p0: p,
-                            q: start.q,
-                        },
-                    )
-                    .unwrap();
-                    g.predict(t_prev).unwrap();
-                    g
-                },
+                || f.clone_box(),
                 |mut g| {
                     g.predict(black_box(epoch.t)).unwrap();
                     g.update(black_box(&epoch), &beacons).unwrap()
                 },
-                criterion::BatchSize::SmallInput,
+                BatchSize::SmallInput,
             )
         });
     }

@@ -20,6 +20,7 @@ pub const MARS_SURFACE_PRESSURE_PA: f64 = 610.0;
 /// Heating is not in seed 003; we normalise it by a typical peak stagnation heating rate [W/m²].
 pub const HEATING_SCALE_WM2: f64 = 1.0e6;
 
+#[derive(Debug, Clone)]
 enum Gate {
     Classic(ClassicBank),
     Moe(MixtureOfExperts),
@@ -33,6 +34,7 @@ enum Gate {
 /// (pressure / 610 Pa, acceleration / g0, range / R, range-rate / √(g0 R), eq. 17–25). The output
 /// is the probability-weighted mixture of the members' posteriors. A member that fails
 /// numerically gets zero likelihood from then on.
+#[derive(Debug, Clone)]
 pub struct BankNav<const N: usize> {
     members: Vec<Option<EkfNav<N>>>,
     deltas: Vec<f64>,

@@ -38,8 +38,20 @@ pub struct StepInfo {
     pub weights: Option<Vec<f64>>,
 }
 
+/// Cloning a boxed filter (FMU state snapshots, benchmarks). Implemented for every `Clone` filter.
+pub trait NavFilterClone<const N: usize> {
+    /// A boxed copy of this filter, state included.
+    fn clone_box(&self) -> Box<dyn NavFilter<N>>;
+}
+
+impl<T: NavFilter<N> + Clone + 'static, const N: usize> NavFilterClone<N> for T {
+    fn clone_box(&self) -> Box<dyn NavFilter<N>> {
+        Box::new(self.clone())
+    }
+}
+
 /// A navigation filter over an `N`-dimensional state.
-pub trait NavFilter<const N: usize>: Send {
+pub trait NavFilter<const N: usize>: Send + NavFilterClone<N> {
     /// Propagate the estimate from its current time to `t_to` [s].
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError>;
     /// Measurement update with the epoch's available channels; `beacons[i]` is the inertial

@@ -4,17 +4,21 @@ use crate::load;
 use anyhow::{Context, Result};
 use clap::Args;
 use entrynav::estimation::nav::FilterKind;
-use entrynav::sim::{FilterReport, McOptions, TradeReport, run_trade};
+use entrynav::sim::{FilterReport, McOptions, Shard, ShardResult, TradeReport, merge_shards, run_shard, run_trade};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `entrynav trade`.
 #[derive(Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct TradeArgs {
+    /// Merge shard files instead of running.
+    #[command(subcommand)]
+    pub action: Option<TradeAction>,
     /// Built-in scenario name or path to a scenario TOML file.
-    #[arg(long)]
-    pub scenario: String,
+    #[arg(long, required = true)]
+    pub scenario: Option<String>,
     /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable), e.g.
     /// `--set truth.density_bias=0.095`.
     #[arg(long = "set", value_name = "PATH=VALUE")]
@@ -43,16 +47,53 @@ pub struct TradeArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Run only shard I of N (contiguous blocks of runs) and write the shard file to --json;
+    /// `entrynav trade merge` combines the shards into exactly the single-process result.
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
+}
+
+/// `entrynav trade merge`.
+#[derive(clap::Subcommand)]
+pub enum TradeAction {
+    /// Combine shard files written by `trade --shard I/N --json FILE` into the study's report.
+    Merge {
+        /// Shard files (all N shards of one study).
+        #[arg(required = true)]
+        shards: Vec<PathBuf>,
+        /// Write the merged summary as JSON.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Write per-filter time series as CSV into this directory.
+        #[arg(long)]
+        csv_dir: Option<PathBuf>,
+        /// Write SVG plots into this directory.
+        #[arg(long)]
+        plots: Option<PathBuf>,
+    },
 }
 
 /// Run the command.
 pub fn run(args: &TradeArgs) -> Result<()> {
-    let (cfg, dir) = load::scenario_config(&args.scenario)?;
+    if let Some(TradeAction::Merge { shards, json, csv_dir, plots }) = &args.action {
+        return merge(shards, json.as_deref(), csv_dir.as_deref(), plots.as_deref());
+    }
+    let scenario_name = args.scenario.as_deref().context("--scenario is required")?;
+    let (cfg, dir) = load::scenario_config(scenario_name)?;
     let cfg = load::apply_overrides(cfg, &args.sets)?;
     let scenario = load::build(cfg, &dir)?;
     let filters = FilterKind::parse_list(&args.filters, &scenario)?;
     let runs = args.runs.unwrap_or(scenario.config.monte_carlo.runs);
     let opts = McOptions::new(runs, args.seed);
+    if let Some(spec) = &args.shard {
+        let shard = Shard::parse(spec)?;
+        let path = args.json.as_ref().context("--shard needs --json FILE to write the shard to")?;
+        let result = run_shard(&scenario, &filters, &opts, shard, &|_| {})?;
+        write_file(path, |w| Ok(serde_json::to_writer(&mut *w, &result)?))?;
+        let n: usize = result.blocks.len();
+        println!("wrote shard {}/{} ({n} blocks) of {} runs to {}", shard.index, shard.count, runs, path.display());
+        return Ok(());
+    }
     let bar = if args.quiet {
         ProgressBar::hidden()
     } else {
@@ -94,6 +135,28 @@ pub fn run(args: &TradeArgs) -> Result<()> {
     if let Some(dir) = &args.plots {
         crate::plots::trade_plots(dir, &report)?;
         println!("wrote plots to {}", dir.display());
+    }
+    Ok(())
+}
+
+fn merge(shards: &[PathBuf], json: Option<&Path>, csv_dir: Option<&Path>, plots: Option<&Path>) -> Result<()> {
+    let mut parts = Vec::new();
+    for p in shards {
+        let text = std::fs::read_to_string(p).with_context(|| format!("cannot read shard {}", p.display()))?;
+        let part: ShardResult = serde_json::from_str(&text).with_context(|| format!("{} is not a shard file", p.display()))?;
+        parts.push(part);
+    }
+    let report = merge_shards(parts)?;
+    print_tables(&report, 0.0);
+    if let Some(path) = json {
+        write_file(path, |w| Ok(serde_json::to_writer_pretty(&mut *w, &report)?))?;
+        println!("wrote {}", path.display());
+    }
+    if let Some(dir) = csv_dir {
+        write_csv_dir(dir, &report)?;
+    }
+    if let Some(dir) = plots {
+        crate::plots::trade_plots(dir, &report)?;
     }
     Ok(())
 }

@@ -63,7 +63,9 @@ pub fn nees_bounds_95(dof: usize, runs: usize) -> (f64, f64) {
 }
 
 /// Sums over runs, folded in run-index order so results do not depend on thread count.
-#[derive(Debug, Clone, Default)]
+///
+/// Serialisable so that shards of a study can be merged exactly (`trade merge`).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, serde::Deserialize)]
 pub struct FilterAccumulator {
     times: Vec<f64>,
     count: Vec<Vec<u64>>,
@@ -103,7 +105,64 @@ fn grow<T: Clone + Default>(v: &mut Vec<T>, n: usize) {
     }
 }
 
+fn add_vec<T: Copy + Default + std::ops::AddAssign>(a: &mut Vec<T>, b: &[T]) {
+    grow(a, b.len());
+    for (x, y) in a.iter_mut().zip(b) {
+        *x += *y;
+    }
+}
+
+fn add_vec2<T: Copy + Default + std::ops::AddAssign>(a: &mut Vec<Vec<T>>, b: &[Vec<T>]) {
+    grow(a, b.len());
+    for (x, y) in a.iter_mut().zip(b) {
+        add_vec(x, y);
+    }
+}
+
 impl FilterAccumulator {
+    /// Add another accumulator's sums (blocks are merged in block order, so a sharded study
+    /// merged afterwards gives exactly the single-process sums).
+    pub fn merge(&mut self, o: &FilterAccumulator) {
+        if self.times.len() < o.times.len() {
+            self.times = o.times.clone();
+        }
+        add_vec2(&mut self.count, &o.count);
+        add_vec2(&mut self.sum_sq, &o.sum_sq);
+        add_vec2(&mut self.sum_abs, &o.sum_abs);
+        add_vec2(&mut self.sum_err, &o.sum_err);
+        add_vec2(&mut self.sum_sigma, &o.sum_sigma);
+        add_vec(&mut self.sum_pos_sq, &o.sum_pos_sq);
+        add_vec(&mut self.sum_vel_sq, &o.sum_vel_sq);
+        add_vec(&mut self.n_epoch, &o.n_epoch);
+        add_vec(&mut self.nees_sum, &o.nees_sum);
+        add_vec(&mut self.nees_n, &o.nees_n);
+        self.nees_dof = self.nees_dof.max(o.nees_dof);
+        add_vec(&mut self.dens_abs, &o.dens_abs);
+        add_vec(&mut self.dens_sq, &o.dens_sq);
+        add_vec(&mut self.dens_n, &o.dens_n);
+        add_vec2(&mut self.weights_sum, &o.weights_sum);
+        add_vec(&mut self.within3, &o.within3);
+        add_vec(&mut self.within3_n, &o.within3_n);
+        self.final_n += o.final_n;
+        add_vec(&mut self.final_sum_err, &o.final_sum_err);
+        add_vec(&mut self.final_sum_sq, &o.final_sum_sq);
+        add_vec(&mut self.final_count, &o.final_count);
+        self.final_pos_sq += o.final_pos_sq;
+        self.final_vel_sq += o.final_vel_sq;
+        for (a, b) in self.dr_cr.iter_mut().zip(o.dr_cr) {
+            *a += b;
+        }
+        self.diverged += o.diverged;
+        for f in &o.failures {
+            if self.failures.len() < 10 {
+                self.failures.push(f.clone());
+            }
+        }
+        self.filter_ns += o.filter_ns;
+        self.steps += o.steps;
+        self.runs += o.runs;
+    }
+
     /// Fold one run in (call in run-index order).
     pub fn add(&mut self, run_index: usize, rec: &RunRecord) {
         self.runs += 1;

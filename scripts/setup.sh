@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Install what entrynav's build and tests need on a fresh Debian machine with a Rust toolchain:
 # apt packages (C toolchain, OpenBLAS/gfortran for clarabel's SDP cone, Python venv support) and a
-# Python virtual environment in .venv with the FMI tools the tests drive (fmpy, fmutool, libcosimpy).
+# Python virtual environment in .venv with the FMI tools the tests drive (fmpy, fmutool, libcosimpy)
+# and Dask (distributed) for sharded trade studies.
 # Idempotent: skips what is already present.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -36,8 +37,8 @@ done
 if [ ! -x .venv/bin/python ]; then
   python3 -m venv .venv
 fi
-if ! .venv/bin/python -c "import fmpy, libcosimpy, pytest, numpy, scipy, fmu_manipulation_toolbox" >/dev/null 2>&1; then
+if ! .venv/bin/python -c "import fmpy, libcosimpy, pytest, numpy, scipy, fmu_manipulation_toolbox, distributed" >/dev/null 2>&1; then
   .venv/bin/pip install --quiet --disable-pip-version-check \
-    "fmpy==0.3.32" "fmu-manipulation-toolbox==2.0" "libcosimpy==0.0.6" pytest numpy scipy
+    "fmpy==0.3.32" "fmu-manipulation-toolbox==2.0" "libcosimpy==0.0.6" pytest numpy scipy distributed
 fi
 echo "setup: toolchain ready ($(cargo --version)); python tools in .venv"

@@ -200,24 +200,39 @@ fn shards_merge_to_exactly_the_single_process_result() {
     let s = scenario("orbiters-3");
     let filters = [FilterKind::Ekf];
     // 600 runs = 3 accumulation blocks; 3 shards of one block each, and 2 uneven shards.
-    let opts = McOptions { runs: 600, seed: 9, chunk: 50 };
+    let opts = McOptions {
+        runs: 600,
+        seed: 9,
+        chunk: 50,
+    };
     let mut whole = run_trade(&s, &filters, &opts, &|_| {}).unwrap();
-    let mut shards3: Vec<_> =
-        (0..3).map(|i| run_shard(&s, &filters, &opts, Shard { index: i, count: 3 }, &|_| {}).unwrap()).collect();
+    let mut shards3: Vec<_> = (0..3)
+        .map(|i| run_shard(&s, &filters, &opts, Shard { index: i, count: 3 }, &|_| {}).unwrap())
+        .collect();
     // Round-trip through JSON, as the CLI does.
-    shards3 = shards3.iter().map(|r| serde_json::from_str(&serde_json::to_string(r).unwrap()).unwrap()).collect();
+    shards3 = shards3
+        .iter()
+        .map(|r| serde_json::from_str(&serde_json::to_string(r).unwrap()).unwrap())
+        .collect();
     shards3.reverse(); // order of the files must not matter
     let mut merged3 = merge_shards(shards3.clone()).unwrap();
-    let shards2: Vec<_> =
-        (0..2).map(|i| run_shard(&s, &filters, &opts, Shard { index: i, count: 2 }, &|_| {}).unwrap()).collect();
+    let shards2: Vec<_> = (0..2)
+        .map(|i| run_shard(&s, &filters, &opts, Shard { index: i, count: 2 }, &|_| {}).unwrap())
+        .collect();
     let mut merged2 = merge_shards(shards2).unwrap();
     for r in [&mut whole, &mut merged3, &mut merged2] {
         for f in &mut r.filters {
             f.us_per_step = 0.0;
         }
     }
-    assert!(whole == merged3, "3 shards differ from the single-process result");
-    assert!(whole == merged2, "2 shards differ from the single-process result");
+    assert!(
+        whole == merged3,
+        "3 shards differ from the single-process result"
+    );
+    assert!(
+        whole == merged2,
+        "2 shards differ from the single-process result"
+    );
 
     // Refusals: a missing shard, a duplicate, a different seed or scenario.
     let missing = merge_shards(shards3[..2].to_vec()).unwrap_err().to_string();
@@ -225,10 +240,28 @@ fn shards_merge_to_exactly_the_single_process_result() {
     let mut dup = shards3.clone();
     dup[0] = shards3[1].clone();
     assert!(merge_shards(dup).is_err());
-    let other_seed = run_shard(&s, &filters, &McOptions { runs: 600, seed: 10, chunk: 50 }, Shard { index: 0, count: 3 }, &|_| {}).unwrap();
+    let other_seed = run_shard(
+        &s,
+        &filters,
+        &McOptions {
+            runs: 600,
+            seed: 10,
+            chunk: 50,
+        },
+        Shard { index: 0, count: 3 },
+        &|_| {},
+    )
+    .unwrap();
     let mut mixed = shards3.clone();
     mixed.retain(|r| r.shard.index != 0);
     mixed.push(other_seed);
-    assert!(merge_shards(mixed).unwrap_err().to_string().contains("seed"));
-    assert!(Shard::parse("3/3").is_err() && Shard::parse("a/2").is_err() && Shard::parse("1/2").is_ok());
+    assert!(
+        merge_shards(mixed)
+            .unwrap_err()
+            .to_string()
+            .contains("seed")
+    );
+    assert!(
+        Shard::parse("3/3").is_err() && Shard::parse("a/2").is_err() && Shard::parse("1/2").is_ok()
+    );
 }

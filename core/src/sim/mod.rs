@@ -7,7 +7,10 @@ pub mod navigation;
 pub mod truth;
 
 pub use metrics::{FilterReport, nees_bounds_95};
-pub use monte_carlo::{McOptions, Shard, ShardResult, TradeError, TradeReport, merge_shards, run_shard, run_trade, state_names};
+pub use monte_carlo::{
+    McOptions, Shard, ShardResult, TradeError, TradeReport, merge_shards, run_shard, run_trade,
+    state_names,
+};
 pub use navigation::{FilterOutcome, NavStep, run_filter};
 pub use truth::{MeasurementEpoch, SimError, StopReason, TruthRun, TruthSample, simulate_truth};
 

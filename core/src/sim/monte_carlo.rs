@@ -117,9 +117,16 @@ pub struct Shard {
 impl Shard {
     /// Parse `i/n` (0 ≤ i < n).
     pub fn parse(text: &str) -> Result<Shard, TradeError> {
-        let bad = || TradeError::Options(format!("--shard '{text}': expected I/N with 0 <= I < N, e.g. 0/4"));
+        let bad = || {
+            TradeError::Options(format!(
+                "--shard '{text}': expected I/N with 0 <= I < N, e.g. 0/4"
+            ))
+        };
         let (i, n) = text.split_once('/').ok_or_else(bad)?;
-        let (index, count) = (i.trim().parse::<usize>().map_err(|_| bad())?, n.trim().parse::<usize>().map_err(|_| bad())?);
+        let (index, count) = (
+            i.trim().parse::<usize>().map_err(|_| bad())?,
+            n.trim().parse::<usize>().map_err(|_| bad())?,
+        );
         if count == 0 || index >= count {
             return Err(bad());
         }
@@ -185,7 +192,13 @@ pub fn run_trade(
     opts: &McOptions,
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<TradeReport, TradeError> {
-    let shard = run_shard(scenario, filters, opts, Shard { index: 0, count: 1 }, progress)?;
+    let shard = run_shard(
+        scenario,
+        filters,
+        opts,
+        Shard { index: 0, count: 1 },
+        progress,
+    )?;
     merge_shards(vec![shard])
 }
 
@@ -201,7 +214,10 @@ pub fn run_shard(
         return Err(TradeError::Options("--runs must be at least 1".into()));
     }
     if shard.count == 0 || shard.index >= shard.count {
-        return Err(TradeError::Options(format!("shard {}/{} does not exist", shard.index, shard.count)));
+        return Err(TradeError::Options(format!(
+            "shard {}/{} does not exist",
+            shard.index, shard.count
+        )));
     }
     for f in filters {
         f.check_fits(scenario)?;
@@ -233,13 +249,24 @@ pub fn run_shard(
 /// Combine the shards of one study into its report. Refuses shards of different scenarios, seeds,
 /// run counts, filters or shard counts, duplicates, and missing shards or blocks.
 pub fn merge_shards(mut shards: Vec<ShardResult>) -> Result<TradeReport, TradeError> {
-    let first = shards.first().ok_or_else(|| TradeError::Options("no shard to merge".into()))?.clone();
+    let first = shards
+        .first()
+        .ok_or_else(|| TradeError::Options("no shard to merge".into()))?
+        .clone();
     for s in &shards {
         if s.format != SHARD_FORMAT {
-            return Err(TradeError::Options(format!("shard format {} is not supported (expected {SHARD_FORMAT})", s.format)));
+            return Err(TradeError::Options(format!(
+                "shard format {} is not supported (expected {SHARD_FORMAT})",
+                s.format
+            )));
         }
-        let what = if s.scenario != first.scenario || s.scenario_fingerprint != first.scenario_fingerprint {
-            Some(format!("scenario {} ({}) vs {} ({})", s.scenario, s.scenario_fingerprint, first.scenario, first.scenario_fingerprint))
+        let what = if s.scenario != first.scenario
+            || s.scenario_fingerprint != first.scenario_fingerprint
+        {
+            Some(format!(
+                "scenario {} ({}) vs {} ({})",
+                s.scenario, s.scenario_fingerprint, first.scenario, first.scenario_fingerprint
+            ))
         } else if s.seed != first.seed {
             Some(format!("seed {} vs {}", s.seed, first.seed))
         } else if s.runs != first.runs {
@@ -247,12 +274,17 @@ pub fn merge_shards(mut shards: Vec<ShardResult>) -> Result<TradeReport, TradeEr
         } else if s.filters != first.filters {
             Some(format!("filters {:?} vs {:?}", s.filters, first.filters))
         } else if s.shard.count != first.shard.count {
-            Some(format!("shard count {} vs {}", s.shard.count, first.shard.count))
+            Some(format!(
+                "shard count {} vs {}",
+                s.shard.count, first.shard.count
+            ))
         } else {
             None
         };
         if let Some(w) = what {
-            return Err(TradeError::Options(format!("cannot merge shards of different studies: {w}")));
+            return Err(TradeError::Options(format!(
+                "cannot merge shards of different studies: {w}"
+            )));
         }
     }
     shards.sort_by_key(|s| s.shard.index);
@@ -271,7 +303,10 @@ pub fn merge_shards(mut shards: Vec<ShardResult>) -> Result<TradeReport, TradeEr
     for s in &shards {
         for b in &s.blocks {
             if b.index != next || b.filters.len() != totals.len() {
-                return Err(TradeError::Options(format!("shard {} is incomplete or corrupt at block {next}", s.shard.index)));
+                return Err(TradeError::Options(format!(
+                    "shard {} is incomplete or corrupt at block {next}",
+                    s.shard.index
+                )));
             }
             for (t, a) in totals.iter_mut().zip(&b.filters) {
                 t.merge(a);
@@ -280,13 +315,20 @@ pub fn merge_shards(mut shards: Vec<ShardResult>) -> Result<TradeReport, TradeEr
         }
     }
     if next != n_blocks {
-        return Err(TradeError::Options(format!("the shards hold {next} of {n_blocks} blocks")));
+        return Err(TradeError::Options(format!(
+            "the shards hold {next} of {n_blocks} blocks"
+        )));
     }
     Ok(TradeReport {
         scenario: first.scenario.clone(),
         runs: first.runs,
         seed: first.seed,
-        filters: first.filters.iter().zip(&totals).map(|(k, a)| a.report(k, &first.states)).collect(),
+        filters: first
+            .filters
+            .iter()
+            .zip(&totals)
+            .map(|(k, a)| a.report(k, &first.states))
+            .collect(),
         states: first.states,
     })
 }
@@ -307,8 +349,10 @@ fn blocks_n<const N: usize>(
         let mut accs = vec![FilterAccumulator::default(); filters.len()];
         for start in (first..last).step_by(chunk) {
             let end = (start + chunk).min(last);
-            let records: Vec<Result<Vec<RunRecord>, TradeError>> =
-                (start..end).into_par_iter().map(|run| one_run::<N>(scenario, filters, opts.seed, run)).collect();
+            let records: Vec<Result<Vec<RunRecord>, TradeError>> = (start..end)
+                .into_par_iter()
+                .map(|run| one_run::<N>(scenario, filters, opts.seed, run))
+                .collect();
             for (i, rec) in records.into_iter().enumerate() {
                 for (acc, r) in accs.iter_mut().zip(rec?.iter()) {
                     acc.add(start + i, r);
@@ -317,7 +361,10 @@ fn blocks_n<const N: usize>(
             }
             progress(done);
         }
-        out.push(BlockSums { index: block, filters: accs });
+        out.push(BlockSums {
+            index: block,
+            filters: accs,
+        });
     }
     Ok(out)
 }

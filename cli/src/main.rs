@@ -1,5 +1,6 @@
 //! `entrynav`: Mars entry navigation from the command line.
 
+mod grid;
 mod load;
 mod observe;
 mod plots;
@@ -18,6 +19,8 @@ struct Cli {
     command: Command,
 }
 
+// Parsed once per process; boxing the larger argument structs would only add noise.
+#[allow(clippy::large_enum_variant)]
 #[derive(Subcommand)]
 enum Command {
     /// List the built-in scenarios.

@@ -4,7 +4,9 @@ use crate::load;
 use anyhow::{Context, Result};
 use clap::Args;
 use entrynav::estimation::nav::FilterKind;
-use entrynav::sim::{FilterReport, McOptions, Shard, ShardResult, TradeReport, merge_shards, run_shard, run_trade};
+use entrynav::sim::{
+    FilterReport, McOptions, Shard, ShardResult, TradeReport, merge_shards, run_shard, run_trade,
+};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -17,7 +19,7 @@ pub struct TradeArgs {
     #[command(subcommand)]
     pub action: Option<TradeAction>,
     /// Built-in scenario name or path to a scenario TOML file.
-    #[arg(long, required = true)]
+    #[arg(long, required_unless_present = "grid")]
     pub scenario: Option<String>,
     /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable), e.g.
     /// `--set truth.density_bias=0.095`.
@@ -47,6 +49,13 @@ pub struct TradeArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Run a grid of scenarios × variations × filters (see `docs/tutorial.md`); the report
+    /// (Markdown, CSV, JSON, SVG plots) goes to --out-dir.
+    #[arg(long, value_name = "FILE.toml", conflicts_with_all = ["shard"])]
+    pub grid: Option<PathBuf>,
+    /// Output directory of a --grid report.
+    #[arg(long, default_value = "out/grid")]
+    pub out_dir: PathBuf,
     /// Run only shard I of N (contiguous blocks of runs) and write the shard file to --json;
     /// `entrynav trade merge` combines the shards into exactly the single-process result.
     #[arg(long, value_name = "I/N")]
@@ -75,8 +84,22 @@ pub enum TradeAction {
 
 /// Run the command.
 pub fn run(args: &TradeArgs) -> Result<()> {
-    if let Some(TradeAction::Merge { shards, json, csv_dir, plots }) = &args.action {
-        return merge(shards, json.as_deref(), csv_dir.as_deref(), plots.as_deref());
+    if let Some(TradeAction::Merge {
+        shards,
+        json,
+        csv_dir,
+        plots,
+    }) = &args.action
+    {
+        return merge(
+            shards,
+            json.as_deref(),
+            csv_dir.as_deref(),
+            plots.as_deref(),
+        );
+    }
+    if let Some(grid) = &args.grid {
+        return crate::grid::run(grid, &args.out_dir, args.quiet);
     }
     let scenario_name = args.scenario.as_deref().context("--scenario is required")?;
     let (cfg, dir) = load::scenario_config(scenario_name)?;
@@ -87,11 +110,20 @@ pub fn run(args: &TradeArgs) -> Result<()> {
     let opts = McOptions::new(runs, args.seed);
     if let Some(spec) = &args.shard {
         let shard = Shard::parse(spec)?;
-        let path = args.json.as_ref().context("--shard needs --json FILE to write the shard to")?;
+        let path = args
+            .json
+            .as_ref()
+            .context("--shard needs --json FILE to write the shard to")?;
         let result = run_shard(&scenario, &filters, &opts, shard, &|_| {})?;
         write_file(path, |w| Ok(serde_json::to_writer(&mut *w, &result)?))?;
         let n: usize = result.blocks.len();
-        println!("wrote shard {}/{} ({n} blocks) of {} runs to {}", shard.index, shard.count, runs, path.display());
+        println!(
+            "wrote shard {}/{} ({n} blocks) of {} runs to {}",
+            shard.index,
+            shard.count,
+            runs,
+            path.display()
+        );
         return Ok(());
     }
     let bar = if args.quiet {
@@ -139,17 +171,26 @@ pub fn run(args: &TradeArgs) -> Result<()> {
     Ok(())
 }
 
-fn merge(shards: &[PathBuf], json: Option<&Path>, csv_dir: Option<&Path>, plots: Option<&Path>) -> Result<()> {
+fn merge(
+    shards: &[PathBuf],
+    json: Option<&Path>,
+    csv_dir: Option<&Path>,
+    plots: Option<&Path>,
+) -> Result<()> {
     let mut parts = Vec::new();
     for p in shards {
-        let text = std::fs::read_to_string(p).with_context(|| format!("cannot read shard {}", p.display()))?;
-        let part: ShardResult = serde_json::from_str(&text).with_context(|| format!("{} is not a shard file", p.display()))?;
+        let text = std::fs::read_to_string(p)
+            .with_context(|| format!("cannot read shard {}", p.display()))?;
+        let part: ShardResult = serde_json::from_str(&text)
+            .with_context(|| format!("{} is not a shard file", p.display()))?;
         parts.push(part);
     }
     let report = merge_shards(parts)?;
     print_tables(&report, 0.0);
     if let Some(path) = json {
-        write_file(path, |w| Ok(serde_json::to_writer_pretty(&mut *w, &report)?))?;
+        write_file(path, |w| {
+            Ok(serde_json::to_writer_pretty(&mut *w, &report)?)
+        })?;
         println!("wrote {}", path.display());
     }
     if let Some(dir) = csv_dir {

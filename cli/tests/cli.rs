@@ -352,3 +352,58 @@ fn observe_reports_raw_and_scaled_degree_and_json() {
     assert_eq!(code, 2);
     assert!(err.contains("beacon"), "{err}");
 }
+
+#[test]
+fn grid_runs_every_cell_and_refuses_unfit_filters() {
+    let dir = tmpdir("grid");
+    let grid = dir.join("g.toml");
+    std::fs::write(
+        &grid,
+        "name = \"g\"\nruns = 4\nseed = 2\nfilters = [\"ekf\", \"dcifaif\"]\nscenarios = [\"four-beacon-fusion\"]\n\
+         [variations]\nbeacons = [1, 4]\nnoise_scale = [1.0, 3.0]\n",
+    )
+    .unwrap();
+    let out = dir.join("report");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--grid",
+        grid.to_str().unwrap(),
+        "--out-dir",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let md = std::fs::read_to_string(out.join("g.md")).unwrap();
+    assert_eq!(md.matches("| c0").count(), 8, "4 cells × 2 filters:\n{md}");
+    assert!(
+        md.contains("1 beacons, noise x3") && md.contains("refused"),
+        "{md}"
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("g.json")).unwrap()).unwrap();
+    let cells = v["cells"].as_array().unwrap();
+    let pos = |variation: &str| {
+        cells
+            .iter()
+            .find(|c| c["variation"] == variation && c["filter"] == "ekf")
+            .unwrap()["pos_rmse_avg_m"]
+            .as_f64()
+            .unwrap()
+    };
+    assert!(
+        pos("4 beacons, noise x3") > pos("4 beacons, noise x1"),
+        "more noise must cost accuracy"
+    );
+    assert!(out.join("g.csv").exists() && out.join("g_pos_rmse_final_m.svg").exists());
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, "name = \"b\"\nruns = 4\nfilters = [\"ekf\"]\nscenarios = [\"four-beacon-fusion\"]\n[variations]\nbeacons = [9]\n").unwrap();
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--grid",
+        bad.to_str().unwrap(),
+        "--out-dir",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("variations.beacons = 9"), "{err}");
+}

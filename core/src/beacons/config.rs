@@ -158,6 +158,25 @@ impl BeaconConfig {
         }
     }
 
+    /// Multiply the range and range-rate noise by `k` (trade-study noise scaling).
+    pub fn scale_noise(&mut self, k: f64) {
+        let (r, rr) = match self {
+            BeaconConfig::Surface(c) => (&mut c.range_sigma_m, &mut c.range_rate_sigma_mps),
+            BeaconConfig::Orbiter(c) => (&mut c.range_sigma_m, &mut c.range_rate_sigma_mps),
+        };
+        for v in [r, rr].into_iter().flatten() {
+            *v *= k;
+        }
+    }
+
+    /// Add an outage `[t_start_s, t_end_s)` (a beacon fault).
+    pub fn add_outage(&mut self, t_start_s: f64, t_end_s: f64) {
+        match self {
+            BeaconConfig::Surface(c) => c.outages.push([t_start_s, t_end_s]),
+            BeaconConfig::Orbiter(c) => c.outages.push([t_start_s, t_end_s]),
+        }
+    }
+
     /// Whether `t` [s] falls inside an outage (half-open: `t_start ≤ t < t_end`).
     pub fn in_outage(&self, t: f64) -> bool {
         self.outages().iter().any(|&[t0, t1]| t0 <= t && t < t1)

@@ -1,0 +1,472 @@
+//! `entrynav trade --grid FILE.toml`: scenarios × variations × filters in one study, one report.
+//!
+//! ```toml
+//! name = "beacon-study"          # report name
+//! runs = 200                     # Monte Carlo runs per cell
+//! seed = 1
+//! filters = ["ekf", "dcifaif"]   # filters that do not fit a cell are listed as refused
+//! scenarios = ["four-beacon-fusion", "my-scenario.toml"]
+//!
+//! [variations]                   # every list multiplies the grid; omitted = no variation
+//! beacons = [2, 3, 4]            # keep the first N beacons
+//! beacon_fault = [false, true]   # the last beacon goes silent at fault_time_s (default 2/3 of the entry)
+//! fault_time_s = 200.0
+//! perturbation_scale = [0.0, 1.0] # scale of the truth density perturbation (adds the default one if absent)
+//! noise_scale = [1.0, 2.0]       # multiplies every sensor noise (and the filters' assumed noise)
+//! beacon_files = ["opt.toml"]    # take the [[beacons]] of these scenario files (e.g. optimizer output)
+//! ```
+
+use crate::load;
+use anyhow::{Context, Result, bail};
+use entrynav::atmosphere::PerturbationConfig;
+use entrynav::estimation::nav::FilterKind;
+use entrynav::observability::{ChannelSet, Method, Scaling, analysis_points, degree_series};
+use entrynav::scenario::ScenarioConfig;
+use entrynav::sim::{McOptions, TradeReport, run_trade};
+use serde::{Deserialize, Serialize};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// A grid file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GridFile {
+    /// Report name.
+    pub name: String,
+    /// Runs per cell.
+    pub runs: usize,
+    /// Master seed (every cell uses it).
+    #[serde(default = "one")]
+    pub seed: u64,
+    /// Filter names.
+    pub filters: Vec<String>,
+    /// Scenario names or files (relative to the grid file).
+    pub scenarios: Vec<String>,
+    /// Variations.
+    #[serde(default)]
+    pub variations: Variations,
+}
+
+fn one() -> u64 {
+    1
+}
+
+/// Variation axes of a grid.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Variations {
+    /// Keep the first N beacons.
+    #[serde(default)]
+    pub beacons: Vec<usize>,
+    /// Last beacon silent from `fault_time_s` on.
+    #[serde(default)]
+    pub beacon_fault: Vec<bool>,
+    /// Fault time [s] (default: 2/3 of the duration).
+    #[serde(default)]
+    pub fault_time_s: Option<f64>,
+    /// Density perturbation scale.
+    #[serde(default)]
+    pub perturbation_scale: Vec<f64>,
+    /// Measurement-noise scale.
+    #[serde(default)]
+    pub noise_scale: Vec<f64>,
+    /// Beacon sets from scenario files.
+    #[serde(default)]
+    pub beacon_files: Vec<String>,
+}
+
+/// One cell's result for one filter.
+#[derive(Debug, Serialize)]
+pub struct CellRow {
+    /// Cell label.
+    pub cell: String,
+    /// Scenario name.
+    pub scenario: String,
+    /// Variation values.
+    pub variation: String,
+    /// Filter name.
+    pub filter: String,
+    /// Refused (does not fit) — reason.
+    pub refused: Option<String>,
+    /// Position RMSE at the final epoch [m].
+    pub pos_rmse_final_m: Option<f64>,
+    /// Velocity RMSE at the final epoch [m/s].
+    pub vel_rmse_final_mps: Option<f64>,
+    /// Time-averaged position RMSE [m].
+    pub pos_rmse_avg_m: Option<f64>,
+    /// ANEES.
+    pub anees: Option<f64>,
+    /// Smallest per-state fraction of samples inside ±3σ.
+    pub min_within_3sigma: Option<f64>,
+    /// Diverged runs.
+    pub diverged: Option<u64>,
+    /// CPU per step [µs].
+    pub us_per_step: Option<f64>,
+    /// Minimum scaled observability degree of the centralised system along the nominal entry.
+    pub min_delta_scaled: Option<f64>,
+}
+
+struct Cell {
+    label: String,
+    variation: String,
+    config: ScenarioConfig,
+    dir: PathBuf,
+}
+
+fn noise_scaled(cfg: &mut ScenarioConfig, k: f64) {
+    let s = &mut cfg.sensors;
+    if let Some(i) = s.imu.as_mut() {
+        i.noise_sigma_mps2 *= k;
+    }
+    if let Some(v) = cfg.filter.imu_sigma_mps2.as_mut() {
+        *v *= k;
+    }
+    if let Some(q) = s.dynamic_pressure.as_mut() {
+        q.noise_fraction *= k;
+    }
+    if let Some(h) = s.heating.as_mut() {
+        h.noise_fraction *= k;
+    }
+    for b in &mut cfg.beacons {
+        b.scale_noise(k);
+    }
+}
+
+fn expand(grid: &GridFile, grid_dir: &Path) -> Result<Vec<Cell>> {
+    let v = &grid.variations;
+    let axis = |n: usize| if n == 0 { 1 } else { n };
+    let mut cells = Vec::new();
+    for sc in &grid.scenarios {
+        let path = grid_dir.join(sc);
+        let name = if path.exists() {
+            path.to_string_lossy().to_string()
+        } else {
+            sc.clone()
+        };
+        let (base, dir) = load::scenario_config(&name)?;
+        for bf in 0..axis(v.beacon_files.len()) {
+            for nb in 0..axis(v.beacons.len()) {
+                for fault in 0..axis(v.beacon_fault.len()) {
+                    for ps in 0..axis(v.perturbation_scale.len()) {
+                        for ns in 0..axis(v.noise_scale.len()) {
+                            let mut cfg = base.clone();
+                            let mut tags = Vec::new();
+                            if let Some(file) = v.beacon_files.get(bf) {
+                                let (other, _) =
+                                    load::scenario_config(&grid_dir.join(file).to_string_lossy())?;
+                                cfg.beacons = other.beacons;
+                                tags.push(format!("beacons from {file}"));
+                            }
+                            if let Some(&n) = v.beacons.get(nb) {
+                                if n > cfg.beacons.len() {
+                                    bail!(
+                                        "variations.beacons = {n}: scenario {} has only {} beacons",
+                                        cfg.name,
+                                        cfg.beacons.len()
+                                    );
+                                }
+                                cfg.beacons.truncate(n);
+                                if n == 0 {
+                                    cfg.sensors.range = None;
+                                    cfg.sensors.range_rate = None;
+                                }
+                                tags.push(format!("{n} beacons"));
+                            }
+                            if let Some(&on) = v.beacon_fault.get(fault) {
+                                if on {
+                                    let t =
+                                        v.fault_time_s.unwrap_or(cfg.timing.duration_s * 2.0 / 3.0);
+                                    let Some(last) = cfg.beacons.last_mut() else {
+                                        bail!(
+                                            "variations.beacon_fault: scenario {} has no beacon to fail",
+                                            cfg.name
+                                        )
+                                    };
+                                    last.add_outage(t, 1.0e9);
+                                    tags.push(format!("fault after {t} s"));
+                                } else {
+                                    tags.push("no fault".into());
+                                }
+                            }
+                            if let Some(&k) = v.perturbation_scale.get(ps) {
+                                let mut p = cfg
+                                    .truth
+                                    .perturbation
+                                    .clone()
+                                    .unwrap_or_else(PerturbationConfig::default);
+                                p.scale = k;
+                                cfg.truth.perturbation = Some(p);
+                                tags.push(format!("perturbation x{k}"));
+                            }
+                            if let Some(&k) = v.noise_scale.get(ns) {
+                                noise_scaled(&mut cfg, k);
+                                tags.push(format!("noise x{k}"));
+                            }
+                            let variation = if tags.is_empty() {
+                                "nominal".to_string()
+                            } else {
+                                tags.join(", ")
+                            };
+                            let text = cfg.to_toml_string();
+                            let cfg = ScenarioConfig::from_toml_str(
+                                &text,
+                                &format!("{} [{variation}]", base.name),
+                            )?;
+                            let label = format!("c{:02}", cells.len());
+                            cells.push(Cell {
+                                label,
+                                variation,
+                                config: cfg,
+                                dir: dir.clone(),
+                            });
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Ok(cells)
+}
+
+/// Run a grid file, writing the report into `out_dir`.
+pub fn run(grid_path: &Path, out_dir: &Path, quiet: bool) -> Result<()> {
+    let text = std::fs::read_to_string(grid_path)
+        .with_context(|| format!("cannot read grid file {}", grid_path.display()))?;
+    let grid: GridFile =
+        toml::from_str(&text).with_context(|| format!("grid file {}", grid_path.display()))?;
+    if grid.runs == 0 {
+        bail!("{}: runs must be at least 1", grid_path.display());
+    }
+    let dir = grid_path
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_else(|| PathBuf::from("."));
+    let cells = expand(&grid, &dir)?;
+    std::fs::create_dir_all(out_dir)
+        .with_context(|| format!("cannot create {}", out_dir.display()))?;
+    let mut rows = Vec::new();
+    let mut reports: Vec<(String, TradeReport)> = Vec::new();
+    for (i, cell) in cells.iter().enumerate() {
+        let scenario = load::build(cell.config.clone(), &cell.dir)?;
+        let mut fit = Vec::new();
+        for name in &grid.filters {
+            let k = FilterKind::parse(name)?;
+            match k.misfit(&scenario) {
+                None => fit.push(k),
+                Some(reason) => rows.push(CellRow {
+                    cell: cell.label.clone(),
+                    scenario: scenario.config.name.clone(),
+                    variation: cell.variation.clone(),
+                    filter: name.clone(),
+                    refused: Some(reason),
+                    pos_rmse_final_m: None,
+                    vel_rmse_final_mps: None,
+                    pos_rmse_avg_m: None,
+                    anees: None,
+                    min_within_3sigma: None,
+                    diverged: None,
+                    us_per_step: None,
+                    min_delta_scaled: None,
+                }),
+            }
+        }
+        let min_delta = analysis_points(&scenario, 1.0)
+            .ok()
+            .and_then(|pts| {
+                degree_series(
+                    &scenario,
+                    &pts,
+                    &ChannelSet::centralised(&scenario),
+                    Method::Lie,
+                    &Scaling::characteristic(&scenario.filter_model),
+                )
+                .ok()
+            })
+            .and_then(|s| s.summary(true))
+            .map(|s| s.min);
+        if !quiet {
+            eprintln!(
+                "[{}/{}] {} {} ({}): {} filters × {} runs",
+                i + 1,
+                cells.len(),
+                cell.label,
+                scenario.config.name,
+                cell.variation,
+                fit.len(),
+                grid.runs
+            );
+        }
+        if fit.is_empty() {
+            continue;
+        }
+        let report = run_trade(
+            &scenario,
+            &fit,
+            &McOptions::new(grid.runs, grid.seed),
+            &|_| {},
+        )?;
+        for f in &report.filters {
+            rows.push(CellRow {
+                cell: cell.label.clone(),
+                scenario: scenario.config.name.clone(),
+                variation: cell.variation.clone(),
+                filter: f.name.clone(),
+                refused: None,
+                pos_rmse_final_m: f.rmse_final.get("pos_m").copied().flatten(),
+                vel_rmse_final_mps: f.rmse_final.get("vel_mps").copied().flatten(),
+                pos_rmse_avg_m: f.rmse_time_avg.get("pos_m").copied().flatten(),
+                anees: f.anees,
+                min_within_3sigma: f
+                    .within_3sigma_frac
+                    .values()
+                    .flatten()
+                    .copied()
+                    .reduce(f64::min),
+                diverged: Some(f.diverged),
+                us_per_step: Some(f.us_per_step),
+                min_delta_scaled: min_delta,
+            });
+        }
+        reports.push((cell.label.clone(), report));
+    }
+    write_outputs(&grid, out_dir, &rows, &reports)?;
+    println!(
+        "grid {}: {} cells, report in {}",
+        grid.name,
+        cells.len(),
+        out_dir.display()
+    );
+    Ok(())
+}
+
+fn o(v: Option<f64>) -> String {
+    v.map(|x| format!("{x:.4}")).unwrap_or_else(|| "–".into())
+}
+
+fn write_outputs(
+    grid: &GridFile,
+    out: &Path,
+    rows: &[CellRow],
+    reports: &[(String, TradeReport)],
+) -> Result<()> {
+    let md_path = out.join(format!("{}.md", grid.name));
+    let mut md = std::io::BufWriter::new(std::fs::File::create(&md_path)?);
+    writeln!(
+        md,
+        "# Grid `{}`\n\n{} runs per cell, seed {}, filters {}.\n",
+        grid.name,
+        grid.runs,
+        grid.seed,
+        grid.filters.join(", ")
+    )?;
+    writeln!(
+        md,
+        "| cell | scenario | variation | filter | pos RMSE final [m] | vel RMSE final [m/s] | pos RMSE avg [m] | ANEES | min in-3σ | diverged | µs/step | min δ (scaled) |"
+    )?;
+    writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|---|")?;
+    for r in rows {
+        match &r.refused {
+            Some(why) => writeln!(
+                md,
+                "| {} | {} | {} | {} | refused: {} ||||||||",
+                r.cell, r.scenario, r.variation, r.filter, why
+            )?,
+            None => writeln!(
+                md,
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                r.cell,
+                r.scenario,
+                r.variation,
+                r.filter,
+                o(r.pos_rmse_final_m),
+                o(r.vel_rmse_final_mps),
+                o(r.pos_rmse_avg_m),
+                o(r.anees),
+                o(r.min_within_3sigma),
+                r.diverged.map(|d| d.to_string()).unwrap_or_default(),
+                o(r.us_per_step),
+                r.min_delta_scaled
+                    .map(|d| format!("{d:.3e}"))
+                    .unwrap_or_else(|| "–".into())
+            )?,
+        }
+    }
+    md.flush()?;
+    std::fs::write(
+        out.join(format!("{}.json", grid.name)),
+        serde_json::to_string_pretty(&serde_json::json!({
+            "grid": grid.name, "runs": grid.runs, "seed": grid.seed, "cells": rows,
+            "reports": reports.iter().map(|(c, r)| serde_json::json!({"cell": c, "report": r})).collect::<Vec<_>>(),
+        }))?,
+    )?;
+    let mut csv = std::io::BufWriter::new(std::fs::File::create(
+        out.join(format!("{}.csv", grid.name)),
+    )?);
+    writeln!(
+        csv,
+        "cell,scenario,variation,filter,refused,pos_rmse_final_m,vel_rmse_final_mps,pos_rmse_avg_m,anees,min_within_3sigma,diverged,us_per_step,min_delta_scaled"
+    )?;
+    let c = |v: Option<f64>| v.map(|x| x.to_string()).unwrap_or_default();
+    for r in rows {
+        writeln!(
+            csv,
+            "{},{},\"{}\",{},\"{}\",{},{},{},{},{},{},{},{}",
+            r.cell,
+            r.scenario,
+            r.variation,
+            r.filter,
+            r.refused.clone().unwrap_or_default().replace('"', "'"),
+            c(r.pos_rmse_final_m),
+            c(r.vel_rmse_final_mps),
+            c(r.pos_rmse_avg_m),
+            c(r.anees),
+            c(r.min_within_3sigma),
+            r.diverged.map(|d| d.to_string()).unwrap_or_default(),
+            c(r.us_per_step),
+            c(r.min_delta_scaled)
+        )?;
+    }
+    csv.flush()?;
+    // Plots: one curve per filter across cells (x = cell index).
+    let filters: Vec<&String> = grid.filters.iter().collect();
+    for (metric, get) in [
+        (
+            "pos_rmse_final_m",
+            Box::new(|r: &CellRow| r.pos_rmse_final_m) as Box<dyn Fn(&CellRow) -> Option<f64>>,
+        ),
+        (
+            "vel_rmse_final_mps",
+            Box::new(|r: &CellRow| r.vel_rmse_final_mps),
+        ),
+        ("anees", Box::new(|r: &CellRow| r.anees)),
+        ("us_per_step", Box::new(|r: &CellRow| r.us_per_step)),
+        (
+            "min_delta_scaled",
+            Box::new(|r: &CellRow| r.min_delta_scaled),
+        ),
+    ] {
+        let curves: Vec<crate::plots::Curve> = filters
+            .iter()
+            .map(|f| crate::plots::Curve {
+                name: (*f).clone(),
+                points: rows
+                    .iter()
+                    .filter(|r| &r.filter == *f)
+                    .filter_map(|r| {
+                        Some((r.cell.trim_start_matches('c').parse::<f64>().ok()?, get(r)?))
+                    })
+                    .collect(),
+                dashed: false,
+            })
+            .collect();
+        crate::plots::line_plot(
+            &out.join(format!("{}_{metric}.svg", grid.name)),
+            &format!("{}: {metric} per cell", grid.name),
+            "cell",
+            metric,
+            true,
+            &curves,
+        )?;
+    }
+    Ok(())
+}

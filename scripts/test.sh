@@ -20,3 +20,9 @@ cargo bench --workspace --no-run
 
 echo "== README main command"
 cargo run --release --quiet --bin entrynav -- trade --scenario four-beacon-fusion --filters ekf,ci,dcifaif --runs 200 --quiet --plots target/ci-demo/plots
+
+echo "== Dask: sharded study on a 2-worker LocalCluster equals the single-process result"
+ENTRYNAV="$PWD/target/release/entrynav" .venv/bin/pytest -q -p no:cacheprovider tests/dask
+
+echo "== docs/tutorial.md: every command runs as documented"
+bash scripts/tutorial_check.sh

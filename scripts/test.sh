@@ -26,3 +26,16 @@ ENTRYNAV="$PWD/target/release/entrynav" .venv/bin/pytest -q -p no:cacheprovider 
 
 echo "== docs/tutorial.md: every command runs as documented"
 bash scripts/tutorial_check.sh
+
+echo "== FMU: shared library, packed FMUs (MarsEntryNav, MarsEntryNavFilter, MarsEntryTruth)"
+cargo build --release --workspace
+target/release/entrynav fmu pack --out target/fmu
+
+echo "== FMU: our host against the in-process library (bitwise), doStep benchmark"
+for fmu in target/fmu/MarsEntryNav.fmu target/fmu/MarsEntryNavFilter.fmu target/fmu/MarsEntryTruth.fmu; do
+  target/release/entrynav fmu check "$fmu"
+done
+target/release/entrynav fmu check target/fmu/MarsEntryNav.fmu --bench
+
+echo "== FMU: pytest (symbols, fmpy validate/simulate/FMU2Slave, fmutool, libcosimpy, host fuzz)"
+.venv/bin/pytest -q -s -p no:cacheprovider tests/python

@@ -1,5 +1,6 @@
 //! `entrynav`: Mars entry navigation from the command line.
 
+mod fmu;
 mod grid;
 mod load;
 mod observe;
@@ -36,6 +37,8 @@ enum Command {
     Trade(trade::TradeArgs),
     /// Degree of observability δ(t) and beacon Fisher information along a scenario's trajectory.
     Observe(observe::ObserveArgs),
+    /// FMI 2.0 co-simulation FMUs: pack, check, fuzz.
+    Fmu(fmu::FmuArgs),
 }
 
 #[derive(Subcommand)]
@@ -74,5 +77,6 @@ fn run(cli: Cli) -> Result<()> {
         Command::Simulate(args) => simulate::run(&args),
         Command::Trade(args) => trade::run(&args),
         Command::Observe(args) => observe::run(&args),
+        Command::Fmu(args) => fmu::run(&args),
     }
 }

@@ -1,6 +1,7 @@
 //! Simulation: the truth simulator (fixed-step RK4 truth plus sensor records), the filter
 //! harness, and the Monte Carlo engine with its metrics.
 
+pub mod cosim;
 pub mod metrics;
 pub mod monte_carlo;
 pub mod navigation;

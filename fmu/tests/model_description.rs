@@ -1,0 +1,27 @@
+//! The committed `modelDescription/*.xml` files are exactly what the variable table generates.
+//! Regenerate them with `ENTRYNAV_BLESS=1 cargo test -p entrynav-fmu --test model_description`.
+
+use mars_entry_nav::xml::{committed_file_name, model_description};
+use mars_entry_nav::{Model, guid_of};
+use std::path::PathBuf;
+
+#[test]
+fn committed_model_descriptions_do_not_drift() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../modelDescription");
+    let bless = std::env::var_os("ENTRYNAV_BLESS").is_some();
+    for m in Model::ALL {
+        let path = dir.join(committed_file_name(m));
+        let generated = model_description(m);
+        assert!(generated.contains(&format!("guid=\"{}\"", guid_of(m))));
+        assert!(generated.contains(&format!("modelIdentifier=\"{}\"", m.identifier())));
+        if bless {
+            std::fs::write(&path, &generated).unwrap();
+        }
+        let committed = std::fs::read_to_string(&path).unwrap_or_default();
+        assert!(
+            committed == generated,
+            "{} drifted from the variable table; regenerate with ENTRYNAV_BLESS=1 cargo test -p entrynav-fmu --test model_description",
+            path.display()
+        );
+    }
+}

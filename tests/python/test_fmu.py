@@ -1,0 +1,123 @@
+"""The FMUs against real FMI tools: symbols and dependencies, fmpy validate, fmutool, fmpy
+simulate, fmpy's FMU2Slave (illegal sequences, instances, threads, FMU state, resource URIs),
+libcosimpy (FMI Library), and random call sequences through our own host.
+
+Every case that loads an FMU runs in a subprocess with a timeout."""
+
+import json
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+from conftest import ENTRYNAV, MODELS, ROOT, VENV_BIN, run
+
+HERE = Path(__file__).resolve().parent
+
+FMI2_FUNCTIONS = {
+    "fmi2GetTypesPlatform", "fmi2GetVersion", "fmi2SetDebugLogging", "fmi2Instantiate",
+    "fmi2FreeInstance", "fmi2SetupExperiment", "fmi2EnterInitializationMode",
+    "fmi2ExitInitializationMode", "fmi2Terminate", "fmi2Reset", "fmi2GetReal", "fmi2GetInteger",
+    "fmi2GetBoolean", "fmi2GetString", "fmi2SetReal", "fmi2SetInteger", "fmi2SetBoolean",
+    "fmi2SetString", "fmi2GetFMUstate", "fmi2SetFMUstate", "fmi2FreeFMUstate",
+    "fmi2SerializedFMUstateSize", "fmi2SerializeFMUstate", "fmi2DeSerializeFMUstate",
+    "fmi2GetDirectionalDerivative", "fmi2SetRealInputDerivatives", "fmi2GetRealOutputDerivatives",
+    "fmi2DoStep", "fmi2CancelStep", "fmi2GetStatus", "fmi2GetRealStatus", "fmi2GetIntegerStatus",
+    "fmi2GetBooleanStatus", "fmi2GetStringStatus",
+}
+ALLOWED_NEEDED = {
+    "libc.so.6", "libm.so.6", "libgcc_s.so.1", "ld-linux-x86-64.so.2",
+    "libpthread.so.0", "libdl.so.2", "librt.so.1",
+}
+
+
+def extracted_so(fmu, model, tmp_path):
+    with zipfile.ZipFile(fmu) as z:
+        z.extract(f"binaries/linux64/{model}.so", tmp_path)
+    return tmp_path / "binaries" / "linux64" / f"{model}.so"
+
+
+def test_fmu_layout(fmus):
+    for model, fmu in fmus.items():
+        names = set(zipfile.ZipFile(fmu).namelist())
+        assert "modelDescription.xml" in names
+        assert f"binaries/linux64/{model}.so" in names
+        assert "resources/four-beacon-fusion.toml" in names
+        committed = "modelDescription.xml" if model == "MarsEntryNav" else f"{model}.xml"
+        xml = zipfile.ZipFile(fmu).read("modelDescription.xml").decode()
+        assert xml == (ROOT / "modelDescription" / committed).read_text(), f"{model}: packed XML differs from the committed one"
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_exported_symbols_are_exactly_the_34_fmi2_functions(fmus, model, tmp_path):
+    so = extracted_so(fmus[model], model, tmp_path)
+    out = run(["nm", "-D", "--defined-only", so])
+    assert out.returncode == 0, out.stderr
+    names = {line.split()[-1] for line in out.stdout.splitlines() if line.strip()}
+    assert len(FMI2_FUNCTIONS) == 34
+    assert names == FMI2_FUNCTIONS, f"extra {names - FMI2_FUNCTIONS}, missing {FMI2_FUNCTIONS - names}"
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_library_needs_only_glibc_libm_libgcc(fmus, model, tmp_path):
+    so = extracted_so(fmus[model], model, tmp_path)
+    out = run(["readelf", "-d", so])
+    assert out.returncode == 0, out.stderr
+    needed = {l.split("[")[1].split("]")[0] for l in out.stdout.splitlines() if "(NEEDED)" in l}
+    assert needed <= ALLOWED_NEEDED, needed - ALLOWED_NEEDED
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_fmpy_validate(fmus, model):
+    out = run([VENV_BIN / "fmpy", "validate", fmus[model]])
+    print(out.stdout)
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert "No problems found" in out.stdout
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_fmutool_check(fmus, model):
+    out = run([VENV_BIN / "fmutool", "-input", fmus[model], "-check"])
+    text = out.stdout + out.stderr
+    print(text)
+    assert out.returncode == 0, text
+    assert "compliant with FMI-2.0" in text, text
+    assert "No semantic error" in text, text
+    assert "ERROR" not in text.replace("No semantic error", ""), text
+
+
+CASES = [
+    "illegal_sequences",
+    "interleaved",
+    "threads",
+    "state",
+    "resource_uris",
+    "fmpy_simulate",
+    "libcosim",
+]
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_external_tool_case(fmus, case):
+    out = run([sys.executable, HERE / "cases.py", case], timeout=600)
+    assert out.returncode == 0, f"case {case} failed (exit {out.returncode}):\n{out.stdout[-3000:]}\n{out.stderr[-6000:]}"
+    result = json.loads(out.stdout.strip().splitlines()[-1])
+    print(case, result)
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_host_check_bitwise(fmus, model):
+    out = run([ENTRYNAV, "fmu", "check", fmus[model]], timeout=600)
+    print(out.stdout)
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert "bitwise identical" in out.stdout
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_host_fuzz_random_call_sequences(fmus, model):
+    out = run([ENTRYNAV, "fmu", "fuzz", fmus[model], "--cases", "300", "--calls", "60", "--seed", "7"], timeout=600)
+    print(out.stdout)
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert "every one answered fmi2Error" in out.stdout

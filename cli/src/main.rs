@@ -4,6 +4,7 @@ mod fmu;
 mod grid;
 mod load;
 mod observe;
+mod optimize;
 mod plots;
 mod simulate;
 mod trade;
@@ -39,6 +40,9 @@ enum Command {
     Observe(observe::ObserveArgs),
     /// FMI 2.0 co-simulation FMUs: pack, check, fuzz.
     Fmu(fmu::FmuArgs),
+    /// Optimize beacon and orbiter geometry (seed 002 Sec. 4): orbiters, ground sites, certified
+    /// site selection.
+    Optimize(optimize::OptimizeArgs),
 }
 
 #[derive(Subcommand)]
@@ -78,5 +82,6 @@ fn run(cli: Cli) -> Result<()> {
         Command::Trade(args) => trade::run(&args),
         Command::Observe(args) => observe::run(&args),
         Command::Fmu(args) => fmu::run(&args),
+        Command::Optimize(args) => optimize::run(&args),
     }
 }

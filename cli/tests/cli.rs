@@ -407,3 +407,65 @@ fn grid_runs_every_cell_and_refuses_unfit_filters() {
     assert_eq!(code, 2);
     assert!(err.contains("variations.beacons = 9"), "{err}");
 }
+
+#[test]
+fn optimize_orbiters_beats_the_paper_and_writes_a_usable_scenario() {
+    let dir = tmpdir("optimize");
+    let json = dir.join("o.json");
+    let sc = dir.join("opt.toml");
+    let (code, _, err) = entrynav(&[
+        "optimize",
+        "orbiters",
+        "--scenario",
+        "orbiters-3",
+        "--seed",
+        "2",
+        "--quiet",
+        "--json",
+        json.to_str().unwrap(),
+        "--write-scenario",
+        sc.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    for key in [
+        "problem",
+        "objective",
+        "value",
+        "elements",
+        "evaluations",
+        "elapsed_s",
+    ] {
+        assert!(v.get(key).is_some(), "optimize JSON lacks {key}: {v}");
+    }
+    assert!(
+        v["value"].as_f64().unwrap() >= 237.963,
+        "seed 002 Table 6 reaches 237.963: {}",
+        v["value"]
+    );
+    assert_eq!(v["elements"].as_array().unwrap().len(), 3);
+    let (code, out, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        sc.to_str().unwrap(),
+        "--filters",
+        "ekf",
+        "--runs",
+        "3",
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "written scenario must run: {err}");
+    assert!(out.contains("filter ekf"));
+    let (code, _, err) = entrynav(&[
+        "optimize",
+        "orbiters",
+        "--scenario",
+        "orbiters-3",
+        "--altitude-km",
+        "-5",
+        "--quiet",
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("altitude"), "{err}");
+}

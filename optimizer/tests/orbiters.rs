@@ -1,0 +1,146 @@
+//! Orbiter geometry (seed 002 §5.2): the paper's Table 6 value is beaten quickly, the search is
+//! reproducible from its seed, the closed-form circular motion is the core's two-body motion, and
+//! impossible requests are errors.
+
+use entrynav::beacons::BeaconMotion;
+use entrynav::scenario::{Scenario, ScenarioConfig};
+use entrynav_optimizer::orbiters::default_search;
+use entrynav_optimizer::{
+    OptimizerError, OrbitElements, OrbiterObjective, OrbiterProblem, SearchOptions, Trajectory,
+    no_progress,
+};
+use std::time::Instant;
+
+fn trajectory() -> Trajectory {
+    let cfg = ScenarioConfig::builtin("orbiters-3").unwrap();
+    let s = Scenario::build(cfg, &|p| Err(p.to_string())).unwrap();
+    Trajectory::from_scenario(&s, 1.0).unwrap()
+}
+
+fn table6() -> Vec<OrbitElements> {
+    vec![
+        OrbitElements::from_degrees(49.329, 24.209, 240.219),
+        OrbitElements::from_degrees(16.136, 35.889, 256.141),
+        OrbitElements::from_degrees(36.562, 18.901, 229.294),
+    ]
+}
+
+#[test]
+fn orbiters_3_beats_the_papers_237_963_within_5_seconds() {
+    let started = Instant::now();
+    let tr = trajectory();
+    assert_eq!(tr.len(), 241);
+    assert!((tr.duration() - 240.0).abs() < 1e-9);
+    let p = OrbiterProblem::new(tr, 3, 725e3, None).unwrap();
+    assert_eq!(p.objective(), OrbiterObjective::DetN3);
+    assert!((p.upper_bound() - 240.0).abs() < 1e-9);
+    let sol = p.optimize(&default_search(2), &no_progress).unwrap();
+    let wall = started.elapsed().as_secs_f64();
+    let ev = &sol.evaluation;
+    assert!(
+        ev.value >= 237.963,
+        "objective {} below the paper's 237.963",
+        ev.value
+    );
+    assert!(ev.value <= 240.0 + 1e-9);
+    assert!(ev.min_margin_rad > 0.0 && ev.violation_rad_s == 0.0);
+    assert!(sol.search.evaluations > 0);
+    // The paper's Table 6 elements, evaluated by our objective on our trajectory.
+    let paper = p.evaluate(&table6()).unwrap();
+    assert!(
+        paper.value > 230.0 && paper.value < ev.value,
+        "Table 6: {}",
+        paper.value
+    );
+    if !cfg!(debug_assertions) {
+        assert!(wall < 5.0, "took {wall:.2} s");
+    }
+    for e in &sol.elements {
+        assert!((0.0..=std::f64::consts::PI).contains(&e.inc));
+    }
+}
+
+#[test]
+fn the_same_seed_gives_the_same_constellation() {
+    let p = OrbiterProblem::new(trajectory(), 3, 725e3, None).unwrap();
+    let opts = SearchOptions {
+        seed: 5,
+        starts: 2,
+        particles: 16,
+        iterations: 20,
+        polish_iterations: 50,
+        polish_step: 0.02,
+    };
+    let a = p.optimize(&opts, &no_progress).unwrap();
+    let b = p.optimize(&opts, &no_progress).unwrap();
+    assert_eq!(a.elements, b.elements);
+    assert_eq!(a.evaluation.value, b.evaluation.value);
+    assert_eq!(a.search.evaluations, b.search.evaluations);
+    // One thread or many: the same answer.
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let c = pool.install(|| p.optimize(&opts, &no_progress).unwrap());
+    assert_eq!(a.elements, c.elements);
+    let d = p
+        .optimize(&SearchOptions { seed: 6, ..opts }, &no_progress)
+        .unwrap();
+    assert_ne!(a.elements, d.elements);
+}
+
+#[test]
+fn closed_form_circular_motion_is_the_core_two_body_motion() {
+    let tr = trajectory();
+    let planet = tr.planet;
+    let p = OrbiterProblem::new(tr, 3, 725e3, None).unwrap();
+    for el in table6() {
+        let orbiter = el.orbiter(&planet, 725e3).unwrap();
+        for k in [0, 60, 240] {
+            let t = p.trajectory().times[k];
+            let (core, _) = orbiter.state_at(t);
+            let ours = p.orbiter_position(&el, k);
+            for c in 0..3 {
+                assert!(
+                    (core[c] - ours[c]).abs() < 1e-3,
+                    "t = {t}: {core:?} vs {ours:?}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn impossible_requests_are_clear_errors() {
+    let e = OrbiterProblem::new(trajectory(), 3, -10e3, None).unwrap_err();
+    assert!(matches!(e, OptimizerError::Infeasible(_)), "{e}");
+    assert!(e.to_string().contains("below the surface"), "{e}");
+    let e = OrbiterProblem::new(trajectory(), 2, 725e3, None).unwrap_err();
+    assert!(matches!(e, OptimizerError::Infeasible(_)), "{e}");
+    let e = OrbiterProblem::new(trajectory(), 4, 725e3, Some(OrbiterObjective::DetN3)).unwrap_err();
+    assert!(matches!(e, OptimizerError::InvalidInput(_)), "{e}");
+    let p = OrbiterProblem::new(trajectory(), 3, 725e3, None).unwrap();
+    assert!(p.evaluate(&table6()[..2]).is_err());
+}
+
+#[test]
+fn four_orbiters_use_the_integrated_log_det() {
+    let p = OrbiterProblem::new(trajectory(), 4, 725e3, None).unwrap();
+    assert_eq!(p.objective(), OrbiterObjective::LogDet);
+    let opts = SearchOptions {
+        seed: 1,
+        starts: 1,
+        particles: 20,
+        iterations: 30,
+        polish_iterations: 100,
+        polish_step: 0.02,
+    };
+    let sol = p.optimize(&opts, &no_progress).unwrap();
+    assert!(sol.evaluation.value.is_finite());
+    assert!(sol.evaluation.value <= p.upper_bound() + 1e-9);
+    // Better than a constellation with everything on one orbit plane.
+    let flat: Vec<OrbitElements> = (0..4)
+        .map(|j| OrbitElements::from_degrees(0.0, 0.0, 90.0 * j as f64))
+        .collect();
+    assert!(sol.evaluation.value > p.evaluate(&flat).unwrap().value);
+}

@@ -8,6 +8,7 @@ mod optimize;
 mod plots;
 mod simulate;
 mod trade;
+mod train;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -38,6 +39,8 @@ enum Command {
     Trade(trade::TradeArgs),
     /// Degree of observability δ(t) and beacon Fisher information along a scenario's trajectory.
     Observe(observe::ObserveArgs),
+    /// Train the USKF-NN density network offline (seed 001 Algorithm 1) and write its file.
+    TrainDensity(train::TrainArgs),
     /// FMI 2.0 co-simulation FMUs: pack, check, fuzz.
     Fmu(fmu::FmuArgs),
     /// Optimize beacon and orbiter geometry (seed 002 Sec. 4): orbiters, ground sites, certified
@@ -81,6 +84,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Simulate(args) => simulate::run(&args),
         Command::Trade(args) => trade::run(&args),
         Command::Observe(args) => observe::run(&args),
+        Command::TrainDensity(args) => train::run(&args),
         Command::Fmu(args) => fmu::run(&args),
         Command::Optimize(args) => optimize::run(&args),
     }

@@ -269,11 +269,53 @@ pub fn trade_plots(dir: &Path, report: &TradeReport) -> Result<()> {
     if !dens.is_empty() {
         line_plot(
             &dir.join(format!("{sc}_density_error.svg")),
-            &format!("{sc}: RMS density error"),
+            &format!("{sc}: RMS error of the onboard density profile at the true altitude"),
             "t [s]",
             "%",
             true,
             &dens,
+        )?;
+    }
+    // Per filter (seed 001 Fig. 10): mean error of the density profile at the true altitude with
+    // its ±RMS envelope over runs, and the RMS error of the density at the filter's estimate.
+    for f in report
+        .filters
+        .iter()
+        .filter(|f| f.density_rmspe_pct.is_some())
+    {
+        let s = &f.series;
+        let rms = |k: usize, sign: f64| s.density_rms_pct[k].map(|v| sign * v);
+        line_plot(
+            &dir.join(format!("{sc}_{}_density_error.svg", f.name)),
+            &format!(
+                "{sc}, {}: density error (profile at the true altitude)",
+                f.name
+            ),
+            "t [s]",
+            "%",
+            false,
+            &[
+                Curve {
+                    name: "mean error".into(),
+                    points: series_points(f, &|k| s.density_mean_pct[k]),
+                    dashed: false,
+                },
+                Curve {
+                    name: "+RMS".into(),
+                    points: series_points(f, &|k| rms(k, 1.0)),
+                    dashed: true,
+                },
+                Curve {
+                    name: "-RMS".into(),
+                    points: series_points(f, &|k| rms(k, -1.0)),
+                    dashed: true,
+                },
+                Curve {
+                    name: "RMS at the estimate".into(),
+                    points: series_points(f, &|k| s.density_at_estimate_rms_pct[k]),
+                    dashed: false,
+                },
+            ],
         )?;
     }
     // Fusion weights / model probabilities.

@@ -25,7 +25,7 @@ pub struct TradeArgs {
     /// `--set truth.density_bias=0.095`.
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub sets: Vec<String>,
-    /// Comma-separated filters: ekf, ukf, ci, dcifaif, mmae, mmae-moe.
+    /// Comma-separated filters: ekf, ukf, ci, dcifaif, mmae, mmae-moe, ukf-cm, ukf-ac, uskf-nn.
     #[arg(long, default_value = "ekf")]
     pub filters: String,
     /// Monte Carlo runs (default: the scenario's monte_carlo.runs).
@@ -49,6 +49,14 @@ pub struct TradeArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Use this density table (CSV, or Mars-GRAM-style whitespace columns) as the truth mean
+    /// atmosphere of every run; a malformed, non-monotonic or non-positive profile, or one that
+    /// does not cover the trajectory's altitudes, is refused.
+    #[arg(long, value_name = "FILE")]
+    pub atmosphere_file: Option<PathBuf>,
+    /// Fly every run in the unperturbed truth mean atmosphere (no per-run perturbation).
+    #[arg(long)]
+    pub no_perturbation: bool,
     /// Run a grid of scenarios × variations × filters (see `docs/tutorial.md`); the report
     /// (Markdown, CSV, JSON, SVG plots) goes to --out-dir.
     #[arg(long, value_name = "FILE.toml", conflicts_with_all = ["shard"])]
@@ -104,7 +112,11 @@ pub fn run(args: &TradeArgs) -> Result<()> {
     let scenario_name = args.scenario.as_deref().context("--scenario is required")?;
     let (cfg, dir) = load::scenario_config(scenario_name)?;
     let cfg = load::apply_overrides(cfg, &args.sets)?;
+    let cfg = truth_atmosphere(cfg, args.atmosphere_file.as_deref(), args.no_perturbation)?;
     let scenario = load::build(cfg, &dir)?;
+    if let Some(file) = &args.atmosphere_file {
+        check_profile_covers(&scenario, file)?;
+    }
     let filters = FilterKind::parse_list(&args.filters, &scenario)?;
     let runs = args.runs.unwrap_or(scenario.config.monte_carlo.runs);
     let opts = McOptions::new(runs, args.seed);
@@ -269,7 +281,13 @@ fn print_consistency(f: &FilterReport) {
             .unwrap_or_else(|| "-".into())
     );
     if let Some(d) = f.density_rmspe_pct {
-        println!("  density RMSPE {d:.4} %");
+        let at_est = f
+            .density_at_estimate_rmspe_pct
+            .map(|v| format!("{v:.4} %"))
+            .unwrap_or_else(|| "-".into());
+        println!(
+            "  density RMSPE (eq. 70) {d:.4} % (onboard profile at the true altitude); {at_est} at the estimate"
+        );
     }
     if let Some(e) = &f.ellipse_km {
         println!(
@@ -303,7 +321,15 @@ fn write_csv_dir(dir: &Path, report: &TradeReport) -> Result<()> {
                 header.push(format!("bias_{st}"));
             }
             header.extend(
-                ["rmse_pos_m", "rmse_vel_mps", "nees_mean", "density_rms_pct"].map(String::from),
+                [
+                    "rmse_pos_m",
+                    "rmse_vel_mps",
+                    "nees_mean",
+                    "density_rms_pct",
+                    "density_mean_pct",
+                    "density_at_estimate_rms_pct",
+                ]
+                .map(String::from),
             );
             let nw = s.weights_mean.iter().map(|w| w.len()).max().unwrap_or(0);
             header.extend((0..nw).map(|j| format!("weight_{j}")));
@@ -321,6 +347,8 @@ fn write_csv_dir(dir: &Path, report: &TradeReport) -> Result<()> {
                     o(s.vel_rmse_mps[k]),
                     o(s.nees_mean[k]),
                     o(s.density_rms_pct[k]),
+                    o(s.density_mean_pct[k]),
+                    o(s.density_at_estimate_rms_pct[k]),
                 ]);
                 for j in 0..nw {
                     row.push(
@@ -336,4 +364,105 @@ fn write_csv_dir(dir: &Path, report: &TradeReport) -> Result<()> {
         })?;
     }
     Ok(())
+}
+
+/// `--atmosphere-file FILE` / `--no-perturbation`: make FILE (CSV when its header line has
+/// commas, Mars-GRAM-style whitespace columns otherwise; height unit from the header) the truth
+/// mean atmosphere, and drop the per-run perturbation if asked. Parse errors (malformed number,
+/// non-monotonic altitudes, density ≤ 0, too few rows, missing column) name the file and line.
+pub(crate) fn truth_atmosphere(
+    mut cfg: entrynav::scenario::ScenarioConfig,
+    file: Option<&Path>,
+    no_perturbation: bool,
+) -> Result<entrynav::scenario::ScenarioConfig> {
+    use entrynav::atmosphere::{
+        AtmosphereConfig, AtmosphereError, TableColumns, TableFormat, parse_csv, parse_mars_gram,
+    };
+    if let Some(path) = file {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("cannot read atmosphere file {}", path.display()))?;
+        let header = text
+            .lines()
+            .map(str::trim)
+            .find(|l| !l.is_empty() && !l.starts_with('#'))
+            .unwrap_or("");
+        let format = if header.contains(',') {
+            TableFormat::Csv
+        } else {
+            TableFormat::MarsGram
+        };
+        let abs = std::fs::canonicalize(path)
+            .with_context(|| format!("cannot resolve atmosphere file {}", path.display()))?;
+        let name = abs.display().to_string();
+        let parse = |columns: &TableColumns| match format {
+            TableFormat::Csv => parse_csv(&text, &name, columns),
+            TableFormat::MarsGram => parse_mars_gram(&text, &name, columns),
+        };
+        // A header that declares its height unit (e.g. `Height(m)`) sets it.
+        let mut columns = TableColumns::default();
+        if let Err(AtmosphereError::HeightUnitMismatch { declared, .. }) = parse(&columns) {
+            columns.height_unit = declared;
+        }
+        parse(&columns)?;
+        cfg.truth.atmosphere = AtmosphereConfig::Table {
+            file: name,
+            format,
+            height_column: None,
+            density_column: None,
+            height_unit: Some(columns.height_unit),
+        };
+    }
+    if no_perturbation {
+        cfg.truth.perturbation = None;
+    }
+    cfg.validate()?;
+    Ok(cfg)
+}
+
+/// Refuse a truth profile file that does not cover the altitudes of the scenario's nominal
+/// trajectory (flown in that profile), naming the file, its data lines and both altitude ranges.
+pub(crate) fn check_profile_covers(
+    scenario: &entrynav::scenario::Scenario,
+    file: &Path,
+) -> Result<()> {
+    use rand::SeedableRng;
+    let Some((lo, hi)) = scenario.truth_model.atmosphere.valid_altitude_range() else {
+        return Ok(());
+    };
+    let draw = entrynav::scenario::TruthDraw {
+        initial: scenario.truth_initial,
+        model: scenario.truth_model.clone(),
+    };
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(0);
+    let run = entrynav::sim::simulate_truth(scenario, &draw, &mut rng)?;
+    let (h_min, h_max) = run
+        .samples
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| {
+            (a.min(s.altitude), b.max(s.altitude))
+        });
+    if h_min >= lo && h_max <= hi {
+        return Ok(());
+    }
+    let text = std::fs::read_to_string(file).unwrap_or_default();
+    let data: Vec<usize> = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty() && !l.trim().starts_with('#'))
+        .map(|(i, _)| i + 1)
+        .skip(1)
+        .collect();
+    let (first, last) = (
+        data.first().copied().unwrap_or(0),
+        data.last().copied().unwrap_or(0),
+    );
+    anyhow::bail!(
+        "{}: lines {first}-{last}: the profile covers {:.3}-{:.3} km but the {} trajectory flies between {:.3} and {:.3} km; give a profile spanning at least those altitudes",
+        file.display(),
+        lo / 1e3,
+        hi / 1e3,
+        scenario.config.name,
+        h_min / 1e3,
+        h_max / 1e3
+    )
 }

@@ -265,3 +265,29 @@ fn shards_merge_to_exactly_the_single_process_result() {
         Shard::parse("3/3").is_err() && Shard::parse("a/2").is_err() && Shard::parse("1/2").is_ok()
     );
 }
+
+/// Seed 001 Table 6 through the trade: the density RMSPE (eq. 70) compares the filter's onboard
+/// profile at the true altitude with the truth, so the adapted network (USKF-NN) must beat the
+/// corrected exponential (UKF-AC) by a wide margin, while at the filters' own estimates both
+/// match the measured dynamic pressure closely (the reading that cannot separate them).
+#[test]
+fn density_rmspe_reads_the_onboard_profile_at_the_true_altitude() {
+    let s = scenario("msl-airdata");
+    let r = trade(&s, &[FilterKind::UkfAc, FilterKind::UskfNn], 12, 1, 64, 2);
+    let (ac, nn) = (&r.filters[0], &r.filters[1]);
+    let profile = |f: &entrynav::sim::FilterReport| f.density_rmspe_pct.unwrap();
+    let at_est = |f: &entrynav::sim::FilterReport| f.density_at_estimate_rmspe_pct.unwrap();
+    assert!(profile(ac) > 20.0, "UKF-AC profile error {}", profile(ac));
+    assert!(profile(nn) < 3.0, "USKF-NN profile error {}", profile(nn));
+    assert!(profile(ac) > 10.0 * profile(nn));
+    assert!(at_est(ac) < 3.0 && at_est(nn) < 3.0);
+    let series = &nn.series;
+    assert_eq!(series.density_rms_pct.len(), series.times_s.len());
+    assert!(
+        series
+            .density_mean_pct
+            .iter()
+            .flatten()
+            .all(|v| v.is_finite())
+    );
+}

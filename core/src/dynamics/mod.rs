@@ -187,6 +187,12 @@ impl<A: Atmosphere> EntryModel<A> {
 
     /// Model density at a state [kg/m³], including an augmented ρ0 scale.
     pub fn density<const N: usize>(&self, x: &SVector<f64, N>) -> f64 {
-        self.atmosphere.density(self.altitude(x)) * self.aero_params(x, 0.0).density_scale
+        self.density_profile(x, self.altitude(x))
+    }
+
+    /// The model's density profile at `altitude_m` [kg/m³] with the density scale (augmented ρ0,
+    /// bias factor) carried by the state `x` — the estimated profile of seed 001 eq. 70.
+    pub fn density_profile<const N: usize>(&self, x: &SVector<f64, N>, altitude_m: f64) -> f64 {
+        self.atmosphere.density(altitude_m) * self.aero_params(x, 0.0).density_scale
     }
 }

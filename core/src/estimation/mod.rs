@@ -10,6 +10,7 @@
 //! Filters never panic on numerical trouble: every step returns a [`EstimationError`] that the
 //! caller turns into a filter status.
 
+pub mod adaptive;
 pub mod ci;
 pub mod ekf;
 pub mod mmae;

@@ -505,6 +505,7 @@ impl<const N: usize> DynFilter for Dim<N> {
             err,
             info: StepInfo::default(),
             density_est: None,
+            density_profile_est: None,
             density_true: sample.density,
             truth_spherical: sample.spherical,
         };

@@ -426,6 +426,9 @@ fn epoch_record<const N: usize>(scenario: &Scenario, step: &NavStep<N>) -> Epoch
         pos_vel_err: pos_vel_error(scenario, step),
         nees: nees(step),
         density_rel_err: step
+            .density_profile_est
+            .map(|d| (d - step.density_true) / step.density_true),
+        density_at_estimate_rel_err: step
             .density_est
             .map(|d| (d - step.density_true) / step.density_true),
         weights: step.info.weights.clone(),

@@ -22,8 +22,10 @@ pub struct NavStep<const N: usize> {
     pub err: SVector<f64, N>,
     /// What the update reported.
     pub info: StepInfo,
-    /// Filter's density estimate, if it estimates density [kg/m³].
+    /// Filter's density at its own estimate x̂, if it estimates density [kg/m³].
     pub density_est: Option<f64>,
+    /// Filter's density profile evaluated at the *true* altitude [kg/m³] (seed 001 eq. 70).
+    pub density_profile_est: Option<f64>,
     /// True density at the epoch [kg/m³].
     pub density_true: f64,
     /// Planet-relative spherical truth `[r, lon, lat, v, fpa, heading]`.
@@ -112,6 +114,7 @@ pub fn run_filter<const N: usize>(
             err,
             info,
             density_est: filter.density_estimate(),
+            density_profile_est: filter.density_profile(sample.altitude),
             density_true: sample.density,
             truth_spherical: sample.spherical,
         });

@@ -184,15 +184,17 @@ impl<const N: usize> NavFilter<N> for BankNav<N> {
     }
 
     fn density_estimate(&self) -> Option<f64> {
+        self.density_profile(self.scenario.filter_model.altitude(&self.fused.0))
+    }
+
+    fn density_profile(&self, altitude_m: f64) -> Option<f64> {
         let f = self.members.iter().flatten().next()?;
-        let base = f.model().atmosphere.clone();
-        let alt = self.scenario.filter_model.altitude(&self.fused.0);
         let factor: f64 = self
             .weights
             .iter()
             .zip(&self.deltas)
             .map(|(w, d)| w * (1.0 + d))
             .sum();
-        Some(crate::atmosphere::Atmosphere::density(&base, alt) * factor)
+        Some(crate::atmosphere::Atmosphere::density(&f.model().atmosphere, altitude_m) * factor)
     }
 }

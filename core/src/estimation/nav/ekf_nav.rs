@@ -217,4 +217,9 @@ impl<const N: usize> NavFilter<N> for EkfNav<N> {
             None
         }
     }
+
+    fn density_profile(&self, altitude_m: f64) -> Option<f64> {
+        self.density_estimate()
+            .map(|_| self.model.density_profile(&self.ekf.x, altitude_m))
+    }
 }

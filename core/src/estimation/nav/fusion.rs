@@ -210,4 +210,12 @@ impl<const N: usize> NavFilter<N> for FusionNav<N> {
             .contains(&AugmentedParam::Rho0)
             .then(|| f.model().density(&self.fused.0))
     }
+
+    fn density_profile(&self, altitude_m: f64) -> Option<f64> {
+        let f = self.locals.iter().flatten().next()?;
+        f.model()
+            .augmented
+            .contains(&AugmentedParam::Rho0)
+            .then(|| f.model().density_profile(&self.fused.0, altitude_m))
+    }
 }

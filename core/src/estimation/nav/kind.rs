@@ -49,17 +49,26 @@ pub enum FilterKind {
     Mmae,
     /// Seed 003's modified mixture-of-experts bank with measurement normalisation (eq. 17–25).
     MmaeMoe,
+    /// UKF with Myers–Tapley process-noise covariance matching (seed 001 eq. 20–21, batch 10).
+    UkfCm,
+    /// UKF with an augmented density correction factor 𝒦 (seed 001 eq. 24–26, random walk).
+    UkfAc,
+    /// Unscented Schmidt–Kalman filter with an online-adapted density network (seed 001 §IV).
+    UskfNn,
 }
 
 impl FilterKind {
     /// All filters, in listing order.
-    pub const ALL: [FilterKind; 6] = [
+    pub const ALL: [FilterKind; 9] = [
         FilterKind::Ekf,
         FilterKind::Ukf,
         FilterKind::Ci,
         FilterKind::Dcifaif,
         FilterKind::Mmae,
         FilterKind::MmaeMoe,
+        FilterKind::UkfCm,
+        FilterKind::UkfAc,
+        FilterKind::UskfNn,
     ];
 
     /// The name used on the command line and in reports.
@@ -71,6 +80,9 @@ impl FilterKind {
             FilterKind::Dcifaif => "dcifaif",
             FilterKind::Mmae => "mmae",
             FilterKind::MmaeMoe => "mmae-moe",
+            FilterKind::UkfCm => "ukf-cm",
+            FilterKind::UkfAc => "ukf-ac",
+            FilterKind::UskfNn => "uskf-nn",
         }
     }
 
@@ -102,6 +114,7 @@ impl FilterKind {
             FilterKind::Mmae | FilterKind::MmaeMoe if scenario.config.filter.model_bank_density_bias.len() < 2 => Some(
                 "it needs a model bank: set filter.model_bank_density_bias to at least two density biases".to_string(),
             ),
+            FilterKind::UkfAc | FilterKind::UskfNn => density_filter_misfit(self, scenario),
             _ => None,
         }
     }
@@ -142,4 +155,65 @@ impl FilterKind {
         }
         Ok(out)
     }
+}
+
+/// Why UKF-AC or USKF-NN (seed 001's 8-state layout plus one internal density state) cannot run
+/// on `scenario`.
+fn density_filter_misfit(kind: FilterKind, scenario: &Scenario) -> Option<String> {
+    use crate::dynamics::AugmentedParam;
+    use crate::sensors::Channel;
+    let f = &scenario.config.filter;
+    if scenario.filter_model.kind.is_cartesian() {
+        return Some(
+            "it needs the spherical state [r, lon, lat, v, fpa, heading, CdS/m, L/D] (filter.dynamics = \"spherical\")"
+                .to_string(),
+        );
+    }
+    let layout = f.augment.len() == 2
+        && f.augment.contains(&AugmentedParam::CdSOverM)
+        && f.augment.contains(&AugmentedParam::LiftToDrag);
+    if !layout {
+        let names: Vec<String> = f
+            .augment
+            .iter()
+            .map(|a| {
+                format!(
+                    "\"{}\"",
+                    match a {
+                        AugmentedParam::Rho0 => "rho0",
+                        AugmentedParam::LiftToDrag => "lift-to-drag",
+                        AugmentedParam::CdSOverM => "cd-s-over-m",
+                    }
+                )
+            })
+            .collect();
+        return Some(format!(
+            "it needs the 8-state layout of seed 001 with filter.augment = [\"cd-s-over-m\", \"lift-to-drag\"] (the scenario has [{}])",
+            names.join(", ")
+        ));
+    }
+    let density_sensor = scenario.channels.iter().any(|c| {
+        matches!(
+            c.channel,
+            Channel::Accel(_) | Channel::DynamicPressure | Channel::Heating
+        )
+    });
+    if !density_sensor {
+        return Some(
+            "it needs a density-sensitive sensor (accelerometer, dynamic pressure or heating)"
+                .to_string(),
+        );
+    }
+    if kind == FilterKind::UskfNn {
+        if f.density.is_none() {
+            return Some(
+                "it needs a [filter.density] section naming a trained network (see `entrynav train-density`)"
+                    .to_string(),
+            );
+        }
+        if let Err(e) = crate::estimation::adaptive::load_network_set(scenario) {
+            return Some(e);
+        }
+    }
+    None
 }

@@ -10,7 +10,10 @@ pub mod ekf_nav;
 pub mod fusion;
 pub mod kind;
 pub mod setup;
+pub mod ukf_ac;
+pub mod ukf_cm;
 pub mod ukf_nav;
+pub mod uskf_nn;
 
 pub use bank::BankNav;
 pub use build::build_filter;
@@ -68,6 +71,13 @@ pub trait NavFilter<const N: usize>: Send + NavFilterClone<N> {
     /// The filter's density estimate at its current estimate [kg/m³], for filters that estimate
     /// density (None otherwise).
     fn density_estimate(&self) -> Option<f64> {
+        None
+    }
+    /// The filter's current density *profile* evaluated at `altitude_m` [kg/m³] (None for filters
+    /// that do not estimate density). Seed 001 eq. 70 / Table 6 compare this, at the true altitude,
+    /// with the true density: it measures the onboard model, not the altitude error.
+    fn density_profile(&self, altitude_m: f64) -> Option<f64> {
+        let _ = altitude_m;
         None
     }
 }

@@ -133,4 +133,9 @@ impl<const N: usize> NavFilter<N> for UkfNav<N> {
             .contains(&AugmentedParam::Rho0)
             .then(|| self.model.density(&self.ukf.x))
     }
+
+    fn density_profile(&self, altitude_m: f64) -> Option<f64> {
+        self.density_estimate()
+            .map(|_| self.model.density_profile(&self.ukf.x, altitude_m))
+    }
 }

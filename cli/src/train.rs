@@ -1,0 +1,480 @@
+//! `entrynav train-density`: offline training of the USKF-NN density network (seed 001
+//! Algorithm 1), writing a network file such as `scenarios/msl-airdata-density-nn.toml`, and
+//! (`--evaluate RUNS`) the Monte Carlo density-error evaluation of the density-adaptation filters
+//! (seed 001 Table 6 in both readings of eq. 70, Fig. 10 plots).
+
+use crate::load;
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use entrynav::atmosphere::Exponential;
+use entrynav::estimation::adaptive::{
+    NetworkFile, fit_onboard_exponential, train_density_networks,
+};
+use std::path::PathBuf;
+
+/// Arguments of `entrynav train-density`.
+#[derive(Args)]
+pub struct TrainArgs {
+    /// Built-in scenario name or scenario TOML file; its `[filter.density.training]` section
+    /// (or the seed-001 defaults) sets the training.
+    #[arg(long, default_value = "msl-airdata")]
+    pub scenario: String,
+    /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable), e.g.
+    /// `--set filter.density.training.epochs=200`.
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub sets: Vec<String>,
+    /// Network file to write (TOML), e.g. scenarios/msl-airdata-density-nn.toml. Without it
+    /// nothing is trained and `--evaluate` uses the scenario's built-in network.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Seed (overrides filter.density.training.seed).
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Simulated trajectories (overrides filter.density.training.trajectories).
+    #[arg(long)]
+    pub trajectories: Option<usize>,
+    /// Epochs (overrides filter.density.training.epochs).
+    #[arg(long)]
+    pub epochs: Option<usize>,
+    /// Mini-batch size (overrides filter.density.training.batch_size).
+    #[arg(long)]
+    pub batch_size: Option<usize>,
+    /// Band edges in km for one network per band, e.g. `0,40,70,130` (overrides
+    /// filter.density.training.bands_km; `none` for a single network).
+    #[arg(long)]
+    pub bands_km: Option<String>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Print only the summary.
+    #[arg(long)]
+    pub quiet: bool,
+    /// Evaluate the density estimates of `--filters` over this many Monte Carlo runs (the runs of
+    /// `entrynav trade --seed MC_SEED`): eq. 70 RMSPE with the filter's density model at the true
+    /// altitude (our reading of seed 001 Table 6) and at its own estimate (what `trade` prints).
+    #[arg(long, value_name = "RUNS")]
+    pub evaluate: Option<usize>,
+    /// Filters evaluated by `--evaluate`.
+    #[arg(long, default_value = "ukf-cm,ukf-ac,uskf-nn")]
+    pub filters: String,
+    /// Master seed of the `--evaluate` Monte Carlo runs.
+    #[arg(long, default_value_t = 1)]
+    pub mc_seed: u64,
+    /// Write seed 001 Fig. 10-style SVG plots (density error vs time per filter: 50 runs and the
+    /// RMS) into this directory (with `--evaluate`).
+    #[arg(long)]
+    pub plots: Option<PathBuf>,
+    /// As `trade --atmosphere-file`: truth mean profile from this table (for `--evaluate`).
+    #[arg(long, value_name = "FILE")]
+    pub atmosphere_file: Option<PathBuf>,
+    /// As `trade --no-perturbation` (for `--evaluate`).
+    #[arg(long)]
+    pub no_perturbation: bool,
+}
+
+fn print_fit(e: &Exponential, radius_m: f64, lo: f64, hi: f64) {
+    println!(
+        "least-squares exponential fit to the truth mean profile over {lo}-{hi} km (seed 001 eq. 16):"
+    );
+    println!(
+        "  rho_ref_kgm3 = {:.6e}   ref_radius_km = {:.4}   scale_height_km = {:.6}",
+        e.rho_ref,
+        (e.h_ref + radius_m) / 1e3,
+        e.scale_height / 1e3
+    );
+}
+
+/// Run the command.
+pub fn run(args: &TrainArgs) -> Result<()> {
+    if args.out.is_none() && args.evaluate.is_none() {
+        bail!("nothing to do: give --out FILE to train, --evaluate RUNS to evaluate, or both");
+    }
+    let (cfg, dir) = load::scenario_config(&args.scenario)?;
+    let cfg = load::apply_overrides(cfg, &args.sets)?;
+    let cfg =
+        crate::trade::truth_atmosphere(cfg, args.atmosphere_file.as_deref(), args.no_perturbation)?;
+    let scenario = load::build(cfg, &dir)?;
+    if let Some(file) = &args.atmosphere_file {
+        crate::trade::check_profile_covers(&scenario, file)?;
+    }
+    let trained = match &args.out {
+        Some(out) => {
+            let pool = thread_pool(args.threads)?;
+            let file = pool.install(|| train(args, &scenario))?;
+            let text = file.to_toml_string();
+            NetworkFile::from_toml_str(&text, "written network").map_err(|e| anyhow::anyhow!(e))?;
+            if let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
+                std::fs::create_dir_all(parent)
+                    .with_context(|| format!("cannot create {}", parent.display()))?;
+            }
+            std::fs::write(out, text).with_context(|| format!("cannot write {}", out.display()))?;
+            println!("wrote {}", out.display());
+            Some(file.to_set().map_err(|e| anyhow::anyhow!(e))?)
+        }
+        None => None,
+    };
+    if let Some(runs) = args.evaluate {
+        let pool = thread_pool(args.threads)?;
+        pool.install(|| evaluate(args, scenario, trained.as_ref(), runs))?;
+    }
+    Ok(())
+}
+
+fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool> {
+    let mut b = rayon::ThreadPoolBuilder::new();
+    if let Some(t) = threads {
+        b = b.num_threads(t.max(1));
+    }
+    Ok(b.build()?)
+}
+
+fn train(args: &TrainArgs, scenario: &entrynav::scenario::Scenario) -> Result<NetworkFile> {
+    let mut tc = scenario
+        .config
+        .filter
+        .density
+        .clone()
+        .unwrap_or_default()
+        .training;
+    if let Some(s) = args.seed {
+        tc.seed = s;
+    }
+    if let Some(n) = args.trajectories {
+        tc.trajectories = n;
+    }
+    if let Some(n) = args.epochs {
+        tc.epochs = n;
+    }
+    if let Some(n) = args.batch_size {
+        tc.batch_size = n;
+    }
+    if let Some(b) = &args.bands_km {
+        tc.bands_km = if b.trim() == "none" {
+            Vec::new()
+        } else {
+            b.split(',')
+                .map(|v| v.trim().parse::<f64>())
+                .collect::<Result<_, _>>()
+                .with_context(|| format!("--bands-km '{b}': expected numbers, e.g. 0,40,70,130"))?
+        };
+    }
+    tc.validate("training")
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+    if scenario.filter_model.kind.is_cartesian() {
+        bail!("train-density needs a spherical scenario (the network maps radius to density)");
+    }
+    let radius = scenario.planet.radius;
+    let [lo, hi] = tc.fit_altitude_km;
+    let fit = fit_onboard_exponential(&scenario.truth_model.atmosphere, lo, hi)
+        .map_err(|e| anyhow::anyhow!(e))?;
+    print_fit(&fit, radius, lo, hi);
+    println!(
+        "training: {} trajectories x {} s at {} s, 1-{}-1 tanh, {} epochs, batch {}, lr {:e}..{:e}, seed {}, {} threads",
+        tc.trajectories,
+        tc.duration_s,
+        tc.sample_interval_s,
+        tc.hidden,
+        tc.epochs,
+        tc.batch_size,
+        tc.lr_max,
+        tc.lr_min,
+        tc.seed,
+        rayon::current_num_threads()
+    );
+    let every = (tc.epochs / 10).max(1);
+    let quiet = args.quiet;
+    let progress = move |band: usize, epoch: usize, mse: f64| {
+        if !quiet && (epoch % every == 0 || epoch == 1) {
+            println!("  band {band} epoch {epoch:>6}  train MSE {mse:.3e}");
+        }
+    };
+    let clock = std::time::Instant::now();
+    let (file, _) =
+        train_density_networks(scenario, &tc, &progress).map_err(|e| anyhow::anyhow!(e))?;
+    report(&file);
+    println!(
+        "training took {:.1} s wall (data generation included)",
+        clock.elapsed().as_secs_f64()
+    );
+    Ok(file)
+}
+
+fn evaluate(
+    args: &TrainArgs,
+    scenario: entrynav::scenario::Scenario,
+    networks: Option<&entrynav::estimation::adaptive::DensityNetworkSet>,
+    runs: usize,
+) -> Result<()> {
+    use entrynav::estimation::adaptive::{DensityEvalOptions, evaluate_density_filters};
+    use entrynav::estimation::nav::FilterKind;
+    let kinds = FilterKind::parse_list(&args.filters, &scenario)?;
+    let scenario = std::sync::Arc::new(scenario);
+    let opts = DensityEvalOptions {
+        runs,
+        seed: args.mc_seed,
+        keep_runs: 50,
+    };
+    let clock = std::time::Instant::now();
+    let quiet = args.quiet;
+    let progress = move |done: usize| {
+        if !quiet && (done % 100 == 0 || done == runs) {
+            eprintln!("  {done}/{runs} runs");
+        }
+    };
+    let reports = evaluate_density_filters(&scenario, &kinds, networks, &opts, &progress)
+        .map_err(|e| anyhow::anyhow!(e))?;
+    println!(
+        "density RMSPE (seed 001 eq. 70), scenario {}, {runs} runs, seed {} ({:.1} s wall):",
+        scenario.config.name,
+        args.mc_seed,
+        clock.elapsed().as_secs_f64()
+    );
+    println!(
+        "  {:<10} {:>22} {:>22} {:>8}",
+        "filter", "profile @ true alt [%]", "at estimate [%]", "failed"
+    );
+    for r in &reports {
+        println!(
+            "  {:<10} {:>22.4} {:>22.4} {:>8}",
+            r.filter, r.rmspe_profile_pct, r.rmspe_state_pct, r.failed
+        );
+    }
+    if let Some(dir) = &args.plots {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        for r in &reports {
+            let path = dir.join(format!(
+                "{}_{}_density_error_runs.svg",
+                scenario.config.name, r.filter
+            ));
+            fig10(&path, &scenario.config.name, r)?;
+            println!("wrote {}", path.display());
+        }
+    }
+    Ok(())
+}
+
+/// Seed 001 Fig. 10: percentage error of the filter's density model at the true altitude vs
+/// time, one grey line per run (the first 50) and the RMS over all runs; values beyond 3× the
+/// largest RMS after the first 10 s are drawn at the edge.
+fn fig10(
+    path: &std::path::Path,
+    scenario: &str,
+    r: &entrynav::estimation::adaptive::DensityEvalReport,
+) -> Result<()> {
+    use plotters::prelude::*;
+    let e = |e: DrawingAreaErrorKind<std::io::Error>| anyhow::anyhow!("{e}");
+    let t1 = r.times_s.last().copied().unwrap_or(1.0);
+    // y range: 3× the largest RMS after the first 10 s (the initial transient is clipped).
+    let ymax = r
+        .times_s
+        .iter()
+        .zip(&r.rms_profile_pct)
+        .filter(|(t, v)| **t > 10.0 && v.is_finite())
+        .fold(0.0_f64, |a, (_, v)| a.max(*v))
+        .max(0.5)
+        * 3.0;
+    let clip = |v: f64| v.clamp(-ymax, ymax);
+    let root = SVGBackend::new(path, (960, 540)).into_drawing_area();
+    root.fill(&WHITE).map_err(e)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            format!(
+                "{scenario} {}: density error of the onboard model at the true altitude (RMSPE {:.3} %)",
+                r.filter, r.rmspe_profile_pct
+            ),
+            ("sans-serif", 18),
+        )
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0.0..t1, -ymax..ymax)
+        .map_err(e)?;
+    chart
+        .configure_mesh()
+        .x_desc("time [s]")
+        .y_desc("(rho_hat - rho)/rho [%]")
+        .draw()
+        .map_err(e)?;
+    let grey = RGBColor(160, 160, 160);
+    for run in &r.sample_runs_profile_pct {
+        let pts: Vec<(f64, f64)> = r
+            .times_s
+            .iter()
+            .copied()
+            .zip(run.iter().copied().map(clip))
+            .filter(|(_, y)| y.is_finite())
+            .collect();
+        chart
+            .draw_series(LineSeries::new(pts, grey.stroke_width(1)))
+            .map_err(e)?;
+    }
+    let red = RGBColor(214, 39, 40);
+    for sign in [1.0, -1.0] {
+        let pts: Vec<(f64, f64)> = r
+            .times_s
+            .iter()
+            .copied()
+            .zip(r.rms_profile_pct.iter().map(|v| clip(sign * v)))
+            .filter(|(_, y)| y.is_finite())
+            .collect();
+        let s = chart
+            .draw_series(LineSeries::new(pts, red.stroke_width(2)))
+            .map_err(e)?;
+        if sign > 0.0 {
+            s.label("±RMS over all runs")
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], red));
+        }
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+        .map_err(e)?;
+    root.present().map_err(e)?;
+    Ok(())
+}
+
+fn report(file: &NetworkFile) {
+    for (k, n) in file.networks.iter().enumerate() {
+        let t = &n.training;
+        let [p50, p99, max] = t.validation_rel_err_p50_p99_max;
+        println!(
+            "network {k} ({}-{} km, exponential rho_ref {:.4e} kg/m3 at {:.3} km, H {:.4} km): {} train / {} validation samples",
+            n.altitude_band_km[0],
+            n.altitude_band_km[1],
+            n.trained_on_exponential[0],
+            n.trained_on_exponential[1],
+            n.trained_on_exponential[2],
+            t.train_samples,
+            t.validation_samples
+        );
+        println!(
+            "  MSE train {:.3e} validation {:.3e}; validation |rel. density error| median {:.3}%, p99 {:.3}%, max {:.3}%, {:.1}% below 1%; {:.1} s",
+            t.train_mse,
+            t.validation_mse,
+            100.0 * p50,
+            100.0 * p99,
+            100.0 * max,
+            100.0 * t.validation_frac_below_1pct,
+            t.wall_time_s
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! `--atmosphere-file` / `--no-perturbation` (the helpers live in `trade.rs`).
+    use crate::trade::{check_profile_covers, truth_atmosphere};
+    use entrynav::atmosphere::{Atmosphere, AtmosphereConfig, mars_mean_profile};
+    use entrynav::scenario::{Scenario, ScenarioConfig};
+    use std::path::PathBuf;
+
+    fn write(name: &str, text: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("entrynav-train-tests-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+
+    fn table(lo_km: usize, hi_km: usize, csv: bool) -> String {
+        let m = mars_mean_profile();
+        let mut s = if csv {
+            "height_km,density\n".to_string()
+        } else {
+            "# Mars-GRAM style\n Height(km)   Lat  DENSTOT\n".to_string()
+        };
+        for h in lo_km..=hi_km {
+            let rho = 1.1 * m.density(h as f64 * 1e3);
+            if csv {
+                s += &format!("{h},{rho:e}\n");
+            } else {
+                s += &format!("  {h:.3}  -3.9  {rho:.6E}\n");
+            }
+        }
+        s
+    }
+
+    fn build(cfg: ScenarioConfig) -> anyhow::Result<Scenario> {
+        crate::load::build(cfg, std::path::Path::new("."))
+    }
+
+    fn msl() -> ScenarioConfig {
+        ScenarioConfig::builtin("msl-airdata").unwrap()
+    }
+
+    #[test]
+    fn a_good_profile_becomes_the_truth_mean_with_or_without_perturbation() {
+        for csv in [true, false] {
+            let p = write(
+                if csv { "good.csv" } else { "good.txt" },
+                &table(0, 150, csv),
+            );
+            let cfg = truth_atmosphere(msl(), Some(&p), false).unwrap();
+            assert!(matches!(
+                cfg.truth.atmosphere,
+                AtmosphereConfig::Table { .. }
+            ));
+            assert!(cfg.truth.perturbation.is_some());
+            let s = build(cfg).unwrap();
+            check_profile_covers(&s, &p).unwrap();
+            let h = 50e3_f64;
+            let want = 1.1 * mars_mean_profile().density(h);
+            assert!((s.truth_model.atmosphere.density(h) / want - 1.0).abs() < 1e-5);
+        }
+        let cfg = truth_atmosphere(msl(), None, true).unwrap();
+        assert!(cfg.truth.perturbation.is_none());
+    }
+
+    #[test]
+    fn bad_profiles_are_refused_naming_file_line_and_problem() {
+        let good = table(0, 150, true);
+        let cases = [
+            (
+                "nonmono.csv",
+                good.replace("\n40,", "\n38.5,"),
+                "lines",
+                "order",
+            ),
+            (
+                "repeat.csv",
+                good.replace("\n40,", "\n39,"),
+                "lines",
+                "repeats",
+            ),
+            (
+                "negative.csv",
+                good.replace(&good.lines().nth(21).unwrap().to_string(), "20,-1e-3"),
+                "line 22",
+                "not positive",
+            ),
+            (
+                "malformed.csv",
+                good.replace("\n30,", "\n3O,"),
+                "line 32",
+                "not a number",
+            ),
+        ];
+        for (name, text, line, problem) in cases {
+            let p = write(name, &text);
+            let err = truth_atmosphere(msl(), Some(&p), false)
+                .and_then(build)
+                .err()
+                .unwrap_or_else(|| panic!("{name} accepted"));
+            let msg = format!("{err:#}");
+            assert!(
+                msg.contains(name) && msg.contains(line) && msg.contains(problem),
+                "{name}: {msg}"
+            );
+        }
+        // A profile that stops at 100 km does not cover the 126 km entry interface.
+        let p = write("short.csv", &table(0, 100, true));
+        let s = build(truth_atmosphere(msl(), Some(&p), false).unwrap()).unwrap();
+        let msg = format!("{:#}", check_profile_covers(&s, &p).unwrap_err());
+        assert!(
+            msg.contains("short.csv") && msg.contains("lines 2-102") && msg.contains("100.000 km"),
+            "{msg}"
+        );
+    }
+}

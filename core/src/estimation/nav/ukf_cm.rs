@@ -1,0 +1,148 @@
+//! UKF-CM: the UKF with Myers–Tapley process-noise covariance matching (seed 001 §III.A,
+//! eq. 20–21, and §V.B "UKF-CM").
+//!
+//! The filter is the plain UKF of [`super::UkfNav`] on the scenario's onboard density model (for
+//! `msl-airdata` the least-squares exponential fit). After every measurement update it records
+//! the state innovation x̂⁺ − x̂⁻ and `P⁻ − Q − P⁺`; once a batch of `filter.density.cm_batch`
+//! (10) steps is available, every step replaces Q by the Myers–Tapley estimate over the last
+//! batch, reset to `diag(|Q̂ᵢᵢ|)` ([`CovarianceMatching`]). No consider analysis (§V.B).
+
+use super::setup::FilterStart;
+use super::{NavFilter, StepInfo};
+use crate::atmosphere::{Atmosphere, AtmosphereModel};
+use crate::dynamics::EntryModel;
+use crate::estimation::EstimationError;
+use crate::estimation::adaptive::{CovarianceMatching, density_config, epoch_measurements};
+use crate::estimation::ukf::{Ukf, UkfParams, UkfWorkspace};
+use crate::math::V3;
+use crate::scenario::Scenario;
+use crate::sensors::channels::kinematics;
+use crate::sim::MeasurementEpoch;
+use nalgebra::{SMatrix, SVector};
+use std::sync::Arc;
+
+/// UKF with covariance-matched process noise (`ukf-cm`).
+#[derive(Debug, Clone)]
+pub struct UkfCmNav<const N: usize> {
+    scenario: Arc<Scenario>,
+    model: EntryModel<AtmosphereModel>,
+    ukf: Ukf<N>,
+    ws: UkfWorkspace<N>,
+    /// Process noise per filter step currently in use (the scenario's until the first batch).
+    q: SMatrix<f64, N, N>,
+    cm: CovarianceMatching<N>,
+    /// Prior mean, covariance and the process noise added since the last update.
+    prior: Option<(SVector<f64, N>, SMatrix<f64, N, N>, SMatrix<f64, N, N>)>,
+    t: f64,
+}
+
+impl<const N: usize> UkfCmNav<N> {
+    /// A UKF-CM on `scenario` from `start` (batch size from `filter.density.cm_batch`).
+    pub fn new(scenario: &Arc<Scenario>, start: &FilterStart<N>) -> Result<Self, EstimationError> {
+        let u = &scenario.config.filter.ukf;
+        let params = UkfParams::new(u.alpha, u.beta, u.kappa);
+        Ok(UkfCmNav {
+            scenario: Arc::clone(scenario),
+            model: scenario.filter_model.clone(),
+            ukf: Ukf::new(start.x0, start.p0, params, 0)?,
+            ws: UkfWorkspace::default(),
+            q: start.q,
+            cm: CovarianceMatching::new(density_config(scenario).cm_batch),
+            prior: None,
+            t: 0.0,
+        })
+    }
+
+    /// The onboard density profile at altitude `altitude_m` [kg/m³] (not adapted by UKF-CM).
+    pub fn density_profile(&self, altitude_m: f64) -> f64 {
+        self.model.atmosphere.density(altitude_m)
+    }
+
+    /// The process noise per filter step currently in use.
+    pub fn process_noise(&self) -> &SMatrix<f64, N, N> {
+        &self.q
+    }
+}
+
+impl<const N: usize> NavFilter<N> for UkfCmNav<N> {
+    fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
+        let dt = t_to - self.t;
+        if dt <= 0.0 {
+            return Ok(());
+        }
+        let step = self.scenario.config.timing.filter_step_s;
+        let n = ((dt / step) - 1e-9).ceil().max(1.0) as usize;
+        let h = dt / n as f64;
+        let bank = self.scenario.truth_bank;
+        let model = &self.model;
+        let q = self.q * (h / step);
+        for _ in 0..n {
+            self.ukf
+                .predict_with(&mut self.ws, |x| model.step(x, bank, h), &q)?;
+        }
+        let q_added = q * n as f64;
+        self.prior = Some(match self.prior.take() {
+            // Several predictions without an update: D uses the total noise added.
+            Some((_, _, q0)) => (self.ukf.x, self.ukf.p, q0 + q_added),
+            None => (self.ukf.x, self.ukf.p, q_added),
+        });
+        self.t = t_to;
+        Ok(())
+    }
+
+    fn update(
+        &mut self,
+        epoch: &MeasurementEpoch,
+        beacons: &[(V3<f64>, V3<f64>)],
+    ) -> Result<StepInfo, EstimationError> {
+        let Some((slots, z, r)) = epoch_measurements(&self.scenario, epoch) else {
+            return Ok(StepInfo::default());
+        };
+        let (sc, model, t) = (&*self.scenario, &self.model, epoch.t);
+        let bank = sc.truth_bank;
+        let h = |x: &SVector<f64, N>, out: &mut [f64]| {
+            let kin = kinematics(model, x, t);
+            for (o, &c) in out.iter_mut().zip(&slots) {
+                *o = sc.measurement.evaluate_with(
+                    model,
+                    x,
+                    &kin,
+                    bank,
+                    beacons,
+                    sc.channels[c].channel,
+                );
+            }
+            Ok(())
+        };
+        let upd = self.ukf.update_with(&mut self.ws, h, &z, &r)?;
+        if let Some((xp, pp, qu)) = self.prior.take() {
+            self.cm.push(&xp, &pp, &qu, &self.ukf.x, &self.ukf.p);
+            if let Some(q) = self.cm.estimate() {
+                self.q = q;
+            }
+        }
+        Ok(StepInfo {
+            nis: Some(upd.nis),
+            n_meas: slots.len(),
+            innovations: upd.innovation.iter().copied().collect(),
+            weights: None,
+        })
+    }
+
+    fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
+        (self.ukf.x, self.ukf.p)
+    }
+
+    fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// The onboard model's density at the estimate (UKF-CM does not adapt it).
+    fn density_profile(&self, altitude_m: f64) -> Option<f64> {
+        Some(Self::density_profile(self, altitude_m))
+    }
+
+    fn density_estimate(&self) -> Option<f64> {
+        Some(self.model.density(&self.ukf.x))
+    }
+}

@@ -1,0 +1,288 @@
+//! USKF-NN: the unscented Schmidt–Kalman filter with an online-adapted density network (seed 001
+//! §IV.B, eq. 39–68, Algorithms 2–3).
+//!
+//! Internally the state is augmented with the consider parameter c (eq. 39–40):
+//! `x̂ₐ = [r, lon, lat, v, γ, ψ, B, L/D, c]`, ĉ₀ = 1, C₀ = 0, P_c,0 = 1e-10. One step (Algorithm 3):
+//!
+//! 1. **Time propagation** (eq. 41–51): sigma points of (x̂ₐ⁺, Pₐ⁺) are propagated by RK4 with the
+//!    density `𝒫⁽ⁱ⁾ = c⁽ⁱ⁾·NN(r⁽ⁱ⁾, ξ_{k−1})` (eq. 45); c is an exponentially correlated random
+//!    variable centred at one, `c ← 1 + e^{−Δt/τ}(c − 1)` with
+//!    `Q_c = (1 − e^{−2Δt/τ}) P_ss` (eq. 51; τ = 5 s, P_ss = 1e-3).
+//! 2. **Maximum-likelihood optimisation** (Algorithm 2, [`maximise_likelihood`]) of the network
+//!    at the prior mean, loss eq. 52–53, Adam with β₁ = 0.1, β₂ = 0.9, p_max = 1 and step
+//!    α_𝓛 = 0.01/k at measurement epoch k (Table 4), only while the loss exceeds 𝒯.
+//! 3. **Measurement update** (eq. 61–68) with the adapted network ξ_k and the Schmidt update:
+//!    the consider parameter and its variance are not updated, its cross-covariance is
+//!    ([`Ukf`] with `n_consider = 1`).
+//!
+//! Options (seed 001 §VI, future work): `filter.density.window > 1` puts the last `window`
+//! measurement epochs (each at its own prior mean) in the loss; a network file with several
+//! altitude bands uses one network per band and adapts the one serving the prior altitude.
+
+use super::setup::FilterStart;
+use super::ukf_ac::augment_start;
+use super::{NavFilter, StepInfo};
+use crate::atmosphere::Atmosphere;
+use crate::dynamics::EntryModel;
+use crate::estimation::EstimationError;
+use crate::estimation::adaptive::{
+    Activations, DensityNetworkSet, LossContext, LossTerm, MloOutcome, MloSettings, NnAtmosphere,
+    OnlineAdam, density_config, epoch_measurements, load_network_set, maximise_likelihood,
+};
+use crate::estimation::ukf::{Ukf, UkfParams, UkfWorkspace};
+use crate::math::V3;
+use crate::scenario::Scenario;
+use crate::sensors::channels::kinematics;
+use crate::sim::MeasurementEpoch;
+use nalgebra::{SMatrix, SVector};
+use std::collections::VecDeque;
+use std::sync::Arc;
+
+/// Augmented dimension: 8 navigation states + the consider parameter c.
+const L: usize = 9;
+
+/// Running totals of the online adaptation (diagnostics).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct AdaptationStats {
+    /// Measurement epochs processed.
+    pub epochs: usize,
+    /// Epochs whose loss exceeded the threshold (the optimiser ran).
+    pub optimised: usize,
+    /// Adam candidates evaluated.
+    pub iterations: usize,
+    /// Adam candidates accepted.
+    pub accepted: usize,
+    /// The last epoch's outcome.
+    pub last: MloOutcome,
+}
+
+/// Unscented Schmidt–Kalman filter with the adapted density network (`uskf-nn`), for 8-state
+/// spherical scenarios.
+#[derive(Debug, Clone)]
+pub struct UskfNnNav {
+    scenario: Arc<Scenario>,
+    model: EntryModel<NnAtmosphere>,
+    ukf: Ukf<L>,
+    ws: UkfWorkspace<L>,
+    /// Process noise of the 8 navigation states per filter step.
+    q: SMatrix<f64, 8, 8>,
+    tau: f64,
+    pss: f64,
+    settings: MloSettings,
+    window: usize,
+    terms: VecDeque<LossTerm>,
+    adam: Vec<OnlineAdam>,
+    act: Activations,
+    stats: AdaptationStats,
+    t: f64,
+}
+
+impl UskfNnNav {
+    /// A USKF-NN on `scenario` (8 states) from `start`, with the network of
+    /// `filter.density.network`.
+    pub fn new(scenario: &Arc<Scenario>, start: &FilterStart<8>) -> Result<Self, EstimationError> {
+        let set = load_network_set(scenario).map_err(EstimationError::InvalidInput)?;
+        Self::with_networks(scenario, start, set)
+    }
+
+    /// As [`UskfNnNav::new`] with the networks `set` instead of `filter.density.network` (e.g. a
+    /// network just trained).
+    pub fn with_networks(
+        scenario: &Arc<Scenario>,
+        start: &FilterStart<8>,
+        set: DensityNetworkSet,
+    ) -> Result<Self, EstimationError> {
+        let cfg = density_config(scenario);
+        let nb = set.nets.len();
+        let fm = &scenario.filter_model;
+        let model = EntryModel {
+            kind: fm.kind,
+            planet: fm.planet,
+            atmosphere: NnAtmosphere { set },
+            vehicle: fm.vehicle,
+            augmented: fm.augmented.clone(),
+            rho0_model: 1.0,
+            density_factor: 1.0,
+        };
+        let (x0, p0, _) = augment_start(start, 1.0, cfg.consider_p0, 0.0);
+        let u = &scenario.config.filter.ukf;
+        Ok(UskfNnNav {
+            scenario: Arc::clone(scenario),
+            model,
+            ukf: Ukf::new(x0, p0, UkfParams::new(u.alpha, u.beta, u.kappa), 1)?,
+            ws: UkfWorkspace::default(),
+            q: start.q,
+            tau: cfg.consider_tau_s,
+            pss: cfg.consider_pss,
+            settings: MloSettings {
+                beta1: cfg.adam_beta1,
+                beta2: cfg.adam_beta2,
+                epsilon: cfg.adam_epsilon,
+                step: cfg.adam_step,
+                patience: cfg.patience,
+                threshold: cfg.loss_threshold,
+                max_iterations: cfg.max_iterations,
+            },
+            window: cfg.window.max(1),
+            terms: VecDeque::with_capacity(cfg.window.max(1) + 1),
+            adam: vec![OnlineAdam::default(); nb],
+            act: Activations::default(),
+            stats: AdaptationStats::default(),
+            t: 0.0,
+        })
+    }
+
+    /// The filter's density profile ĉ·NN(R + h, ξ_k) at altitude `altitude_m` [kg/m³].
+    pub fn density_profile(&self, altitude_m: f64) -> f64 {
+        self.ukf.x[8] * self.model.atmosphere.set.density_at_altitude(altitude_m)
+    }
+
+    /// The adapted onboard atmosphere (network set ξ_k).
+    pub fn atmosphere(&self) -> &NnAtmosphere {
+        &self.model.atmosphere
+    }
+
+    /// Adaptation diagnostics.
+    pub fn adaptation_stats(&self) -> AdaptationStats {
+        self.stats
+    }
+
+    /// Augmented estimate [x̂; ĉ] and covariance.
+    pub fn augmented(&self) -> (SVector<f64, L>, SMatrix<f64, L, L>) {
+        (self.ukf.x, self.ukf.p)
+    }
+}
+
+impl NavFilter<8> for UskfNnNav {
+    fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
+        let dt = t_to - self.t;
+        if dt <= 0.0 {
+            return Ok(());
+        }
+        let step = self.scenario.config.timing.filter_step_s;
+        let n = ((dt / step) - 1e-9).ceil().max(1.0) as usize;
+        let h = dt / n as f64;
+        let bank = self.scenario.truth_bank;
+        // eq. 51: ECRV transition and its process noise.
+        let phi = (-h / self.tau).exp();
+        let mut q = SMatrix::<f64, L, L>::zeros();
+        q.fixed_view_mut::<8, 8>(0, 0)
+            .copy_from(&(self.q * (h / step)));
+        q[(8, 8)] = (1.0 - phi * phi) * self.pss;
+        let model = &mut self.model;
+        for _ in 0..n {
+            self.ukf.predict_with(
+                &mut self.ws,
+                |x| {
+                    // eq. 44–45: density c⁽ⁱ⁾·NN(r⁽ⁱ⁾, ξ_{k−1}) through the density scale.
+                    model.density_factor = x[8];
+                    let mut y = model.step(x, bank, h);
+                    y[8] = 1.0 + phi * (x[8] - 1.0);
+                    y
+                },
+                &q,
+            )?;
+        }
+        self.t = t_to;
+        Ok(())
+    }
+
+    fn update(
+        &mut self,
+        epoch: &MeasurementEpoch,
+        beacons: &[(V3<f64>, V3<f64>)],
+    ) -> Result<StepInfo, EstimationError> {
+        let Some((slots, z, r)) = epoch_measurements(&self.scenario, epoch) else {
+            return Ok(StepInfo::default());
+        };
+        let sc = &*self.scenario;
+        let (t, bank) = (epoch.t, sc.truth_bank);
+
+        // Algorithm 2 at the prior mean (eq. 52–53).
+        self.stats.epochs += 1;
+        let k = self.stats.epochs;
+        let x8: SVector<f64, 8> = self.ukf.x.fixed_rows::<8>(0).into_owned();
+        let altitude = self.model.altitude(&x8);
+        let term = LossTerm {
+            x: x8,
+            kin: kinematics(&sc.filter_model, &x8, t),
+            altitude,
+            z: z.iter().copied().collect(),
+            r_inv: r.diagonal().iter().map(|v| 1.0 / v).collect(),
+            channels: slots.iter().map(|&c| sc.channels[c].channel).collect(),
+            beacons: beacons.to_vec(),
+        };
+        self.terms.push_back(term);
+        while self.terms.len() > self.window {
+            self.terms.pop_front();
+        }
+        let band = self.model.atmosphere.set.band(altitude);
+        let ctx = LossContext {
+            measurement: &sc.measurement,
+            model: &sc.filter_model,
+            bank,
+        };
+        let outcome = maximise_likelihood(
+            &ctx,
+            &mut self.model.atmosphere.set,
+            band,
+            &mut self.adam[band],
+            self.terms.make_contiguous(),
+            self.settings.step / k as f64,
+            &self.settings,
+            &mut self.act,
+        );
+        if outcome.iterations > 0 {
+            self.stats.optimised += 1;
+        }
+        self.stats.iterations += outcome.iterations;
+        self.stats.accepted += outcome.accepted;
+        self.stats.last = outcome;
+
+        // eq. 61–68 with ξ_k.
+        let model = &mut self.model;
+        let h = |x: &SVector<f64, L>, out: &mut [f64]| {
+            model.density_factor = x[8];
+            let kin = kinematics(model, x, t);
+            for (o, &c) in out.iter_mut().zip(&slots) {
+                *o = sc.measurement.evaluate_with(
+                    model,
+                    x,
+                    &kin,
+                    bank,
+                    beacons,
+                    sc.channels[c].channel,
+                );
+            }
+            Ok(())
+        };
+        let upd = self.ukf.update_with(&mut self.ws, h, &z, &r)?;
+        Ok(StepInfo {
+            nis: Some(upd.nis),
+            n_meas: slots.len(),
+            innovations: upd.innovation.iter().copied().collect(),
+            weights: None,
+        })
+    }
+
+    fn estimate(&self) -> (SVector<f64, 8>, SMatrix<f64, 8, 8>) {
+        (
+            self.ukf.x.fixed_rows::<8>(0).into_owned(),
+            self.ukf.p.fixed_view::<8, 8>(0, 0).into_owned(),
+        )
+    }
+
+    fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// ĉ·NN(r̂, ξ_k) at the posterior estimate.
+    fn density_profile(&self, altitude_m: f64) -> Option<f64> {
+        Some(Self::density_profile(self, altitude_m))
+    }
+
+    fn density_estimate(&self) -> Option<f64> {
+        let h = self.model.altitude(&self.ukf.x);
+        Some(self.ukf.x[8] * self.model.atmosphere.density(h))
+    }
+}

@@ -1,4 +1,5 @@
-//! Benchmarks: one RK4 step of the 8-state seed-000 model, its AD Jacobian, and a full 240 s
+//! Benchmarks: one RK4 step of the 8-state seed-000 model, its AD Jacobian, the step with its
+//! exact (AD through RK4) or linearised (Taylor of e^{hA}) transition matrix, and a full 240 s
 //! entry at 0.1 s steps (2400 RK4 steps), spherical and Cartesian.
 
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -22,6 +23,12 @@ fn bench(c: &mut Criterion) {
     });
     c.bench_function("ad_jacobian_8state_spherical", |b| {
         b.iter(|| m.jacobian(black_box(&x8), 0.0))
+    });
+    c.bench_function("rk4_step_exact_stm_8state_spherical", |b| {
+        b.iter(|| m.step_with_stm(black_box(&x8), 0.0, 1.0))
+    });
+    c.bench_function("rk4_step_linear_stm_8state_spherical", |b| {
+        b.iter(|| m.step_with_linear_stm(black_box(&x8), 0.0, 1.0))
     });
 
     let truth = &s.truth_model;

@@ -175,6 +175,38 @@ impl<A: Atmosphere> EntryModel<A> {
         ad_jacobian(|xd| rk4_step_generic(|y| self.rhs(y, bank), &xd, h), x)
     }
 
+    /// One RK4 step with the *linearised* state-transition matrix
+    /// Φ = I + hA + (hA)²/2! + (hA)³/3! + (hA)⁴/4! ≈ e^{hA}, with A = ∂f/∂x at the step's
+    /// midpoint estimate x + (h/2)·k1 (forward-mode AD, one pass), as the EKF of seed 000 eq. 17
+    /// linearises the dynamics.
+    ///
+    /// The mean is the same RK4 step as [`EntryModel::step`] (its second stage is the real part of
+    /// the AD pass). Evaluating A at the midpoint makes Φ a second-order (midpoint/Magnus)
+    /// approximation of the linearised flow; for linear dynamics it equals the exact Jacobian of
+    /// the RK4 step ([`EntryModel::step_with_stm`]), for the entry dynamics the two differ by the
+    /// change of A over one step (a test bounds the difference). It costs one AD pass instead of
+    /// four, which is what keeps the EKF step within its budget.
+    pub fn step_with_linear_stm<const N: usize>(
+        &self,
+        x: &SVector<f64, N>,
+        bank: f64,
+        h: f64,
+    ) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
+        let k1 = self.rhs(x, bank);
+        let (k2, a) = self.jacobian(&(x + k1 * (0.5 * h)), bank);
+        let k3 = self.rhs(&(x + k2 * (0.5 * h)), bank);
+        let k4 = self.rhs(&(x + k3 * h), bank);
+        let x_next = x + (k1 + k2 * 2.0 + k3 * 2.0 + k4) * (h / 6.0);
+        // Horner form of the degree-4 Taylor polynomial: I + M(I + M/2(I + M/3(I + M/4))).
+        let m = a * h;
+        let id = SMatrix::<f64, N, N>::identity();
+        let mut phi = id + m * 0.25;
+        phi = id + (m * phi) * (1.0 / 3.0);
+        phi = id + (m * phi) * 0.5;
+        phi = id + m * phi;
+        (x_next, phi)
+    }
+
     /// Altitude above the reference sphere of a state [m].
     pub fn altitude<const N: usize>(&self, x: &SVector<f64, N>) -> f64 {
         let r = if self.kind.is_cartesian() {

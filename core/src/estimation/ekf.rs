@@ -96,9 +96,15 @@ impl<const N: usize> Ekf<N> {
         let nu = z - predicted;
         self.x += k * nu;
         // Joseph form, expanded for a rank-one gain: (I−khᵀ)P(I−khᵀ)ᵀ + k r kᵀ
-        //   = P − k (Ph)ᵀ − (Ph) kᵀ + k (hᵀPh + r) kᵀ.
-        let p = self.p - k * ph.transpose() - ph * k.transpose() + k * k.transpose() * s;
-        self.p = symmetrize(&p);
+        //   = P − k (Ph)ᵀ − (Ph) kᵀ + k (hᵀPh + r) kᵀ,
+        // evaluated on the upper triangle and mirrored (the result is symmetric by construction).
+        for j in 0..N {
+            for i in 0..=j {
+                let v = self.p[(i, j)] - k[i] * ph[j] - ph[i] * k[j] + k[i] * k[j] * s;
+                self.p[(i, j)] = v;
+                self.p[(j, i)] = v;
+            }
+        }
         Ok(ScalarInnovation { nu, s })
     }
 

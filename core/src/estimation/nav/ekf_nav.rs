@@ -16,7 +16,8 @@ use std::sync::Arc;
 /// EKF navigation filter (seed 000 eq. 17–18).
 ///
 /// * Time update: the mean is propagated with the truth's RK4 scheme in sub-steps no longer than
-///   `timing.filter_step_s`; Φ is the exact Jacobian of the discrete RK4 step (AD through the step),
+///   `timing.filter_step_s`; Φ is the linearised transition matrix e^{hA} to fourth order
+///   ([`EntryModel::step_with_linear_stm`], A = ∂f/∂x by AD),
 ///   P⁻ = Φ P Φᵀ + Q·(h / filter step).
 /// * Measurement update: all available channels of the epoch, linearised at the prior with one AD
 ///   pass, processed sequentially in Joseph form — identical to the batch update with diagonal R.
@@ -74,7 +75,9 @@ impl<const N: usize> EkfNav<N> {
         let mut x = self.ekf.x;
         let mut out = Vec::with_capacity(n);
         for _ in 0..n {
-            let (x_next, phi) = self.model.step_with_stm(&x, self.scenario.truth_bank, h);
+            let (x_next, phi) = self
+                .model
+                .step_with_linear_stm(&x, self.scenario.truth_bank, h);
             out.push((x_next, phi, q));
             x = x_next;
         }

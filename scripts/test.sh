@@ -21,15 +21,17 @@ cargo bench --workspace --no-run
 echo "== README main command"
 cargo run --release --quiet --bin entrynav -- trade --scenario four-beacon-fusion --filters ekf,ci,dcifaif --runs 200 --quiet --plots target/ci-demo/plots
 
-echo "== Dask: sharded study on a 2-worker LocalCluster equals the single-process result"
-ENTRYNAV="$PWD/target/release/entrynav" .venv/bin/pytest -q -p no:cacheprovider tests/dask
+echo "== FMU: shared library, packed FMUs (MarsEntryNav, MarsEntryNavFilter, MarsEntryTruth)"
+# Before the Dask and tutorial steps: both load the packed MarsEntryNav.fmu.
+cargo build --release --workspace
+target/release/entrynav fmu pack --out target/fmu
+
+echo "== Dask: sharded CLI study and fmpy FMU runs on a 2-worker LocalCluster equal the single-process results"
+ENTRYNAV="$PWD/target/release/entrynav" ENTRYNAV_FMU="$PWD/target/fmu/MarsEntryNav.fmu" \
+  .venv/bin/pytest -q -p no:cacheprovider tests/dask
 
 echo "== docs/tutorial.md: every command runs as documented"
 bash scripts/tutorial_check.sh
-
-echo "== FMU: shared library, packed FMUs (MarsEntryNav, MarsEntryNavFilter, MarsEntryTruth)"
-cargo build --release --workspace
-target/release/entrynav fmu pack --out target/fmu
 
 echo "== FMU: our host against the in-process library (bitwise), doStep benchmark"
 for fmu in target/fmu/MarsEntryNav.fmu target/fmu/MarsEntryNavFilter.fmu target/fmu/MarsEntryTruth.fmu; do

@@ -66,32 +66,3 @@ pub fn load_network_set(scenario: &Scenario) -> Result<DensityNetworkSet, String
     }
     Ok(set)
 }
-
-/// The channels available at `epoch` (indices into `scenario.channels`), their values z and the
-/// diagonal noise covariance R the filters assume; `None` when nothing was measured.
-pub(crate) fn epoch_measurements(
-    scenario: &Scenario,
-    epoch: &crate::sim::MeasurementEpoch,
-) -> Option<(Vec<usize>, nalgebra::DVector<f64>, nalgebra::DMatrix<f64>)> {
-    let slots: Vec<usize> = epoch
-        .values
-        .iter()
-        .enumerate()
-        .filter_map(|(c, v)| v.map(|_| c))
-        .collect();
-    if slots.is_empty() {
-        return None;
-    }
-    let z = nalgebra::DVector::from_iterator(
-        slots.len(),
-        slots.iter().map(|&c| epoch.values[c].unwrap_or(0.0)),
-    );
-    let r = nalgebra::DMatrix::from_diagonal(&nalgebra::DVector::from_iterator(
-        slots.len(),
-        slots
-            .iter()
-            .enumerate()
-            .map(|(i, &c)| scenario.channels[c].filter_noise.sigma(z[i]).powi(2)),
-    ));
-    Some((slots, z, r))
-}

@@ -1,6 +1,7 @@
 //! The EKF navigation filter: centralised over every channel, or local over a channel subset.
 
 use super::setup::FilterStart;
+use super::ukf_common::substeps;
 use super::{NavFilter, StepInfo, channel_sigma};
 use crate::atmosphere::AtmosphereModel;
 use crate::dynamics::EntryModel;
@@ -69,8 +70,7 @@ impl<const N: usize> EkfNav<N> {
             return Vec::new();
         }
         let step = self.scenario.config.timing.filter_step_s;
-        let n = ((dt / step) - 1e-9).ceil().max(1.0) as usize;
-        let h = dt / n as f64;
+        let (n, h) = substeps(dt, step);
         let q = self.q * (h / step);
         let mut x = self.ekf.x;
         let mut out = Vec::with_capacity(n);

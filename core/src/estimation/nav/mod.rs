@@ -12,6 +12,7 @@ pub mod kind;
 pub mod setup;
 pub mod ukf_ac;
 pub mod ukf_cm;
+mod ukf_common;
 pub mod ukf_nav;
 pub mod uskf_nn;
 

@@ -14,15 +14,15 @@
 //! overrides it with a number.
 
 use super::setup::FilterStart;
+use super::ukf_common::{epoch_measurements, predict_channels, step_info, substeps};
 use super::{NavFilter, StepInfo};
 use crate::atmosphere::{Atmosphere, AtmosphereModel};
 use crate::dynamics::EntryModel;
 use crate::estimation::EstimationError;
-use crate::estimation::adaptive::{density_config, epoch_measurements};
+use crate::estimation::adaptive::density_config;
 use crate::estimation::ukf::{Ukf, UkfParams, UkfWorkspace};
 use crate::math::V3;
 use crate::scenario::Scenario;
-use crate::sensors::channels::kinematics;
 use crate::sim::MeasurementEpoch;
 use nalgebra::{SMatrix, SVector};
 use std::sync::Arc;
@@ -109,8 +109,7 @@ impl NavFilter<8> for UkfAcNav {
             return Ok(());
         }
         let step = self.scenario.config.timing.filter_step_s;
-        let n = ((dt / step) - 1e-9).ceil().max(1.0) as usize;
-        let h = dt / n as f64;
+        let (n, h) = substeps(dt, step);
         let bank = self.scenario.truth_bank;
         let model = &mut self.model;
         let q = self.q * (h / step);
@@ -138,29 +137,14 @@ impl NavFilter<8> for UkfAcNav {
             return Ok(StepInfo::default());
         };
         let sc = &*self.scenario;
-        let (model, t, bank) = (&mut self.model, epoch.t, sc.truth_bank);
+        let (model, t) = (&mut self.model, epoch.t);
         let h = |x: &SVector<f64, L>, out: &mut [f64]| {
             model.density_factor = x[8];
-            let kin = kinematics(model, x, t);
-            for (o, &c) in out.iter_mut().zip(&slots) {
-                *o = sc.measurement.evaluate_with(
-                    model,
-                    x,
-                    &kin,
-                    bank,
-                    beacons,
-                    sc.channels[c].channel,
-                );
-            }
+            predict_channels(sc, model, x, t, beacons, &slots, out);
             Ok(())
         };
         let upd = self.ukf.update_with(&mut self.ws, h, &z, &r)?;
-        Ok(StepInfo {
-            nis: Some(upd.nis),
-            n_meas: slots.len(),
-            innovations: upd.innovation.iter().copied().collect(),
-            weights: None,
-        })
+        Ok(step_info(&upd, slots.len()))
     }
 
     fn estimate(&self) -> (SVector<f64, 8>, SMatrix<f64, 8, 8>) {
@@ -174,11 +158,11 @@ impl NavFilter<8> for UkfAcNav {
         self.t
     }
 
-    /// 𝒦̂·ρ_nominal(r̂) (eq. 26).
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {
         Some(Self::density_profile(self, altitude_m))
     }
 
+    /// 𝒦̂·ρ_nominal(r̂) (eq. 26).
     fn density_estimate(&self) -> Option<f64> {
         let h = self.model.altitude(&self.ukf.x);
         Some(self.ukf.x[8] * self.model.atmosphere.density(h))

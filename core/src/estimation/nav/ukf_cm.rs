@@ -8,15 +8,15 @@
 //! batch, reset to `diag(|Q̂ᵢᵢ|)` ([`CovarianceMatching`]). No consider analysis (§V.B).
 
 use super::setup::FilterStart;
+use super::ukf_common::{epoch_measurements, predict_channels, step_info, substeps};
 use super::{NavFilter, StepInfo};
 use crate::atmosphere::{Atmosphere, AtmosphereModel};
 use crate::dynamics::EntryModel;
 use crate::estimation::EstimationError;
-use crate::estimation::adaptive::{CovarianceMatching, density_config, epoch_measurements};
+use crate::estimation::adaptive::{CovarianceMatching, density_config};
 use crate::estimation::ukf::{Ukf, UkfParams, UkfWorkspace};
 use crate::math::V3;
 use crate::scenario::Scenario;
-use crate::sensors::channels::kinematics;
 use crate::sim::MeasurementEpoch;
 use nalgebra::{SMatrix, SVector};
 use std::sync::Arc;
@@ -71,8 +71,7 @@ impl<const N: usize> NavFilter<N> for UkfCmNav<N> {
             return Ok(());
         }
         let step = self.scenario.config.timing.filter_step_s;
-        let n = ((dt / step) - 1e-9).ceil().max(1.0) as usize;
-        let h = dt / n as f64;
+        let (n, h) = substeps(dt, step);
         let bank = self.scenario.truth_bank;
         let model = &self.model;
         let q = self.q * (h / step);
@@ -99,19 +98,8 @@ impl<const N: usize> NavFilter<N> for UkfCmNav<N> {
             return Ok(StepInfo::default());
         };
         let (sc, model, t) = (&*self.scenario, &self.model, epoch.t);
-        let bank = sc.truth_bank;
         let h = |x: &SVector<f64, N>, out: &mut [f64]| {
-            let kin = kinematics(model, x, t);
-            for (o, &c) in out.iter_mut().zip(&slots) {
-                *o = sc.measurement.evaluate_with(
-                    model,
-                    x,
-                    &kin,
-                    bank,
-                    beacons,
-                    sc.channels[c].channel,
-                );
-            }
+            predict_channels(sc, model, x, t, beacons, &slots, out);
             Ok(())
         };
         let upd = self.ukf.update_with(&mut self.ws, h, &z, &r)?;
@@ -121,12 +109,7 @@ impl<const N: usize> NavFilter<N> for UkfCmNav<N> {
                 self.q = q;
             }
         }
-        Ok(StepInfo {
-            nis: Some(upd.nis),
-            n_meas: slots.len(),
-            innovations: upd.innovation.iter().copied().collect(),
-            weights: None,
-        })
+        Ok(step_info(&upd, slots.len()))
     }
 
     fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
@@ -137,11 +120,11 @@ impl<const N: usize> NavFilter<N> for UkfCmNav<N> {
         self.t
     }
 
-    /// The onboard model's density at the estimate (UKF-CM does not adapt it).
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {
         Some(Self::density_profile(self, altitude_m))
     }
 
+    /// The onboard model's density at the estimate (UKF-CM does not adapt it).
     fn density_estimate(&self) -> Option<f64> {
         Some(self.model.density(&self.ukf.x))
     }

@@ -1,16 +1,16 @@
 //! The UKF navigation filter (seed 001 eq. 41–66; no consider states here).
 
 use super::setup::FilterStart;
-use super::{NavFilter, StepInfo, channel_sigma};
+use super::ukf_common::{epoch_measurements, predict_channels, step_info, substeps};
+use super::{NavFilter, StepInfo};
 use crate::atmosphere::AtmosphereModel;
 use crate::dynamics::{AugmentedParam, EntryModel};
 use crate::estimation::EstimationError;
 use crate::estimation::ukf::{Ukf, UkfParams, UkfWorkspace};
 use crate::math::V3;
 use crate::scenario::Scenario;
-use crate::sensors::channels::kinematics;
 use crate::sim::MeasurementEpoch;
-use nalgebra::{DMatrix, DVector, SMatrix, SVector};
+use nalgebra::{SMatrix, SVector};
 use std::sync::Arc;
 
 /// UKF navigation filter with the scenario's α, β, κ (`filter.ukf`). The sigma points are
@@ -52,8 +52,7 @@ impl<const N: usize> NavFilter<N> for UkfNav<N> {
             return Ok(());
         }
         let step = self.scenario.config.timing.filter_step_s;
-        let n = ((dt / step) - 1e-9).ceil().max(1.0) as usize;
-        let h = dt / n as f64;
+        let (n, h) = substeps(dt, step);
         let bank = self.scenario.truth_bank;
         let model = &self.model;
         let q = self.q * (h / step);
@@ -70,53 +69,16 @@ impl<const N: usize> NavFilter<N> for UkfNav<N> {
         epoch: &MeasurementEpoch,
         beacons: &[(V3<f64>, V3<f64>)],
     ) -> Result<StepInfo, EstimationError> {
-        let slots: Vec<usize> = epoch
-            .values
-            .iter()
-            .enumerate()
-            .filter_map(|(c, v)| v.map(|_| c))
-            .collect();
-        if slots.is_empty() {
+        let Some((slots, z, r)) = epoch_measurements(&self.scenario, epoch) else {
             return Ok(StepInfo::default());
-        }
-        let z = DVector::from_iterator(
-            slots.len(),
-            slots.iter().map(|&c| epoch.values[c].unwrap_or(0.0)),
-        );
-        let r = DMatrix::from_diagonal(&DVector::from_iterator(
-            slots.len(),
-            slots
-                .iter()
-                .enumerate()
-                .map(|(i, &c)| channel_sigma(&self.scenario.channels[c], z[i]).powi(2)),
-        ));
-        let (sc, model, t, bank) = (
-            &*self.scenario,
-            &self.model,
-            epoch.t,
-            self.scenario.truth_bank,
-        );
+        };
+        let (sc, model, t) = (&*self.scenario, &self.model, epoch.t);
         let h = |x: &SVector<f64, N>, out: &mut [f64]| {
-            let kin = kinematics(model, x, t);
-            for (o, &c) in out.iter_mut().zip(&slots) {
-                *o = sc.measurement.evaluate_with(
-                    model,
-                    x,
-                    &kin,
-                    bank,
-                    beacons,
-                    sc.channels[c].channel,
-                );
-            }
+            predict_channels(sc, model, x, t, beacons, &slots, out);
             Ok(())
         };
         let upd = self.ukf.update_with(&mut self.ws, h, &z, &r)?;
-        Ok(StepInfo {
-            nis: Some(upd.nis),
-            n_meas: slots.len(),
-            innovations: upd.innovation.iter().copied().collect(),
-            weights: None,
-        })
+        Ok(step_info(&upd, slots.len()))
     }
 
     fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {

@@ -21,13 +21,14 @@
 
 use super::setup::FilterStart;
 use super::ukf_ac::augment_start;
+use super::ukf_common::{epoch_measurements, predict_channels, step_info, substeps};
 use super::{NavFilter, StepInfo};
 use crate::atmosphere::Atmosphere;
 use crate::dynamics::EntryModel;
 use crate::estimation::EstimationError;
 use crate::estimation::adaptive::{
     Activations, DensityNetworkSet, LossContext, LossTerm, MloOutcome, MloSettings, NnAtmosphere,
-    OnlineAdam, density_config, epoch_measurements, load_network_set, maximise_likelihood,
+    OnlineAdam, density_config, load_network_set, maximise_likelihood,
 };
 use crate::estimation::ukf::{Ukf, UkfParams, UkfWorkspace};
 use crate::math::V3;
@@ -160,8 +161,7 @@ impl NavFilter<8> for UskfNnNav {
             return Ok(());
         }
         let step = self.scenario.config.timing.filter_step_s;
-        let n = ((dt / step) - 1e-9).ceil().max(1.0) as usize;
-        let h = dt / n as f64;
+        let (n, h) = substeps(dt, step);
         let bank = self.scenario.truth_bank;
         // eq. 51: ECRV transition and its process noise.
         let phi = (-h / self.tau).exp();
@@ -243,26 +243,11 @@ impl NavFilter<8> for UskfNnNav {
         let model = &mut self.model;
         let h = |x: &SVector<f64, L>, out: &mut [f64]| {
             model.density_factor = x[8];
-            let kin = kinematics(model, x, t);
-            for (o, &c) in out.iter_mut().zip(&slots) {
-                *o = sc.measurement.evaluate_with(
-                    model,
-                    x,
-                    &kin,
-                    bank,
-                    beacons,
-                    sc.channels[c].channel,
-                );
-            }
+            predict_channels(sc, model, x, t, beacons, &slots, out);
             Ok(())
         };
         let upd = self.ukf.update_with(&mut self.ws, h, &z, &r)?;
-        Ok(StepInfo {
-            nis: Some(upd.nis),
-            n_meas: slots.len(),
-            innovations: upd.innovation.iter().copied().collect(),
-            weights: None,
-        })
+        Ok(step_info(&upd, slots.len()))
     }
 
     fn estimate(&self) -> (SVector<f64, 8>, SMatrix<f64, 8, 8>) {
@@ -276,11 +261,11 @@ impl NavFilter<8> for UskfNnNav {
         self.t
     }
 
-    /// ĉ·NN(r̂, ξ_k) at the posterior estimate.
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {
         Some(Self::density_profile(self, altitude_m))
     }
 
+    /// ĉ·NN(r̂, ξ_k) at the posterior estimate.
     fn density_estimate(&self) -> Option<f64> {
         let h = self.model.altitude(&self.ukf.x);
         Some(self.ukf.x[8] * self.model.atmosphere.density(h))

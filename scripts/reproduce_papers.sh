@@ -33,3 +33,6 @@ t --scenario msl-pressure "${special[@]}" --set 'filter.p0_diag=[1.0,1.0,1.0,1e-
 # Seed 002: ground beacons (Table 4 initial errors, 100 m range noise) and orbiters (500 runs).
 t --scenario ground-beacons-3 --filters ekf,ukf --runs "$(runs 500)" --seed 1 --json "$OUT/ground-beacons-3.json" --csv-dir "$OUT/csv"
 t --scenario orbiters-3 --filters ekf,ukf --runs "$(runs 500)" --seed 1 --json "$OUT/orbiters-3.json" --csv-dir "$OUT/csv"
+
+# Seed 001: density adaptation, Tables 5 and 6 (1000 runs); see docs/density.md.
+t --scenario msl-airdata --filters ukf-cm,ukf-ac,uskf-nn --runs "$(runs 1000)" --seed 1 --json "$OUT/msl-airdata.json" --csv-dir "$OUT/csv"

@@ -5,14 +5,16 @@ pub mod cosim;
 pub mod metrics;
 pub mod monte_carlo;
 pub mod navigation;
+pub mod report;
 pub mod truth;
 
-pub use metrics::{FilterReport, nees_bounds_95};
+pub use metrics::nees_bounds_95;
 pub use monte_carlo::{
     McOptions, Shard, ShardResult, TradeError, TradeReport, merge_shards, run_shard, run_trade,
     state_names,
 };
 pub use navigation::{FilterOutcome, NavStep, run_filter};
+pub use report::{Ellipse, FilterReport, Series};
 pub use truth::{MeasurementEpoch, SimError, StopReason, TruthRun, TruthSample, simulate_truth};
 
 /// Seed of run `run` of a Monte Carlo with master seed `seed` (SplitMix64 of both), so every run's

@@ -7,8 +7,9 @@
 //! run-index order, so 1 or N threads give bit-identical statistics, and memory is bounded by the
 //! chunk size, not the number of runs.
 
-use super::metrics::{EpochRecord, FilterAccumulator, FilterReport, FinalRecord, RunRecord};
+use super::metrics::{EpochRecord, FilterAccumulator, FinalRecord, RunRecord};
 use super::navigation::{FilterOutcome, NavStep, run_filter};
+use super::report::FilterReport;
 use super::{SimError, run_seed, simulate_truth};
 use crate::estimation::nav::setup::estimate_spherical;
 use crate::estimation::nav::{FilterKind, NavError, build_filter, filter_start};
@@ -483,7 +484,7 @@ fn pos_vel_error<const N: usize>(scenario: &Scenario, step: &NavStep<N>) -> (f64
     }
 }
 
-/// Downrange/crossrange position error [m] of the estimate at the final epoch, in the local
+/// Downrange/crossrange position error \[m\] of the estimate at the final epoch, in the local
 /// horizontal plane at the true position, downrange along the true heading.
 fn downrange_crossrange<const N: usize>(scenario: &Scenario, step: &NavStep<N>) -> (f64, f64) {
     let est = estimate_spherical(

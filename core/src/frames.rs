@@ -25,7 +25,7 @@ pub enum HeadingConvention {
 }
 
 impl HeadingConvention {
-    /// Convert a heading in this convention to the internal north-clockwise heading [rad].
+    /// Convert a heading in this convention to the internal north-clockwise heading \[rad\].
     pub fn to_internal(self, heading: f64) -> f64 {
         match self {
             HeadingConvention::NorthClockwise => heading,
@@ -33,7 +33,7 @@ impl HeadingConvention {
         }
     }
 
-    /// Convert an internal north-clockwise heading [rad] to this convention.
+    /// Convert an internal north-clockwise heading \[rad\] to this convention.
     pub fn from_internal(self, heading: f64) -> f64 {
         // The map ψ ↦ π/2 − ψ is its own inverse.
         self.to_internal(heading)
@@ -85,17 +85,17 @@ pub fn rotate_z<T: Real>(a: &V3<T>, angle: T) -> V3<T> {
 /// A spherical entry state `[r, lon, lat, v, fpa, heading]` in SI units (internal heading convention).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct SphericalState {
-    /// Radius from the planet centre [m].
+    /// Radius from the planet centre \[m\].
     pub r: f64,
-    /// Longitude θ [rad].
+    /// Longitude θ \[rad\].
     pub lon: f64,
-    /// Latitude λ [rad].
+    /// Latitude λ \[rad\].
     pub lat: f64,
     /// Planet-relative speed [m/s].
     pub v: f64,
-    /// Flight-path angle γ [rad], positive up.
+    /// Flight-path angle γ \[rad\], positive up.
     pub fpa: f64,
-    /// Heading ψ [rad], clockwise from north.
+    /// Heading ψ \[rad\], clockwise from north.
     pub heading: f64,
 }
 

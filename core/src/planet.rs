@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 pub struct Planet {
     /// Gravitational parameter μ [m³/s²].
     pub mu: f64,
-    /// Mean (reference-sphere) radius R [m]; altitude is `r − R`.
+    /// Mean (reference-sphere) radius R \[m\]; altitude is `r − R`.
     pub radius: f64,
     /// Rotation rate ω about the +z axis [rad/s].
     pub rotation_rate: f64,

@@ -267,7 +267,7 @@ pub enum Key {
     Seed,
     /// Draw the truth from the scenario's dispersions.
     Dispersed,
-    /// Bank-angle command [rad].
+    /// Bank-angle command \[rad\].
     Bank,
     /// Beacon slot commanded available.
     BeaconAvailable(usize),

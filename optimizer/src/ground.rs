@@ -5,7 +5,7 @@
 //!
 //! **Constraint** (eq. 52): each beacon sees the vehicle above its local horizon at every
 //! trajectory sample. The visibility margin of [`ground_visibility_margin`] is the vehicle's
-//! elevation [rad] seen from the beacon; a site is feasible when its smallest elevation over the
+//! elevation \[rad\] seen from the beacon; a site is feasible when its smallest elevation over the
 //! trajectory is at least `min_elevation` (default 0, the paper's rule). The feasible set of one
 //! site is an intersection of spherical caps (one per sample), so it is convex on the sphere and
 //! lies inside the smallest cap — the one under the end of the trajectory.
@@ -13,12 +13,12 @@
 //! **Objectives** ([`GroundObjective`]):
 //! * `MinDelta` — `max min_t δ(t)` (eq. 49): δ = σ_min/σ_max of the observability matrix of the
 //!   scenario's filter model with ranges to the N beacons (method and raw-SI or scaled δ as in
-//!   [`entrynav::observability::degree`]); the search maximises `log10 min_t δ`;
+//!   [`entrynav::observability::degree()`]); the search maximises `log10 min_t δ`;
 //! * `LogDet` — `∫ log det F(t) dt`, F the range FIM of the vehicle position
 //!   `Σ σ⁻² n nᵀ` [m⁻²] (eq. 36); the search maximises the time average;
 //! * `MinEig` — `min_t λ_min(F(t))` [m⁻²]; the search maximises its log10.
 //!
-//! Infeasible sites cost `10⁴ + 10⁴ · Σ_j max(0, min_elevation − elevation_j)` [rad]: finite,
+//! Infeasible sites cost `10⁴ + 10⁴ · Σ_j max(0, min_elevation − elevation_j)` \[rad\]: finite,
 //! graded towards the feasible set and worse than every feasible cost.
 
 use crate::output::{BeaconNoise, surface_beacons, template_noise};
@@ -44,11 +44,11 @@ pub const PENALTY_PER_RAD: f64 = 1e4;
 /// A ground site (radians, metres).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Site {
-    /// Planetocentric latitude [rad].
+    /// Planetocentric latitude \[rad\].
     pub lat: f64,
-    /// East longitude [rad].
+    /// East longitude \[rad\].
     pub lon: f64,
-    /// Altitude above the reference sphere [m].
+    /// Altitude above the reference sphere \[m\].
     pub altitude_m: f64,
 }
 
@@ -78,7 +78,7 @@ impl Site {
         }
     }
 
-    /// Planet-fixed position [m] for reference radius `radius`.
+    /// Planet-fixed position \[m\] for reference radius `radius`.
     pub fn fixed_position(&self, radius: f64) -> [f64; 3] {
         spherical_to_position(radius + self.altitude_m, self.lon, self.lat)
     }
@@ -143,7 +143,7 @@ pub struct GroundEvaluation {
     pub value: Option<f64>,
     /// Search cost.
     pub cost: f64,
-    /// Smallest elevation of the vehicle seen from each site over the trajectory [rad].
+    /// Smallest elevation of the vehicle seen from each site over the trajectory \[rad\].
     pub min_elevation_rad: Vec<f64>,
     /// Every site meets the elevation requirement.
     pub feasible: bool,
@@ -158,7 +158,7 @@ pub struct GroundSolution {
     pub evaluation: GroundEvaluation,
     /// Search statistics.
     pub search: SearchResult,
-    /// Wall time of the search [s].
+    /// Wall time of the search \[s\].
     pub elapsed_s: f64,
 }
 
@@ -257,12 +257,12 @@ impl GroundProblem {
         self.noise
     }
 
-    /// The required minimum elevation [rad].
+    /// The required minimum elevation \[rad\].
     pub fn min_elevation(&self) -> f64 {
         self.min_elevation
     }
 
-    /// Vehicle positions in the planet-fixed frame at the trajectory samples [m].
+    /// Vehicle positions in the planet-fixed frame at the trajectory samples \[m\].
     pub fn fixed_positions(&self) -> &[[f64; 3]] {
         &self.fixed
     }
@@ -272,7 +272,7 @@ impl GroundProblem {
         &self.scaling
     }
 
-    /// Smallest elevation [rad] of the vehicle above the local horizon of `site` over the
+    /// Smallest elevation \[rad\] of the vehicle above the local horizon of `site` over the
     /// trajectory (> 0: visible during the whole entry by eq. 52).
     pub fn min_elevation_of(&self, site: &Site) -> f64 {
         let b = site.fixed_position(self.trajectory.planet.radius);
@@ -289,7 +289,7 @@ impl GroundProblem {
     }
 
     /// Latitude/longitude of the centre of the smallest visibility cap (below the trajectory's
-    /// lowest sample) and the cap's angular radius [rad].
+    /// lowest sample) and the cap's angular radius \[rad\].
     fn smallest_cap(&self) -> (f64, f64, f64) {
         let r_b = self.trajectory.planet.radius + self.altitude_m;
         let (mut best, mut theta) = (0, f64::INFINITY);

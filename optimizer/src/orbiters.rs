@@ -18,7 +18,7 @@
 //! The integral is the trapezoid rule over the trajectory samples ([`crate::trajectory`]).
 //!
 //! **Visibility** (eq. 58–60) enters as a finite graded penalty: the search minimises
-//! `−J + c ∫ Σ_j max(0, −m_j(t)) dt`, where `m_j` is the visibility margin θ₀ + θ₁ − θ [rad] of
+//! `−J + c ∫ Σ_j max(0, −m_j(t)) dt`, where `m_j` is the visibility margin θ₀ + θ₁ − θ \[rad\] of
 //! [`orbiter_visibility_margin`] and `c` = [`OrbiterProblem::penalty_per_rad_s`].
 
 use crate::search::{SearchOptions, SearchResult, minimize};
@@ -39,11 +39,11 @@ pub const DEFAULT_PENALTY_PER_RAD_S: f64 = 100.0;
 /// The circular-orbit unknowns of one orbiter (radians).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct OrbitElements {
-    /// Longitude of the ascending node Ω [rad].
+    /// Longitude of the ascending node Ω \[rad\].
     pub raan: f64,
-    /// Inclination i [rad].
+    /// Inclination i \[rad\].
     pub inc: f64,
-    /// Argument of latitude f at t = 0 [rad].
+    /// Argument of latitude f at t = 0 \[rad\].
     pub true_anomaly: f64,
 }
 
@@ -161,7 +161,7 @@ pub struct OrbiterEvaluation {
     pub value: f64,
     /// Integrand at each trajectory sample (`det F` or `log max(det F, 10⁻⁹)`).
     pub integrand: Vec<f64>,
-    /// Smallest visibility margin over orbiters and samples [rad] (> 0: all always visible).
+    /// Smallest visibility margin over orbiters and samples \[rad\] (> 0: all always visible).
     pub min_margin_rad: f64,
     /// `∫ Σ_j max(0, −m_j) dt` [rad·s].
     pub violation_rad_s: f64,
@@ -180,7 +180,7 @@ pub struct OrbiterSolution {
     pub evaluation: OrbiterEvaluation,
     /// Search statistics.
     pub search: SearchResult,
-    /// Wall time of the search [s].
+    /// Wall time of the search \[s\].
     pub elapsed_s: f64,
 }
 
@@ -196,7 +196,7 @@ pub struct OrbiterProblem {
     radius: f64,
     cos_nt: Vec<f64>,
     sin_nt: Vec<f64>,
-    /// θ₀(t_k) + θ₁ of eq. 58–60 per sample [rad].
+    /// θ₀(t_k) + θ₁ of eq. 58–60 per sample \[rad\].
     horizon: Vec<f64>,
     /// cos of `horizon` (−1 when the sum exceeds π: always in view).
     cos_horizon: Vec<f64>,
@@ -291,7 +291,7 @@ impl OrbiterProblem {
         self.count
     }
 
-    /// Orbit altitude [m].
+    /// Orbit altitude \[m\].
     pub fn altitude_m(&self) -> f64 {
         self.altitude_m
     }
@@ -311,7 +311,7 @@ impl OrbiterProblem {
         self.objective.max_rate(self.count) * self.trajectory.duration()
     }
 
-    /// Inertial position of an orbiter at sample `k` [m].
+    /// Inertial position of an orbiter at sample `k` \[m\].
     pub fn orbiter_position(&self, el: &OrbitElements, k: usize) -> [f64; 3] {
         let (p, q) = el.basis();
         let (sf, cf) = el.true_anomaly.sin_cos();

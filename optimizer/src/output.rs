@@ -11,7 +11,7 @@ use entrynav::scenario::ScenarioConfig;
 /// Range and range-rate noise of the new beacons, taken from the base scenario's beacons.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BeaconNoise {
-    /// 1σ two-way range noise [m].
+    /// 1σ two-way range noise \[m\].
     pub range_sigma_m: f64,
     /// 1σ range-rate noise [m/s], if the template beacon had one.
     pub range_rate_sigma_mps: Option<f64>,

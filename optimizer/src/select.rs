@@ -81,7 +81,7 @@ pub struct Relaxation {
     pub iterations: u32,
     /// Solver status, e.g. `Solved`.
     pub status: String,
-    /// Wall time of the solve [s].
+    /// Wall time of the solve \[s\].
     pub solve_time_s: f64,
 }
 
@@ -99,7 +99,7 @@ pub struct SelectionReport {
     pub greedy: Selection,
     /// Criterion evaluations made by rounding, swaps and greedy.
     pub evaluations: usize,
-    /// Wall time of everything [s].
+    /// Wall time of everything \[s\].
     pub elapsed_s: f64,
 }
 

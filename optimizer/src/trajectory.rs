@@ -17,12 +17,12 @@ use std::fmt::Write;
 /// Vehicle positions along the nominal trajectory.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Trajectory {
-    /// Sample times [s].
+    /// Sample times \[s\].
     pub times: Vec<f64>,
-    /// Vehicle inertial positions [m] (the inertial frame coincides with the planet-fixed frame at
+    /// Vehicle inertial positions \[m\] (the inertial frame coincides with the planet-fixed frame at
     /// t = 0).
     pub positions: Vec<[f64; 3]>,
-    /// Trapezoid weights [s]; they sum to the duration.
+    /// Trapezoid weights \[s\]; they sum to the duration.
     pub weights: Vec<f64>,
     /// Planet constants.
     pub planet: Planet,
@@ -78,12 +78,12 @@ impl Trajectory {
         self.times.is_empty()
     }
 
-    /// Sum of the weights [s] (the duration covered).
+    /// Sum of the weights \[s\] (the duration covered).
     pub fn duration(&self) -> f64 {
         self.weights.iter().sum()
     }
 
-    /// Vehicle position in the planet-fixed frame at sample `k` [m].
+    /// Vehicle position in the planet-fixed frame at sample `k` \[m\].
     pub fn fixed_position(&self, k: usize) -> [f64; 3] {
         rotate_z(&self.positions[k], -self.omega * self.times[k])
     }

@@ -41,19 +41,19 @@ pub enum BeaconConfig {
 pub struct SurfaceBeaconConfig {
     /// Unique name, used in reports and measurement channel names.
     pub name: String,
-    /// Planet-fixed position [km].
+    /// Planet-fixed position \[km\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub position_km: Option<[f64; 3]>,
-    /// Planetocentric latitude [deg], in [−90, 90].
+    /// Planetocentric latitude \[deg\], in [−90, 90].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lat_deg: Option<f64>,
-    /// East longitude [deg].
+    /// East longitude \[deg\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lon_deg: Option<f64>,
-    /// Altitude above the reference sphere [km].
+    /// Altitude above the reference sphere \[km\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub altitude_km: Option<f64>,
-    /// 1σ two-way range noise [m].
+    /// 1σ two-way range noise \[m\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub range_sigma_m: Option<f64>,
     /// 1σ range-rate noise [m/s].
@@ -70,7 +70,7 @@ pub struct SurfaceBeaconConfig {
 pub struct OrbiterBeaconConfig {
     /// Unique name, used in reports and measurement channel names.
     pub name: String,
-    /// Inertial position at t = 0 [km] (seed 000 Table 2).
+    /// Inertial position at t = 0 \[km\] (seed 000 Table 2).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub position_km: Option<[f64; 3]>,
     /// Inertial velocity at t = 0 [m/s].
@@ -82,7 +82,7 @@ pub struct OrbiterBeaconConfig {
     /// Classical elements (seed 003 Table 3).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub elements: Option<ElementsConfig>,
-    /// 1σ two-way range noise [m].
+    /// 1σ two-way range noise \[m\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub range_sigma_m: Option<f64>,
     /// 1σ range-rate noise [m/s].
@@ -97,13 +97,13 @@ pub struct OrbiterBeaconConfig {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CircularConfig {
-    /// Altitude above the reference sphere [km], > 0.
+    /// Altitude above the reference sphere \[km\], > 0.
     pub altitude_km: f64,
-    /// Longitude of the ascending node Ω [deg].
+    /// Longitude of the ascending node Ω \[deg\].
     pub raan_deg: f64,
-    /// Inclination i [deg], in [0, 180].
+    /// Inclination i \[deg\], in [0, 180].
     pub inc_deg: f64,
-    /// True anomaly (argument of latitude) f at t = 0 [deg].
+    /// True anomaly (argument of latitude) f at t = 0 \[deg\].
     pub true_anomaly_deg: f64,
 }
 
@@ -111,17 +111,17 @@ pub struct CircularConfig {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ElementsConfig {
-    /// Semi-major axis [km], > 0.
+    /// Semi-major axis \[km\], > 0.
     pub a_km: f64,
     /// Eccentricity, in [0, 1).
     pub e: f64,
-    /// Inclination [deg], in [0, 180].
+    /// Inclination \[deg\], in [0, 180].
     pub inc_deg: f64,
-    /// Longitude of the ascending node Ω [deg].
+    /// Longitude of the ascending node Ω \[deg\].
     pub raan_deg: f64,
-    /// Argument of periapsis ω [deg].
+    /// Argument of periapsis ω \[deg\].
     pub argp_deg: f64,
-    /// True anomaly f at t = 0 [deg].
+    /// True anomaly f at t = 0 \[deg\].
     pub true_anomaly_deg: f64,
 }
 
@@ -134,7 +134,7 @@ impl BeaconConfig {
         }
     }
 
-    /// 1σ two-way range noise [m], if this beacon provides range.
+    /// 1σ two-way range noise \[m\], if this beacon provides range.
     pub fn range_sigma_m(&self) -> Option<f64> {
         match self {
             BeaconConfig::Surface(c) => c.range_sigma_m,
@@ -177,7 +177,7 @@ impl BeaconConfig {
         }
     }
 
-    /// Whether `t` [s] falls inside an outage (half-open: `t_start ≤ t < t_end`).
+    /// Whether `t` \[s\] falls inside an outage (half-open: `t_start ≤ t < t_end`).
     pub fn in_outage(&self, t: f64) -> bool {
         self.outages().iter().any(|&[t0, t1]| t0 <= t && t < t1)
     }

@@ -8,17 +8,17 @@ use crate::planet::Planet;
 /// Classical Keplerian elements of an elliptic orbit (SI: m and rad).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct KeplerElements {
-    /// Semi-major axis a [m], > 0.
+    /// Semi-major axis a \[m\], > 0.
     pub a: f64,
     /// Eccentricity e ∈ [0, 1).
     pub e: f64,
-    /// Inclination i [rad].
+    /// Inclination i \[rad\].
     pub inc: f64,
-    /// Right ascension (longitude) of the ascending node Ω [rad].
+    /// Right ascension (longitude) of the ascending node Ω \[rad\].
     pub raan: f64,
-    /// Argument of periapsis ω [rad].
+    /// Argument of periapsis ω \[rad\].
     pub argp: f64,
-    /// True anomaly f at t = 0 [rad].
+    /// True anomaly f at t = 0 \[rad\].
     pub true_anomaly: f64,
 }
 
@@ -36,7 +36,7 @@ fn perifocal_basis(raan: f64, inc: f64, argp: f64) -> ([f64; 3], [f64; 3]) {
 }
 
 impl KeplerElements {
-    /// Inertial position [m] and velocity [m/s] for gravitational parameter `mu`.
+    /// Inertial position \[m\] and velocity [m/s] for gravitational parameter `mu`.
     ///
     /// `r = p/(1 + e cos f)`, `r = r (cos f P + sin f Q)`, `v = √(μ/p) (−sin f P + (e + cos f) Q)`
     /// with `p = a(1 − e²)`; for e = 0, ω = 0 this reduces to seed 002 eq. 55. The inputs are not
@@ -56,13 +56,13 @@ impl KeplerElements {
 /// The circular-orbit parametrisation of seed 002 eq. 55–56 (the optimizer's variables Ω, i, f).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CircularOrbit {
-    /// Altitude above the reference sphere [m] (the paper's `a_i`), > 0.
+    /// Altitude above the reference sphere \[m\] (the paper's `a_i`), > 0.
     pub altitude: f64,
-    /// Longitude of the ascending node Ω [rad].
+    /// Longitude of the ascending node Ω \[rad\].
     pub raan: f64,
-    /// Inclination i [rad].
+    /// Inclination i \[rad\].
     pub inc: f64,
-    /// Initial argument of latitude / true anomaly f [rad] measured from the ascending node.
+    /// Initial argument of latitude / true anomaly f \[rad\] measured from the ascending node.
     pub true_anomaly: f64,
 }
 

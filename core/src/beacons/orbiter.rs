@@ -61,7 +61,7 @@ pub struct Orbiter {
     sqrt_mu: f64,
     r0: [f64; 3],
     v0: [f64; 3],
-    /// |r0| [m].
+    /// |r0| \[m\].
     r0n: f64,
     /// r0·v0/√μ [√m].
     c1: f64,
@@ -69,16 +69,16 @@ pub struct Orbiter {
     c2: f64,
     /// α = 1/a = 2/|r0| − |v0|²/μ [1/m] (> 0 elliptic, 0 parabolic, < 0 hyperbolic).
     alpha: f64,
-    /// Orbital period for elliptic orbits [s].
+    /// Orbital period for elliptic orbits \[s\].
     period: Option<f64>,
-    /// Periapsis radius [m] (lower bound on the radius along the conic).
+    /// Periapsis radius \[m\] (lower bound on the radius along the conic).
     r_periapsis: f64,
     /// Eccentricity.
     ecc: f64,
 }
 
 impl Orbiter {
-    /// An orbiter with inertial position `r0` [m] and velocity `v0` [m/s] at t = 0
+    /// An orbiter with inertial position `r0` \[m\] and velocity `v0` [m/s] at t = 0
     /// (e.g. seed 000 Table 2, whose planet-frame values are inertial at t = 0).
     ///
     /// Errors: non-finite input, `|r0| ≤ planet.radius`, or a rectilinear state (`r0 × v0 = 0`).
@@ -177,7 +177,7 @@ impl Orbiter {
         self.mu
     }
 
-    /// Inertial position [m] and velocity [m/s] at t = 0.
+    /// Inertial position \[m\] and velocity [m/s] at t = 0.
     pub fn initial_state(&self) -> ([f64; 3], [f64; 3]) {
         (self.r0, self.v0)
     }
@@ -192,7 +192,7 @@ impl Orbiter {
         cross(&self.r0, &self.v0)
     }
 
-    /// Semi-major axis `1/α` [m]: positive for ellipses, negative for hyperbolas, ∞ for parabolas.
+    /// Semi-major axis `1/α` \[m\]: positive for ellipses, negative for hyperbolas, ∞ for parabolas.
     pub fn semi_major_axis(&self) -> f64 {
         1.0 / self.alpha
     }
@@ -202,12 +202,12 @@ impl Orbiter {
         self.ecc
     }
 
-    /// Periapsis radius [m].
+    /// Periapsis radius \[m\].
     pub fn periapsis_radius(&self) -> f64 {
         self.r_periapsis
     }
 
-    /// Orbital period [s] for elliptic orbits, `None` otherwise.
+    /// Orbital period \[s\] for elliptic orbits, `None` otherwise.
     pub fn period(&self) -> Option<f64> {
         self.period
     }
@@ -298,7 +298,7 @@ impl Orbiter {
 }
 
 impl BeaconMotion for Orbiter {
-    /// Exact two-body state at `t` [s] (seed 003 eq. 8) from the Lagrange coefficients
+    /// Exact two-body state at `t` \[s\] (seed 003 eq. 8) from the Lagrange coefficients
     /// `f = 1 − χ²C/r0`, `g = (r0·v0/μ) χ² C + r0 χ (1 − zS)/√μ`, `ḟ = √μ χ (zS − 1)/(r r0)`,
     /// `ġ = 1 − χ²C/r`. All four are functions of χ only, so the returned state lies on the conic
     /// to rounding even if the time solve is imperfect. Elliptic times are first reduced to

@@ -18,14 +18,14 @@ use crate::planet::Planet;
 /// A beacon fixed in the planet frame (seed 000 Table 2, seed 002 eq. 50–53).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfaceBeacon {
-    /// Planet-fixed position [m].
+    /// Planet-fixed position \[m\].
     position_fixed: [f64; 3],
     /// Planet rotation rate ω about +z [rad/s].
     rotation_rate: f64,
 }
 
 impl SurfaceBeacon {
-    /// A beacon at the planet-fixed position `position_fixed` [m] (e.g. seed 000 Table 2 × 1000).
+    /// A beacon at the planet-fixed position `position_fixed` \[m\] (e.g. seed 000 Table 2 × 1000).
     ///
     /// The position must be finite and not at the planet centre; it is *not* required to lie on
     /// the reference sphere (seed 000's "surface" beacon 1 is ≈ 194 km above it).
@@ -49,8 +49,8 @@ impl SurfaceBeacon {
         })
     }
 
-    /// A beacon at planetocentric latitude `lat` [rad] ∈ [−π/2, π/2], longitude `lon` [rad] and
-    /// altitude `altitude` [m] above the reference sphere (radius `planet.radius`).
+    /// A beacon at planetocentric latitude `lat` \[rad\] ∈ [−π/2, π/2], longitude `lon` \[rad\] and
+    /// altitude `altitude` \[m\] above the reference sphere (radius `planet.radius`).
     ///
     /// The altitude may be negative (depressions below the datum) but the radius `R + altitude`
     /// must stay positive.
@@ -83,7 +83,7 @@ impl SurfaceBeacon {
         Self::from_fixed_position(spherical_to_position(r, lon, lat), planet)
     }
 
-    /// Planet-fixed position [m].
+    /// Planet-fixed position \[m\].
     pub fn position_fixed(&self) -> [f64; 3] {
         self.position_fixed
     }
@@ -93,7 +93,7 @@ impl SurfaceBeacon {
         self.rotation_rate
     }
 
-    /// Inertial position at time `t` [s]: the planet-fixed position rotated by ω·t about +z.
+    /// Inertial position at time `t` \[s\]: the planet-fixed position rotated by ω·t about +z.
     #[inline]
     pub fn position_at(&self, t: f64) -> [f64; 3] {
         rotate_z(&self.position_fixed, self.rotation_rate * t)

@@ -16,7 +16,7 @@
 use super::{BeaconMotion, Orbiter, SurfaceBeacon};
 use crate::math::{cross, dot, norm, sub};
 
-/// Angle between two vectors [rad] ∈ [0, π]; 0 if either is zero.
+/// Angle between two vectors \[rad\] ∈ [0, π]; 0 if either is zero.
 #[inline]
 fn angle_between(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     norm(&cross(a, b)).atan2(dot(a, b))
@@ -34,7 +34,7 @@ fn horizon_angle(radius: f64, distance: f64) -> f64 {
     ratio.clamp(-1.0, 1.0).acos()
 }
 
-/// Ground-beacon visibility margin [rad], seed 002 eq. 50–52: `π/2 − ∠(n_B, n_C)` where `n_B`
+/// Ground-beacon visibility margin \[rad\], seed 002 eq. 50–52: `π/2 − ∠(n_B, n_C)` where `n_B`
 /// points along the beacon position and `n_C` from the beacon to the vehicle.
 ///
 /// Positive iff `n_B · n_C > 0`; in [−π/2, π/2]. If the vehicle is exactly at the beacon the margin
@@ -50,7 +50,7 @@ pub fn ground_visible(beacon_pos: &[f64; 3], vehicle_pos: &[f64; 3]) -> bool {
     ground_visibility_margin(beacon_pos, vehicle_pos) > 0.0
 }
 
-/// Orbiter visibility margin [rad], seed 002 eq. 58–60: `θ0 + θ1 − θ`.
+/// Orbiter visibility margin \[rad\], seed 002 eq. 58–60: `θ0 + θ1 − θ`.
 ///
 /// `θ0 = arccos(R/|r|)` (vehicle), `θ1 = arccos(R/|r_B|)` (orbiter), `θ = ∠(r, r_B)`. A position
 /// below the reference sphere has a horizon angle of 0 (the ratio is clamped), never NaN.
@@ -79,7 +79,7 @@ pub enum Beacon {
 }
 
 impl Beacon {
-    /// Inertial position [m] at time `t` [s] (cheaper than [`BeaconMotion::state_at`] for
+    /// Inertial position \[m\] at time `t` \[s\] (cheaper than [`BeaconMotion::state_at`] for
     /// surface beacons).
     pub fn position_at(&self, t: f64) -> [f64; 3] {
         match self {
@@ -93,8 +93,8 @@ impl Beacon {
         matches!(self, Beacon::Orbiter(_))
     }
 
-    /// Visibility margin [rad] from a vehicle at inertial position `vehicle_pos_inertial` [m] at
-    /// time `t` [s]: [`ground_visibility_margin`] for surface beacons,
+    /// Visibility margin \[rad\] from a vehicle at inertial position `vehicle_pos_inertial` \[m\] at
+    /// time `t` \[s\]: [`ground_visibility_margin`] for surface beacons,
     /// [`orbiter_visibility_margin`] for orbiters. Positive = visible.
     pub fn visibility_margin(
         &self,
@@ -111,9 +111,9 @@ impl Beacon {
         }
     }
 
-    /// Line of sight from a vehicle at inertial position `vehicle_pos_inertial` [m] at time `t`
-    /// [s], by the test appropriate to the beacon type (seed 002 eq. 52 or eq. 60).
-    /// `planet_radius` [m] is used only for orbiters. Non-finite input gives `false`.
+    /// Line of sight from a vehicle at inertial position `vehicle_pos_inertial` \[m\] at time `t`
+    /// \[s\], by the test appropriate to the beacon type (seed 002 eq. 52 or eq. 60).
+    /// `planet_radius` \[m\] is used only for orbiters. Non-finite input gives `false`.
     pub fn visible_from(&self, vehicle_pos_inertial: [f64; 3], t: f64, planet_radius: f64) -> bool {
         self.visibility_margin(vehicle_pos_inertial, t, planet_radius) > 0.0
     }

@@ -9,7 +9,7 @@ pub struct AeroParams<T> {
     pub cd_s_over_m: T,
     /// Lift-to-drag ratio L/D (seed 000 eq. 2).
     pub lift_to_drag: T,
-    /// Bank angle σ [rad] (an input; zero in every paper scenario).
+    /// Bank angle σ \[rad\] (an input; zero in every paper scenario).
     pub bank: T,
     /// Multiplier on the atmosphere model's density (1 for the model itself; an augmented ρ0 state
     /// enters as ρ0/ρ0,model, seed 000 eq. 3 and §2.3.1).

@@ -207,7 +207,7 @@ impl<A: Atmosphere> EntryModel<A> {
         (x_next, phi)
     }
 
-    /// Altitude above the reference sphere of a state [m].
+    /// Altitude above the reference sphere of a state \[m\].
     pub fn altitude<const N: usize>(&self, x: &SVector<f64, N>) -> f64 {
         let r = if self.kind.is_cartesian() {
             (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt()

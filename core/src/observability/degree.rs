@@ -91,7 +91,7 @@ pub struct Scaling {
     pub state: Vec<f64>,
     /// Name of each state with its unit, e.g. `r_m`.
     pub state_names: Vec<String>,
-    /// Time unit τ [s]: a row of Lie order k is multiplied by τᵏ.
+    /// Time unit τ \[s\]: a row of Lie order k is multiplied by τᵏ.
     pub time_s: f64,
 }
 

@@ -4,7 +4,7 @@
 //! index I (eq. 54).
 //!
 //! Direction convention: `n_i` is the unit vector from beacon i to the vehicle, `(r − r_Bi)/R_i`,
-//! which is ∂R_i/∂r (eq. 29) and ∂Ṙ_i/∂v (eq. 42). All positions and velocities are inertial [m],
+//! which is ∂R_i/∂r (eq. 29) and ∂Ṙ_i/∂v (eq. 42). All positions and velocities are inertial \[m\],
 //! [m/s]; σ in the measurement's unit (m or m/s).
 
 use super::ObservabilityError;

@@ -105,7 +105,7 @@ fn random_unit(rng: &mut ChaCha8Rng) -> V3<f64> {
 /// The range FIM of the vehicle position at one analysis point.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FimEpoch {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
     /// Beacons (indices into the scenario's beacon list) whose ranges entered.
     pub beacons: Vec<usize>,

@@ -5,7 +5,7 @@
 //!   (no symbolic algebra, no finite differences);
 //! * [`approx`] — the **quadratic** approximation (seed 002 eq. 13–17) and the **linearised**
 //!   matrix (eq. 18–19);
-//! * [`degree`] — δ = σ_min/σ_max by SVD (seed 000 eq. 14, seed 002 eq. 21), its numerical rank,
+//! * [`degree()`] — δ = σ_min/σ_max by SVD (seed 000 eq. 14, seed 002 eq. 21), its numerical rank,
 //!   and the unit scaling: every δ is reported **raw (SI)** and **scaled** (see [`Scaling`]);
 //! * [`system`] / [`trajectory`] — the scenario's filter model and channels as an
 //!   [`ObservedSystem`], the analysis points on the nominal truth trajectory, and δ(t) for the
@@ -63,7 +63,7 @@ pub enum ObservabilityError {
         channel: String,
         /// The offending 1σ.
         sigma: f64,
-        /// Time [s].
+        /// Time \[s\].
         t_s: f64,
     },
     /// A matrix or state became NaN or infinite.
@@ -78,7 +78,7 @@ pub enum ObservabilityError {
 }
 
 impl ObservabilityError {
-    /// The same error, located at time `t` [s].
+    /// The same error, located at time `t` \[s\].
     pub fn at(self, t: f64) -> Self {
         match self {
             ObservabilityError::NonFinite { what } => ObservabilityError::NonFinite {

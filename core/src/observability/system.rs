@@ -53,11 +53,11 @@ pub struct ScenarioSystem<'a> {
     pub measurement: &'a MeasurementModel,
     /// The channels stacked into h, in this order.
     pub channels: Vec<Channel>,
-    /// Inertial (position [m], velocity [m/s]) of every beacon at `t`, held constant.
+    /// Inertial (position \[m\], velocity [m/s]) of every beacon at `t`, held constant.
     pub beacons: Vec<([f64; 3], [f64; 3])>,
-    /// Analysis time [s] (enters the planet-rotation angle of the kinematics).
+    /// Analysis time \[s\] (enters the planet-rotation angle of the kinematics).
     pub t: f64,
-    /// Bank angle [rad].
+    /// Bank angle \[rad\].
     pub bank: f64,
 }
 
@@ -83,15 +83,15 @@ impl<const N: usize> ObservedSystem<N> for ScenarioSystem<'_> {
 /// One analysis point on the nominal truth trajectory.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AnalysisPoint {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
     /// State in the filter model's coordinates (n = 6 + augmented entries).
     pub state: Vec<f64>,
-    /// Vehicle inertial position [m].
+    /// Vehicle inertial position \[m\].
     pub position: [f64; 3],
     /// Vehicle inertial velocity [m/s].
     pub velocity: [f64; 3],
-    /// Inertial (position [m], velocity [m/s]) of every beacon at `t`.
+    /// Inertial (position \[m\], velocity [m/s]) of every beacon at `t`.
     pub beacons: Vec<([f64; 3], [f64; 3])>,
     /// Per beacon: measurements available at `t` (not in an outage, and in line of sight unless
     /// the scenario ignores visibility) — the same rule as the truth simulator.

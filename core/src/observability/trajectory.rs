@@ -57,7 +57,7 @@ impl ChannelSet {
 /// δ at one analysis point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DegreeSample {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
     /// δ of O in raw SI units.
     pub raw: Degree,
@@ -85,14 +85,14 @@ pub struct DeltaSummary {
     pub min: f64,
     /// Largest δ.
     pub max: f64,
-    /// Time of the (first) smallest δ [s].
+    /// Time of the (first) smallest δ \[s\].
     pub t_min_s: f64,
-    /// Time of the (first) largest δ [s].
+    /// Time of the (first) largest δ \[s\].
     pub t_max_s: f64,
 }
 
 impl DegreeSeries {
-    /// Times [s].
+    /// Times \[s\].
     pub fn times(&self) -> Vec<f64> {
         self.samples.iter().map(|s| s.t).collect()
     }

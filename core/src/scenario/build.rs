@@ -39,7 +39,7 @@ pub struct ChannelSpec {
     pub channel: Channel,
     /// Column name (SI unit suffix).
     pub name: String,
-    /// Sample period [s].
+    /// Sample period \[s\].
     pub period_s: f64,
     /// Noise of the simulated sensor.
     pub noise: Noise,
@@ -60,7 +60,7 @@ pub struct Scenario {
     pub truth_model: EntryModel<AtmosphereModel>,
     /// Nominal truth initial state in the truth model's coordinates.
     pub truth_initial: SVector<f64, 6>,
-    /// Truth bank angle [rad].
+    /// Truth bank angle \[rad\].
     pub truth_bank: f64,
     /// Filter dynamics (onboard model).
     pub filter_model: EntryModel<AtmosphereModel>,

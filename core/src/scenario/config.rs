@@ -57,7 +57,7 @@ pub struct PlanetConfig {
     /// μ [m³/s²].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mu_m3s2: Option<f64>,
-    /// Reference radius [km].
+    /// Reference radius \[km\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub radius_km: Option<f64>,
     /// Rotation rate [rad/s].
@@ -69,11 +69,11 @@ pub struct PlanetConfig {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TimingConfig {
-    /// Length of the entry simulated [s].
+    /// Length of the entry simulated \[s\].
     pub duration_s: f64,
-    /// Fixed RK4 step of the truth integration [s]; every sensor period must be a multiple of it.
+    /// Fixed RK4 step of the truth integration \[s\]; every sensor period must be a multiple of it.
     pub truth_step_s: f64,
-    /// Filter cycle [s].
+    /// Filter cycle \[s\].
     pub filter_step_s: f64,
     /// Optional parachute-deployment trigger: stop when the planet-relative speed falls below this.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -86,25 +86,25 @@ pub struct TimingConfig {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct StateConfig {
-    /// Radius [km].
+    /// Radius \[km\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub radius_km: Option<f64>,
-    /// Longitude [deg].
+    /// Longitude \[deg\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lon_deg: Option<f64>,
-    /// Latitude [deg].
+    /// Latitude \[deg\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lat_deg: Option<f64>,
     /// Planet-relative speed [m/s].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub speed_mps: Option<f64>,
-    /// Flight-path angle [deg], positive up.
+    /// Flight-path angle \[deg\], positive up.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fpa_deg: Option<f64>,
-    /// Heading [deg] in the file's `heading_convention`.
+    /// Heading \[deg\] in the file's `heading_convention`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub heading_deg: Option<f64>,
-    /// Inertial position [km].
+    /// Inertial position \[km\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub position_km: Option<[f64; 3]>,
     /// Inertial velocity [m/s].
@@ -144,7 +144,7 @@ pub struct TruthConfig {
     /// Constant density bias Δ: ρ = ρ_model·(1 + Δ) (seed 003 eq. 6).
     #[serde(default)]
     pub density_bias: f64,
-    /// Bank angle [deg] (0 in every paper scenario).
+    /// Bank angle \[deg\] (0 in every paper scenario).
     #[serde(default)]
     pub bank_deg: f64,
 }
@@ -286,7 +286,7 @@ pub struct DensityFilterConfig {
     /// `msl-airdata-density-nn-bands.toml`, one per altitude band).
     #[serde(default = "d_network")]
     pub network: String,
-    /// USKF-NN: time constant τ of the consider parameter's ECRV [s] (seed 001: 5).
+    /// USKF-NN: time constant τ of the consider parameter's ECRV \[s\] (seed 001: 5).
     #[serde(default = "d_tau")]
     pub consider_tau_s: f64,
     /// USKF-NN: steady-state variance P_ss of the consider parameter (seed 001: 1e-3).
@@ -394,10 +394,10 @@ pub struct DensityTrainingConfig {
     /// Simulated trajectories N (seed 001: 1000).
     #[serde(default = "d_trajectories")]
     pub trajectories: usize,
-    /// Length of each trajectory [s] (seed 001: 250).
+    /// Length of each trajectory \[s\] (seed 001: 250).
     #[serde(default = "d_train_duration")]
     pub duration_s: f64,
-    /// Sampling interval of (r, ρ) [s] (seed 001: 0.5).
+    /// Sampling interval of (r, ρ) \[s\] (seed 001: 0.5).
     #[serde(default = "d_sample_interval")]
     pub sample_interval_s: f64,
     /// Hidden neurons H (seed 001: 100).
@@ -418,10 +418,10 @@ pub struct DensityTrainingConfig {
     /// Fraction of the samples held out for validation.
     #[serde(default = "d_val")]
     pub validation_fraction: f64,
-    /// Altitude range [km] of the truth mean profile the least-squares exponential is fitted to.
+    /// Altitude range \[km\] of the truth mean profile the least-squares exponential is fitted to.
     #[serde(default = "d_fit_km")]
     pub fit_altitude_km: [f64; 2],
-    /// Band edges [km] for one network per altitude band (the multi-network extension of seed
+    /// Band edges \[km\] for one network per altitude band (the multi-network extension of seed
     /// 001 §VI), e.g. `[0, 40, 70, 130]`; empty = one network trained on one exponential.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub bands_km: Vec<f64>,

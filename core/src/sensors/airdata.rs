@@ -2,14 +2,14 @@
 
 use crate::math::Real;
 
-/// Dynamic pressure q = ½ρv² [Pa] (seed 001 eq. 14, seed 003 eq. 11).
+/// Dynamic pressure q = ½ρv² \[Pa\] (seed 001 eq. 14, seed 003 eq. 11).
 #[inline]
 pub fn dynamic_pressure<T: Real>(rho: T, v: T) -> T {
     rho * v * v * 0.5
 }
 
 /// Sutton–Graves stagnation-point convective heating rate Q̇ = k·sqrt(ρ/R_n)·v³ [W/m²]
-/// (seed 001 eq. 15; k = 1.9027e-4 kg^½/m for Mars, R_n the nose radius [m]).
+/// (seed 001 eq. 15; k = 1.9027e-4 kg^½/m for Mars, R_n the nose radius \[m\]).
 #[inline]
 pub fn sutton_graves_heating<T: Real>(rho: T, v: T, k: f64, nose_radius: f64) -> T {
     (rho / nose_radius).sqrt() * v * v * v * k

@@ -15,11 +15,11 @@ use nalgebra::SVector;
 pub enum Channel {
     /// Accelerometer specific force along axis 0, 1 or 2 of the IMU frame [m/s²].
     Accel(u8),
-    /// Dynamic pressure [Pa].
+    /// Dynamic pressure \[Pa\].
     DynamicPressure,
     /// Convective heating rate [W/m²].
     Heating,
-    /// Two-way range to beacon `i` [m].
+    /// Two-way range to beacon `i` \[m\].
     Range(usize),
     /// Range-rate to beacon `i` [m/s].
     RangeRate(usize),
@@ -57,7 +57,7 @@ impl Channel {
 pub struct HeatingModel {
     /// k [kg^½/m] (seed 001: 1.9027e-4 for Mars).
     pub k: f64,
-    /// Nose radius R_n [m].
+    /// Nose radius R_n \[m\].
     pub nose_radius: f64,
 }
 
@@ -73,7 +73,7 @@ pub struct MeasurementModel {
 /// Vehicle kinematics derived from a state: inertial position/velocity, airspeed, density.
 #[derive(Debug, Clone, Copy)]
 pub struct Kinematics<T> {
-    /// Inertial position [m].
+    /// Inertial position \[m\].
     pub pos: V3<T>,
     /// Inertial velocity [m/s].
     pub vel: V3<T>,

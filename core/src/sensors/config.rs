@@ -45,9 +45,9 @@ fn check_rate(field: &str, rate: f64) -> Result<(), SensorError> {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ImuConfig {
-    /// Sample rate [Hz].
+    /// Sample rate \[Hz\].
     pub rate_hz: f64,
-    /// Angle of attack [deg]; when given the IMU reports in the body frame (seed 001 eq. 12),
+    /// Angle of attack \[deg\]; when given the IMU reports in the body frame (seed 001 eq. 12),
     /// otherwise in the velocity frame (seed 000 eq. 5).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub angle_of_attack_deg: Option<f64>,
@@ -62,7 +62,7 @@ pub struct ImuConfig {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AirDataConfig {
-    /// Sample rate [Hz].
+    /// Sample rate \[Hz\].
     pub rate_hz: f64,
     /// White-noise 1σ as a fraction of the reading (0.05 = 5 %).
     pub noise_fraction: f64,
@@ -76,11 +76,11 @@ fn default_k() -> f64 {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct HeatingConfig {
-    /// Sample rate [Hz].
+    /// Sample rate \[Hz\].
     pub rate_hz: f64,
     /// White-noise 1σ as a fraction of the reading.
     pub noise_fraction: f64,
-    /// Nose radius R_n [m].
+    /// Nose radius R_n \[m\].
     pub nose_radius_m: f64,
     /// Sutton–Graves constant k [kg^½/m] (default 1.9027e-4, Mars, seed 001).
     #[serde(default = "default_k")]
@@ -91,7 +91,7 @@ pub struct HeatingConfig {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RadioConfig {
-    /// Sample rate [Hz].
+    /// Sample rate \[Hz\].
     pub rate_hz: f64,
 }
 

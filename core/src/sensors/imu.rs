@@ -12,7 +12,7 @@ pub enum ImuFrame {
     /// Body frame rotated from the velocity frame by the angle of attack α about the wind-frame
     /// y axis (seed 001 eq. 12: ã^b = T_v^b a^v).
     Body {
-        /// Angle of attack α [rad] (MSL trim: −17°, seed 001 §V.A).
+        /// Angle of attack α \[rad\] (MSL trim: −17°, seed 001 §V.A).
         angle_of_attack: f64,
     },
 }

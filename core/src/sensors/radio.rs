@@ -2,7 +2,7 @@
 
 use crate::math::{Real, V3, dot, lift3, norm, sub};
 
-/// Two-way range R = ‖r − r_B‖ [m] (seed 000 eq. 6, seed 002 eq. 6, seed 003 eq. 9).
+/// Two-way range R = ‖r − r_B‖ \[m\] (seed 000 eq. 6, seed 002 eq. 6, seed 003 eq. 9).
 #[inline]
 pub fn range<T: Real>(r: &V3<T>, beacon_r: &V3<f64>) -> T {
     norm(&sub(r, &lift3(beacon_r)))

@@ -67,9 +67,9 @@ pub enum CoSimError {
     /// A step that does not start where the previous one ended.
     #[error("step starts at t = {got} s but the current communication point is t = {expected} s")]
     CommunicationPoint {
-        /// Current time of the engine [s].
+        /// Current time of the engine \[s\].
         expected: f64,
-        /// Start time asked for [s].
+        /// Start time asked for \[s\].
         got: f64,
     },
     /// A step size that is not finite and positive.
@@ -155,7 +155,7 @@ pub struct TruthOutputs {
     pub sample: TruthSample,
     /// Noiseless accelerometer reading (specific force in the IMU frame) [m/s²].
     pub sensed_accel: [f64; 3],
-    /// Geometric range to each beacon [m].
+    /// Geometric range to each beacon \[m\].
     pub ranges: Vec<f64>,
     /// Range-rate to each beacon [m/s].
     pub range_rates: Vec<f64>,
@@ -236,7 +236,7 @@ impl TruthSensors {
         &self.draw
     }
 
-    /// Current communication point [s].
+    /// Current communication point \[s\].
     pub fn time(&self) -> f64 {
         self.time
     }
@@ -279,7 +279,7 @@ impl TruthSensors {
         };
     }
 
-    /// Advance from `t` by `h` with bank angle `bank` [rad] and beacon availability
+    /// Advance from `t` by `h` with bank angle `bank` \[rad\] and beacon availability
     /// `beacon_available[i]` (missing entries count as available). `on_epoch` sees every
     /// measurement epoch with the truth sample at its time, in order.
     pub fn do_step_with(
@@ -393,7 +393,7 @@ impl TruthSensors {
 /// A filter estimate at one epoch.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NavEstimate {
-    /// Epoch time of the estimate [s] (0 before the first epoch).
+    /// Epoch time of the estimate \[s\] (0 before the first epoch).
     pub t: f64,
     /// Estimate x̂ (filter-model coordinates; N entries).
     pub x: Vec<f64>,
@@ -429,7 +429,7 @@ pub enum NavStatus {
     Running,
     /// Stopped on a numerical failure at `t`; the estimate holds its last good value.
     Failed {
-        /// Epoch of the failure [s].
+        /// Epoch of the failure \[s\].
         t: f64,
         /// What failed.
         reason: String,
@@ -641,7 +641,7 @@ impl NavigationCoSim {
         &self.status
     }
 
-    /// Current communication point [s].
+    /// Current communication point \[s\].
     pub fn time(&self) -> f64 {
         self.time
     }
@@ -724,7 +724,7 @@ impl EntryCoSim {
         })
     }
 
-    /// Advance from `t` by `h` with bank angle `bank` [rad] and beacon availability flags; the
+    /// Advance from `t` by `h` with bank angle `bank` \[rad\] and beacon availability flags; the
     /// filter processes every measurement epoch of the step.
     pub fn do_step(
         &mut self,
@@ -768,7 +768,7 @@ impl EntryCoSim {
         &self.judgement
     }
 
-    /// Current communication point [s].
+    /// Current communication point \[s\].
     pub fn time(&self) -> f64 {
         self.nav.time
     }

@@ -10,7 +10,7 @@ use std::time::Instant;
 /// The filter's state after one measurement epoch, with the truth it is judged against.
 #[derive(Debug, Clone)]
 pub struct NavStep<const N: usize> {
-    /// Epoch time [s].
+    /// Epoch time \[s\].
     pub t: f64,
     /// Posterior estimate.
     pub x: SVector<f64, N>,
@@ -39,7 +39,7 @@ pub enum FilterOutcome {
     Completed,
     /// Stopped on a numerical failure at `t` (the run reports it; nothing panicked).
     Failed {
-        /// Time of the failure [s].
+        /// Time of the failure \[s\].
         t: f64,
         /// What failed.
         reason: String,
@@ -53,7 +53,7 @@ pub struct FilterRunSummary {
     pub outcome: FilterOutcome,
     /// Epochs processed.
     pub steps: usize,
-    /// Wall time spent inside predict + update [ns] (not part of reproducible results).
+    /// Wall time spent inside predict + update \[ns\] (not part of reproducible results).
     pub filter_ns: u128,
 }
 

@@ -16,7 +16,7 @@ pub enum SimError {
     /// The state became NaN or infinite.
     #[error("truth state became non-finite at t = {t_s} s (state {state:?})")]
     NonFinite {
-        /// Time of failure [s].
+        /// Time of failure \[s\].
         t_s: f64,
         /// Offending state.
         state: [f64; 6],
@@ -38,17 +38,17 @@ pub enum StopReason {
 /// The true vehicle state at one instant, with derived quantities.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TruthSample {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
     /// State in the truth model's coordinates.
     pub state: [f64; 6],
     /// Planet-relative spherical state `[r, lon, lat, v, fpa, heading]` (internal convention).
     pub spherical: [f64; 6],
-    /// Altitude above the reference sphere [m].
+    /// Altitude above the reference sphere \[m\].
     pub altitude: f64,
     /// True density [kg/m³].
     pub density: f64,
-    /// Dynamic pressure [Pa].
+    /// Dynamic pressure \[Pa\].
     pub dynamic_pressure: f64,
     /// Sutton–Graves heating rate with the scenario's heating constants [W/m²].
     pub heating: f64,
@@ -61,7 +61,7 @@ pub struct TruthSample {
 /// Measurements taken at one instant: one slot per scenario channel.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MeasurementEpoch {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
     /// `Some(value)` when the channel was sampled and available; `None` when it was not due,
     /// its beacon was in an outage, or (unless visibility is ignored) below the horizon.

@@ -109,7 +109,7 @@ pub struct DensityEvalReport {
     pub rmspe_profile_pct: f64,
     /// Eq. 70, state reading (the filter's density at its estimate, as `trade` prints) [%].
     pub rmspe_state_pct: f64,
-    /// Epoch times [s].
+    /// Epoch times \[s\].
     pub times_s: Vec<f64>,
     /// Per epoch, the root-mean-square over runs of the profile error [%].
     pub rms_profile_pct: Vec<f64>,

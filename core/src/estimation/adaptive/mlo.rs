@@ -52,7 +52,7 @@ pub struct LossTerm {
     pub x: SVector<f64, 8>,
     /// Kinematics of `x` (density unused).
     pub kin: Kinematics<f64>,
-    /// Altitude of `x` [m].
+    /// Altitude of `x` \[m\].
     pub altitude: f64,
     /// Measured values.
     pub z: Vec<f64>,
@@ -71,7 +71,7 @@ pub struct LossContext<'a, A> {
     /// Onboard dynamics: only its vehicle/augmented-state layout is used (the density comes from
     /// the network set, never from this model's atmosphere).
     pub model: &'a EntryModel<A>,
-    /// Bank angle [rad].
+    /// Bank angle \[rad\].
     pub bank: f64,
 }
 

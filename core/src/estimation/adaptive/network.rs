@@ -64,7 +64,7 @@ pub struct TrainingRecord {
     pub validation_rel_err_p50_p99_max: [f64; 3],
     /// Fraction of validation samples with relative error below 1 % (seed 001 Fig. 5).
     pub validation_frac_below_1pct: f64,
-    /// Wall time of the training [s] (not reproducible).
+    /// Wall time of the training \[s\] (not reproducible).
     pub wall_time_s: f64,
 }
 
@@ -72,7 +72,7 @@ pub struct TrainingRecord {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct NetworkRecord {
-    /// Altitudes [km] of the band `[bottom, top)` this network serves.
+    /// Altitudes \[km\] of the band `[bottom, top)` this network serves.
     pub altitude_band_km: [f64; 2],
     /// The exponential it was trained on: `[rho_ref_kgm3, ref_altitude_km, scale_height_km]`.
     pub trained_on_exponential: [f64; 3],
@@ -99,7 +99,7 @@ pub struct NetworkFile {
     pub format: String,
     /// What the file is.
     pub description: String,
-    /// Planet radius the radii are measured against (altitude = r − R) [m].
+    /// Planet radius the radii are measured against (altitude = r − R) \[m\].
     pub planet_radius_m: f64,
     /// Networks, bands in increasing altitude, contiguous.
     pub networks: Vec<NetworkRecord>,
@@ -212,9 +212,9 @@ impl NetworkFile {
 pub struct DensityNetworkSet {
     /// Networks, lowest band first.
     pub nets: Vec<DensityNetwork>,
-    /// Top altitude of each band [m].
+    /// Top altitude of each band \[m\].
     pub tops_m: Vec<f64>,
-    /// Planet radius: altitude h = r − R [m].
+    /// Planet radius: altitude h = r − R \[m\].
     pub planet_radius_m: f64,
 }
 

@@ -101,9 +101,9 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Normalisation {
-    /// Mean r̄ of the training radii [m] (eq. 30).
+    /// Mean r̄ of the training radii \[m\] (eq. 30).
     pub r_mean_m: f64,
-    /// Standard deviation σ_r of the training radii [m] (eq. 30).
+    /// Standard deviation σ_r of the training radii \[m\] (eq. 30).
     pub r_std_m: f64,
     /// Mean ϱ̄ of the transformed training densities (eq. 31).
     pub out_mean: f64,

@@ -51,7 +51,7 @@ pub fn fit_onboard_exponential(
 /// Piecewise-exponential training atmosphere: one exponential per band (`tops_m` = band tops).
 #[derive(Debug, Clone)]
 pub struct BandedExponential {
-    /// Band tops [m], increasing; the last band extends upwards, the first downwards.
+    /// Band tops \[m\], increasing; the last band extends upwards, the first downwards.
     pub tops_m: Vec<f64>,
     /// One exponential per band.
     pub models: Vec<Exponential>,
@@ -76,7 +76,7 @@ impl Atmosphere for BandedExponential {
 /// Samples (r, ρ) of the simulated trajectories, with the trajectory index of each sample.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct TrainingData {
-    /// Radius [m].
+    /// Radius \[m\].
     pub r_m: Vec<f64>,
     /// Density of the training model [kg/m³].
     pub rho: Vec<f64>,

@@ -15,7 +15,7 @@ use crate::sim::MeasurementEpoch;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use std::sync::Arc;
 
-/// Mars mean surface pressure used to normalise dynamic pressure for the gating (seed 003 §3.2) [Pa].
+/// Mars mean surface pressure used to normalise dynamic pressure for the gating (seed 003 §3.2) \[Pa\].
 pub const MARS_SURFACE_PRESSURE_PA: f64 = 610.0;
 /// Heating is not in seed 003; we normalise it by a typical peak stagnation heating rate [W/m²].
 pub const HEATING_SCALE_WM2: f64 = 1.0e6;

@@ -56,7 +56,7 @@ impl<T: NavFilter<N> + Clone + 'static, const N: usize> NavFilterClone<N> for T 
 
 /// A navigation filter over an `N`-dimensional state.
 pub trait NavFilter<const N: usize>: Send + NavFilterClone<N> {
-    /// Propagate the estimate from its current time to `t_to` [s].
+    /// Propagate the estimate from its current time to `t_to` \[s\].
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError>;
     /// Measurement update with the epoch's available channels; `beacons[i]` is the inertial
     /// (position, velocity) of beacon i at the epoch time.
@@ -67,7 +67,7 @@ pub trait NavFilter<const N: usize>: Send + NavFilterClone<N> {
     ) -> Result<StepInfo, EstimationError>;
     /// Current estimate and covariance.
     fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>);
-    /// Current time of the estimate [s].
+    /// Current time of the estimate \[s\].
     fn time(&self) -> f64;
     /// The filter's density estimate at its current estimate [kg/m³], for filters that estimate
     /// density (None otherwise).

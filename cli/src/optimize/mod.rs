@@ -1,0 +1,293 @@
+//! `entrynav optimize`: beacon and orbiter geometry (seed 002 §4) — orbiters on circular orbits,
+//! ground beacons visible during the whole entry, and the certified selection of k candidate
+//! sites (Joshi & Boyd relaxation).
+//!
+//! This module holds the arguments and the helpers the three problems share; each problem's
+//! command is in its own file.
+
+use crate::load;
+use anyhow::{Context, Result, bail};
+use clap::{Args, Subcommand};
+use entrynav::beacons::BeaconConfig;
+use entrynav::observability::{DegreeSeries, Method};
+use entrynav::scenario::ScenarioConfig;
+use entrynav_optimizer::ground::{self, GroundEvaluation};
+use entrynav_optimizer::orbiters::{self, OrbiterEvaluation};
+use entrynav_optimizer::output::{self, template_noise};
+use entrynav_optimizer::select::{Selection, SelectionReport, site_information};
+use entrynav_optimizer::{
+    GroundObjective, GroundProblem, OrbitElements, OrbiterObjective, OrbiterProblem, SearchOptions,
+    SearchResult, SelectionCriterion, SelectionProblem, Site, Trajectory,
+};
+use indicatif::{ProgressBar, ProgressStyle};
+use serde_json::{Value, json};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+mod ground_sites;
+mod orbit_elements;
+mod site_selection;
+
+/// Arguments of `entrynav optimize`.
+#[derive(Args)]
+pub struct OptimizeArgs {
+    /// Which geometry to optimize.
+    #[command(subcommand)]
+    pub problem: OptimizeProblem,
+}
+
+/// The optimization problems.
+#[derive(Subcommand)]
+pub enum OptimizeProblem {
+    /// Relay orbiters on circular orbits: (RAAN, i, f) per orbiter maximising the integral of
+    /// det(N3) (seed 002 eq. 57) or of log det FIM, with line of sight by eq. 58-60.
+    Orbiters(OrbitersArgs),
+    /// Ground beacons visible during the whole entry (eq. 52): lat/lon maximising min delta
+    /// (eq. 49), the integrated log det FIM or the min over time of lambda_min(FIM).
+    Ground(GroundArgs),
+    /// Choose k of the candidate sites on a lat/lon grid with the convex relaxation (clarabel):
+    /// upper bound, rounded + swap-improved selection and certified gaps.
+    Select(SelectArgs),
+}
+
+/// Options shared by the searches.
+#[derive(Args, Clone)]
+pub struct CommonArgs {
+    /// Built-in scenario name or path to a scenario TOML file.
+    #[arg(long)]
+    pub scenario: String,
+    /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable).
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub sets: Vec<String>,
+    /// Seed of the search (the same seed gives the same answer on any thread count).
+    #[arg(long, default_value_t = 2)]
+    pub seed: u64,
+    /// Independent particle-swarm starts (default: per problem).
+    #[arg(long)]
+    pub starts: Option<usize>,
+    /// Particles per swarm (default: per problem).
+    #[arg(long)]
+    pub particles: Option<usize>,
+    /// Swarm iterations per start (default: per problem).
+    #[arg(long)]
+    pub iterations: Option<usize>,
+    /// Nelder-Mead iterations per polish round (default: per problem).
+    #[arg(long)]
+    pub polish_iterations: Option<usize>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Write the result as JSON to this file.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// Write the optimized geometry as a scenario file (accepted by `entrynav trade`).
+    #[arg(long)]
+    pub write_scenario: Option<PathBuf>,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+impl CommonArgs {
+    fn search(&self, defaults: SearchOptions) -> SearchOptions {
+        SearchOptions {
+            seed: self.seed,
+            starts: self.starts.unwrap_or(defaults.starts),
+            particles: self.particles.unwrap_or(defaults.particles),
+            iterations: self.iterations.unwrap_or(defaults.iterations),
+            polish_iterations: self.polish_iterations.unwrap_or(defaults.polish_iterations),
+            polish_step: defaults.polish_step,
+        }
+    }
+}
+
+/// Arguments of `entrynav optimize orbiters`.
+#[derive(Args)]
+pub struct OrbitersArgs {
+    #[command(flatten)]
+    common: CommonArgs,
+    /// Number of orbiters (default: the scenario's orbiter count, at least 3).
+    #[arg(long)]
+    orbiters: Option<usize>,
+    /// Orbit altitude above the reference sphere [km] (default: the scenario's first circular
+    /// orbiter).
+    #[arg(long, allow_negative_numbers = true)]
+    altitude_km: Option<f64>,
+    /// Objective: det-n3 (seed 002 eq. 57, 3 orbiters) or logdet (any n >= 3); default det-n3
+    /// for 3 orbiters, else logdet.
+    #[arg(long, value_parser = ["det-n3", "logdet"])]
+    objective: Option<String>,
+    /// Seconds between trajectory samples of the time integral (trapezoid rule).
+    #[arg(long, default_value_t = 1.0)]
+    step: f64,
+    /// Write an SVG plot of the integrand along the trajectory (optimum vs the scenario's own
+    /// orbiters).
+    #[arg(long)]
+    plot: Option<PathBuf>,
+    /// Export the trajectory and the objective's constants as CSV (for
+    /// scripts/bench_orbiters_vs_scipy.py).
+    #[arg(long)]
+    export_trajectory: Option<PathBuf>,
+}
+
+/// Arguments of `entrynav optimize ground`.
+#[derive(Args)]
+pub struct GroundArgs {
+    #[command(flatten)]
+    common: CommonArgs,
+    /// Number of ground beacons (default: the scenario's surface-beacon count, or 3).
+    #[arg(long)]
+    beacons: Option<usize>,
+    /// Objective: min-delta (eq. 49), logdet (integral of ln det FIM) or min-eig (min over time
+    /// of lambda_min(FIM)).
+    #[arg(long, default_value = "min-delta", value_parser = ["min-delta", "logdet", "min-eig"])]
+    objective: String,
+    /// Observability method for min-delta (see `entrynav observe`).
+    #[arg(long, default_value = "lie", value_parser = ["lie", "quadratic", "linear"])]
+    method: String,
+    /// Maximise the scaled delta instead of the raw-SI one (the papers' convention).
+    #[arg(long)]
+    scaled: bool,
+    /// Seconds between trajectory samples during the search.
+    #[arg(long, default_value_t = 5.0)]
+    search_step: f64,
+    /// Seconds between trajectory samples of the reported values and the plot.
+    #[arg(long, default_value_t = 1.0)]
+    step: f64,
+    /// Smallest elevation of the vehicle above every beacon's horizon during the entry [deg]
+    /// (eq. 52 is 0).
+    #[arg(long, default_value_t = 0.0)]
+    min_elevation_deg: f64,
+    /// Write an SVG plot of delta(t) (raw SI, log axis) for the optimum and the scenario's sites.
+    #[arg(long)]
+    plot: Option<PathBuf>,
+}
+
+/// Arguments of `entrynav optimize select`.
+#[derive(Args)]
+pub struct SelectArgs {
+    /// Built-in scenario name or path to a scenario TOML file.
+    #[arg(long)]
+    scenario: String,
+    /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable).
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    sets: Vec<String>,
+    /// Number of sites to choose.
+    #[arg(long)]
+    k: usize,
+    /// Candidate grid spacing in latitude and longitude [deg].
+    #[arg(long, default_value_t = 0.5)]
+    grid_deg: f64,
+    /// Criterion: logdet (D-optimal) or min-eig (E-optimal).
+    #[arg(long, default_value = "logdet", value_parser = ["logdet", "min-eig"])]
+    criterion: String,
+    /// With min-eig: maximise the minimum over epochs this many seconds apart of lambda_min of
+    /// the instantaneous FIM (max-min over time) instead of lambda_min of the time-averaged FIM.
+    #[arg(long, value_name = "SECONDS")]
+    eig_epochs: Option<f64>,
+    /// Seconds between trajectory samples.
+    #[arg(long, default_value_t = 1.0)]
+    step: f64,
+    /// Smallest elevation of the vehicle above every candidate's horizon [deg].
+    #[arg(long, default_value_t = 0.0)]
+    min_elevation_deg: f64,
+    /// Enumerate all k-subsets when there are at most this many.
+    #[arg(long, default_value_t = 200_000)]
+    brute_force_limit: usize,
+    /// Also certify the sites of this `entrynav optimize ground --json` file (added to the
+    /// candidates).
+    #[arg(long)]
+    compare: Option<PathBuf>,
+    /// Write the result as JSON to this file.
+    #[arg(long)]
+    json: Option<PathBuf>,
+    /// Write the selected sites as a scenario file (accepted by `entrynav trade`).
+    #[arg(long)]
+    write_scenario: Option<PathBuf>,
+}
+
+/// Run the command.
+pub fn run(args: &OptimizeArgs) -> Result<()> {
+    match &args.problem {
+        OptimizeProblem::Orbiters(a) => {
+            with_threads(a.common.threads, || orbit_elements::run_orbiters(a))
+        }
+        OptimizeProblem::Ground(a) => {
+            with_threads(a.common.threads, || ground_sites::run_ground(a))
+        }
+        OptimizeProblem::Select(a) => site_selection::run_select(a),
+    }
+}
+
+fn with_threads(threads: Option<usize>, f: impl FnOnce() -> Result<()> + Send) -> Result<()> {
+    match threads {
+        Some(t) => rayon::ThreadPoolBuilder::new()
+            .num_threads(t.max(1))
+            .build()?
+            .install(f),
+        None => f(),
+    }
+}
+
+fn loader(dir: &Path) -> impl Fn(&str) -> Result<String, String> + use<> {
+    let dir = dir.to_path_buf();
+    move |p: &str| {
+        let path = if Path::new(p).is_absolute() {
+            PathBuf::from(p)
+        } else {
+            dir.join(p)
+        };
+        std::fs::read_to_string(&path).map_err(|e| format!("cannot read {}: {e}", path.display()))
+    }
+}
+
+fn progress_bar(quiet: bool, label: String) -> ProgressBar {
+    let bar = if quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new(1)
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} {msg} [{bar:40}] {pos}/{len} evaluations ({eta})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    bar.set_message(label);
+    bar
+}
+
+fn write_text(path: &Path, text: &str) -> Result<()> {
+    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(parent)
+            .with_context(|| format!("cannot create {}", parent.display()))?;
+    }
+    std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
+}
+
+fn write_json(path: &Path, v: &Value) -> Result<()> {
+    write_text(path, &(serde_json::to_string_pretty(v)? + "\n"))?;
+    println!("wrote {}", path.display());
+    Ok(())
+}
+
+fn search_json(s: &SearchResult, opts: &SearchOptions) -> Value {
+    json!({
+        "seed": opts.seed,
+        "starts": opts.starts,
+        "particles": opts.particles,
+        "iterations": opts.iterations,
+        "polish_iterations": opts.polish_iterations,
+        "swarm_evaluations": s.swarm_evaluations,
+        "start_costs": s.start_costs,
+        "best_start": s.best_start,
+    })
+}
+
+fn file_stem(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "optimized".into())
+}
+
+// ---------------------------------------------------------------------------------------------
+// orbiters

@@ -10,6 +10,7 @@ pub mod builtin;
 pub mod config;
 pub mod error;
 pub mod validate;
+mod validate_density;
 
 pub use build::{Scenario, TruthDraw};
 pub use builtin::{BUILTIN_NAMES, builtin_toml};

@@ -508,14 +508,19 @@ fn file_uri(dir: &Path) -> String {
 
 /// The input values at communication point `t` for a check run (bank profile, beacon 2 outage,
 /// and for the filter FMU the measurements of the previous step).
-fn check_inputs(vars: &[Var], t: f64, truth: Option<&TruthSensors>) -> Vec<(usize, Value)> {
-    let bank = if t < 100.0 {
+/// The bank-angle command of `fmu check` at time `t` [rad].
+fn check_bank(t: f64) -> f64 {
+    if t < 100.0 {
         0.0
     } else if t < 200.0 {
         0.35
     } else {
         -0.2
-    };
+    }
+}
+
+fn check_inputs(vars: &[Var], t: f64, truth: Option<&TruthSensors>) -> Vec<(usize, Value)> {
+    let bank = check_bank(t);
     let epoch = truth.and_then(|ts| ts.last_epoch());
     let slot_value = |s: Slot| -> Option<f64> {
         let (ts, e) = (truth?, epoch?);
@@ -696,7 +701,8 @@ fn check(a: &CheckArgs) -> Result<()> {
         );
         warnings += (st == 1) as usize;
         if let Some(ts) = feeder.as_mut() {
-            ts.do_step(t, h, 0.0, &[true; MAX_BEACONS])?;
+            // The measurements of the truth flying the bank the filter is told.
+            ts.do_step(t, h, check_bank(t), &[true; MAX_BEACONS])?;
         }
         check_eq(
             k + 1,

@@ -637,7 +637,7 @@ impl Instance {
         let report = match engine {
             Engine::Combined(c) => c.do_step(t, h, bank, &avail),
             Engine::Truth(ts) => ts.do_step(t, h, bank, &avail),
-            Engine::Filter(f) => f.do_step(t, h, epoch.as_ref()),
+            Engine::Filter(f) => f.do_step(t, h, bank, epoch.as_ref()),
         }
         .map_err(|e| e.to_string())?;
         let mut status = Status::Ok;

@@ -16,7 +16,9 @@ pub const MAX_BEACONS: usize = 6;
 /// Fusion-weight / model-probability slots.
 pub const MAX_WEIGHTS: usize = 8;
 /// Version of the table layout and the meaning of its variables (part of the GUID).
-pub const TABLE_VERSION: u32 = 1;
+/// 2: `bank_angle` also drives the filter's onboard models (MarsEntryNav) and is an input of
+/// MarsEntryNavFilter.
+pub const TABLE_VERSION: u32 = 2;
 
 /// The three FMUs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -495,16 +497,25 @@ pub fn variables(model: Model) -> Vec<Var> {
         "Draw the truth from the scenario's dispersions (true) or use the nominal truth (false)",
         Key::Dispersed,
     );
+    // Every model: the truth flies the command, the filter's onboard models use it (known onboard).
+    b.add(
+        "bank_angle",
+        Real,
+        Input,
+        Some("rad"),
+        Some(Value::Real(0.0)),
+        match model {
+            Model::Combined => {
+                "Bank-angle command, held over each communication step: flown by the truth and used by the filter's onboard dynamics and measurement models"
+            }
+            Model::Filter => {
+                "Bank-angle command the vehicle flies, held over each communication step: used by the filter's onboard dynamics and measurement models"
+            }
+            Model::Truth => "Bank-angle command, held over each communication step",
+        },
+        Key::Bank,
+    );
     if model.has_truth() {
-        b.add(
-            "bank_angle",
-            Real,
-            Input,
-            Some("rad"),
-            Some(Value::Real(0.0)),
-            "Bank-angle command, held over each communication step",
-            Key::Bank,
-        );
         for i in 0..MAX_BEACONS {
             b.add(
                 format!("beacon_available_{}", i + 1),

@@ -23,8 +23,15 @@
 //! and with a fixed filter start it reproduces Monte Carlo run `r` of `trade --seed S` for
 //! `seed = run_seed(S, r)`, `dispersed = true`.
 //!
-//! The filters' onboard dynamics use the scenario's bank angle (`truth.bank_deg`); a commanded bank
-//! that differs from it is a model error the filter sees through its measurements.
+//! Bank angle: the commanded bank is known onboard, so the filter's onboard dynamics and
+//! measurement models use it too ([`NavFilter::set_bank_angle`]). [`EntryCoSim::do_step`] gives the
+//! step's bank to both the truth and the filter, and [`NavigationCoSim::do_step`] takes it as an
+//! input; the filter starts with the scenario's bank (`truth.bank_deg`) and uses the bank of a step
+//! for every epoch that step processes (the prediction from the previous epoch included). When
+//! the measurement epochs fall on communication points (a communication step that is a multiple
+//! of the sensor periods) the filter's bank history is therefore exactly the truth's. A
+//! [`NavigationCoSim`] fed the epochs of a separate [`TruthSensors`] one step late should get the
+//! bank of the step those epochs were measured in (the command delayed by the same step).
 //!
 //! Everything is deterministic: the same parameters and the same sequence of `do_step` calls give
 //! bit-identical outputs, which is what the FMU's state serialisation (a replay log) relies on.
@@ -449,6 +456,7 @@ impl NavStatus {
 
 /// Object-safe view of a `NavFilter<N>` for N in 6..=10.
 trait DynFilter: Send {
+    fn set_bank_angle(&mut self, bank: f64);
     fn step(
         &mut self,
         epoch: &MeasurementEpoch,
@@ -461,6 +469,10 @@ trait DynFilter: Send {
 struct Dim<const N: usize>(Box<dyn NavFilter<N>>);
 
 impl<const N: usize> DynFilter for Dim<N> {
+    fn set_bank_angle(&mut self, bank: f64) {
+        self.0.set_bank_angle(bank);
+    }
+
     fn step(
         &mut self,
         epoch: &MeasurementEpoch,
@@ -646,6 +658,16 @@ impl NavigationCoSim {
         self.time
     }
 
+    /// Set the bank-angle command \[rad\] the filter's onboard models use from now on (the filter
+    /// starts with the scenario's `truth.bank_deg`).
+    pub fn set_bank_angle(&mut self, bank: f64) -> Result<(), CoSimError> {
+        if !bank.is_finite() {
+            return Err(CoSimError::NonFiniteInput("bank angle"));
+        }
+        self.filter.set_bank_angle(bank);
+        Ok(())
+    }
+
     /// Process one measurement epoch (predict to `epoch.t`, update). Epochs at or before the last
     /// processed one are ignored (a master holding its inputs over several steps), and so is every
     /// epoch after a filter failure. Returns whether the epoch was processed.
@@ -670,20 +692,28 @@ impl NavigationCoSim {
         true
     }
 
-    /// Advance from `t` by `h`, processing `epoch` (measurements taken at `epoch.t ≤ t + h`) if it
-    /// is newer than the last one processed.
+    /// Advance from `t` by `h` with bank-angle command `bank` \[rad\], processing `epoch`
+    /// (measurements taken at `epoch.t ≤ t + h`) if it is newer than the last one processed. The
+    /// filter uses `bank` from this step on (prediction to the epoch included).
     pub fn do_step(
         &mut self,
         t: f64,
         h: f64,
+        bank: f64,
         epoch: Option<&MeasurementEpoch>,
     ) -> Result<StepReport, CoSimError> {
         check_step(self.time, t, h)?;
+        if !bank.is_finite() {
+            return Err(CoSimError::NonFiniteInput("bank angle"));
+        }
         let mut report = StepReport::default();
+        if let Some(e) = epoch
+            && e.values.iter().flatten().any(|v| !v.is_finite())
+        {
+            return Err(CoSimError::NonFiniteInput("measurement"));
+        }
+        self.filter.set_bank_angle(bank);
         if let Some(e) = epoch {
-            if e.values.iter().flatten().any(|v| !v.is_finite()) {
-                return Err(CoSimError::NonFiniteInput("measurement"));
-            }
             if e.t <= t + h + 1e-9 && self.process(e) {
                 report.epochs = 1;
             }
@@ -725,7 +755,7 @@ impl EntryCoSim {
     }
 
     /// Advance from `t` by `h` with bank angle `bank` \[rad\] and beacon availability flags; the
-    /// filter processes every measurement epoch of the step.
+    /// filter processes every measurement epoch of the step with its onboard models at `bank`.
     pub fn do_step(
         &mut self,
         t: f64,
@@ -741,6 +771,7 @@ impl EntryCoSim {
                     epochs.push((epoch.clone(), sample.clone()));
                 })?;
         report.epochs = 0;
+        self.nav.filter.set_bank_angle(bank);
         for (epoch, sample) in &epochs {
             if self.nav.process(epoch) {
                 report.epochs += 1;
@@ -870,7 +901,7 @@ mod tests {
             let avail = [!(60..=90).contains(&k)];
             // The filter gets the measurements of the previous communication point, so after its
             // step it holds the combined engine's estimate of one step earlier.
-            processed += nav.do_step(t, h, pending.as_ref()).unwrap().epochs;
+            processed += nav.do_step(t, h, 0.1, pending.as_ref()).unwrap().epochs;
             assert_eq!(*nav.estimate(), previous, "step {k}");
             co.do_step(t, h, 0.1, &avail).unwrap();
             truth.do_step(t, h, 0.1, &avail).unwrap();
@@ -879,6 +910,70 @@ mod tests {
         }
         assert_eq!(processed, 99);
         assert_eq!(co.nav().status().code(), 1);
+    }
+
+    /// A commanded bank other than the scenario's reaches the filter: the combined engine equals
+    /// the in-process run of a filter told that bank, and its final position error is far below
+    /// that of the old behaviour (the filter left at the scenario's bank).
+    #[test]
+    fn commanded_bank_reaches_the_filter() {
+        let sc = scenario("msl-pressure");
+        assert_eq!(sc.truth_bank, 0.0);
+        let bank = 50f64.to_radians();
+        let mut cfg = sc.config.clone();
+        cfg.truth.bank_deg = 50.0;
+        let flown = Arc::new(Scenario::build(cfg, &|p: &str| Err(format!("no file {p}"))).unwrap());
+        let seed = run_seed(2, 0);
+        let kind = FilterKind::Ekf;
+        // The truth flown at `bank` throughout, and the filter run in process on it.
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let draw = flown.draw_truth(&mut rng);
+        let run = simulate_truth(&flown, &draw, &mut rng).unwrap();
+        let mut srng = ChaCha8Rng::seed_from_u64(seed);
+        srng.set_stream(1);
+        let start = filter_start::<6>(&sc, &draw, &run.samples[0], &mut srng);
+        let final_step = |told: bool| {
+            let mut f = build_filter::<6>(kind, &sc, &start).unwrap();
+            if told {
+                f.set_bank_angle(bank);
+            }
+            let mut last = None;
+            run_filter(&sc, &draw, &run, f.as_mut(), |s| last = Some(s.clone()));
+            last.unwrap()
+        };
+        let (told, old) = (final_step(true), final_step(false));
+        let mut co = EntryCoSim::new(Arc::clone(&sc), kind, seed, true).unwrap();
+        let mut k = 0;
+        while co.truth().stop().is_none() {
+            co.do_step(k as f64, 1.0, bank, &[]).unwrap();
+            k += 1;
+        }
+        let est = co.nav().estimate();
+        assert_eq!(est.t, told.t);
+        assert_eq!(est.x, told.x.iter().copied().collect::<Vec<_>>());
+        assert_eq!(
+            co.judgement().err,
+            told.err.iter().copied().collect::<Vec<_>>()
+        );
+        let pos = |e: &[f64]| (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt();
+        let (now, before) = (pos(&co.judgement().err), pos(old.err.as_slice()));
+        println!(
+            "final position error: {now:.1} m (filter told the bank), {before:.1} m (left at the scenario bank)"
+        );
+        assert!(
+            now * 10.0 < before,
+            "final position error {now} m vs {before} m"
+        );
+        // The filter alone, given the same epochs and bank, is the same filter.
+        let mut nav = NavigationCoSim::new(Arc::clone(&sc), kind, seed, true).unwrap();
+        for (i, e) in run.epochs.iter().enumerate() {
+            nav.do_step(i as f64, 1.0, bank, Some(e)).unwrap();
+        }
+        assert_eq!(nav.estimate(), est);
+        assert!(matches!(
+            nav.do_step(nav.time(), 1.0, f64::NAN, None),
+            Err(CoSimError::NonFiniteInput(_))
+        ));
     }
 
     #[test]

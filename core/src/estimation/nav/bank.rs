@@ -43,6 +43,8 @@ pub struct BankNav<const N: usize> {
     fused: (SVector<f64, N>, SMatrix<f64, N, N>),
     weights: Vec<f64>,
     t: f64,
+    /// Bank-angle command of the members' onboard models \[rad\].
+    bank: f64,
 }
 
 impl<const N: usize> BankNav<N> {
@@ -80,6 +82,7 @@ impl<const N: usize> BankNav<N> {
             fused: (start.x0, start.p0),
             weights: vec![1.0 / n as f64; n],
             t: 0.0,
+            bank: scenario.truth_bank,
         })
     }
 
@@ -181,6 +184,18 @@ impl<const N: usize> NavFilter<N> for BankNav<N> {
 
     fn time(&self) -> f64 {
         self.t
+    }
+
+    /// Every member (the gating uses the measurements only, not a model).
+    fn set_bank_angle(&mut self, bank_rad: f64) {
+        for f in self.members.iter_mut().flatten() {
+            f.set_bank_angle(bank_rad);
+        }
+        self.bank = bank_rad;
+    }
+
+    fn bank_angle(&self) -> f64 {
+        self.bank
     }
 
     fn density_estimate(&self) -> Option<f64> {

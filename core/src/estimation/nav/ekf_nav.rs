@@ -31,6 +31,8 @@ pub struct EkfNav<const N: usize> {
     q: SMatrix<f64, N, N>,
     t: f64,
     channels: Option<Vec<usize>>,
+    /// Bank-angle command of the onboard models \[rad\] (starts at the scenario's).
+    bank: f64,
 }
 
 impl<const N: usize> EkfNav<N> {
@@ -51,6 +53,7 @@ impl<const N: usize> EkfNav<N> {
             q: start.q,
             t: 0.0,
             channels,
+            bank: scenario.truth_bank,
         })
     }
 
@@ -75,9 +78,7 @@ impl<const N: usize> EkfNav<N> {
         let mut x = self.ekf.x;
         let mut out = Vec::with_capacity(n);
         for _ in 0..n {
-            let (x_next, phi) = self
-                .model
-                .step_with_linear_stm(&x, self.scenario.truth_bank, h);
+            let (x_next, phi) = self.model.step_with_linear_stm(&x, self.bank, h);
             out.push((x_next, phi, q));
             x = x_next;
         }
@@ -159,7 +160,7 @@ impl<const N: usize> EkfNav<N> {
     ) -> (Vec<usize>, Vec<LinearizedMeasurement<N>>) {
         let xd = seed_duals(&self.ekf.x);
         let kin = kinematics(&self.model, &xd, epoch.t);
-        let bank = self.scenario.truth_bank;
+        let bank = self.bank;
         let mut slots = Vec::new();
         let mut items = Vec::new();
         for (c, value) in epoch.values.iter().enumerate() {
@@ -207,6 +208,14 @@ impl<const N: usize> NavFilter<N> for EkfNav<N> {
 
     fn time(&self) -> f64 {
         self.t
+    }
+
+    fn set_bank_angle(&mut self, bank_rad: f64) {
+        self.bank = bank_rad;
+    }
+
+    fn bank_angle(&self) -> f64 {
+        self.bank
     }
 
     fn density_estimate(&self) -> Option<f64> {

@@ -30,6 +30,8 @@ pub struct FusionNav<const N: usize> {
     feedback: bool,
     fused: (SVector<f64, N>, SMatrix<f64, N, N>),
     t: f64,
+    /// Bank-angle command of the local filters' onboard models \[rad\].
+    bank: f64,
 }
 
 impl<const N: usize> FusionNav<N> {
@@ -88,6 +90,7 @@ impl<const N: usize> FusionNav<N> {
             feedback: with_feedback,
             fused: (start.x0, start.p0),
             t: 0.0,
+            bank: scenario.truth_bank,
         })
     }
 }
@@ -201,6 +204,18 @@ impl<const N: usize> NavFilter<N> for FusionNav<N> {
 
     fn time(&self) -> f64 {
         self.t
+    }
+
+    /// Every local filter (the fusion itself has no dynamics or measurement model of its own).
+    fn set_bank_angle(&mut self, bank_rad: f64) {
+        for f in self.locals.iter_mut().flatten() {
+            f.set_bank_angle(bank_rad);
+        }
+        self.bank = bank_rad;
+    }
+
+    fn bank_angle(&self) -> f64 {
+        self.bank
     }
 
     fn density_estimate(&self) -> Option<f64> {

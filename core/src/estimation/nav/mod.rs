@@ -69,6 +69,13 @@ pub trait NavFilter<const N: usize>: Send + NavFilterClone<N> {
     fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>);
     /// Current time of the estimate \[s\].
     fn time(&self) -> f64;
+    /// Set the bank-angle command σ \[rad\] the filter's onboard dynamics and measurement models
+    /// use from now on (held until the next call). Every filter starts with the scenario's bank
+    /// (`scenario.truth_bank`); a guidance loop that commands another bank tells the filter here,
+    /// since the command is known onboard. Setting the current value changes nothing.
+    fn set_bank_angle(&mut self, bank_rad: f64);
+    /// The bank-angle command σ \[rad\] the filter's onboard models currently use.
+    fn bank_angle(&self) -> f64;
     /// The filter's density estimate at its current estimate [kg/m³], for filters that estimate
     /// density (None otherwise).
     fn density_estimate(&self) -> Option<f64> {

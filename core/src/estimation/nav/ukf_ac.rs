@@ -39,6 +39,8 @@ pub struct UkfAcNav {
     ws: UkfWorkspace<L>,
     q: SMatrix<f64, L, L>,
     t: f64,
+    /// Bank-angle command of the onboard models \[rad\] (starts at the scenario's).
+    bank: f64,
 }
 
 /// Embed an 8-state start in the augmented space with extra state `(x, p, q)`.
@@ -88,6 +90,7 @@ impl UkfAcNav {
             ws: UkfWorkspace::default(),
             q,
             t: 0.0,
+            bank: scenario.truth_bank,
         })
     }
 
@@ -110,7 +113,7 @@ impl NavFilter<8> for UkfAcNav {
         }
         let step = self.scenario.config.timing.filter_step_s;
         let (n, h) = substeps(dt, step);
-        let bank = self.scenario.truth_bank;
+        let bank = self.bank;
         let model = &mut self.model;
         let q = self.q * (h / step);
         for _ in 0..n {
@@ -137,10 +140,11 @@ impl NavFilter<8> for UkfAcNav {
             return Ok(StepInfo::default());
         };
         let sc = &*self.scenario;
-        let (model, t) = (&mut self.model, epoch.t);
+        let (t, bank) = (epoch.t, self.bank);
+        let model = &mut self.model;
         let h = |x: &SVector<f64, L>, out: &mut [f64]| {
             model.density_factor = x[8];
-            predict_channels(sc, model, x, t, beacons, &slots, out);
+            predict_channels(sc, model, x, t, bank, beacons, &slots, out);
             Ok(())
         };
         let upd = self.ukf.update_with(&mut self.ws, h, &z, &r)?;
@@ -156,6 +160,14 @@ impl NavFilter<8> for UkfAcNav {
 
     fn time(&self) -> f64 {
         self.t
+    }
+
+    fn set_bank_angle(&mut self, bank_rad: f64) {
+        self.bank = bank_rad;
+    }
+
+    fn bank_angle(&self) -> f64 {
+        self.bank
     }
 
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {

@@ -34,6 +34,8 @@ pub struct UkfCmNav<const N: usize> {
     /// Prior mean, covariance and the process noise added since the last update.
     prior: Option<(SVector<f64, N>, SMatrix<f64, N, N>, SMatrix<f64, N, N>)>,
     t: f64,
+    /// Bank-angle command of the onboard models \[rad\] (starts at the scenario's).
+    bank: f64,
 }
 
 impl<const N: usize> UkfCmNav<N> {
@@ -50,6 +52,7 @@ impl<const N: usize> UkfCmNav<N> {
             cm: CovarianceMatching::new(density_config(scenario).cm_batch),
             prior: None,
             t: 0.0,
+            bank: scenario.truth_bank,
         })
     }
 
@@ -72,7 +75,7 @@ impl<const N: usize> NavFilter<N> for UkfCmNav<N> {
         }
         let step = self.scenario.config.timing.filter_step_s;
         let (n, h) = substeps(dt, step);
-        let bank = self.scenario.truth_bank;
+        let bank = self.bank;
         let model = &self.model;
         let q = self.q * (h / step);
         for _ in 0..n {
@@ -97,9 +100,9 @@ impl<const N: usize> NavFilter<N> for UkfCmNav<N> {
         let Some((slots, z, r)) = epoch_measurements(&self.scenario, epoch) else {
             return Ok(StepInfo::default());
         };
-        let (sc, model, t) = (&*self.scenario, &self.model, epoch.t);
+        let (sc, model, t, bank) = (&*self.scenario, &self.model, epoch.t, self.bank);
         let h = |x: &SVector<f64, N>, out: &mut [f64]| {
-            predict_channels(sc, model, x, t, beacons, &slots, out);
+            predict_channels(sc, model, x, t, bank, beacons, &slots, out);
             Ok(())
         };
         let upd = self.ukf.update_with(&mut self.ws, h, &z, &r)?;
@@ -118,6 +121,14 @@ impl<const N: usize> NavFilter<N> for UkfCmNav<N> {
 
     fn time(&self) -> f64 {
         self.t
+    }
+
+    fn set_bank_angle(&mut self, bank_rad: f64) {
+        self.bank = bank_rad;
+    }
+
+    fn bank_angle(&self) -> f64 {
+        self.bank
     }
 
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {

@@ -46,14 +46,16 @@ pub(crate) fn epoch_measurements(
     Some((slots, z, r))
 }
 
-/// The predicted measurements h(x) of the channels `slots` at epoch time `t`, written to `out`
-/// (one entry per slot): the UKF's measurement function, evaluated at each sigma point.
+/// The predicted measurements h(x) of the channels `slots` at epoch time `t` with bank-angle
+/// command `bank` \[rad\], written to `out` (one entry per slot): the UKF's measurement function,
+/// evaluated at each sigma point.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn predict_channels<A: Atmosphere, const L: usize>(
     scenario: &Scenario,
     model: &EntryModel<A>,
     x: &SVector<f64, L>,
     t: f64,
+    bank: f64,
     beacons: &[(V3<f64>, V3<f64>)],
     slots: &[usize],
     out: &mut [f64],
@@ -64,7 +66,7 @@ pub(crate) fn predict_channels<A: Atmosphere, const L: usize>(
             model,
             x,
             &kin,
-            scenario.truth_bank,
+            bank,
             beacons,
             scenario.channels[c].channel,
         );

@@ -23,6 +23,8 @@ pub struct UkfNav<const N: usize> {
     ws: UkfWorkspace<N>,
     q: SMatrix<f64, N, N>,
     t: f64,
+    /// Bank-angle command of the onboard models \[rad\] (starts at the scenario's).
+    bank: f64,
 }
 
 impl<const N: usize> UkfNav<N> {
@@ -41,6 +43,7 @@ impl<const N: usize> UkfNav<N> {
             ws: UkfWorkspace::default(),
             q: start.q,
             t: 0.0,
+            bank: scenario.truth_bank,
         })
     }
 }
@@ -53,7 +56,7 @@ impl<const N: usize> NavFilter<N> for UkfNav<N> {
         }
         let step = self.scenario.config.timing.filter_step_s;
         let (n, h) = substeps(dt, step);
-        let bank = self.scenario.truth_bank;
+        let bank = self.bank;
         let model = &self.model;
         let q = self.q * (h / step);
         for _ in 0..n {
@@ -72,9 +75,9 @@ impl<const N: usize> NavFilter<N> for UkfNav<N> {
         let Some((slots, z, r)) = epoch_measurements(&self.scenario, epoch) else {
             return Ok(StepInfo::default());
         };
-        let (sc, model, t) = (&*self.scenario, &self.model, epoch.t);
+        let (sc, model, t, bank) = (&*self.scenario, &self.model, epoch.t, self.bank);
         let h = |x: &SVector<f64, N>, out: &mut [f64]| {
-            predict_channels(sc, model, x, t, beacons, &slots, out);
+            predict_channels(sc, model, x, t, bank, beacons, &slots, out);
             Ok(())
         };
         let upd = self.ukf.update_with(&mut self.ws, h, &z, &r)?;
@@ -87,6 +90,14 @@ impl<const N: usize> NavFilter<N> for UkfNav<N> {
 
     fn time(&self) -> f64 {
         self.t
+    }
+
+    fn set_bank_angle(&mut self, bank_rad: f64) {
+        self.bank = bank_rad;
+    }
+
+    fn bank_angle(&self) -> f64 {
+        self.bank
     }
 
     fn density_estimate(&self) -> Option<f64> {

@@ -76,6 +76,8 @@ pub struct UskfNnNav {
     act: Activations,
     stats: AdaptationStats,
     t: f64,
+    /// Bank-angle command of the onboard models \[rad\] (starts at the scenario's).
+    bank: f64,
 }
 
 impl UskfNnNav {
@@ -130,6 +132,7 @@ impl UskfNnNav {
             act: Activations::default(),
             stats: AdaptationStats::default(),
             t: 0.0,
+            bank: scenario.truth_bank,
         })
     }
 
@@ -162,7 +165,7 @@ impl NavFilter<8> for UskfNnNav {
         }
         let step = self.scenario.config.timing.filter_step_s;
         let (n, h) = substeps(dt, step);
-        let bank = self.scenario.truth_bank;
+        let bank = self.bank;
         // eq. 51: ECRV transition and its process noise.
         let phi = (-h / self.tau).exp();
         let mut q = SMatrix::<f64, L, L>::zeros();
@@ -196,7 +199,7 @@ impl NavFilter<8> for UskfNnNav {
             return Ok(StepInfo::default());
         };
         let sc = &*self.scenario;
-        let (t, bank) = (epoch.t, sc.truth_bank);
+        let (t, bank) = (epoch.t, self.bank);
 
         // Algorithm 2 at the prior mean (eq. 52–53).
         self.stats.epochs += 1;
@@ -243,7 +246,7 @@ impl NavFilter<8> for UskfNnNav {
         let model = &mut self.model;
         let h = |x: &SVector<f64, L>, out: &mut [f64]| {
             model.density_factor = x[8];
-            predict_channels(sc, model, x, t, beacons, &slots, out);
+            predict_channels(sc, model, x, t, bank, beacons, &slots, out);
             Ok(())
         };
         let upd = self.ukf.update_with(&mut self.ws, h, &z, &r)?;
@@ -259,6 +262,14 @@ impl NavFilter<8> for UskfNnNav {
 
     fn time(&self) -> f64 {
         self.t
+    }
+
+    fn set_bank_angle(&mut self, bank_rad: f64) {
+        self.bank = bank_rad;
+    }
+
+    fn bank_angle(&self) -> f64 {
+        self.bank
     }
 
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {

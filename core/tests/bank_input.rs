@@ -1,0 +1,193 @@
+//! The bank-angle command as a filter input (`NavFilter::set_bank_angle`): a filter told the bank
+//! the vehicle flies tracks it, one left at the scenario's bank does not; telling a filter its
+//! scenario's bank changes nothing; and telling it another bank is the same as building it on a
+//! scenario with that bank. For every filter kind.
+
+use entrynav::estimation::nav::setup::estimate_spherical;
+use entrynav::estimation::nav::{FilterKind, FilterStart, NavFilter, build_filter, filter_start};
+use entrynav::scenario::{Scenario, ScenarioConfig, TruthDraw};
+use entrynav::sim::{NavStep, TruthRun, run_filter, run_seed, simulate_truth};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use std::sync::Arc;
+
+/// Bank angle the vehicle flies in these tests [deg] (the built-in scenarios fly 0°).
+const FLOWN_BANK_DEG: f64 = 60.0;
+
+fn scenario(name: &str, bank_deg: f64) -> Arc<Scenario> {
+    let mut cfg = ScenarioConfig::builtin(name).unwrap();
+    cfg.truth.bank_deg = bank_deg;
+    Arc::new(Scenario::build(cfg, &|p| Err(format!("{p}: no files in tests"))).unwrap())
+}
+
+const CASES: [(&str, &[FilterKind]); 3] = [
+    (
+        "four-beacon-fusion",
+        &[
+            FilterKind::Ekf,
+            FilterKind::Ukf,
+            FilterKind::Ci,
+            FilterKind::Dcifaif,
+        ],
+    ),
+    (
+        "msl-pressure",
+        &[FilterKind::Ekf, FilterKind::Mmae, FilterKind::MmaeMoe],
+    ),
+    (
+        "msl-airdata",
+        &[FilterKind::UkfCm, FilterKind::UkfAc, FilterKind::UskfNn],
+    ),
+];
+
+/// A dispersed truth realisation of `truth_sc` (its bank) and the filter start of run 0.
+fn truth<const N: usize>(
+    truth_sc: &Scenario,
+    filter_sc: &Scenario,
+) -> (TruthDraw, TruthRun, FilterStart<N>) {
+    let mut rng = ChaCha8Rng::seed_from_u64(run_seed(7, 0));
+    let draw = truth_sc.draw_truth(&mut rng);
+    let run = simulate_truth(truth_sc, &draw, &mut rng).unwrap();
+    let start = filter_start::<N>(filter_sc, &draw, &run.samples[0], &mut rng);
+    (draw, run, start)
+}
+
+/// Run `kind` on `filter_sc` over `run`, after `setup`; every step.
+fn steps<const N: usize>(
+    kind: FilterKind,
+    filter_sc: &Arc<Scenario>,
+    draw: &TruthDraw,
+    run: &TruthRun,
+    start: &FilterStart<N>,
+    setup: impl FnOnce(&mut dyn NavFilter<N>),
+) -> Vec<NavStep<N>> {
+    let mut f = build_filter::<N>(kind, filter_sc, start).unwrap();
+    setup(f.as_mut());
+    let mut out = Vec::new();
+    run_filter(filter_sc, draw, run, f.as_mut(), |s| out.push(s.clone()));
+    out
+}
+
+/// Position error [m] of a step's estimate (spherical, small-angle).
+fn position_error<const N: usize>(sc: &Scenario, s: &NavStep<N>) -> f64 {
+    let e = estimate_spherical(sc, &s.x, s.t);
+    let tr = s.truth_spherical;
+    let dr = e[0] - tr[0];
+    let dn = tr[0] * (e[2] - tr[2]);
+    let de = tr[0] * tr[2].cos() * (e[1] - tr[1]);
+    (dr * dr + dn * dn + de * de).sqrt()
+}
+
+/// RMS over the run and final position error [m].
+fn errors<const N: usize>(sc: &Scenario, steps: &[NavStep<N>]) -> (f64, f64) {
+    assert!(steps.len() > 10);
+    let rms = (steps
+        .iter()
+        .map(|s| position_error(sc, s).powi(2))
+        .sum::<f64>()
+        / steps.len() as f64)
+        .sqrt();
+    (rms, position_error(sc, steps.last().unwrap()))
+}
+
+fn assert_same<const N: usize>(a: &[NavStep<N>], b: &[NavStep<N>], what: &str) {
+    assert_eq!(a.len(), b.len(), "{what}");
+    for (k, (x, y)) in a.iter().zip(b).enumerate() {
+        assert_eq!(x.t.to_bits(), y.t.to_bits(), "{what}: step {k}");
+        assert!(
+            x.x.iter()
+                .zip(&y.x)
+                .all(|(u, v)| u.to_bits() == v.to_bits()),
+            "{what}: estimate differs at step {k}"
+        );
+        assert!(
+            x.p.iter()
+                .zip(&y.p)
+                .all(|(u, v)| u.to_bits() == v.to_bits()),
+            "{what}: covariance differs at step {k}"
+        );
+        assert_eq!(x.info, y.info, "{what}: step {k}");
+    }
+}
+
+/// Position-error RMS and final error [m] of `kind` told the flown bank and left at 0°.
+fn improvement<const N: usize>(name: &str, kind: FilterKind) -> ((f64, f64), (f64, f64)) {
+    let bank = FLOWN_BANK_DEG.to_radians();
+    // The filter's scenario says 0°; the vehicle flies FLOWN_BANK_DEG.
+    let nominal = scenario(name, 0.0);
+    let flown = scenario(name, FLOWN_BANK_DEG);
+    let (draw, run, start) = truth::<N>(&flown, &nominal);
+    let wrong = steps(kind, &nominal, &draw, &run, &start, |_| {});
+    let told = steps(kind, &nominal, &draw, &run, &start, |f| {
+        assert_eq!(f.bank_angle(), 0.0);
+        f.set_bank_angle(bank);
+        assert_eq!(f.bank_angle(), bank);
+    });
+    (errors(&nominal, &told), errors(&nominal, &wrong))
+}
+
+#[test]
+fn filter_told_the_flown_bank_tracks_the_truth() {
+    for (name, kinds) in CASES {
+        for &kind in kinds {
+            let ((rms_t, fin_t), (rms_w, fin_w)) =
+                match scenario(name, 0.0).filter_model.state_dim() {
+                    6 => improvement::<6>(name, kind),
+                    8 => improvement::<8>(name, kind),
+                    n => panic!("{name}: {n} states"),
+                };
+            println!(
+                "{name} {}: position error RMS {rms_t:.1} m (told {FLOWN_BANK_DEG}°) vs {rms_w:.1} m (left at 0°), final {fin_t:.1} vs {fin_w:.1} m",
+                kind.name()
+            );
+            if name == "four-beacon-fusion" {
+                // Two-way ranges to four beacons fix the position whatever the dynamics model:
+                // the bank changes little here (RMS within a few metres of 30-60 m).
+                assert!(
+                    rms_t < 1.5 * rms_w,
+                    "{name} {}: {rms_t} vs {rms_w} m",
+                    kind.name()
+                );
+            } else {
+                // Dead reckoning on IMU and air data: the wrong bank is kilometres off.
+                assert!(
+                    rms_t * 3.0 < rms_w && fin_t * 5.0 < fin_w,
+                    "{name} {}: told {rms_t} / {fin_t} m, wrong bank {rms_w} / {fin_w} m",
+                    kind.name()
+                );
+            }
+        }
+    }
+}
+
+/// `kind` on the flown scenario by default and told its own bank, and on the 0° scenario told
+/// the flown bank: all three bitwise identical.
+fn bank_equivalence<const N: usize>(name: &str, kind: FilterKind) {
+    let nominal = scenario(name, 0.0);
+    let flown = scenario(name, FLOWN_BANK_DEG);
+    let (draw, run, start) = truth::<N>(&flown, &nominal);
+    let what = format!("{name} {}", kind.name());
+    let default = steps(kind, &flown, &draw, &run, &start, |_| {});
+    let same = steps(kind, &flown, &draw, &run, &start, |f| {
+        assert_eq!(f.bank_angle(), flown.truth_bank);
+        f.set_bank_angle(flown.truth_bank);
+    });
+    assert_same(&default, &same, &what);
+    let told = steps(kind, &nominal, &draw, &run, &start, |f| {
+        f.set_bank_angle(flown.truth_bank)
+    });
+    assert_same(&default, &told, &what);
+}
+
+#[test]
+fn setting_the_scenario_bank_changes_nothing_and_another_bank_equals_that_scenario() {
+    for (name, kinds) in CASES {
+        for &kind in kinds {
+            match scenario(name, 0.0).filter_model.state_dim() {
+                6 => bank_equivalence::<6>(name, kind),
+                8 => bank_equivalence::<8>(name, kind),
+                n => panic!("{name}: {n} states"),
+            }
+        }
+    }
+}

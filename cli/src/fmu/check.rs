@@ -1,0 +1,351 @@
+//! `entrynav fmu check`: run a `.fmu` through our host and the same model in process, compare
+//! every output bit for bit, and with `--bench` time doStep both ways.
+
+#![allow(non_snake_case)]
+
+use super::host::*;
+use super::*;
+
+/// The input values at communication point `t` for a check run (bank profile, beacon 2 outage,
+/// and for the filter FMU the measurements of the previous step).
+/// The bank-angle command of `fmu check` at time `t` \[rad\].
+pub(super) fn check_bank(t: f64) -> f64 {
+    if t < 100.0 {
+        0.0
+    } else if t < 200.0 {
+        0.35
+    } else {
+        -0.2
+    }
+}
+
+pub(super) fn check_inputs(
+    vars: &[Var],
+    t: f64,
+    truth: Option<&TruthSensors>,
+) -> Vec<(usize, Value)> {
+    let bank = check_bank(t);
+    let epoch = truth.and_then(|ts| ts.last_epoch());
+    let slot_value = |s: Slot| -> Option<f64> {
+        let (ts, e) = (truth?, epoch?);
+        let c = ts
+            .scenario()
+            .channels
+            .iter()
+            .position(|c| Slot::of(c.channel) == Some(s))?;
+        e.values[c]
+    };
+    vars.iter()
+        .enumerate()
+        .filter(|(_, v)| v.causality == Causality::Input)
+        .map(|(i, v)| {
+            let val = match v.key {
+                Key::Bank => Value::Real(bank),
+                Key::BeaconAvailable(b) => Value::Boolean(!(b == 1 && (120.0..180.0).contains(&t))),
+                Key::MeasEpoch => Value::Boolean(epoch.is_some()),
+                Key::MeasTime => Value::Real(epoch.map(|e| e.t).unwrap_or(0.0)),
+                Key::Meas(s) => Value::Real(slot_value(s).unwrap_or(0.0)),
+                Key::MeasValid(s) => Value::Boolean(slot_value(s).is_some()),
+                _ => v.start.clone().unwrap_or(Value::Real(0.0)),
+            };
+            (i, val)
+        })
+        .collect()
+}
+
+pub(super) fn scenario_timing(name: &str, resources: &Path) -> Result<(f64, f64)> {
+    let cfg = if BUILTIN_NAMES.contains(&name) {
+        ScenarioConfig::builtin(name)?
+    } else {
+        let p = resources.join(name);
+        let text =
+            std::fs::read_to_string(&p).with_context(|| format!("cannot read {}", p.display()))?;
+        ScenarioConfig::from_toml_str(&text, &p.display().to_string())?
+    };
+    let dur = cfg.timing.duration_s;
+    let name_ok = cfg.name.clone();
+    let _ = name_ok;
+    let sc = entrynav::scenario::Scenario::build(cfg, &|p: &str| {
+        std::fs::read_to_string(resources.join(p)).map_err(|e| e.to_string())
+    })?;
+    let step = sc
+        .channels
+        .iter()
+        .map(|c| c.period_s)
+        .fold(f64::INFINITY, f64::min);
+    Ok((dur, if step.is_finite() { step } else { 1.0 }))
+}
+
+pub(super) fn check(a: &CheckArgs) -> Result<()> {
+    let u = unpack(&a.file)?;
+    let m = u.model;
+    let vars = variables(m);
+    let res = u.dir.join("resources");
+    let (duration, default_step) = scenario_timing(&a.scenario, &res)?;
+    let h = a.step.unwrap_or(default_step);
+    let n_steps = (duration / h).round() as usize;
+    let guid = guid_of(m);
+    // SAFETY: plain C strings from the library.
+    let (platform, version) = unsafe {
+        (
+            CStr::from_ptr((u.api.fmi2GetTypesPlatform)())
+                .to_string_lossy()
+                .into_owned(),
+            CStr::from_ptr((u.api.fmi2GetVersion)())
+                .to_string_lossy()
+                .into_owned(),
+        )
+    };
+    ensure!(
+        platform == "default" && version == "2.0",
+        "types platform {platform}, version {version}"
+    );
+    let params: Vec<(usize, Value)> = vars
+        .iter()
+        .enumerate()
+        .filter_map(|(i, v)| {
+            let val = match v.key {
+                Key::Scenario => Value::String(a.scenario.clone()),
+                Key::Filter => Value::String(a.filter.clone()),
+                Key::Seed => Value::Integer(a.seed),
+                Key::Dispersed => Value::Boolean(!a.nominal),
+                _ => return None,
+            };
+            Some((i, val))
+        })
+        .collect();
+    let groups = output_groups(&vars);
+    let uri = file_uri(&res);
+
+    // Through the host.
+    let slave = Slave::new(&u, "check", &guid, &uri)?;
+    // In process: the same library's safe instance, no FFI.
+    let mut inst = Instance::new("check", &guid, Some(&uri), false, Box::new(|_, _, _| {}))
+        .map_err(|(_, e)| anyhow::anyhow!(e))?;
+    let mut feeder = if m == Model::Filter {
+        Some(TruthSensors::new(
+            load_scenario(&a.scenario, &res)?,
+            a.seed as u64,
+            !a.nominal,
+        ))
+    } else {
+        None
+    };
+    for (i, v) in &params {
+        ensure!(
+            slave.set(&vars[*i], v) == 0,
+            "set {}: {:?}",
+            vars[*i].name,
+            slave.messages()
+        );
+        ensure!(inst.set("fmi2Set", &[vars[*i].vr], vec![v.clone()]) == Status::Ok);
+    }
+    // SAFETY: our instance.
+    unsafe {
+        ensure!(
+            (u.api.fmi2SetupExperiment)(slave.c, 0, 0.0, 0.0, 1, duration) == 0,
+            "setup: {:?}",
+            slave.messages()
+        );
+        ensure!(
+            (u.api.fmi2EnterInitializationMode)(slave.c) == 0,
+            "enter init: {:?}",
+            slave.messages()
+        );
+        ensure!(
+            (u.api.fmi2ExitInitializationMode)(slave.c) == 0,
+            "exit init: {:?}",
+            slave.messages()
+        );
+    }
+    ensure!(inst.setup_experiment(0.0, Some(duration)) == Status::Ok);
+    ensure!(inst.enter_initialization_mode() == Status::Ok);
+    ensure!(inst.exit_initialization_mode() == Status::Ok);
+    let mut compared = 0usize;
+    let mut check_eq = |k: usize, host: Vec<u64>, local: Vec<u64>| -> Result<()> {
+        if host != local {
+            let j = host
+                .iter()
+                .zip(&local)
+                .position(|(x, y)| x != y)
+                .unwrap_or(0);
+            bail!("step {k}: output #{j} differs between the host and the in-process library");
+        }
+        compared += host.len();
+        Ok(())
+    };
+    check_eq(
+        0,
+        slave.get_all(&groups)?,
+        in_process_get_all(&mut inst, &groups)?,
+    )?;
+    let mut warnings = 0;
+    for k in 0..n_steps {
+        let t = k as f64 * h;
+        for (i, v) in check_inputs(&vars, t, feeder.as_ref()) {
+            ensure!(
+                slave.set(&vars[i], &v) == 0,
+                "set {}: {:?}",
+                vars[i].name,
+                slave.messages()
+            );
+            ensure!(inst.set("fmi2Set", &[vars[i].vr], vec![v]) == Status::Ok);
+        }
+        // SAFETY: our instance.
+        let st = unsafe { (u.api.fmi2DoStep)(slave.c, t, h, 1) };
+        let st_local = inst.do_step(t, h);
+        ensure!(
+            st <= 1,
+            "fmi2DoStep at t = {t} returned {st}: {:?}",
+            slave.messages()
+        );
+        ensure!(
+            st == st_local as i32,
+            "doStep status {st} vs in-process {st_local:?}"
+        );
+        warnings += (st == 1) as usize;
+        if let Some(ts) = feeder.as_mut() {
+            // The measurements of the truth flying the bank the filter is told.
+            ts.do_step(t, h, check_bank(t), &[true; MAX_BEACONS])?;
+        }
+        check_eq(
+            k + 1,
+            slave.get_all(&groups)?,
+            in_process_get_all(&mut inst, &groups)?,
+        )?;
+    }
+    // SAFETY: our instance.
+    unsafe {
+        ensure!((u.api.fmi2Terminate)(slave.c) == 0);
+    }
+    println!(
+        "{}: {} ({}), {} steps of {h} s on {} / {} / seed {}: {} output values compared, all bitwise identical to the in-process library ({} warnings)",
+        a.file.display(),
+        m.identifier(),
+        guid,
+        n_steps,
+        a.scenario,
+        if m.has_filter() {
+            a.filter.as_str()
+        } else {
+            "-"
+        },
+        a.seed,
+        compared,
+        warnings
+    );
+    if a.bench {
+        bench(&u, a, &params, &uri, duration, h, n_steps)?;
+    }
+    Ok(())
+}
+
+pub(super) fn load_scenario(name: &str, res: &Path) -> Result<Arc<entrynav::scenario::Scenario>> {
+    let cfg = if BUILTIN_NAMES.contains(&name) {
+        ScenarioConfig::builtin(name)?
+    } else {
+        let p = res.join(name);
+        ScenarioConfig::from_toml_str(&std::fs::read_to_string(&p)?, &p.display().to_string())?
+    };
+    Ok(Arc::new(entrynav::scenario::Scenario::build(
+        cfg,
+        &|p: &str| std::fs::read_to_string(res.join(p)).map_err(|e| e.to_string()),
+    )?))
+}
+
+pub(super) fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+pub(super) fn bench(
+    u: &Unpacked,
+    a: &CheckArgs,
+    params: &[(usize, Value)],
+    uri: &str,
+    duration: f64,
+    h: f64,
+    n_steps: usize,
+) -> Result<()> {
+    ensure!(
+        u.model == Model::Combined,
+        "--bench needs the combined FMU (MarsEntryNav)"
+    );
+    let vars = variables(u.model);
+    let bank_vr = vars
+        .iter()
+        .find(|v| v.key == Key::Bank)
+        .map(|v| v.vr)
+        .unwrap_or(0);
+    let scenario = load_scenario(&a.scenario, &u.dir.join("resources"))?;
+    let kind = entrynav::estimation::nav::FilterKind::parse(&a.filter)?;
+    let guid = guid_of(u.model);
+    let (mut host, mut direct, mut wrapped) = (Vec::new(), Vec::new(), Vec::new());
+    for _ in 0..a.reps.max(1) {
+        // In process: the engine called directly.
+        let mut co = entrynav::sim::cosim::EntryCoSim::new(
+            Arc::clone(&scenario),
+            kind,
+            a.seed as u64,
+            !a.nominal,
+        )?;
+        let clock = Instant::now();
+        for k in 0..n_steps {
+            let t = k as f64 * h;
+            let bank = if t < 100.0 { 0.0 } else { 0.35 };
+            co.do_step(t, h, bank, &[true; MAX_BEACONS])?;
+        }
+        direct.push(clock.elapsed().as_secs_f64());
+        // In process through the safe instance wrapper (same code as behind the C API).
+        let mut inst = Instance::new("bench", &guid, Some(uri), false, Box::new(|_, _, _| {}))
+            .map_err(|(_, e)| anyhow::anyhow!(e))?;
+        for (i, v) in params {
+            inst.set("fmi2Set", &[vars[*i].vr], vec![v.clone()]);
+        }
+        inst.setup_experiment(0.0, Some(duration));
+        inst.enter_initialization_mode();
+        ensure!(inst.exit_initialization_mode() == Status::Ok);
+        let clock = Instant::now();
+        for k in 0..n_steps {
+            let t = k as f64 * h;
+            let bank = if t < 100.0 { 0.0 } else { 0.35 };
+            inst.set("fmi2SetReal", &[bank_vr], vec![Value::Real(bank)]);
+            ensure!(inst.do_step(t, h) <= Status::Warning);
+        }
+        wrapped.push(clock.elapsed().as_secs_f64());
+        // Through the host: the same inputs set and the same steps.
+        let s = Slave::new(u, "bench", &guid, uri)?;
+        for (i, v) in params {
+            s.set(&vars[*i], v);
+        }
+        // SAFETY: our instance; one reference and one value per set call.
+        unsafe {
+            (u.api.fmi2SetupExperiment)(s.c, 0, 0.0, 0.0, 1, duration);
+            (u.api.fmi2EnterInitializationMode)(s.c);
+            ensure!((u.api.fmi2ExitInitializationMode)(s.c) == 0);
+            let clock = Instant::now();
+            for k in 0..n_steps {
+                let t = k as f64 * h;
+                let bank = if t < 100.0 { 0.0 } else { 0.35 };
+                (u.api.fmi2SetReal)(s.c, &bank_vr, 1, &bank);
+                let st = (u.api.fmi2DoStep)(s.c, t, h, 1);
+                ensure!(st <= 1, "doStep {st}");
+            }
+            host.push(clock.elapsed().as_secs_f64());
+        }
+    }
+    let (mh, md, mw) = (median(host), median(direct), median(wrapped));
+    println!(
+        "bench {} / {} / {n_steps} steps of {h} s, median of {} runs: host (fmi2SetReal + fmi2DoStep via libloading) {:.3} ms ({:.2} us/step), in-process engine (EntryCoSim::do_step) {:.3} ms ({:.2} us/step), in-process instance wrapper {:.3} ms; host/in-process = {:.3}",
+        a.scenario,
+        a.filter,
+        a.reps.max(1),
+        mh * 1e3,
+        mh * 1e6 / n_steps as f64,
+        md * 1e3,
+        md * 1e6 / n_steps as f64,
+        mw * 1e3,
+        mh / md
+    );
+    Ok(())
+}

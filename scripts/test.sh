@@ -18,6 +18,9 @@ echo "== cargo test"
 # Release profile: the Monte Carlo and property tests are numerical and run much faster optimised.
 cargo test --workspace --release
 
+echo "== the shipped density network is reproduced bit for bit by retraining (seed 001 Algorithm 1)"
+cargo test --release -p entrynav --test density_adaptation -- --ignored
+
 echo "== benchmarks compile"
 cargo bench --workspace --no-run
 

@@ -515,34 +515,3 @@ fn bad_inputs_are_errors_not_panics() {
         .is_err()
     );
 }
-
-#[test]
-fn timing_printout() {
-    let mut rng = ChaCha8Rng::seed_from_u64(1);
-    let sets: Vec<Vec<_>> = (0..50).map(|_| entry_estimates(&mut rng)).collect();
-    let infos: Vec<Vec<_>> = sets
-        .iter()
-        .map(|s| s.iter().map(|(_, p)| inv(p)).collect())
-        .collect();
-    for m in METHODS {
-        let reps = if cfg!(debug_assertions) { 1 } else { 20 };
-        let t = std::time::Instant::now();
-        let mut acc = 0.0;
-        for _ in 0..reps {
-            for y in &infos {
-                acc += ci_weights(y, m).unwrap()[0];
-            }
-        }
-        let w_us = t.elapsed().as_secs_f64() * 1e6 / (reps * infos.len()) as f64;
-        let t = std::time::Instant::now();
-        for _ in 0..reps {
-            for e in &sets {
-                acc += covariance_intersection(e, m).unwrap().weights[0];
-            }
-        }
-        let f_us = t.elapsed().as_secs_f64() * 1e6 / (reps * sets.len()) as f64;
-        eprintln!(
-            "{m:?}: ci_weights {w_us:.2} µs, covariance_intersection {f_us:.2} µs (n = 4, N = 8; {acc:.1})"
-        );
-    }
-}

@@ -511,14 +511,16 @@ def case_fmpy_simulate():
             same = np.array_equal(a, b, equal_nan=True)
             assert same, f"{name}: fmpy and the in-process library differ (max |d| = {np.nanmax(np.abs(a - b))})"
             compared += len(a)
-        # The outage and the bank command had an effect.
-        assert not np.all(res["beacon_visible_2"] == 0) or True
+        # The outage removed beacon 2's range from the updates.
         n_meas = np.asarray(res["n_meas"])
         assert n_meas[125] < n_meas[110], (n_meas[110], n_meas[125])
-        # Timing of the plain 300 s, 1 Hz DCIFAIF run (reported, not asserted).
+        # The same run without inputs (bank 0, every beacon available), timed (reported, not
+        # asserted): the bank command changed the flown trajectory.
         t0 = time.perf_counter()
-        simulate_fmu(str(COMBINED), stop_time=300.0, output_interval=1.0, start_values={"filter": "dcifaif"})
+        plain_res = simulate_fmu(str(COMBINED), stop_time=300.0, output_interval=1.0, start_values=params)
         plain = time.perf_counter() - t0
+        dr = abs(float(plain_res["truth_r"][-1]) - float(res["truth_r"][-1]))
+        assert dr > 100.0, f"the bank command moved the final radius by only {dr} m"
         return {"values_compared": compared, "wall_with_input_s": round(wall, 3), "wall_300s_dcifaif_s": round(plain, 3)}
     finally:
         shutil.rmtree(tmp, ignore_errors=True)

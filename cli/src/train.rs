@@ -51,7 +51,7 @@ pub struct TrainArgs {
     pub quiet: bool,
     /// Evaluate the density estimates of `--filters` over this many Monte Carlo runs (the runs of
     /// `entrynav trade --seed MC_SEED`): eq. 70 RMSPE with the filter's density model at the true
-    /// altitude (our reading of seed 001 Table 6) and at its own estimate (what `trade` prints).
+    /// altitude (our reading of seed 001 Table 6) and at its own estimate (`trade` reports both as density_rmspe_pct and density_at_estimate_rmspe_pct).
     #[arg(long, value_name = "RUNS")]
     pub evaluate: Option<usize>,
     /// Filters evaluated by `--evaluate`.

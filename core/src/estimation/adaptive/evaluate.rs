@@ -10,8 +10,8 @@
 //!   of the estimated density with ... Mars-GRAM"). This is our reading of Table 6: it
 //!   reproduces its numbers (UKF-AC ≈ 30 %; USKF-NN ≈ |r error|/H, 0.7 % for the paper's 65 m).
 //! * **state** — the filter's density at its own estimate x̂ against the true density at the
-//!   true state, which is what `entrynav trade` reports from
-//!   [`NavFilter::density_estimate`]. Any
+//!   true state ([`NavFilter::density_estimate`]). `entrynav trade` reports both readings
+//!   (`density_rmspe_pct` is the profile reading, `density_at_estimate_rmspe_pct` this one). Any
 //!   filter that fits dynamic pressure scores well here, whatever its altitude error: UKF-AC moves
 //!   r̂ until 𝒦̂·ρ_nominal(r̂) matches the measured density.
 //!
@@ -107,7 +107,7 @@ pub struct DensityEvalReport {
     pub failed: usize,
     /// Eq. 70, profile reading (the filter's density model at the true altitude) [%].
     pub rmspe_profile_pct: f64,
-    /// Eq. 70, state reading (the filter's density at its estimate, as `trade` prints) [%].
+    /// Eq. 70, state reading (the filter's density at its estimate) [%].
     pub rmspe_state_pct: f64,
     /// Epoch times \[s\].
     pub times_s: Vec<f64>,

@@ -244,8 +244,8 @@ fn print_tables(report: &TradeReport, elapsed: f64) {
         println!();
         println!("filter {}", f.name);
         println!(
-            "  {:<20} {:>14} {:>14} {:>14} {:>10}",
-            "state", "RMSE time-avg", "RMSE final", "mean err final", "in 3σ"
+            "  {:<20} {:>14} {:>14} {:>14} {:>14} {:>10}",
+            "state", "RMSE time-avg", "MAE (eq. 69)", "RMSE final", "mean err final", "in 3σ"
         );
         let mut names: Vec<&String> = report.states.iter().collect();
         let extra = ["pos_m".to_string(), "vel_mps".to_string()];
@@ -257,9 +257,10 @@ fn print_tables(report: &TradeReport, elapsed: f64) {
                 .map(|v| format!("{:.1}%", 100.0 * v))
                 .unwrap_or_default();
             println!(
-                "  {:<20} {:>14} {:>14} {:>14} {:>10}",
+                "  {:<20} {:>14} {:>14} {:>14} {:>14} {:>10}",
                 s,
                 fmt(get(&f.rmse_time_avg)),
+                fmt(get(&f.mae_time_avg_eq69)),
                 fmt(get(&f.rmse_final)),
                 fmt(get(&f.final_error_mean)),
                 in3

@@ -19,7 +19,8 @@ echo "== cargo test"
 cargo test --workspace --release
 
 echo "== the shipped density network is reproduced bit for bit by retraining (seed 001 Algorithm 1)"
-cargo test --release -p entrynav --test density_adaptation -- --ignored
+# (--workspace keeps the feature set of the run above, so nothing is recompiled)
+cargo test --workspace --release --test density_adaptation -- --ignored
 
 echo "== benchmarks compile"
 cargo bench --workspace --no-run

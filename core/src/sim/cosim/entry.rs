@@ -1,0 +1,82 @@
+//! [`EntryCoSim`]: truth, sensors and navigation filter together, the filter run at every
+//! measurement epoch of the truth.
+
+use super::*;
+
+/// Truth, sensors and a navigation filter in one co-simulation slave.
+#[derive(Debug)]
+pub struct EntryCoSim {
+    truth: TruthSensors,
+    nav: NavigationCoSim,
+    judgement: Judgement,
+}
+
+impl EntryCoSim {
+    /// Filter `kind` on `scenario` with the truth realisation of `seed` (dispersed or nominal).
+    pub fn new(
+        scenario: Arc<Scenario>,
+        kind: FilterKind,
+        seed: u64,
+        dispersed: bool,
+    ) -> Result<EntryCoSim, CoSimError> {
+        let truth = TruthSensors::new(Arc::clone(&scenario), seed, dispersed);
+        let nav =
+            NavigationCoSim::with_truth(scenario, kind, seed, truth.draw(), &truth.outputs.sample)?;
+        let judgement = nav.judge(truth.draw(), &truth.outputs.sample);
+        Ok(EntryCoSim {
+            truth,
+            nav,
+            judgement,
+        })
+    }
+
+    /// Advance from `t` by `h` with bank angle `bank` \[rad\] and beacon availability flags; the
+    /// filter processes every measurement epoch of the step with its onboard models at `bank`.
+    pub fn do_step(
+        &mut self,
+        t: f64,
+        h: f64,
+        bank: f64,
+        beacon_available: &[bool],
+    ) -> Result<StepReport, CoSimError> {
+        check_step(self.nav.time, t, h)?;
+        let mut epochs = Vec::new();
+        let mut report =
+            self.truth
+                .do_step_with(t, h, bank, beacon_available, |epoch, sample| {
+                    epochs.push((epoch.clone(), sample.clone()));
+                })?;
+        report.epochs = 0;
+        self.nav.filter.set_bank_angle(bank);
+        for (epoch, sample) in &epochs {
+            if self.nav.process(epoch) {
+                report.epochs += 1;
+                if self.nav.status == NavStatus::Running {
+                    self.judgement = self.nav.judge(self.truth.draw(), sample);
+                }
+            }
+        }
+        self.nav.time = t + h;
+        Ok(report)
+    }
+
+    /// The truth and sensors.
+    pub fn truth(&self) -> &TruthSensors {
+        &self.truth
+    }
+
+    /// The filter.
+    pub fn nav(&self) -> &NavigationCoSim {
+        &self.nav
+    }
+
+    /// The latest estimate judged against the truth at its epoch.
+    pub fn judgement(&self) -> &Judgement {
+        &self.judgement
+    }
+
+    /// Current communication point \[s\].
+    pub fn time(&self) -> f64 {
+        self.nav.time
+    }
+}

@@ -14,13 +14,12 @@
 //! overrides it with a number.
 
 use super::setup::FilterStart;
-use super::ukf_common::{epoch_measurements, predict_channels, step_info, substeps};
+use super::ukf_common::UkfCore;
 use super::{NavFilter, StepInfo};
 use crate::atmosphere::{Atmosphere, AtmosphereModel};
-use crate::dynamics::EntryModel;
 use crate::estimation::EstimationError;
 use crate::estimation::adaptive::density_config;
-use crate::estimation::ukf::{Ukf, UkfParams, UkfWorkspace};
+use crate::estimation::ukf::{Ukf, UkfParams};
 use crate::math::V3;
 use crate::scenario::Scenario;
 use crate::sim::MeasurementEpoch;
@@ -33,14 +32,8 @@ const L: usize = 9;
 /// UKF with the augmented density correction factor (`ukf-ac`), for 8-state spherical scenarios.
 #[derive(Debug, Clone)]
 pub struct UkfAcNav {
-    scenario: Arc<Scenario>,
-    model: EntryModel<AtmosphereModel>,
-    ukf: Ukf<L>,
-    ws: UkfWorkspace<L>,
+    core: UkfCore<AtmosphereModel, L>,
     q: SMatrix<f64, L, L>,
-    t: f64,
-    /// Bank-angle command of the onboard models \[rad\] (starts at the scenario's).
-    bank: f64,
 }
 
 /// Embed an 8-state start in the augmented space with extra state `(x, p, q)`.
@@ -83,52 +76,33 @@ impl UkfAcNav {
         };
         let (x0, p0, q) = augment_start(start, k0, cfg.ac_p0, cfg.ac_q);
         let u = &scenario.config.filter.ukf;
+        let ukf = Ukf::new(x0, p0, UkfParams::new(u.alpha, u.beta, u.kappa), 0)?;
+        // eq. 26: 𝒦 (state 8) scales the onboard density in the dynamics and the measurements.
         Ok(UkfAcNav {
-            scenario: Arc::clone(scenario),
-            model,
-            ukf: Ukf::new(x0, p0, UkfParams::new(u.alpha, u.beta, u.kappa), 0)?,
-            ws: UkfWorkspace::default(),
+            core: UkfCore::new(scenario, model, ukf, Some(8)),
             q,
-            t: 0.0,
-            bank: scenario.truth_bank,
         })
     }
 
     /// The corrected density profile 𝒦̂·ρ_nominal(h) at altitude `altitude_m` [kg/m³] (eq. 26).
     pub fn density_profile(&self, altitude_m: f64) -> f64 {
-        self.ukf.x[8] * self.model.atmosphere.density(altitude_m)
+        self.core.ukf.x[8] * self.core.model.atmosphere.density(altitude_m)
     }
 
     /// Current correction factor 𝒦 and its variance.
     pub fn correction_factor(&self) -> (f64, f64) {
-        (self.ukf.x[8], self.ukf.p[(8, 8)])
+        (self.core.ukf.x[8], self.core.ukf.p[(8, 8)])
     }
 }
 
 impl NavFilter<8> for UkfAcNav {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
-        let dt = t_to - self.t;
-        if dt <= 0.0 {
+        let Some((n, h, step)) = self.core.substeps_to(t_to) else {
             return Ok(());
-        }
-        let step = self.scenario.config.timing.filter_step_s;
-        let (n, h) = substeps(dt, step);
-        let bank = self.bank;
-        let model = &mut self.model;
+        };
+        // 𝒦 has zero derivative (random walk): the RK4 step leaves it unchanged.
         let q = self.q * (h / step);
-        for _ in 0..n {
-            // eq. 26 through the density scale; 𝒦 has zero derivative (random walk).
-            self.ukf.predict_with(
-                &mut self.ws,
-                |x| {
-                    model.density_factor = x[8];
-                    model.step(x, bank, h)
-                },
-                &q,
-            )?;
-        }
-        self.t = t_to;
-        Ok(())
+        self.core.propagate(t_to, n, h, &q, |_, _| {})
     }
 
     fn update(
@@ -136,38 +110,23 @@ impl NavFilter<8> for UkfAcNav {
         epoch: &MeasurementEpoch,
         beacons: &[(V3<f64>, V3<f64>)],
     ) -> Result<StepInfo, EstimationError> {
-        let Some((slots, z, r)) = epoch_measurements(&self.scenario, epoch) else {
-            return Ok(StepInfo::default());
-        };
-        let sc = &*self.scenario;
-        let (t, bank) = (epoch.t, self.bank);
-        let model = &mut self.model;
-        let h = |x: &SVector<f64, L>, out: &mut [f64]| {
-            model.density_factor = x[8];
-            predict_channels(sc, model, x, t, bank, beacons, &slots, out);
-            Ok(())
-        };
-        let upd = self.ukf.update_with(&mut self.ws, h, &z, &r)?;
-        Ok(step_info(&upd, slots.len()))
+        self.core.update(epoch, beacons)
     }
 
     fn estimate(&self) -> (SVector<f64, 8>, SMatrix<f64, 8, 8>) {
-        (
-            self.ukf.x.fixed_rows::<8>(0).into_owned(),
-            self.ukf.p.fixed_view::<8, 8>(0, 0).into_owned(),
-        )
+        self.core.estimate::<8>()
     }
 
     fn time(&self) -> f64 {
-        self.t
+        self.core.t
     }
 
     fn set_bank_angle(&mut self, bank_rad: f64) {
-        self.bank = bank_rad;
+        self.core.bank = bank_rad;
     }
 
     fn bank_angle(&self) -> f64 {
-        self.bank
+        self.core.bank
     }
 
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {
@@ -176,7 +135,9 @@ impl NavFilter<8> for UkfAcNav {
 
     /// 𝒦̂·ρ_nominal(r̂) (eq. 26).
     fn density_estimate(&self) -> Option<f64> {
-        let h = self.model.altitude(&self.ukf.x);
-        Some(self.ukf.x[8] * self.model.atmosphere.density(h))
+        Some(Self::density_profile(
+            self,
+            self.core.model.altitude(&self.core.ukf.x),
+        ))
     }
 }

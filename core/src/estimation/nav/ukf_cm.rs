@@ -8,13 +8,12 @@
 //! batch, reset to `diag(|Q̂ᵢᵢ|)` ([`CovarianceMatching`]). No consider analysis (§V.B).
 
 use super::setup::FilterStart;
-use super::ukf_common::{epoch_measurements, predict_channels, step_info, substeps};
+use super::ukf_common::UkfCore;
 use super::{NavFilter, StepInfo};
 use crate::atmosphere::{Atmosphere, AtmosphereModel};
-use crate::dynamics::EntryModel;
 use crate::estimation::EstimationError;
 use crate::estimation::adaptive::{CovarianceMatching, density_config};
-use crate::estimation::ukf::{Ukf, UkfParams, UkfWorkspace};
+use crate::estimation::ukf::{Ukf, UkfParams};
 use crate::math::V3;
 use crate::scenario::Scenario;
 use crate::sim::MeasurementEpoch;
@@ -24,18 +23,12 @@ use std::sync::Arc;
 /// UKF with covariance-matched process noise (`ukf-cm`).
 #[derive(Debug, Clone)]
 pub struct UkfCmNav<const N: usize> {
-    scenario: Arc<Scenario>,
-    model: EntryModel<AtmosphereModel>,
-    ukf: Ukf<N>,
-    ws: UkfWorkspace<N>,
+    core: UkfCore<AtmosphereModel, N>,
     /// Process noise per filter step currently in use (the scenario's until the first batch).
     q: SMatrix<f64, N, N>,
     cm: CovarianceMatching<N>,
     /// Prior mean, covariance and the process noise added since the last update.
     prior: Option<(SVector<f64, N>, SMatrix<f64, N, N>, SMatrix<f64, N, N>)>,
-    t: f64,
-    /// Bank-angle command of the onboard models \[rad\] (starts at the scenario's).
-    bank: f64,
 }
 
 impl<const N: usize> UkfCmNav<N> {
@@ -43,22 +36,18 @@ impl<const N: usize> UkfCmNav<N> {
     pub fn new(scenario: &Arc<Scenario>, start: &FilterStart<N>) -> Result<Self, EstimationError> {
         let u = &scenario.config.filter.ukf;
         let params = UkfParams::new(u.alpha, u.beta, u.kappa);
+        let ukf = Ukf::new(start.x0, start.p0, params, 0)?;
         Ok(UkfCmNav {
-            scenario: Arc::clone(scenario),
-            model: scenario.filter_model.clone(),
-            ukf: Ukf::new(start.x0, start.p0, params, 0)?,
-            ws: UkfWorkspace::default(),
+            core: UkfCore::new(scenario, scenario.filter_model.clone(), ukf, None),
             q: start.q,
             cm: CovarianceMatching::new(density_config(scenario).cm_batch),
             prior: None,
-            t: 0.0,
-            bank: scenario.truth_bank,
         })
     }
 
-    /// The onboard density profile at altitude `altitude_m` [kg/m³] (not adapted by UKF-CM).
+    /// The onboard density profile at altitude `altitude_m` \[kg/m³\] (not adapted by UKF-CM).
     pub fn density_profile(&self, altitude_m: f64) -> f64 {
-        self.model.atmosphere.density(altitude_m)
+        self.core.model.atmosphere.density(altitude_m)
     }
 
     /// The process noise per filter step currently in use.
@@ -69,26 +58,18 @@ impl<const N: usize> UkfCmNav<N> {
 
 impl<const N: usize> NavFilter<N> for UkfCmNav<N> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
-        let dt = t_to - self.t;
-        if dt <= 0.0 {
+        let Some((n, h, step)) = self.core.substeps_to(t_to) else {
             return Ok(());
-        }
-        let step = self.scenario.config.timing.filter_step_s;
-        let (n, h) = substeps(dt, step);
-        let bank = self.bank;
-        let model = &self.model;
+        };
         let q = self.q * (h / step);
-        for _ in 0..n {
-            self.ukf
-                .predict_with(&mut self.ws, |x| model.step(x, bank, h), &q)?;
-        }
+        self.core.propagate(t_to, n, h, &q, |_, _| {})?;
         let q_added = q * n as f64;
+        let (x, p) = (self.core.ukf.x, self.core.ukf.p);
         self.prior = Some(match self.prior.take() {
             // Several predictions without an update: D uses the total noise added.
-            Some((_, _, q0)) => (self.ukf.x, self.ukf.p, q0 + q_added),
-            None => (self.ukf.x, self.ukf.p, q_added),
+            Some((_, _, q0)) => (x, p, q0 + q_added),
+            None => (x, p, q_added),
         });
-        self.t = t_to;
         Ok(())
     }
 
@@ -97,38 +78,33 @@ impl<const N: usize> NavFilter<N> for UkfCmNav<N> {
         epoch: &MeasurementEpoch,
         beacons: &[(V3<f64>, V3<f64>)],
     ) -> Result<StepInfo, EstimationError> {
-        let Some((slots, z, r)) = epoch_measurements(&self.scenario, epoch) else {
-            return Ok(StepInfo::default());
-        };
-        let (sc, model, t, bank) = (&*self.scenario, &self.model, epoch.t, self.bank);
-        let h = |x: &SVector<f64, N>, out: &mut [f64]| {
-            predict_channels(sc, model, x, t, bank, beacons, &slots, out);
-            Ok(())
-        };
-        let upd = self.ukf.update_with(&mut self.ws, h, &z, &r)?;
-        if let Some((xp, pp, qu)) = self.prior.take() {
-            self.cm.push(&xp, &pp, &qu, &self.ukf.x, &self.ukf.p);
+        let info = self.core.update(epoch, beacons)?;
+        if info.n_meas > 0
+            && let Some((xp, pp, qu)) = self.prior.take()
+        {
+            self.cm
+                .push(&xp, &pp, &qu, &self.core.ukf.x, &self.core.ukf.p);
             if let Some(q) = self.cm.estimate() {
                 self.q = q;
             }
         }
-        Ok(step_info(&upd, slots.len()))
+        Ok(info)
     }
 
     fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
-        (self.ukf.x, self.ukf.p)
+        (self.core.ukf.x, self.core.ukf.p)
     }
 
     fn time(&self) -> f64 {
-        self.t
+        self.core.t
     }
 
     fn set_bank_angle(&mut self, bank_rad: f64) {
-        self.bank = bank_rad;
+        self.core.bank = bank_rad;
     }
 
     fn bank_angle(&self) -> f64 {
-        self.bank
+        self.core.bank
     }
 
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {
@@ -137,6 +113,6 @@ impl<const N: usize> NavFilter<N> for UkfCmNav<N> {
 
     /// The onboard model's density at the estimate (UKF-CM does not adapt it).
     fn density_estimate(&self) -> Option<f64> {
-        Some(self.model.density(&self.ukf.x))
+        Some(self.core.model.density(&self.core.ukf.x))
     }
 }

@@ -1,15 +1,18 @@
-//! Pieces the navigation filters share (mostly the UKF family): the prediction sub-steps, the epoch's measurement
-//! vector with its noise, the measurement function over sigma points, and the step report.
+//! Pieces the navigation filters share (mostly the UKF family): the prediction sub-steps, the
+//! epoch's measurement vector with its noise, the measurement function over sigma points, the step
+//! report, and [`UkfCore`], the state and loops of every UKF navigation filter.
 
 use super::StepInfo;
 use crate::atmosphere::Atmosphere;
 use crate::dynamics::EntryModel;
-use crate::estimation::ukf::UkfUpdate;
+use crate::estimation::EstimationError;
+use crate::estimation::ukf::{Ukf, UkfUpdate, UkfWorkspace};
 use crate::math::V3;
 use crate::scenario::Scenario;
 use crate::sensors::channels::kinematics;
 use crate::sim::MeasurementEpoch;
-use nalgebra::{DMatrix, DVector, SVector};
+use nalgebra::{DMatrix, DVector, SMatrix, SVector};
+use std::sync::Arc;
 
 /// Number and length of the RK4 sub-steps that cover `dt` with steps no longer than `step`.
 pub(crate) fn substeps(dt: f64, step: f64) -> (usize, f64) {
@@ -80,5 +83,130 @@ pub(crate) fn step_info(upd: &UkfUpdate, n_meas: usize) -> StepInfo {
         n_meas,
         innovations: upd.innovation.iter().copied().collect(),
         weights: None,
+    }
+}
+
+/// The state every UKF navigation filter carries (scenario, onboard model, UKF and its
+/// workspace, time, bank command) and the predict / update loops they share. The filters add
+/// what makes each one different: covariance matching (`ukf-cm`), the augmented correction
+/// factor (`ukf-ac`), the consider parameter and the network adaptation (`uskf-nn`).
+#[derive(Debug, Clone)]
+pub(crate) struct UkfCore<A, const L: usize> {
+    pub(crate) scenario: Arc<Scenario>,
+    pub(crate) model: EntryModel<A>,
+    pub(crate) ukf: Ukf<L>,
+    pub(crate) ws: UkfWorkspace<L>,
+    pub(crate) t: f64,
+    /// Bank-angle command of the onboard models \[rad\] (starts at the scenario's).
+    pub(crate) bank: f64,
+    /// `Some(i)`: state i scales the onboard density (𝒦 of UKF-AC, c of USKF-NN) at every sigma
+    /// point, through the model's density factor.
+    density_state: Option<usize>,
+}
+
+impl<A: Atmosphere, const L: usize> UkfCore<A, L> {
+    /// A core on `scenario` with onboard `model` and filter `ukf`.
+    pub(crate) fn new(
+        scenario: &Arc<Scenario>,
+        model: EntryModel<A>,
+        ukf: Ukf<L>,
+        density_state: Option<usize>,
+    ) -> Self {
+        UkfCore {
+            scenario: Arc::clone(scenario),
+            model,
+            ukf,
+            ws: UkfWorkspace::default(),
+            t: 0.0,
+            bank: scenario.truth_bank,
+            density_state,
+        }
+    }
+
+    /// The sub-steps `(n, h)` from the filter time to `t_to` and the scenario's filter step;
+    /// `None` when `t_to` is not later than the filter time.
+    pub(crate) fn substeps_to(&self, t_to: f64) -> Option<(usize, f64, f64)> {
+        let dt = t_to - self.t;
+        if dt <= 0.0 {
+            return None;
+        }
+        let step = self.scenario.config.timing.filter_step_s;
+        let (n, h) = substeps(dt, step);
+        Some((n, h, step))
+    }
+
+    /// `n` UKF time updates of length `h` with process noise `q` each (the truth's RK4 step per
+    /// sigma point, the density scaled by the density state if any; `post(x, y)` may then change
+    /// the propagated point y of x), ending at `t_to`.
+    pub(crate) fn propagate(
+        &mut self,
+        t_to: f64,
+        n: usize,
+        h: f64,
+        q: &SMatrix<f64, L, L>,
+        post: impl Fn(&SVector<f64, L>, &mut SVector<f64, L>),
+    ) -> Result<(), EstimationError> {
+        let (bank, density_state) = (self.bank, self.density_state);
+        let model = &mut self.model;
+        for _ in 0..n {
+            self.ukf.predict_with(
+                &mut self.ws,
+                |x| {
+                    if let Some(i) = density_state {
+                        model.density_factor = x[i];
+                    }
+                    let mut y = model.step(x, bank, h);
+                    post(x, &mut y);
+                    y
+                },
+                q,
+            )?;
+        }
+        self.t = t_to;
+        Ok(())
+    }
+
+    /// UKF measurement update with the channels `slots` (values `z`, noise `r`) of the epoch at
+    /// `t`.
+    pub(crate) fn update_measured(
+        &mut self,
+        slots: &[usize],
+        z: &DVector<f64>,
+        r: &DMatrix<f64>,
+        t: f64,
+        beacons: &[(V3<f64>, V3<f64>)],
+    ) -> Result<StepInfo, EstimationError> {
+        let (sc, bank, density_state) = (&*self.scenario, self.bank, self.density_state);
+        let model = &mut self.model;
+        let h = |x: &SVector<f64, L>, out: &mut [f64]| {
+            if let Some(i) = density_state {
+                model.density_factor = x[i];
+            }
+            predict_channels(sc, model, x, t, bank, beacons, slots, out);
+            Ok(())
+        };
+        let upd = self.ukf.update_with(&mut self.ws, h, z, r)?;
+        Ok(step_info(&upd, slots.len()))
+    }
+
+    /// UKF measurement update with every available channel of `epoch` (nothing when none is).
+    pub(crate) fn update(
+        &mut self,
+        epoch: &MeasurementEpoch,
+        beacons: &[(V3<f64>, V3<f64>)],
+    ) -> Result<StepInfo, EstimationError> {
+        match epoch_measurements(&self.scenario, epoch) {
+            Some((slots, z, r)) => self.update_measured(&slots, &z, &r, epoch.t, beacons),
+            None => Ok(StepInfo::default()),
+        }
+    }
+
+    /// The estimate and covariance of the first `M` states (the navigation states of an
+    /// augmented filter).
+    pub(crate) fn estimate<const M: usize>(&self) -> (SVector<f64, M>, SMatrix<f64, M, M>) {
+        (
+            self.ukf.x.fixed_rows::<M>(0).into_owned(),
+            self.ukf.p.fixed_view::<M, M>(0, 0).into_owned(),
+        )
     }
 }

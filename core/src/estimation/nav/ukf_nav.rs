@@ -1,12 +1,12 @@
 //! The UKF navigation filter (seed 001 eq. 41–66; no consider states here).
 
 use super::setup::FilterStart;
-use super::ukf_common::{epoch_measurements, predict_channels, step_info, substeps};
+use super::ukf_common::UkfCore;
 use super::{NavFilter, StepInfo};
 use crate::atmosphere::AtmosphereModel;
-use crate::dynamics::{AugmentedParam, EntryModel};
+use crate::dynamics::AugmentedParam;
 use crate::estimation::EstimationError;
-use crate::estimation::ukf::{Ukf, UkfParams, UkfWorkspace};
+use crate::estimation::ukf::{Ukf, UkfParams};
 use crate::math::V3;
 use crate::scenario::Scenario;
 use crate::sim::MeasurementEpoch;
@@ -17,14 +17,8 @@ use std::sync::Arc;
 /// propagated with the truth's RK4 scheme in sub-steps no longer than the filter step.
 #[derive(Debug, Clone)]
 pub struct UkfNav<const N: usize> {
-    scenario: Arc<Scenario>,
-    model: EntryModel<AtmosphereModel>,
-    ukf: Ukf<N>,
-    ws: UkfWorkspace<N>,
+    core: UkfCore<AtmosphereModel, N>,
     q: SMatrix<f64, N, N>,
-    t: f64,
-    /// Bank-angle command of the onboard models \[rad\] (starts at the scenario's).
-    bank: f64,
 }
 
 impl<const N: usize> UkfNav<N> {
@@ -36,35 +30,21 @@ impl<const N: usize> UkfNav<N> {
             beta: u.beta,
             kappa: u.kappa,
         };
+        let ukf = Ukf::new(start.x0, start.p0, params, 0)?;
         Ok(UkfNav {
-            scenario: Arc::clone(scenario),
-            model: scenario.filter_model.clone(),
-            ukf: Ukf::new(start.x0, start.p0, params, 0)?,
-            ws: UkfWorkspace::default(),
+            core: UkfCore::new(scenario, scenario.filter_model.clone(), ukf, None),
             q: start.q,
-            t: 0.0,
-            bank: scenario.truth_bank,
         })
     }
 }
 
 impl<const N: usize> NavFilter<N> for UkfNav<N> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
-        let dt = t_to - self.t;
-        if dt <= 0.0 {
+        let Some((n, h, step)) = self.core.substeps_to(t_to) else {
             return Ok(());
-        }
-        let step = self.scenario.config.timing.filter_step_s;
-        let (n, h) = substeps(dt, step);
-        let bank = self.bank;
-        let model = &self.model;
+        };
         let q = self.q * (h / step);
-        for _ in 0..n {
-            self.ukf
-                .predict_with(&mut self.ws, |x| model.step(x, bank, h), &q)?;
-        }
-        self.t = t_to;
-        Ok(())
+        self.core.propagate(t_to, n, h, &q, |_, _| {})
     }
 
     fn update(
@@ -72,43 +52,37 @@ impl<const N: usize> NavFilter<N> for UkfNav<N> {
         epoch: &MeasurementEpoch,
         beacons: &[(V3<f64>, V3<f64>)],
     ) -> Result<StepInfo, EstimationError> {
-        let Some((slots, z, r)) = epoch_measurements(&self.scenario, epoch) else {
-            return Ok(StepInfo::default());
-        };
-        let (sc, model, t, bank) = (&*self.scenario, &self.model, epoch.t, self.bank);
-        let h = |x: &SVector<f64, N>, out: &mut [f64]| {
-            predict_channels(sc, model, x, t, bank, beacons, &slots, out);
-            Ok(())
-        };
-        let upd = self.ukf.update_with(&mut self.ws, h, &z, &r)?;
-        Ok(step_info(&upd, slots.len()))
+        self.core.update(epoch, beacons)
     }
 
     fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
-        (self.ukf.x, self.ukf.p)
+        (self.core.ukf.x, self.core.ukf.p)
     }
 
     fn time(&self) -> f64 {
-        self.t
+        self.core.t
     }
 
     fn set_bank_angle(&mut self, bank_rad: f64) {
-        self.bank = bank_rad;
+        self.core.bank = bank_rad;
     }
 
     fn bank_angle(&self) -> f64 {
-        self.bank
+        self.core.bank
     }
 
     fn density_estimate(&self) -> Option<f64> {
-        self.model
-            .augmented
+        let m = &self.core.model;
+        m.augmented
             .contains(&AugmentedParam::Rho0)
-            .then(|| self.model.density(&self.ukf.x))
+            .then(|| m.density(&self.core.ukf.x))
     }
 
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {
-        self.density_estimate()
-            .map(|_| self.model.density_profile(&self.ukf.x, altitude_m))
+        self.density_estimate().map(|_| {
+            self.core
+                .model
+                .density_profile(&self.core.ukf.x, altitude_m)
+        })
     }
 }

@@ -21,7 +21,7 @@
 
 use super::setup::FilterStart;
 use super::ukf_ac::augment_start;
-use super::ukf_common::{epoch_measurements, predict_channels, step_info, substeps};
+use super::ukf_common::{UkfCore, epoch_measurements};
 use super::{NavFilter, StepInfo};
 use crate::atmosphere::Atmosphere;
 use crate::dynamics::EntryModel;
@@ -30,7 +30,7 @@ use crate::estimation::adaptive::{
     Activations, DensityNetworkSet, LossContext, LossTerm, MloOutcome, MloSettings, NnAtmosphere,
     OnlineAdam, density_config, load_network_set, maximise_likelihood,
 };
-use crate::estimation::ukf::{Ukf, UkfParams, UkfWorkspace};
+use crate::estimation::ukf::{Ukf, UkfParams};
 use crate::math::V3;
 use crate::scenario::Scenario;
 use crate::sensors::channels::kinematics;
@@ -61,10 +61,7 @@ pub struct AdaptationStats {
 /// spherical scenarios.
 #[derive(Debug, Clone)]
 pub struct UskfNnNav {
-    scenario: Arc<Scenario>,
-    model: EntryModel<NnAtmosphere>,
-    ukf: Ukf<L>,
-    ws: UkfWorkspace<L>,
+    core: UkfCore<NnAtmosphere, L>,
     /// Process noise of the 8 navigation states per filter step.
     q: SMatrix<f64, 8, 8>,
     tau: f64,
@@ -75,9 +72,6 @@ pub struct UskfNnNav {
     adam: Vec<OnlineAdam>,
     act: Activations,
     stats: AdaptationStats,
-    t: f64,
-    /// Bank-angle command of the onboard models \[rad\] (starts at the scenario's).
-    bank: f64,
 }
 
 impl UskfNnNav {
@@ -109,11 +103,10 @@ impl UskfNnNav {
         };
         let (x0, p0, _) = augment_start(start, 1.0, cfg.consider_p0, 0.0);
         let u = &scenario.config.filter.ukf;
+        let ukf = Ukf::new(x0, p0, UkfParams::new(u.alpha, u.beta, u.kappa), 1)?;
         Ok(UskfNnNav {
-            scenario: Arc::clone(scenario),
-            model,
-            ukf: Ukf::new(x0, p0, UkfParams::new(u.alpha, u.beta, u.kappa), 1)?,
-            ws: UkfWorkspace::default(),
+            // eq. 45, 62: the consider parameter c (state 8) scales the network's density.
+            core: UkfCore::new(scenario, model, ukf, Some(8)),
             q: start.q,
             tau: cfg.consider_tau_s,
             pss: cfg.consider_pss,
@@ -131,19 +124,23 @@ impl UskfNnNav {
             adam: vec![OnlineAdam::default(); nb],
             act: Activations::default(),
             stats: AdaptationStats::default(),
-            t: 0.0,
-            bank: scenario.truth_bank,
         })
     }
 
     /// The filter's density profile ĉ·NN(R + h, ξ_k) at altitude `altitude_m` [kg/m³].
     pub fn density_profile(&self, altitude_m: f64) -> f64 {
-        self.ukf.x[8] * self.model.atmosphere.set.density_at_altitude(altitude_m)
+        self.core.ukf.x[8]
+            * self
+                .core
+                .model
+                .atmosphere
+                .set
+                .density_at_altitude(altitude_m)
     }
 
     /// The adapted onboard atmosphere (network set ξ_k).
     pub fn atmosphere(&self) -> &NnAtmosphere {
-        &self.model.atmosphere
+        &self.core.model.atmosphere
     }
 
     /// Adaptation diagnostics.
@@ -153,41 +150,24 @@ impl UskfNnNav {
 
     /// Augmented estimate [x̂; ĉ] and covariance.
     pub fn augmented(&self) -> (SVector<f64, L>, SMatrix<f64, L, L>) {
-        (self.ukf.x, self.ukf.p)
+        (self.core.ukf.x, self.core.ukf.p)
     }
 }
 
 impl NavFilter<8> for UskfNnNav {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
-        let dt = t_to - self.t;
-        if dt <= 0.0 {
+        let Some((n, h, step)) = self.core.substeps_to(t_to) else {
             return Ok(());
-        }
-        let step = self.scenario.config.timing.filter_step_s;
-        let (n, h) = substeps(dt, step);
-        let bank = self.bank;
+        };
         // eq. 51: ECRV transition and its process noise.
         let phi = (-h / self.tau).exp();
         let mut q = SMatrix::<f64, L, L>::zeros();
         q.fixed_view_mut::<8, 8>(0, 0)
             .copy_from(&(self.q * (h / step)));
         q[(8, 8)] = (1.0 - phi * phi) * self.pss;
-        let model = &mut self.model;
-        for _ in 0..n {
-            self.ukf.predict_with(
-                &mut self.ws,
-                |x| {
-                    // eq. 44–45: density c⁽ⁱ⁾·NN(r⁽ⁱ⁾, ξ_{k−1}) through the density scale.
-                    model.density_factor = x[8];
-                    let mut y = model.step(x, bank, h);
-                    y[8] = 1.0 + phi * (x[8] - 1.0);
-                    y
-                },
-                &q,
-            )?;
-        }
-        self.t = t_to;
-        Ok(())
+        // eq. 44–45: sigma point i flies the density c⁽ⁱ⁾·NN(r⁽ⁱ⁾, ξ_{k−1}); c decays to 1.
+        self.core
+            .propagate(t_to, n, h, &q, |x, y| y[8] = 1.0 + phi * (x[8] - 1.0))
     }
 
     fn update(
@@ -195,17 +175,17 @@ impl NavFilter<8> for UskfNnNav {
         epoch: &MeasurementEpoch,
         beacons: &[(V3<f64>, V3<f64>)],
     ) -> Result<StepInfo, EstimationError> {
-        let Some((slots, z, r)) = epoch_measurements(&self.scenario, epoch) else {
+        let Some((slots, z, r)) = epoch_measurements(&self.core.scenario, epoch) else {
             return Ok(StepInfo::default());
         };
-        let sc = &*self.scenario;
-        let (t, bank) = (epoch.t, self.bank);
+        let sc = &*self.core.scenario;
+        let (t, bank) = (epoch.t, self.core.bank);
 
         // Algorithm 2 at the prior mean (eq. 52–53).
         self.stats.epochs += 1;
         let k = self.stats.epochs;
-        let x8: SVector<f64, 8> = self.ukf.x.fixed_rows::<8>(0).into_owned();
-        let altitude = self.model.altitude(&x8);
+        let x8: SVector<f64, 8> = self.core.ukf.x.fixed_rows::<8>(0).into_owned();
+        let altitude = self.core.model.altitude(&x8);
         let term = LossTerm {
             x: x8,
             kin: kinematics(&sc.filter_model, &x8, t),
@@ -219,7 +199,7 @@ impl NavFilter<8> for UskfNnNav {
         while self.terms.len() > self.window {
             self.terms.pop_front();
         }
-        let band = self.model.atmosphere.set.band(altitude);
+        let band = self.core.model.atmosphere.set.band(altitude);
         let ctx = LossContext {
             measurement: &sc.measurement,
             model: &sc.filter_model,
@@ -227,7 +207,7 @@ impl NavFilter<8> for UskfNnNav {
         };
         let outcome = maximise_likelihood(
             &ctx,
-            &mut self.model.atmosphere.set,
+            &mut self.core.model.atmosphere.set,
             band,
             &mut self.adam[band],
             self.terms.make_contiguous(),
@@ -243,33 +223,23 @@ impl NavFilter<8> for UskfNnNav {
         self.stats.last = outcome;
 
         // eq. 61–68 with ξ_k.
-        let model = &mut self.model;
-        let h = |x: &SVector<f64, L>, out: &mut [f64]| {
-            model.density_factor = x[8];
-            predict_channels(sc, model, x, t, bank, beacons, &slots, out);
-            Ok(())
-        };
-        let upd = self.ukf.update_with(&mut self.ws, h, &z, &r)?;
-        Ok(step_info(&upd, slots.len()))
+        self.core.update_measured(&slots, &z, &r, t, beacons)
     }
 
     fn estimate(&self) -> (SVector<f64, 8>, SMatrix<f64, 8, 8>) {
-        (
-            self.ukf.x.fixed_rows::<8>(0).into_owned(),
-            self.ukf.p.fixed_view::<8, 8>(0, 0).into_owned(),
-        )
+        self.core.estimate::<8>()
     }
 
     fn time(&self) -> f64 {
-        self.t
+        self.core.t
     }
 
     fn set_bank_angle(&mut self, bank_rad: f64) {
-        self.bank = bank_rad;
+        self.core.bank = bank_rad;
     }
 
     fn bank_angle(&self) -> f64 {
-        self.bank
+        self.core.bank
     }
 
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {
@@ -278,7 +248,7 @@ impl NavFilter<8> for UskfNnNav {
 
     /// ĉ·NN(r̂, ξ_k) at the posterior estimate.
     fn density_estimate(&self) -> Option<f64> {
-        let h = self.model.altitude(&self.ukf.x);
-        Some(self.ukf.x[8] * self.model.atmosphere.density(h))
+        let h = self.core.model.altitude(&self.core.ukf.x);
+        Some(self.core.ukf.x[8] * self.core.model.atmosphere.density(h))
     }
 }

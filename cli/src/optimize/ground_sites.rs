@@ -189,18 +189,7 @@ pub(super) fn run_ground(a: &GroundArgs) -> Result<()> {
          outputs [m], Lie order k rows in m/s^k; scaled: {}",
         scaling_note(&report)
     );
-    println!(
-        "search      {} evaluations ({} swarm), {:.2} s search, {:.2} s wall; seed {}, {} starts x {} \
-         particles x {} iterations + Nelder-Mead",
-        sol.search.evaluations,
-        sol.search.swarm_evaluations,
-        sol.elapsed_s,
-        wall.elapsed().as_secs_f64(),
-        opts.seed,
-        opts.starts,
-        opts.particles,
-        opts.iterations
-    );
+    print_search(&sol.search, sol.elapsed_s, wall, &opts);
 
     if let Some(path) = &c.write_scenario {
         let name = file_stem(path);

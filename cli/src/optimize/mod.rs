@@ -270,6 +270,22 @@ fn write_json(path: &Path, v: &Value) -> Result<()> {
     Ok(())
 }
 
+/// The `search` summary line of `optimize orbiters` and `optimize ground`.
+fn print_search(s: &SearchResult, search_s: f64, wall: Instant, opts: &SearchOptions) {
+    println!(
+        "search      {} evaluations ({} swarm), {:.3} s search, {:.3} s wall; seed {}, {} starts x {} \
+         particles x {} iterations + Nelder-Mead",
+        s.evaluations,
+        s.swarm_evaluations,
+        search_s,
+        wall.elapsed().as_secs_f64(),
+        opts.seed,
+        opts.starts,
+        opts.particles,
+        opts.iterations
+    );
+}
+
 fn search_json(s: &SearchResult, opts: &SearchOptions) -> Value {
     json!({
         "seed": opts.seed,

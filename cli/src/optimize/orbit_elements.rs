@@ -134,18 +134,7 @@ pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
         );
     }
     println!();
-    println!(
-        "search      {} evaluations ({} swarm), {:.3} s search, {:.3} s wall; seed {}, {} starts x {} \
-         particles x {} iterations + Nelder-Mead",
-        sol.search.evaluations,
-        sol.search.swarm_evaluations,
-        sol.elapsed_s,
-        wall.elapsed().as_secs_f64(),
-        opts.seed,
-        opts.starts,
-        opts.particles,
-        opts.iterations
-    );
+    print_search(&sol.search, sol.elapsed_s, wall, &opts);
 
     let noise = template_noise(&cfg, true)?;
     if let Some(path) = &a.export_trajectory {

@@ -227,4 +227,16 @@ impl<A: Atmosphere> EntryModel<A> {
     pub fn density_profile<const N: usize>(&self, x: &SVector<f64, N>, altitude_m: f64) -> f64 {
         self.atmosphere.density(altitude_m) * self.aero_params(x, 0.0).density_scale
     }
+
+    /// [`EntryModel::density_profile`] when the state estimates the density (an augmented ρ0),
+    /// `None` otherwise: what a filter on this model reports as its density estimate.
+    pub fn estimated_density_profile<const N: usize>(
+        &self,
+        x: &SVector<f64, N>,
+        altitude_m: f64,
+    ) -> Option<f64> {
+        self.augmented
+            .contains(&AugmentedParam::Rho0)
+            .then(|| self.density_profile(x, altitude_m))
+    }
 }

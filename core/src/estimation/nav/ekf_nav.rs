@@ -219,19 +219,13 @@ impl<const N: usize> NavFilter<N> for EkfNav<N> {
     }
 
     fn density_estimate(&self) -> Option<f64> {
-        if self
-            .model
-            .augmented
-            .contains(&crate::dynamics::AugmentedParam::Rho0)
-        {
-            Some(self.model.density(&self.ekf.x))
-        } else {
-            None
-        }
+        let x = &self.ekf.x;
+        self.model
+            .estimated_density_profile(x, self.model.altitude(x))
     }
 
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {
-        self.density_estimate()
-            .map(|_| self.model.density_profile(&self.ekf.x, altitude_m))
+        self.model
+            .estimated_density_profile(&self.ekf.x, altitude_m)
     }
 }

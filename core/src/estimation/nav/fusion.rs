@@ -4,7 +4,6 @@
 use super::ekf_nav::EkfNav;
 use super::setup::FilterStart;
 use super::{NavFilter, StepInfo};
-use crate::dynamics::AugmentedParam;
 use crate::estimation::EstimationError;
 use crate::estimation::ci::{CiWeighting, covariance_intersection, feedback};
 use crate::math::V3;
@@ -219,18 +218,12 @@ impl<const N: usize> NavFilter<N> for FusionNav<N> {
     }
 
     fn density_estimate(&self) -> Option<f64> {
-        let f = self.locals.iter().flatten().next()?;
-        f.model()
-            .augmented
-            .contains(&AugmentedParam::Rho0)
-            .then(|| f.model().density(&self.fused.0))
+        let m = self.locals.iter().flatten().next()?.model();
+        m.estimated_density_profile(&self.fused.0, m.altitude(&self.fused.0))
     }
 
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {
-        let f = self.locals.iter().flatten().next()?;
-        f.model()
-            .augmented
-            .contains(&AugmentedParam::Rho0)
-            .then(|| f.model().density_profile(&self.fused.0, altitude_m))
+        let m = self.locals.iter().flatten().next()?.model();
+        m.estimated_density_profile(&self.fused.0, altitude_m)
     }
 }

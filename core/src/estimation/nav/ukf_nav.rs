@@ -4,7 +4,6 @@ use super::setup::FilterStart;
 use super::ukf_common::UkfCore;
 use super::{NavFilter, StepInfo};
 use crate::atmosphere::AtmosphereModel;
-use crate::dynamics::AugmentedParam;
 use crate::estimation::EstimationError;
 use crate::estimation::ukf::{Ukf, UkfParams};
 use crate::math::V3;
@@ -72,17 +71,12 @@ impl<const N: usize> NavFilter<N> for UkfNav<N> {
     }
 
     fn density_estimate(&self) -> Option<f64> {
-        let m = &self.core.model;
-        m.augmented
-            .contains(&AugmentedParam::Rho0)
-            .then(|| m.density(&self.core.ukf.x))
+        let (m, x) = (&self.core.model, &self.core.ukf.x);
+        m.estimated_density_profile(x, m.altitude(x))
     }
 
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {
-        self.density_estimate().map(|_| {
-            self.core
-                .model
-                .density_profile(&self.core.ukf.x, altitude_m)
-        })
+        let (m, x) = (&self.core.model, &self.core.ukf.x);
+        m.estimated_density_profile(x, altitude_m)
     }
 }

@@ -425,7 +425,7 @@ fn epoch_record<const N: usize>(scenario: &Scenario, step: &NavStep<N>) -> Epoch
     let sigma: Vec<f64> = (0..N).map(|i| step.p[(i, i)].max(0.0).sqrt()).collect();
     EpochRecord {
         pos_vel_err: pos_vel_error(scenario, step),
-        nees: nees(step),
+        nees: step.nees(),
         density_rel_err: step
             .density_profile_est
             .map(|d| (d - step.density_true) / step.density_true),
@@ -436,24 +436,6 @@ fn epoch_record<const N: usize>(scenario: &Scenario, step: &NavStep<N>) -> Epoch
         err,
         sigma,
     }
-}
-
-/// NEES eᵀP⁻¹e over the states that have a truth value.
-fn nees<const N: usize>(step: &NavStep<N>) -> Option<(f64, usize)> {
-    let idx: Vec<usize> = (0..N).filter(|&i| step.truth[i].is_finite()).collect();
-    if idx.len() == N {
-        let chol = step.p.cholesky()?;
-        let v = chol.solve(&step.err);
-        return Some((step.err.dot(&v), N));
-    }
-    let m = idx.len();
-    if m == 0 {
-        return None;
-    }
-    let p = nalgebra::DMatrix::from_fn(m, m, |a, b| step.p[(idx[a], idx[b])]);
-    let e = nalgebra::DVector::from_fn(m, |a, _| step.err[idx[a]]);
-    let chol = p.cholesky()?;
-    Some((e.dot(&chol.solve(&e)), m))
 }
 
 fn pos_vel_error<const N: usize>(scenario: &Scenario, step: &NavStep<N>) -> (f64, f64) {

@@ -32,6 +32,27 @@ pub struct NavStep<const N: usize> {
     pub truth_spherical: [f64; 6],
 }
 
+impl<const N: usize> NavStep<N> {
+    /// NEES eᵀP⁻¹e over the states that have a truth value, with its degrees of freedom (`None`
+    /// when no state has a truth value or that block of P is not positive definite).
+    pub fn nees(&self) -> Option<(f64, usize)> {
+        let idx: Vec<usize> = (0..N).filter(|&i| self.truth[i].is_finite()).collect();
+        if idx.len() == N {
+            let chol = self.p.cholesky()?;
+            let v = chol.solve(&self.err);
+            return Some((self.err.dot(&v), N));
+        }
+        let m = idx.len();
+        if m == 0 {
+            return None;
+        }
+        let p = nalgebra::DMatrix::from_fn(m, m, |a, b| self.p[(idx[a], idx[b])]);
+        let e = nalgebra::DVector::from_fn(m, |a, _| self.err[idx[a]]);
+        let chol = p.cholesky()?;
+        Some((e.dot(&chol.solve(&e)), m))
+    }
+}
+
 /// How a filter run ended.
 #[derive(Debug, Clone, PartialEq)]
 pub enum FilterOutcome {

@@ -1,9 +1,10 @@
 //! Truth simulator: fixed-step RK4 truth trajectory and noisy measurement records.
 
 use crate::atmosphere::Atmosphere;
+use crate::dynamics::EntryModel;
 use crate::frames::inertial_to_spherical;
 use crate::scenario::{Scenario, TruthDraw};
-use crate::sensors::channels::kinematics;
+use crate::sensors::channels::{Kinematics, kinematics};
 use crate::sensors::{Channel, dynamic_pressure, sutton_graves_heating};
 use nalgebra::SVector;
 use rand::Rng;
@@ -147,8 +148,8 @@ pub fn simulate_truth(
         let due: Vec<bool> = periods.iter().map(|p| k % p == 0).collect();
         let is_last = k == n_steps;
         // Cheap per-step checks; the full sample (visibility of every beacon…) only when recorded.
+        let kin = kinematics(model, &x, t);
         let (altitude, airspeed) = {
-            let kin = kinematics(model, &x, t);
             let r = (kin.pos[0] * kin.pos[0] + kin.pos[1] * kin.pos[1] + kin.pos[2] * kin.pos[2])
                 .sqrt();
             (r - model.planet.radius, kin.airspeed)
@@ -161,33 +162,18 @@ pub fn simulate_truth(
         }
         let s = sample(scenario, draw, t, &x);
         if any_due {
-            let beacon_states = scenario.beacon_states(t);
-            let kin = kinematics(model, &x, t);
-            let mut values = Vec::with_capacity(due.len());
-            for (c, spec) in scenario.channels.iter().enumerate() {
-                if !due[c] {
-                    values.push(None);
-                    continue;
-                }
-                let truth = scenario.measurement.evaluate_with(
-                    model,
-                    &x,
-                    &kin,
-                    bank,
-                    &beacon_states,
-                    spec.channel,
-                );
-                let z: f64 = StandardNormal.sample(rng);
-                let available = match spec.channel.beacon() {
-                    Some(i) => {
-                        let cfg = &scenario.config.beacons[i];
-                        !cfg.in_outage(t) && (scenario.config.ignore_visibility || s.visible[i])
-                    }
-                    None => true,
-                };
-                values.push(available.then(|| truth + spec.bias + spec.noise.sigma(truth) * z));
-            }
-            epochs.push(MeasurementEpoch { t, values });
+            epochs.push(measure_epoch(
+                scenario,
+                model,
+                &x,
+                &kin,
+                t,
+                bank,
+                |c| due[c],
+                &s.visible,
+                |_| true,
+                rng,
+            ));
         }
         samples.push(s);
         if ground {
@@ -204,6 +190,51 @@ pub fn simulate_truth(
         epochs,
         stop,
     })
+}
+
+/// The measurement epoch at time `t` of the truth state `x` (kinematics `kin`, bank `bank`).
+///
+/// For every channel that is `due`, a noise value is drawn from `rng` in channel order *whether or
+/// not the sample is available*, so an outage or a visibility change never shifts the noise of
+/// other channels. A radio sample is available when its beacon is `commanded` (the FMU's
+/// availability inputs; always for [`simulate_truth`]), is not in a configured outage and, unless
+/// the scenario ignores visibility, is `visible` above the horizon.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn measure_epoch<A: Atmosphere, const N: usize>(
+    scenario: &Scenario,
+    model: &EntryModel<A>,
+    x: &SVector<f64, N>,
+    kin: &Kinematics<f64>,
+    t: f64,
+    bank: f64,
+    due: impl Fn(usize) -> bool,
+    visible: &[bool],
+    commanded: impl Fn(usize) -> bool,
+    rng: &mut impl Rng,
+) -> MeasurementEpoch {
+    let beacon_states = scenario.beacon_states(t);
+    let mut values = Vec::with_capacity(scenario.channels.len());
+    for (c, spec) in scenario.channels.iter().enumerate() {
+        if !due(c) {
+            values.push(None);
+            continue;
+        }
+        let truth =
+            scenario
+                .measurement
+                .evaluate_with(model, x, kin, bank, &beacon_states, spec.channel);
+        let z: f64 = StandardNormal.sample(rng);
+        let available = match spec.channel.beacon() {
+            Some(i) => {
+                commanded(i)
+                    && !scenario.config.beacons[i].in_outage(t)
+                    && (scenario.config.ignore_visibility || visible[i])
+            }
+            None => true,
+        };
+        values.push(available.then(|| truth + spec.bias + spec.noise.sigma(truth) * z));
+    }
+    MeasurementEpoch { t, values }
 }
 
 /// Channel names of a scenario, in measurement-slot order.

@@ -60,7 +60,6 @@ use crate::sensors::{Channel, dynamic_pressure, range, range_rate, sutton_graves
 use nalgebra::SVector;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, StandardNormal};
 use std::sync::Arc;
 use thiserror::Error;
 

@@ -131,28 +131,10 @@ impl<const N: usize> DynFilter for Dim<N> {
         Judgement {
             truth: truth.iter().copied().collect(),
             err: err.iter().copied().collect(),
-            nees: nees(&step),
+            nees: step.nees(),
             density_true: sample.density,
         }
     }
-}
-
-/// NEES eᵀP⁻¹e over the states that have a truth value (as the Monte Carlo metrics compute it).
-pub(super) fn nees<const N: usize>(step: &NavStep<N>) -> Option<(f64, usize)> {
-    let idx: Vec<usize> = (0..N).filter(|&i| step.truth[i].is_finite()).collect();
-    if idx.len() == N {
-        let chol = step.p.cholesky()?;
-        let v = chol.solve(&step.err);
-        return Some((step.err.dot(&v), N));
-    }
-    let m = idx.len();
-    if m == 0 {
-        return None;
-    }
-    let p = nalgebra::DMatrix::from_fn(m, m, |a, b| step.p[(idx[a], idx[b])]);
-    let e = nalgebra::DVector::from_fn(m, |a, _| step.err[idx[a]]);
-    let chol = p.cholesky()?;
-    Some((e.dot(&chol.solve(&e)), m))
 }
 
 pub(super) fn make_filter<const N: usize>(

@@ -2,6 +2,7 @@
 //! communication step.
 
 use super::*;
+use crate::sim::truth::measure_epoch;
 
 /// The truth realisation and the generator positioned for the measurement noise.
 pub(super) fn truth_draw(
@@ -237,34 +238,19 @@ impl TruthSensors {
             let any_due = self.periods.iter().any(|p| k % p == 0);
             if any_due {
                 let s = truth_sample(&sc, &self.draw, tk, &x, bank);
-                let beacon_states = sc.beacon_states(tk);
-                let mut values = Vec::with_capacity(sc.channels.len());
-                for (c, spec) in sc.channels.iter().enumerate() {
-                    if k % self.periods[c] != 0 {
-                        values.push(None);
-                        continue;
-                    }
-                    let truth = sc.measurement.evaluate_with(
-                        model,
-                        &x,
-                        &kin,
-                        bank,
-                        &beacon_states,
-                        spec.channel,
-                    );
-                    let z: f64 = StandardNormal.sample(&mut self.rng);
-                    let available = match spec.channel.beacon() {
-                        Some(i) => {
-                            let cfg = &sc.config.beacons[i];
-                            beacon_available.get(i).copied().unwrap_or(true)
-                                && !cfg.in_outage(tk)
-                                && (sc.config.ignore_visibility || s.visible[i])
-                        }
-                        None => true,
-                    };
-                    values.push(available.then(|| truth + spec.bias + spec.noise.sigma(truth) * z));
-                }
-                let epoch = MeasurementEpoch { t: tk, values };
+                let periods = &self.periods;
+                let epoch = measure_epoch(
+                    &sc,
+                    model,
+                    &x,
+                    &kin,
+                    tk,
+                    bank,
+                    |c| k % periods[c] == 0,
+                    &s.visible,
+                    |i| beacon_available.get(i).copied().unwrap_or(true),
+                    &mut self.rng,
+                );
                 on_epoch(&epoch, &s);
                 report.epochs += 1;
                 self.last_epoch = Some(epoch);

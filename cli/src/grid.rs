@@ -16,13 +16,13 @@
 //! beacon_files = ["opt.toml"]    # take the [[beacons]] of these scenario files (e.g. optimizer output)
 //! ```
 
-use crate::load;
 use anyhow::{Context, Result, bail};
 use entrynav::atmosphere::PerturbationConfig;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::observability::{ChannelSet, Method, Scaling, analysis_points, degree_series};
 use entrynav::scenario::ScenarioConfig;
 use entrynav::sim::{McOptions, TradeReport, run_trade};
+use entrynav_loader as load;
 use serde::{Deserialize, Serialize};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -143,7 +143,7 @@ fn expand(grid: &GridFile, grid_dir: &Path) -> Result<Vec<Cell>> {
         } else {
             sc.clone()
         };
-        let (base, dir) = load::scenario_config(&name)?;
+        let (base, dir) = load::resolve(&name, load::Base::CurrentDir)?.into_parts();
         for bf in 0..axis(v.beacon_files.len()) {
             for nb in 0..axis(v.beacons.len()) {
                 for fault in 0..axis(v.beacon_fault.len()) {
@@ -152,8 +152,11 @@ fn expand(grid: &GridFile, grid_dir: &Path) -> Result<Vec<Cell>> {
                             let mut cfg = base.clone();
                             let mut tags = Vec::new();
                             if let Some(file) = v.beacon_files.get(bf) {
-                                let (other, _) =
-                                    load::scenario_config(&grid_dir.join(file).to_string_lossy())?;
+                                let (other, _) = load::resolve(
+                                    &grid_dir.join(file).to_string_lossy(),
+                                    load::Base::CurrentDir,
+                                )?
+                                .into_parts();
                                 cfg.beacons = other.beacons;
                                 tags.push(format!("beacons from {file}"));
                             }
@@ -251,7 +254,7 @@ pub fn run(grid_path: &Path, out_dir: &Path, quiet: bool) -> Result<()> {
         let mut fit = Vec::new();
         for name in &grid.filters {
             let k = FilterKind::parse(name)?;
-            match k.misfit(&scenario) {
+            match k.misfit(&scenario.onboard) {
                 None => fit.push(k),
                 Some(reason) => rows.push(CellRow {
                     cell: cell.label.clone(),
@@ -278,7 +281,7 @@ pub fn run(grid_path: &Path, out_dir: &Path, quiet: bool) -> Result<()> {
                     &pts,
                     &ChannelSet::centralised(&scenario),
                     Method::Lie,
-                    &Scaling::characteristic(&scenario.filter_model),
+                    &Scaling::characteristic(scenario.filter_model()),
                 )
                 .ok()
             })

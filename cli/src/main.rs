@@ -2,7 +2,6 @@
 
 mod fmu;
 mod grid;
-mod load;
 mod observe;
 mod optimize;
 mod plots;
@@ -12,6 +11,7 @@ mod train;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
+use entrynav_loader as load;
 
 /// Mars atmospheric-entry navigation: scenarios, truth simulation, navigation filters and
 /// Monte Carlo trade studies, observability and Fisher information.
@@ -77,7 +77,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Scenario {
             action: ScenarioAction::Show { name },
         } => {
-            let (cfg, _) = load::scenario_config(&name)?;
+            let (cfg, _) = load::resolve(&name, load::Base::CurrentDir)?.into_parts();
             print!("{}", cfg.to_toml_string());
             Ok(())
         }

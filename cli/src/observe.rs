@@ -1,7 +1,6 @@
 //! `entrynav observe`: degree of observability δ(t) along a scenario's trajectory (seed 000 §2.4,
 //! seed 002 §3) and the range Fisher information of its beacons (seed 002 §3.2, eq. 54).
 
-use crate::load;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use entrynav::observability::fisher::max_det_bound;
@@ -10,6 +9,7 @@ use entrynav::observability::{
     degree_series, max_det_directions, range_fim_series,
 };
 use entrynav::scenario::Scenario;
+use entrynav_loader as load;
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -20,10 +20,11 @@ pub struct ObserveArgs {
     /// Built-in scenario name or path to a scenario TOML file.
     #[arg(long)]
     pub scenario: String,
-    /// How the observability matrix is computed: exact Lie derivatives (seed 002 eq. 12), the
-    /// quadratic approximation (eq. 13-17) or the linearisation (eq. 19).
-    #[arg(long, default_value = "lie", value_parser = ["lie", "quadratic", "linear"])]
-    pub method: String,
+    /// How the observability matrix is computed: `lie` (exact Lie derivatives, seed 002 eq. 12),
+    /// `quadratic` (the quadratic approximation, eq. 13-17) or `linear` (the linearisation,
+    /// eq. 19).
+    #[arg(long, default_value = "lie")]
+    pub method: Method,
     /// Also analyse each IMU + one-beacon subsystem (seed 000 eq. 9, Fig. 3).
     #[arg(long)]
     pub subsystems: bool,
@@ -50,12 +51,11 @@ const RAW_NOTE: &str = "raw SI: delta = sigma_min/sigma_max of O with states in 
 
 /// Run the command.
 pub fn run(args: &ObserveArgs) -> Result<()> {
-    let method = Method::from_name(&args.method)
-        .with_context(|| format!("unknown method '{}'", args.method))?;
-    let (cfg, dir) = load::scenario_config(&args.scenario)?;
+    let method = args.method;
+    let (cfg, dir) = load::resolve(&args.scenario, load::Base::CurrentDir)?.into_parts();
     let scenario = load::build(cfg, &dir)?;
     let points = analysis_points(&scenario, args.step)?;
-    let scaling = Scaling::characteristic(&scenario.filter_model);
+    let scaling = Scaling::characteristic(scenario.filter_model());
 
     let started = Instant::now();
     let central = degree_series(

@@ -1,10 +1,10 @@
 //! `entrynav simulate`: one truth run with its measurement record.
 
-use crate::load;
 use anyhow::{Context, Result};
 use clap::Args;
 use entrynav::scenario::Scenario;
 use entrynav::sim::{TruthRun, simulate_truth};
+use entrynav_loader as load;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::io::Write;
@@ -34,7 +34,7 @@ pub struct SimulateArgs {
 
 /// Run the command.
 pub fn run(args: &SimulateArgs) -> Result<()> {
-    let (cfg, dir) = load::scenario_config(&args.scenario)?;
+    let (cfg, dir) = load::resolve(&args.scenario, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &args.sets)?;
     let scenario = load::build(cfg, &dir)?;
     let mut rng = ChaCha8Rng::seed_from_u64(args.seed);

@@ -1,12 +1,12 @@
 //! `entrynav trade`: Monte Carlo comparison of navigation filters on a scenario.
 
-use crate::load;
 use anyhow::{Context, Result};
 use clap::Args;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::sim::{
     FilterReport, McOptions, Shard, ShardResult, TradeReport, merge_shards, run_shard, run_trade,
 };
+use entrynav_loader as load;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -110,14 +110,14 @@ pub fn run(args: &TradeArgs) -> Result<()> {
         return crate::grid::run(grid, &args.out_dir, args.quiet);
     }
     let scenario_name = args.scenario.as_deref().context("--scenario is required")?;
-    let (cfg, dir) = load::scenario_config(scenario_name)?;
+    let (cfg, dir) = load::resolve(scenario_name, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &args.sets)?;
     let cfg = truth_atmosphere(cfg, args.atmosphere_file.as_deref(), args.no_perturbation)?;
     let scenario = load::build(cfg, &dir)?;
     if let Some(file) = &args.atmosphere_file {
         check_profile_covers(&scenario, file)?;
     }
-    let filters = FilterKind::parse_list(&args.filters, &scenario)?;
+    let filters = FilterKind::parse_list(&args.filters, &scenario.onboard)?;
     let runs = args.runs.unwrap_or(scenario.config.monte_carlo.runs);
     let opts = McOptions::new(runs, args.seed);
     if let Some(spec) = &args.shard {

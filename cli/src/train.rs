@@ -3,13 +3,12 @@
 //! (`--evaluate RUNS`) the Monte Carlo density-error evaluation of the density-adaptation filters
 //! (seed 001 Table 6 in both readings of eq. 70, Fig. 10 plots).
 
-use crate::load;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use entrynav::atmosphere::Exponential;
-use entrynav::estimation::adaptive::{
-    NetworkFile, fit_onboard_exponential, train_density_networks,
-};
+use entrynav::estimation::adaptive::{NetworkFile, fit_onboard_exponential};
+use entrynav::sim::training::train_density_networks;
+use entrynav_loader as load;
 use std::path::PathBuf;
 
 /// Arguments of `entrynav train-density`.
@@ -89,7 +88,7 @@ pub fn run(args: &TrainArgs) -> Result<()> {
     if args.out.is_none() && args.evaluate.is_none() {
         bail!("nothing to do: give --out FILE to train, --evaluate RUNS to evaluate, or both");
     }
-    let (cfg, dir) = load::scenario_config(&args.scenario)?;
+    let (cfg, dir) = load::resolve(&args.scenario, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &args.sets)?;
     let cfg =
         crate::trade::truth_atmosphere(cfg, args.atmosphere_file.as_deref(), args.no_perturbation)?;
@@ -160,7 +159,7 @@ fn train(args: &TrainArgs, scenario: &entrynav::scenario::Scenario) -> Result<Ne
     }
     tc.validate("training")
         .map_err(|e| anyhow::anyhow!("{e}"))?;
-    if scenario.filter_model.kind.is_cartesian() {
+    if scenario.filter_model().kind.is_cartesian() {
         bail!("train-density needs a spherical scenario (the network maps radius to density)");
     }
     let radius = scenario.planet.radius;
@@ -205,9 +204,9 @@ fn evaluate(
     networks: Option<&entrynav::estimation::adaptive::DensityNetworkSet>,
     runs: usize,
 ) -> Result<()> {
-    use entrynav::estimation::adaptive::{DensityEvalOptions, evaluate_density_filters};
     use entrynav::estimation::nav::FilterKind;
-    let kinds = FilterKind::parse_list(&args.filters, &scenario)?;
+    use entrynav::sim::density_eval::{DensityEvalOptions, evaluate_density_filters};
+    let kinds = FilterKind::parse_list(&args.filters, &scenario.onboard)?;
     let scenario = std::sync::Arc::new(scenario);
     let opts = DensityEvalOptions {
         runs,
@@ -259,7 +258,7 @@ fn evaluate(
 fn fig10(
     path: &std::path::Path,
     scenario: &str,
-    r: &entrynav::estimation::adaptive::DensityEvalReport,
+    r: &entrynav::sim::density_eval::DensityEvalReport,
 ) -> Result<()> {
     use plotters::prelude::*;
     let e = |e: DrawingAreaErrorKind<std::io::Error>| anyhow::anyhow!("{e}");
@@ -397,7 +396,7 @@ mod tests {
     }
 
     fn build(cfg: ScenarioConfig) -> anyhow::Result<Scenario> {
-        crate::load::build(cfg, std::path::Path::new("."))
+        Ok(entrynav_loader::build(cfg, std::path::Path::new("."))?)
     }
 
     fn msl() -> ScenarioConfig {

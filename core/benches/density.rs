@@ -6,10 +6,12 @@
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use entrynav::estimation::adaptive::{
     Activations, BandedExponential, NetworkFile, builtin_network_toml, fit_onboard_exponential,
-    generate_data, train_network,
+    train_network,
 };
-use entrynav::estimation::nav::{FilterKind, build_filter, filter_start};
+use entrynav::estimation::nav::{FilterKind, FilterStart, build_filter};
 use entrynav::scenario::{DensityTrainingConfig, Scenario, ScenarioConfig};
+use entrynav::sim::start::initial_estimate;
+use entrynav::sim::training::generate_data;
 use entrynav::sim::{run_seed, simulate_truth};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -18,15 +20,16 @@ use std::sync::Arc;
 
 fn bench(c: &mut Criterion) {
     let cfg = ScenarioConfig::builtin("msl-airdata").unwrap();
-    let s = Arc::new(Scenario::build(cfg, &|p| Err(p.to_string())).unwrap());
+    let s = Arc::new(Scenario::build(cfg, &entrynav::files::no_files).unwrap());
     let mut rng = ChaCha8Rng::seed_from_u64(run_seed(1, 0));
     let draw = s.draw_truth(&mut rng);
     let truth = simulate_truth(&s, &draw, &mut rng).unwrap();
-    let start = filter_start::<8>(&s, &draw, &truth.samples[0], &mut rng);
+    let x0 = initial_estimate(&s, &draw, &truth.samples[0], &mut rng);
+    let start = FilterStart::<8>::with_estimate(&s.onboard, &x0);
     for kind in [FilterKind::UskfNn, FilterKind::UkfAc, FilterKind::UkfCm] {
         // k = 60 (15 s, 100 km, adaptation still busy) and k = 300 (75 s, near peak pressure).
         for k in [60usize, 300] {
-            let mut f = build_filter::<8>(kind, &s, &start).unwrap();
+            let mut f = build_filter::<8, 9>(kind, &s.onboard, &start).unwrap();
             for e in &truth.epochs[..k] {
                 f.predict(e.t).unwrap();
                 f.update(e, &[]).unwrap();

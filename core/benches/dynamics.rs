@@ -8,16 +8,17 @@ use nalgebra::SVector;
 use std::hint::black_box;
 
 fn scenario(name: &str) -> Scenario {
-    Scenario::build(ScenarioConfig::builtin(name).unwrap(), &|p| {
-        Err(p.to_string())
-    })
+    Scenario::build(
+        ScenarioConfig::builtin(name).unwrap(),
+        &entrynav::files::no_files,
+    )
     .unwrap()
 }
 
 fn bench(c: &mut Criterion) {
     let s = scenario("four-beacon-fusion");
-    let m = &s.filter_model; // 8 states: r, lon, lat, v, fpa, heading, rho0, L/D
-    let x8 = SVector::<f64, 8>::from_iterator(s.filter_initial.iter().copied());
+    let m = s.filter_model(); // 8 states: r, lon, lat, v, fpa, heading, rho0, L/D
+    let x8 = SVector::<f64, 8>::from_iterator(s.onboard.initial_estimate.iter().copied());
     c.bench_function("rk4_step_8state_spherical", |b| {
         b.iter(|| m.step(black_box(&x8), 0.0, 0.1))
     });

@@ -12,9 +12,10 @@ use entrynav::scenario::{Scenario, ScenarioConfig};
 use std::hint::black_box;
 
 fn scenario(name: &str) -> Scenario {
-    Scenario::build(ScenarioConfig::builtin(name).unwrap(), &|p| {
-        Err(p.to_string())
-    })
+    Scenario::build(
+        ScenarioConfig::builtin(name).unwrap(),
+        &entrynav::files::no_files,
+    )
     .unwrap()
 }
 
@@ -22,7 +23,7 @@ fn bench(c: &mut Criterion) {
     for (name, label) in [("ground-beacons-3", "gb3"), ("four-beacon-fusion", "fbf")] {
         let s = scenario(name);
         let points = analysis_points(&s, 1.0).unwrap();
-        let scaling = Scaling::characteristic(&s.filter_model);
+        let scaling = Scaling::characteristic(s.filter_model());
         let set = ChannelSet::centralised(&s);
         for method in [Method::Lie, Method::Quadratic, Method::Linear] {
             let id = format!("delta_{label}_{}pts_{}", points.len(), method.name());

@@ -24,6 +24,7 @@ pub mod atmosphere;
 pub mod beacons;
 pub mod dynamics;
 pub mod estimation;
+pub mod files;
 pub mod frames;
 pub mod math;
 pub mod observability;
@@ -31,5 +32,6 @@ pub mod planet;
 pub mod scenario;
 pub mod sensors;
 pub mod sim;
+pub mod state_dim;
 
 pub use planet::Planet;

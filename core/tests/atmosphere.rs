@@ -589,8 +589,8 @@ fn perturbed_ad_derivative_matches_finite_difference() {
 
 // ---------------------------------------------------------------- configuration
 
-fn no_files(name: &str) -> Result<String, String> {
-    Err(format!("{name}: no such file"))
+fn no_files(name: &str) -> Result<String, entrynav::files::FileError> {
+    Err(entrynav::files::FileError::new(name, "no such file"))
 }
 
 fn atm(toml_text: &str) -> Result<AtmosphereConfig, toml::de::Error> {
@@ -628,7 +628,7 @@ fn config_builds_every_model() {
         if name == "gram.txt" {
             Ok(GRAM_FIXTURE.to_string())
         } else {
-            Err("not found".to_string())
+            Err(entrynav::files::FileError::new(name, "not found"))
         }
     };
     let m = t.build(&planet, &load).unwrap();

@@ -6,9 +6,12 @@ use entrynav::atmosphere::Atmosphere;
 use entrynav::estimation::adaptive::*;
 use entrynav::estimation::nav::ukf_ac::UkfAcNav;
 use entrynav::estimation::nav::uskf_nn::UskfNnNav;
-use entrynav::estimation::nav::{FilterKind, NavFilter, build_filter, filter_start};
+use entrynav::estimation::nav::{FilterKind, FilterStart, NavFilter, build_filter};
 use entrynav::scenario::{DensityTrainingConfig, Scenario, ScenarioConfig};
 use entrynav::sensors::channels::kinematics;
+use entrynav::sim::density_eval::{DensityEvalOptions, evaluate_density_filters};
+use entrynav::sim::start::initial_estimate;
+use entrynav::sim::training::{generate_data, train_density_networks};
 use entrynav::sim::{run_seed, simulate_truth};
 use nalgebra::SVector;
 use rand::{RngExt, SeedableRng};
@@ -17,9 +20,10 @@ use std::sync::Arc;
 
 fn scenario(name: &str) -> Arc<Scenario> {
     Arc::new(
-        Scenario::build(ScenarioConfig::builtin(name).unwrap(), &|p| {
-            Err(format!("{p}: no files in tests"))
-        })
+        Scenario::build(
+            ScenarioConfig::builtin(name).unwrap(),
+            &entrynav::files::no_files,
+        )
         .unwrap(),
     )
 }
@@ -27,7 +31,7 @@ fn scenario(name: &str) -> Arc<Scenario> {
 fn scenario_with(name: &str, edit: impl Fn(&mut ScenarioConfig)) -> Arc<Scenario> {
     let mut cfg = ScenarioConfig::builtin(name).unwrap();
     edit(&mut cfg);
-    Arc::new(Scenario::build(cfg, &|p| Err(p.to_string())).unwrap())
+    Arc::new(Scenario::build(cfg, &entrynav::files::no_files).unwrap())
 }
 
 fn builtin_set(name: &str) -> DensityNetworkSet {
@@ -127,7 +131,7 @@ fn likelihood_loss_gradient_matches_finite_differences() {
                 .collect();
             LossTerm {
                 x,
-                kin: kinematics(&s.filter_model, &x, e.t),
+                kin: kinematics(s.filter_model(), &x, e.t),
                 altitude: x[0] - s.planet.radius,
                 z: slots.iter().map(|&c| e.values[c].unwrap()).collect(),
                 r_inv: slots
@@ -146,7 +150,7 @@ fn likelihood_loss_gradient_matches_finite_differences() {
         .collect();
     let ctx = LossContext {
         measurement: &s.measurement,
-        model: &s.filter_model,
+        model: s.filter_model(),
         bank: 0.0,
     };
     let mut act = Activations::default();
@@ -192,7 +196,7 @@ fn algorithm2_lowers_the_loss_and_initialises_adam_as_seed001() {
     x[7] = draw.model.vehicle.lift_to_drag;
     let term = LossTerm {
         x,
-        kin: kinematics(&s.filter_model, &x, e.t),
+        kin: kinematics(s.filter_model(), &x, e.t),
         altitude: smp.altitude,
         z: vec![e.values[3].unwrap(), e.values[4].unwrap()],
         r_inv: vec![
@@ -210,7 +214,7 @@ fn algorithm2_lowers_the_loss_and_initialises_adam_as_seed001() {
     };
     let ctx = LossContext {
         measurement: &s.measurement,
-        model: &s.filter_model,
+        model: s.filter_model(),
         bank: 0.0,
     };
     let settings = MloSettings {
@@ -428,7 +432,7 @@ fn shipped_network_and_onboard_model_are_the_least_squares_fit() {
     let s = scenario("msl-airdata");
     let fit = fit_onboard_exponential(&s.truth_model.atmosphere, 0.0, 130.0).unwrap();
     for h in [10e3_f64, 60e3, 126e3] {
-        let onboard = s.filter_model.atmosphere.density(h);
+        let onboard = s.filter_model().atmosphere.density(h);
         assert!(
             (onboard / fit.density(h) - 1.0).abs() < 2e-6,
             "{h}: {onboard} vs {}",
@@ -461,45 +465,51 @@ fn density_filters_refuse_scenarios_without_their_layout() {
     // four-beacon-fusion augments rho0: not the seed-001 layout.
     let fb = scenario("four-beacon-fusion");
     for k in [FilterKind::UkfAc, FilterKind::UskfNn] {
-        let msg = k.check_fits(&fb).unwrap_err().to_string();
+        let msg = k.check_fits(&fb.onboard).unwrap_err().to_string();
         assert!(
             msg.contains("cd-s-over-m") && msg.contains(k.name()),
             "{msg}"
         );
     }
-    assert!(FilterKind::UkfCm.check_fits(&fb).is_ok());
+    assert!(FilterKind::UkfCm.check_fits(&fb.onboard).is_ok());
     // Cartesian scenario.
     let msg = FilterKind::UskfNn
-        .check_fits(&scenario("msl-pressure"))
+        .check_fits(&scenario("msl-pressure").onboard)
         .unwrap_err()
         .to_string();
     assert!(msg.contains("spherical"), "{msg}");
     // No [filter.density] section: uskf-nn has no network.
     let bare = scenario_with("msl-airdata", |c| c.filter.density = None);
     let msg = FilterKind::UskfNn
-        .check_fits(&bare)
+        .check_fits(&bare.onboard)
         .unwrap_err()
         .to_string();
     assert!(msg.contains("filter.density"), "{msg}");
-    assert!(FilterKind::UkfAc.check_fits(&bare).is_ok());
+    assert!(FilterKind::UkfAc.check_fits(&bare.onboard).is_ok());
     // Unknown network name.
     let bad = scenario_with("msl-airdata", |c| {
         c.filter.density.as_mut().unwrap().network = "nope.toml".into()
     });
-    let msg = FilterKind::UskfNn.check_fits(&bad).unwrap_err().to_string();
+    let msg = FilterKind::UskfNn
+        .check_fits(&bad.onboard)
+        .unwrap_err()
+        .to_string();
     assert!(msg.contains("nope.toml") && msg.contains(MSL_NET), "{msg}");
-    // build_filter for another state dimension is refused, not a panic.
+    // build_filter for another state dimension than the onboard model's is refused, not a
+    // panic, for every filter.
     let s = scenario("msl-airdata");
-    let start = entrynav::estimation::nav::FilterStart::<7> {
+    let start = FilterStart::<7> {
         x0: SVector::zeros(),
         p0: nalgebra::SMatrix::identity(),
         q: nalgebra::SMatrix::zeros(),
     };
-    let err = build_filter::<7>(FilterKind::UskfNn, &s, &start)
-        .err()
-        .unwrap()
-        .to_string();
-    assert!(err.contains("8-state"), "{err}");
+    for kind in FilterKind::ALL {
+        let err = build_filter::<7, 8>(kind, &s.onboard, &start)
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(err.contains("7-state") && err.contains("8 states"), "{err}");
+    }
     // Names parse.
     for n in ["ukf-cm", "ukf-ac", "uskf-nn"] {
         assert_eq!(FilterKind::parse(n).unwrap().name(), n);
@@ -514,11 +524,12 @@ fn consider_parameter_is_an_unupdated_ecrv_and_ukf_ac_starts_from_the_mean_ratio
     let mut rng = ChaCha8Rng::seed_from_u64(run_seed(1, 3));
     let draw = s.draw_truth(&mut rng);
     let truth = simulate_truth(&s, &draw, &mut rng).unwrap();
-    let start = filter_start::<8>(&s, &draw, &truth.samples[0], &mut rng);
-    let mut nn = UskfNnNav::new(&s, &start).unwrap();
-    let ac = UkfAcNav::new(&s, &start).unwrap();
+    let x0 = initial_estimate(&s, &draw, &truth.samples[0], &mut rng);
+    let start = FilterStart::<8>::with_estimate(&s.onboard, &x0);
+    let mut nn = UskfNnNav::<8, 9>::new(&s.onboard, &start).unwrap();
+    let ac = UkfAcNav::<8, 9>::new(&s.onboard, &start).unwrap();
     let h0 = start.x0[0] - s.planet.radius;
-    let ratio = s.truth_model.atmosphere.density(h0) / s.filter_model.atmosphere.density(h0);
+    let ratio = s.truth_model.atmosphere.density(h0) / s.filter_model().atmosphere.density(h0);
     assert!((ac.correction_factor().0 / ratio - 1.0).abs() < 1e-12);
     assert_eq!(ac.correction_factor().1, 1e-10);
     for e in &truth.epochs[..80] {

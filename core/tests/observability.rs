@@ -13,7 +13,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 
 fn build(cfg: ScenarioConfig) -> Scenario {
-    Scenario::build(cfg, &|p| Err(p.to_string())).unwrap()
+    Scenario::build(cfg, &entrynav::files::no_files).unwrap()
 }
 
 fn scenario(name: &str) -> Scenario {
@@ -22,7 +22,7 @@ fn scenario(name: &str) -> Scenario {
 
 fn system<'a>(s: &'a Scenario, p: &AnalysisPoint) -> ScenarioSystem<'a> {
     ScenarioSystem {
-        model: &s.filter_model,
+        model: s.filter_model(),
         measurement: &s.measurement,
         channels: s.channels.iter().map(|c| c.channel).collect(),
         beacons: p.beacons.clone(),
@@ -58,7 +58,7 @@ fn check_lie_against_fd<const N: usize>(name: &str, t: f64) {
     // Steps of 1 % of each state's characteristic size (10 m, 1e-5 rad, 0.01 m/s, …): small
     // enough for the truncation error, large enough that rounding in |r| (1 ulp ≈ 5e-10 m) stays
     // negligible.
-    let scaling = Scaling::characteristic(&s.filter_model);
+    let scaling = Scaling::characteristic(s.filter_model());
     let steps = SVector::<f64, N>::from_iterator(scaling.state.iter().map(|v| 1e-2 * v));
 
     // Order 0 values and order-0/1 rows against central differences.
@@ -212,7 +212,7 @@ fn ground_beacons_3_methods_agree_within_an_order_of_magnitude() {
     let s = scenario("ground-beacons-3");
     let points = analysis_points(&s, 1.0).unwrap();
     assert_eq!(points.len(), 241);
-    let scaling = Scaling::characteristic(&s.filter_model);
+    let scaling = Scaling::characteristic(s.filter_model());
     let set = ChannelSet::centralised(&s);
     let series: Vec<DegreeSeries> = [Method::Lie, Method::Quadratic, Method::Linear]
         .into_iter()
@@ -248,7 +248,7 @@ fn ground_beacons_3_methods_agree_within_an_order_of_magnitude() {
 fn four_beacon_fusion_centralised_beats_every_subsystem() {
     let s = scenario("four-beacon-fusion");
     let points = analysis_points(&s, 1.0).unwrap();
-    let scaling = Scaling::characteristic(&s.filter_model);
+    let scaling = Scaling::characteristic(s.filter_model());
     let central = degree_series(
         &s,
         &points,
@@ -283,7 +283,7 @@ fn one_beacon_is_reported_unobservable_without_nan() {
     cfg.beacons.truncate(1);
     let s = build(cfg);
     let points = analysis_points(&s, 20.0).unwrap();
-    let scaling = Scaling::characteristic(&s.filter_model);
+    let scaling = Scaling::characteristic(s.filter_model());
     for m in [Method::Lie, Method::Quadratic, Method::Linear] {
         let ser = degree_series(&s, &points, &ChannelSet::centralised(&s), m, &scaling).unwrap();
         for d in &ser.samples {
@@ -380,7 +380,7 @@ fn ground_beacons_3_geometry_index_follows_delta() {
     // Seed 002 Fig. 5–6: δ(t) and I(t) share the trend; compare their ranks in time.
     let s = scenario("ground-beacons-3");
     let points = analysis_points(&s, 5.0).unwrap();
-    let scaling = Scaling::characteristic(&s.filter_model);
+    let scaling = Scaling::characteristic(s.filter_model());
     let d = degree_series(
         &s,
         &points,
@@ -434,10 +434,10 @@ fn spearman(a: &[f64], b: &[f64]) -> f64 {
 fn fd_helper_agrees_with_ad_on_the_filter_model() {
     // The crate's FD helper agrees with AD on the filter model (sanity of the step choice used above).
     let s = scenario("ground-beacons-3");
-    let x = SVector::<f64, 6>::from_column_slice(&s.filter_initial);
-    let (_, j) = s.filter_model.jacobian(&x, 0.0);
+    let x = SVector::<f64, 6>::from_column_slice(&s.onboard.initial_estimate);
+    let (_, j) = s.filter_model().jacobian(&x, 0.0);
     let steps = SVector::<f64, 6>::from_iterator(x.iter().map(|v| 1e-6 * v.abs().max(1e-3)));
-    let fd = fd_jacobian(|y| s.filter_model.rhs(y, 0.0), &x, &steps);
+    let fd = fd_jacobian(|y| s.filter_model().rhs(y, 0.0), &x, &steps);
     assert!((j - fd).abs().max() < 1e-4 * j.abs().max());
 }
 

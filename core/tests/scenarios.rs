@@ -2,8 +2,11 @@
 
 use entrynav::scenario::{BUILTIN_NAMES, Scenario, ScenarioConfig, ScenarioError};
 
-fn no_files(p: &str) -> Result<String, String> {
-    Err(format!("{p}: no such file (test loader)"))
+fn no_files(p: &str) -> Result<String, entrynav::files::FileError> {
+    Err(entrynav::files::FileError::new(
+        p,
+        "no such file (test loader)",
+    ))
 }
 
 #[test]
@@ -16,7 +19,10 @@ fn every_builtin_parses_validates_builds_and_round_trips() {
             .unwrap_or_else(|e| panic!("{name} round trip: {e}"));
         assert_eq!(cfg, again, "{name}: TOML round trip changes the scenario");
         let sc = Scenario::build(cfg, &no_files).unwrap_or_else(|e| panic!("{name}: build: {e}"));
-        assert_eq!(sc.filter_initial.len(), sc.filter_model.state_dim());
+        assert_eq!(
+            sc.onboard.initial_estimate.len(),
+            sc.filter_model().state_dim()
+        );
         assert!(!sc.channels.is_empty(), "{name} has no measurement channel");
     }
 }

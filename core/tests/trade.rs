@@ -6,9 +6,10 @@ use entrynav::scenario::{Scenario, ScenarioConfig};
 use entrynav::sim::{McOptions, TradeReport, run_trade};
 
 fn scenario(name: &str) -> Scenario {
-    Scenario::build(ScenarioConfig::builtin(name).unwrap(), &|p| {
-        Err(p.to_string())
-    })
+    Scenario::build(
+        ScenarioConfig::builtin(name).unwrap(),
+        &entrynav::files::no_files,
+    )
     .unwrap()
 }
 
@@ -57,20 +58,20 @@ fn same_seed_gives_identical_statistics_on_any_thread_count_and_chunk() {
 #[test]
 fn unknown_or_unfit_filters_are_refused_with_the_valid_choices() {
     let msl = scenario("msl-airdata");
-    match FilterKind::parse_list("ekf,kalman9000", &msl) {
+    match FilterKind::parse_list("ekf,kalman9000", &msl.onboard) {
         Err(NavError::UnknownFilter { name, valid }) => {
             assert_eq!(name, "kalman9000");
             assert!(valid.contains("dcifaif") && valid.contains("mmae-moe"));
         }
         other => panic!("expected UnknownFilter, got {other:?}"),
     }
-    let err = FilterKind::parse_list("dcifaif", &msl).unwrap_err();
+    let err = FilterKind::parse_list("dcifaif", &msl.onboard).unwrap_err();
     let msg = err.to_string();
     assert!(
         msg.contains("dcifaif") && msg.contains("beacon") && msg.contains("ekf, ukf"),
         "{msg}"
     );
-    let err = FilterKind::parse_list("mmae", &scenario("four-beacon-fusion"))
+    let err = FilterKind::parse_list("mmae", &scenario("four-beacon-fusion").onboard)
         .unwrap_err()
         .to_string();
     assert!(err.contains("model_bank_density_bias"), "{err}");
@@ -176,7 +177,7 @@ fn mixture_of_experts_identifies_the_density_bias_when_the_state_is_known() {
     cfg.dispersions = Default::default();
     cfg.filter.sample_initial_from_p0 = false;
     cfg.filter.p0_diag = vec![1.0, 1.0, 1.0, 1e-4, 1e-4, 1e-4];
-    let s = Scenario::build(cfg, &|p| Err(p.to_string())).unwrap();
+    let s = Scenario::build(cfg, &entrynav::files::no_files).unwrap();
     let r = trade(&s, &[FilterKind::MmaeMoe, FilterKind::Mmae], 4, 11, 64, 2);
     for f in &r.filters {
         let k80 = f

@@ -8,9 +8,10 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 fn scenario(name: &str) -> Scenario {
-    Scenario::build(ScenarioConfig::builtin(name).unwrap(), &|p| {
-        Err(p.to_string())
-    })
+    Scenario::build(
+        ScenarioConfig::builtin(name).unwrap(),
+        &entrynav::files::no_files,
+    )
     .unwrap()
 }
 
@@ -109,7 +110,7 @@ fn outage_removes_only_the_failed_beacon_and_keeps_other_noise() {
 fn far_side_beacons_give_nothing_when_visibility_is_checked() {
     let mut cfg = ScenarioConfig::builtin("four-beacon-fusion").unwrap();
     cfg.ignore_visibility = false;
-    let s = Scenario::build(cfg, &|p| Err(p.to_string())).unwrap();
+    let s = Scenario::build(cfg, &entrynav::files::no_files).unwrap();
     let r = run(&s, 1, false);
     let radio: Vec<usize> = s
         .channels

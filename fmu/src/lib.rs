@@ -9,11 +9,14 @@
 //!
 //! Layers: [`vars`] (the variable table, shared with the XML generator, and the GUID), [`xml`]
 //! (`modelDescription.xml`), [`state`] (FMU state snapshots and their byte format), [`instance`]
-//! (a safe instance with the FMI state machine over `entrynav::sim::cosim`), and `ffi` (the 34
-//! exported `fmi2*` functions, the only unsafe code).
+//! (a safe instance with the FMI state machine over `entrynav::sim::engine`), and `ffi` (the 34
+//! exported `fmi2*` functions, the only unsafe code of the FMU itself). [`host`] is the other
+//! side of the C ABI: our own FMI importer, used by `entrynav fmu check` and `fuzz` to drive a
+//! packed `.fmu` through its exported functions.
 #![warn(missing_docs)]
 
 pub mod ffi;
+pub mod host;
 pub mod instance;
 pub mod state;
 pub mod uri;

@@ -13,6 +13,43 @@
 //! everything before it. Every length is checked against the remaining bytes before use.
 
 use crate::vars::{Model, Value, fnv1a64};
+use thiserror::Error;
+
+/// Why serialized FMU-state bytes cannot be restored.
+#[derive(Debug, Error, Clone, PartialEq, Eq)]
+pub enum StateError {
+    /// Not written by this FMU.
+    #[error("not an entrynav FMU state (bad magic bytes)")]
+    BadMagic,
+    /// Another format version.
+    #[error(
+        "FMU state format version {0} is not supported (this FMU reads version {FORMAT_VERSION})"
+    )]
+    Version(u32),
+    /// The header's length is not the buffer's.
+    #[error("FMU state length mismatch: header says {header} bytes, got {actual}")]
+    Length {
+        /// Length in the header.
+        header: u64,
+        /// Bytes given.
+        actual: usize,
+    },
+    /// The checksum does not match.
+    #[error("FMU state checksum mismatch (corrupted bytes)")]
+    Checksum,
+    /// The bytes end early.
+    #[error("FMU state is truncated")]
+    Truncated,
+    /// Bytes left after the last field.
+    #[error("FMU state has {0} trailing bytes")]
+    Trailing(usize),
+    /// An unknown value tag.
+    #[error("FMU state has an unknown value tag {0}")]
+    ValueTag(u8),
+    /// A field that cannot be valid.
+    #[error("FMU state {0}")]
+    Corrupt(&'static str),
+}
 
 /// Magic bytes.
 pub const MAGIC: &[u8; 8] = b"ENAVFMUS";
@@ -151,28 +188,27 @@ impl Snapshot {
     }
 
     /// Parse and check a serialized state.
-    pub fn from_bytes(bytes: &[u8]) -> Result<Snapshot, String> {
+    pub fn from_bytes(bytes: &[u8]) -> Result<Snapshot, StateError> {
         let mut r = Reader { b: bytes, pos: 0 };
         if r.take(8)? != MAGIC {
-            return Err("not an entrynav FMU state (bad magic bytes)".into());
+            return Err(StateError::BadMagic);
         }
         let version = r.u32()?;
         if version != FORMAT_VERSION {
-            return Err(format!(
-                "FMU state format version {version} is not supported (this FMU reads version {FORMAT_VERSION})"
-            ));
+            return Err(StateError::Version(version));
         }
         let total = r.u64()?;
         if total != bytes.len() as u64 {
-            return Err(format!(
-                "FMU state length mismatch: header says {total} bytes, got {}",
-                bytes.len()
-            ));
+            return Err(StateError::Length {
+                header: total,
+                actual: bytes.len(),
+            });
         }
         let body = &bytes[..bytes.len() - 8];
-        let sum = u64::from_le_bytes(bytes[bytes.len() - 8..].try_into().expect("8 bytes"));
-        if fnv1a64(body, 0) != sum {
-            return Err("FMU state checksum mismatch (corrupted bytes)".into());
+        let mut tail = [0u8; 8];
+        tail.copy_from_slice(&bytes[bytes.len() - 8..]);
+        if fnv1a64(body, 0) != u64::from_le_bytes(tail) {
+            return Err(StateError::Checksum);
         }
         let mut r = Reader {
             b: body,
@@ -180,16 +216,19 @@ impl Snapshot {
         };
         let model = *Model::ALL
             .get(r.u8()? as usize)
-            .ok_or("FMU state names an unknown model")?;
+            .ok_or(StateError::Corrupt("names an unknown model"))?;
         let n = r.u32()? as usize;
-        let guid = String::from_utf8(r.take(n)?.to_vec()).map_err(|_| "GUID is not UTF-8")?;
-        let phase = Phase::from_code(r.u8()?).ok_or("FMU state has an unknown phase")?;
+        let guid = String::from_utf8(r.take(n)?.to_vec())
+            .map_err(|_| StateError::Corrupt("has a GUID that is not UTF-8"))?;
+        let phase = Phase::from_code(r.u8()?).ok_or(StateError::Corrupt("has an unknown phase"))?;
         let start_time = r.f64()?;
         let has_stop = r.u8()? != 0;
         let stop = r.f64()?;
         let nv = r.u32()? as usize;
         if nv > r.remaining() {
-            return Err("FMU state value count exceeds its length".into());
+            return Err(StateError::Corrupt(
+                "has a value count that exceeds its length",
+            ));
         }
         let mut values = Vec::with_capacity(nv);
         for _ in 0..nv {
@@ -198,7 +237,9 @@ impl Snapshot {
         let per_step = r.u32()? as usize;
         let ns = r.u64()?;
         if ns > (r.remaining() / 16) as u64 {
-            return Err("FMU state step count exceeds its length".into());
+            return Err(StateError::Corrupt(
+                "has a step count that exceeds its length",
+            ));
         }
         let mut steps = Vec::with_capacity(ns as usize);
         for _ in 0..ns {
@@ -206,12 +247,15 @@ impl Snapshot {
             let h = r.f64()?;
             let mut inputs = Vec::with_capacity(per_step.min(r.remaining()));
             for _ in 0..per_step {
-                inputs.push(r.value()?.ok_or("FMU state step input without a value")?);
+                inputs.push(
+                    r.value()?
+                        .ok_or(StateError::Corrupt("has a step input without a value"))?,
+                );
             }
             steps.push(StepRecord { t, h, inputs });
         }
         if r.remaining() != 0 {
-            return Err(format!("FMU state has {} trailing bytes", r.remaining()));
+            return Err(StateError::Trailing(r.remaining()));
         }
         Ok(Snapshot {
             model,
@@ -235,46 +279,50 @@ impl<'a> Reader<'a> {
         self.b.len() - self.pos
     }
 
-    fn take(&mut self, n: usize) -> Result<&'a [u8], String> {
+    fn take(&mut self, n: usize) -> Result<&'a [u8], StateError> {
         if n > self.remaining() {
-            return Err("FMU state is truncated".into());
+            return Err(StateError::Truncated);
         }
         let s = &self.b[self.pos..self.pos + n];
         self.pos += n;
         Ok(s)
     }
 
-    fn u8(&mut self) -> Result<u8, String> {
+    fn array<const K: usize>(&mut self) -> Result<[u8; K], StateError> {
+        let mut a = [0u8; K];
+        a.copy_from_slice(self.take(K)?);
+        Ok(a)
+    }
+
+    fn u8(&mut self) -> Result<u8, StateError> {
         Ok(self.take(1)?[0])
     }
 
-    fn u32(&mut self) -> Result<u32, String> {
-        Ok(u32::from_le_bytes(self.take(4)?.try_into().expect("4")))
+    fn u32(&mut self) -> Result<u32, StateError> {
+        Ok(u32::from_le_bytes(self.array()?))
     }
 
-    fn u64(&mut self) -> Result<u64, String> {
-        Ok(u64::from_le_bytes(self.take(8)?.try_into().expect("8")))
+    fn u64(&mut self) -> Result<u64, StateError> {
+        Ok(u64::from_le_bytes(self.array()?))
     }
 
-    fn f64(&mut self) -> Result<f64, String> {
-        Ok(f64::from_le_bytes(self.take(8)?.try_into().expect("8")))
+    fn f64(&mut self) -> Result<f64, StateError> {
+        Ok(f64::from_le_bytes(self.array()?))
     }
 
-    fn value(&mut self) -> Result<Option<Value>, String> {
+    fn value(&mut self) -> Result<Option<Value>, StateError> {
         Ok(match self.u8()? {
             0 => None,
             1 => Some(Value::Real(self.f64()?)),
-            2 => Some(Value::Integer(i32::from_le_bytes(
-                self.take(4)?.try_into().expect("4"),
-            ))),
+            2 => Some(Value::Integer(i32::from_le_bytes(self.array()?))),
             3 => Some(Value::Boolean(self.u8()? != 0)),
             4 => {
                 let n = self.u32()? as usize;
                 let s = String::from_utf8(self.take(n)?.to_vec())
-                    .map_err(|_| "FMU state string is not UTF-8")?;
+                    .map_err(|_| StateError::Corrupt("has a string that is not UTF-8"))?;
                 Some(Value::String(s))
             }
-            t => return Err(format!("FMU state has an unknown value tag {t}")),
+            t => return Err(StateError::ValueTag(t)),
         })
     }
 }

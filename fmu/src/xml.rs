@@ -29,7 +29,7 @@ pub fn default_experiment() -> (f64, f64, f64) {
     let cfg = ScenarioConfig::builtin(crate::vars::DEFAULT_SCENARIO).expect("built-in scenario");
     let stop = cfg.timing.duration_s;
     let truth_step = cfg.timing.truth_step_s;
-    let step = Scenario::build(cfg, &|p: &str| Err(format!("no file {p}")))
+    let step = Scenario::build(cfg, &entrynav::files::no_files)
         .ok()
         .and_then(|s| {
             s.channels

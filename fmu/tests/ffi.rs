@@ -380,16 +380,17 @@ fn null_and_bad_instantiation() {
 fn filter_fmu_bank_input_reaches_the_filter_and_is_restored() {
     use entrynav::estimation::nav::FilterKind;
     use entrynav::scenario::{Scenario, ScenarioConfig};
-    use entrynav::sim::MeasurementEpoch;
-    use entrynav::sim::cosim::{NavigationCoSim, TruthSensors};
+    use entrynav::sensors::MeasurementEpoch;
+    use entrynav::sim::engine::{Navigator, TruthSensors};
     use mars_entry_nav::vars::Slot;
     use std::sync::Arc;
 
     let (name, filter, seed) = ("msl-pressure", "ekf", 3u64);
     let sc = Arc::new(
-        Scenario::build(ScenarioConfig::builtin(name).unwrap(), &|p: &str| {
-            Err(format!("no file {p}"))
-        })
+        Scenario::build(
+            ScenarioConfig::builtin(name).unwrap(),
+            &entrynav::files::no_files,
+        )
         .unwrap(),
     );
     let bank_of = |k: usize| if k < 40 { 0.0 } else { 0.7 };
@@ -446,7 +447,7 @@ fn filter_fmu_bank_input_reaches_the_filter_and_is_restored() {
     };
     let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
     let kind = FilterKind::parse(filter).unwrap();
-    let mut nav = NavigationCoSim::new(Arc::clone(&sc), kind, seed, false).unwrap();
+    let mut nav = Navigator::for_seed(&sc, kind, seed, false).unwrap();
     let a = make();
     let mut st: *mut c_void = std::ptr::null_mut();
     for (k, e) in epochs.iter().enumerate().take(100) {

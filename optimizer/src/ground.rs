@@ -26,6 +26,7 @@ use crate::search::{SearchOptions, SearchResult, minimize};
 use crate::trajectory::Trajectory;
 use crate::{OptimizerError, Progress};
 use entrynav::beacons::ground_visibility_margin;
+use entrynav::files::FileLoader;
 use entrynav::frames::{position_to_spherical, rotate_z, spherical_to_position};
 use entrynav::math::{norm, sub};
 use entrynav::observability::{
@@ -186,7 +187,7 @@ impl GroundProblem {
     /// scenario refers to. Errors: no range sensor or ranged beacon, `count == 0`.
     pub fn new(
         base: &ScenarioConfig,
-        load: &dyn Fn(&str) -> Result<String, String>,
+        load: &FileLoader<'_>,
         count: usize,
         objective: GroundObjective,
         step_s: f64,
@@ -220,7 +221,7 @@ impl GroundProblem {
         let fixed = (0..trajectory.len())
             .map(|k| trajectory.fixed_position(k))
             .collect();
-        let scaling = Scaling::characteristic(&scenario.filter_model);
+        let scaling = Scaling::characteristic(scenario.filter_model());
         let channels = ChannelSet::centralised(&scenario);
         Ok(GroundProblem {
             scenario,

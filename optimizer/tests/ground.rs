@@ -9,8 +9,8 @@ use entrynav_optimizer::{
     GroundObjective, GroundProblem, OptimizerError, SearchOptions, Site, no_progress,
 };
 
-fn no_files(p: &str) -> Result<String, String> {
-    Err(format!("no file {p}"))
+fn no_files(p: &str) -> Result<String, entrynav::files::FileError> {
+    Err(entrynav::files::FileError::new(p, "no files in tests"))
 }
 
 fn config() -> ScenarioConfig {

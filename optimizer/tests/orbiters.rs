@@ -12,7 +12,7 @@ use entrynav_optimizer::{
 
 fn trajectory() -> Trajectory {
     let cfg = ScenarioConfig::builtin("orbiters-3").unwrap();
-    let s = Scenario::build(cfg, &|p| Err(p.to_string())).unwrap();
+    let s = Scenario::build(cfg, &entrynav::files::no_files).unwrap();
     Trajectory::from_scenario(&s, 1.0).unwrap()
 }
 

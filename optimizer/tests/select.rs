@@ -11,8 +11,8 @@ use nalgebra::{Matrix3, Vector3};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::{RngCore, SeedableRng};
 
-fn no_files(p: &str) -> Result<String, String> {
-    Err(format!("no file {p}"))
+fn no_files(p: &str) -> Result<String, entrynav::files::FileError> {
+    Err(entrynav::files::FileError::new(p, "no files in tests"))
 }
 
 fn check(problem: &SelectionProblem, what: &str) {

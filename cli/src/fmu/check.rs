@@ -3,8 +3,8 @@
 
 #![allow(non_snake_case)]
 
-use super::host::*;
 use super::*;
+use mars_entry_nav::host::*;
 
 /// The input values at communication point `t` for a check run (bank profile, beacon 2 outage,
 /// and for the filter FMU the measurements of the previous step).
@@ -53,27 +53,18 @@ pub(super) fn check_inputs(
         .collect()
 }
 
+/// The scenario's duration and its fastest sensor period (the default communication step).
 pub(super) fn scenario_timing(name: &str, resources: &Path) -> Result<(f64, f64)> {
-    let cfg = if BUILTIN_NAMES.contains(&name) {
-        ScenarioConfig::builtin(name)?
-    } else {
-        let p = resources.join(name);
-        let text =
-            std::fs::read_to_string(&p).with_context(|| format!("cannot read {}", p.display()))?;
-        ScenarioConfig::from_toml_str(&text, &p.display().to_string())?
-    };
-    let dur = cfg.timing.duration_s;
-    let name_ok = cfg.name.clone();
-    let _ = name_ok;
-    let sc = entrynav::scenario::Scenario::build(cfg, &|p: &str| {
-        std::fs::read_to_string(resources.join(p)).map_err(|e| e.to_string())
-    })?;
+    let sc = load_scenario(name, resources)?;
     let step = sc
         .channels
         .iter()
         .map(|c| c.period_s)
         .fold(f64::INFINITY, f64::min);
-    Ok((dur, if step.is_finite() { step } else { 1.0 }))
+    Ok((
+        sc.config.timing.duration_s,
+        if step.is_finite() { step } else { 1.0 },
+    ))
 }
 
 pub(super) fn check(a: &CheckArgs) -> Result<()> {
@@ -240,16 +231,12 @@ pub(super) fn check(a: &CheckArgs) -> Result<()> {
     Ok(())
 }
 
+/// The scenario an FMU instance with `scenario = name` loads from the resources folder `res`.
 pub(super) fn load_scenario(name: &str, res: &Path) -> Result<Arc<entrynav::scenario::Scenario>> {
-    let cfg = if BUILTIN_NAMES.contains(&name) {
-        ScenarioConfig::builtin(name)?
-    } else {
-        let p = res.join(name);
-        ScenarioConfig::from_toml_str(&std::fs::read_to_string(&p)?, &p.display().to_string())?
-    };
-    Ok(Arc::new(entrynav::scenario::Scenario::build(
-        cfg,
-        &|p: &str| std::fs::read_to_string(res.join(p)).map_err(|e| e.to_string()),
+    Ok(Arc::new(entrynav_loader::load(
+        name,
+        &[],
+        entrynav_loader::Base::Folder(res),
     )?))
 }
 
@@ -283,7 +270,7 @@ pub(super) fn bench(
     let (mut host, mut direct, mut wrapped) = (Vec::new(), Vec::new(), Vec::new());
     for _ in 0..a.reps.max(1) {
         // In process: the engine called directly.
-        let mut co = entrynav::sim::cosim::EntryCoSim::new(
+        let mut co = entrynav::sim::engine::EntryCoSim::new(
             Arc::clone(&scenario),
             kind,
             a.seed as u64,

@@ -4,8 +4,8 @@
 
 #![allow(non_snake_case)]
 
-use super::host::*;
 use super::*;
+use mars_entry_nav::host::*;
 
 /// Our model of the FMI 2.0 co-simulation state machine (as the FMU implements it).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -2,16 +2,13 @@
 //! FMI host against the in-process library (`check`, with `--bench`), and drive random call
 //! sequences through the host (`fuzz`).
 //!
-//! The host loads `binaries/linux64/<modelIdentifier>.so` with libloading and calls the 34 fmi2
-//! functions. Its logger is declared without the C varargs (stable Rust cannot define variadic
-//! functions); on x86-64 System V a variadic call to it is ABI-compatible, and our FMUs never pass
-//! format arguments (messages are pre-formatted, `%` escaped as `%%`).
+//! The host (`mars_entry_nav::host`, in the `fmu` crate) loads
+//! `binaries/linux64/<modelIdentifier>.so` with libloading and calls the 34 fmi2 functions.
 
 #![allow(non_snake_case)]
 
 mod check;
 mod fuzz;
-mod host;
 mod pack;
 mod run;
 
@@ -22,18 +19,18 @@ use run::run_reference;
 
 use anyhow::{Context, Result, bail, ensure};
 use clap::{Args, Subcommand};
-use entrynav::scenario::{BUILTIN_NAMES, ScenarioConfig, builtin_toml};
-use entrynav::sim::cosim::TruthSensors;
+use entrynav::scenario::{BUILTIN_NAMES, builtin_toml};
+use entrynav::sim::engine::TruthSensors;
 use mars_entry_nav::instance::{Instance, Status};
 use mars_entry_nav::vars::{Causality, Key, MAX_BEACONS, Model, Slot, Type, Value, Var, variables};
 use mars_entry_nav::xml::model_description;
 use mars_entry_nav::{guid_of, xml};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use std::ffi::{CStr, CString, c_char, c_int, c_void};
-use std::io::{Read, Write};
+use std::ffi::{CStr, c_int, c_void};
+use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 use std::time::Instant;
 
 /// Arguments of `entrynav fmu`.

@@ -3,8 +3,8 @@
 
 #![allow(non_snake_case)]
 
-use super::host::*;
 use super::*;
+use mars_entry_nav::host::*;
 
 pub(super) fn parse_value(v: &Var, text: &str) -> Result<Value> {
     let t = text.trim();

@@ -86,7 +86,7 @@ impl DeltaStats {
 pub(super) fn run_ground(a: &GroundArgs) -> Result<()> {
     let wall = Instant::now();
     let c = &a.common;
-    let (cfg, dir) = load::scenario_config(&c.scenario)?;
+    let (cfg, dir) = load::resolve(&c.scenario, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &c.sets)?;
     let own = scenario_sites(&cfg);
     let count = a

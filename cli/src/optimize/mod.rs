@@ -5,12 +5,12 @@
 //! This module holds the arguments and the helpers the three problems share; each problem's
 //! command is in its own file.
 
-use crate::load;
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
 use entrynav::beacons::BeaconConfig;
 use entrynav::observability::{DegreeSeries, Method};
 use entrynav::scenario::ScenarioConfig;
+use entrynav_loader as load;
 use entrynav_optimizer::ground::{self, GroundEvaluation};
 use entrynav_optimizer::orbiters::{self, OrbiterEvaluation};
 use entrynav_optimizer::output::{self, template_noise};
@@ -229,16 +229,8 @@ fn with_threads(threads: Option<usize>, f: impl FnOnce() -> Result<()> + Send) -
     }
 }
 
-fn loader(dir: &Path) -> impl Fn(&str) -> Result<String, String> + use<> {
-    let dir = dir.to_path_buf();
-    move |p: &str| {
-        let path = if Path::new(p).is_absolute() {
-            PathBuf::from(p)
-        } else {
-            dir.join(p)
-        };
-        std::fs::read_to_string(&path).map_err(|e| format!("cannot read {}: {e}", path.display()))
-    }
+fn loader(dir: &Path) -> impl Fn(&str) -> Result<String, entrynav::files::FileError> + use<> {
+    load::file_loader(dir)
 }
 
 fn progress_bar(quiet: bool, label: String) -> ProgressBar {

@@ -43,7 +43,7 @@ fn print_elements(el: &[OrbitElements]) {
 pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
     let wall = Instant::now();
     let c = &a.common;
-    let (cfg, dir) = load::scenario_config(&c.scenario)?;
+    let (cfg, dir) = load::resolve(&c.scenario, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &c.sets)?;
     let own = scenario_orbits(&cfg);
     let count = a.orbiters.unwrap_or_else(|| {

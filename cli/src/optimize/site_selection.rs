@@ -16,7 +16,7 @@ fn selection_json(s: &Selection, sites: &[Site], r: &SelectionReport) -> Value {
 
 pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
     let wall = Instant::now();
-    let (cfg, dir) = load::scenario_config(&a.scenario)?;
+    let (cfg, dir) = load::resolve(&a.scenario, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &a.sets)?;
     let load = loader(&dir);
     let criterion = match a.criterion.as_str() {

@@ -11,6 +11,7 @@ use super::mars_mean::mars_mean_profile;
 use super::model::AtmosphereModel;
 use super::parse::{HeightUnit, TableColumns, parse_csv, parse_mars_gram};
 use super::perturbed::{Envelope, PerturbationSpec, Perturbed};
+use crate::files::FileLoader;
 use crate::planet::Planet;
 
 /// Text format of a density table file.
@@ -157,7 +158,7 @@ impl AtmosphereConfig {
     pub fn build(
         &self,
         planet: &Planet,
-        load: &dyn Fn(&str) -> Result<String, String>,
+        load: &FileLoader<'_>,
     ) -> Result<AtmosphereModel, AtmosphereError> {
         self.validate("atmosphere")?;
         Ok(match self {
@@ -212,9 +213,9 @@ impl AtmosphereConfig {
                 density_column,
                 height_unit,
             } => {
-                let text = load(file).map_err(|message| AtmosphereError::LoadFailed {
+                let text = load(file).map_err(|source| AtmosphereError::LoadFailed {
                     file: file.clone(),
-                    message,
+                    source,
                 })?;
                 let defaults = TableColumns::default();
                 let columns = TableColumns {

@@ -41,12 +41,12 @@ pub enum AtmosphereError {
         problem: String,
     },
     /// The caller-supplied loader could not provide a table file.
-    #[error("cannot read atmosphere table file '{file}': {message}")]
+    #[error("cannot read atmosphere table file '{file}': {source}")]
     LoadFailed {
         /// The file name as written in the scenario.
         file: String,
-        /// The loader's message.
-        message: String,
+        /// What the loader reported.
+        source: crate::files::FileError,
     },
     /// The text contains no header line (empty, or only comments and blank lines).
     #[error("{source_name}: no header line found (the text is empty or holds only comments)")]

@@ -4,8 +4,12 @@
 //! * **algorithms** — the estimators themselves on plain vectors and matrices, independent of
 //!   Mars entry: [`ekf`] (Joseph-form EKF), `ukf` (scaled unscented filter with the Schmidt
 //!   consider form), `ci` (covariance intersection), `mmae` (multiple-model banks);
-//! * **navigation filters** — adapters that wire an algorithm to an entry scenario's dynamics
-//!   and measurement models (`nav`).
+//! * **navigation filters** — adapters that wire an algorithm to the vehicle's onboard
+//!   knowledge ([`Onboard`]: dynamics and measurement models, channels, beacons, tuning), in
+//!   `nav`. A filter is built from an `Onboard` value alone and never sees the truth.
+//!
+//! This layer imports nothing from `scenario` or `sim`: the scenario builds the `Onboard` value,
+//! the simulation engine drives the filters and judges them against the truth.
 //!
 //! Filters never panic on numerical trouble: every step returns a [`EstimationError`] that the
 //! caller turns into a filter status.
@@ -15,7 +19,10 @@ pub mod ci;
 pub mod ekf;
 pub mod mmae;
 pub mod nav;
+pub mod onboard;
 pub mod ukf;
+
+pub use onboard::{FilterTuning, Onboard, OnboardChannel};
 
 use nalgebra::SMatrix;
 use thiserror::Error;

@@ -43,7 +43,11 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum ObservabilityError {
     /// The filter state has a dimension the analysis is not compiled for.
-    #[error("state dimension {n} is not supported (the analysis handles 6 to 9 states)")]
+    #[error(
+        "state dimension {n} is not supported (the analysis handles {} to {} states)",
+        crate::state_dim::MIN_STATE_DIM,
+        crate::state_dim::MAX_STATE_DIM
+    )]
     UnsupportedDimension {
         /// The state dimension.
         n: usize,
@@ -114,13 +118,26 @@ impl Method {
     }
 
     /// Parse [`Method::name`].
+    /// All methods, in listing order.
+    pub const ALL: [Method; 3] = [Method::Lie, Method::Quadratic, Method::Linear];
+
+    /// The method named `name` (the one parser of method names; [`FromStr`](std::str::FromStr)
+    /// calls it).
     pub fn from_name(name: &str) -> Option<Method> {
-        match name {
-            "lie" => Some(Method::Lie),
-            "quadratic" => Some(Method::Quadratic),
-            "linear" => Some(Method::Linear),
-            _ => None,
-        }
+        Method::ALL.into_iter().find(|m| m.name() == name.trim())
+    }
+}
+
+impl std::str::FromStr for Method {
+    type Err = ObservabilityError;
+
+    fn from_str(name: &str) -> Result<Method, ObservabilityError> {
+        Method::from_name(name).ok_or_else(|| {
+            ObservabilityError::InvalidInput(format!(
+                "unknown observability method '{name}'; valid methods are: {}",
+                Method::ALL.map(Method::name).join(", ")
+            ))
+        })
     }
 }
 

@@ -16,8 +16,8 @@
 //! do.
 //!
 //! **Which point.** The analysis point at time t is the nominal truth trajectory (the scenario's
-//! truth initial state, truth model and bank, RK4 at `timing.truth_step_s`, exactly as
-//! `sim::simulate_truth` integrates it) mapped into the filter model's coordinates (copied when
+//! truth initial state, truth model and bank, stepped by the simulation engine's
+//! [`TruthPropagator`] at `timing.truth_step_s`, exactly as every truth run is) mapped into the filter model's coordinates (copied when
 //! truth and filter use the same equations, otherwise through the inertial position and velocity).
 //! Augmented states take the *truth's* values — L/D and C_D S/m of the truth vehicle, and ρ0 =
 //! truth reference density × truth density factor when the truth atmosphere is exponential — and
@@ -31,6 +31,7 @@ use crate::math::Real;
 use crate::scenario::Scenario;
 use crate::sensors::channels::kinematics;
 use crate::sensors::{Channel, MeasurementModel};
+use crate::sim::engine::{SimError, StopReason, TruthPropagator};
 use nalgebra::SVector;
 
 /// An autonomous system `ẋ = f(x)`, `y = h(x)` with `N` states, written generically over
@@ -110,32 +111,26 @@ pub fn analysis_points(
             "analysis step must be a positive number of seconds, got {step_s}"
         )));
     }
-    let timing = &scenario.config.timing;
-    let h = timing.truth_step_s;
+    let h = scenario.config.timing.truth_step_s;
     let stride = ((step_s / h).round() as usize).max(1);
-    let n_steps = (timing.duration_s / h).round().max(1.0) as usize;
-    let model = &scenario.truth_model;
-    let bank = scenario.truth_bank;
-    let mut x = scenario.truth_initial;
-    let mut out = vec![analysis_point(scenario, 0.0, &x)];
-    for k in 1..=n_steps {
-        x = model.step(&x, bank, h);
-        let t = k as f64 * h;
-        if x.iter().any(|v| !v.is_finite()) {
-            return Err(ObservabilityError::InvalidInput(format!(
-                "the nominal truth state became non-finite at t = {t} s"
-            )));
-        }
-        let ground = model.altitude(&x) <= 0.0;
-        let slow = timing.stop_speed_mps.is_some_and(|v| {
-            let kin = kinematics(model, &x, t);
-            kin.airspeed < v
-        });
-        if k % stride == 0 || ground || slow {
-            out.push(analysis_point(scenario, t, &x));
-        }
-        if ground || slow {
-            break;
+    let mut truth = TruthPropagator::for_scenario(scenario, scenario.truth_initial);
+    let mut out = vec![analysis_point(scenario, 0.0, truth.state())];
+    loop {
+        let step = match truth.step(&scenario.truth_model, scenario.truth_bank) {
+            Ok(Some(step)) => step,
+            Ok(None) => break,
+            Err(SimError::NonFinite { t_s, .. }) => {
+                return Err(ObservabilityError::InvalidInput(format!(
+                    "the nominal truth state became non-finite at t = {t_s} s"
+                )));
+            }
+        };
+        let early = matches!(
+            step.stop,
+            Some(StopReason::Ground) | Some(StopReason::StopSpeed)
+        );
+        if step.k % stride == 0 || early {
+            out.push(analysis_point(scenario, step.t, &step.x));
         }
     }
     Ok(out)
@@ -143,7 +138,7 @@ pub fn analysis_points(
 
 fn analysis_point(scenario: &Scenario, t: f64, x: &SVector<f64, 6>) -> AnalysisPoint {
     let truth = &scenario.truth_model;
-    let filter = &scenario.filter_model;
+    let filter = scenario.filter_model();
     let kin = kinematics(truth, x, t);
     let kinematic: [f64; 6] = if truth.kind == filter.kind {
         [x[0], x[1], x[2], x[3], x[4], x[5]]
@@ -155,7 +150,12 @@ fn analysis_point(scenario: &Scenario, t: f64, x: &SVector<f64, 6>) -> AnalysisP
     };
     let mut state = kinematic.to_vec();
     for (k, a) in filter.augmented.iter().enumerate() {
-        let fallback = scenario.filter_initial.get(6 + k).copied().unwrap_or(0.0);
+        let fallback = scenario
+            .onboard
+            .initial_estimate
+            .get(6 + k)
+            .copied()
+            .unwrap_or(0.0);
         state.push(match a {
             AugmentedParam::LiftToDrag => truth.vehicle.lift_to_drag,
             AugmentedParam::CdSOverM => truth.vehicle.cd_s_over_m,

@@ -5,7 +5,8 @@ use super::degree::{Degree, Scaling, degree};
 use super::system::{AnalysisPoint, ScenarioSystem};
 use super::{Method, ObservabilityError, observability_matrix};
 use crate::scenario::Scenario;
-use crate::scenario::build::Noise;
+use crate::sensors::Noise;
+use crate::state_dim::{DimVisitor, with_state_dim};
 use nalgebra::SVector;
 
 /// A named subset of a scenario's channels.
@@ -136,19 +137,43 @@ pub fn degree_series(
     method: Method,
     scaling: &Scaling,
 ) -> Result<DegreeSeries, ObservabilityError> {
-    let n = scenario.filter_model.state_dim();
-    let samples = match n {
-        6 => series_n::<6>(scenario, points, set, method, scaling)?,
-        7 => series_n::<7>(scenario, points, set, method, scaling)?,
-        8 => series_n::<8>(scenario, points, set, method, scaling)?,
-        9 => series_n::<9>(scenario, points, set, method, scaling)?,
-        _ => return Err(ObservabilityError::UnsupportedDimension { n }),
+    let n = scenario.filter_model().state_dim();
+    let visitor = Series {
+        scenario,
+        points,
+        set,
+        method,
+        scaling,
     };
+    let samples = with_state_dim(n, visitor)
+        .map_err(|_| ObservabilityError::UnsupportedDimension { n })??;
     Ok(DegreeSeries {
         name: set.name.clone(),
         method,
         samples,
     })
+}
+
+struct Series<'a> {
+    scenario: &'a Scenario,
+    points: &'a [AnalysisPoint],
+    set: &'a ChannelSet,
+    method: Method,
+    scaling: &'a Scaling,
+}
+
+impl DimVisitor for Series<'_> {
+    type Output = Result<Vec<DegreeSample>, ObservabilityError>;
+
+    fn visit<const N: usize, const L: usize>(self) -> Self::Output {
+        series_n::<N>(
+            self.scenario,
+            self.points,
+            self.set,
+            self.method,
+            self.scaling,
+        )
+    }
 }
 
 fn series_n<const N: usize>(
@@ -182,7 +207,7 @@ fn series_n<const N: usize>(
             }
         }
         let sys = ScenarioSystem {
-            model: &scenario.filter_model,
+            model: scenario.filter_model(),
             measurement: &scenario.measurement,
             channels: specs.iter().map(|s| s.channel).collect(),
             beacons: p.beacons.clone(),

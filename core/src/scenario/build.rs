@@ -6,48 +6,18 @@ use super::validate::StateForm;
 use crate::atmosphere::{AtmosphereModel, Perturbed};
 use crate::beacons::{Beacon, BeaconMotion};
 use crate::dynamics::{DynamicsKind, EntryModel, Vehicle};
+use crate::estimation::Onboard;
+use crate::files::FileLoader;
 use crate::frames::{HeadingConvention, inertial_to_spherical, spherical_to_inertial};
 use crate::planet::Planet;
 use crate::sensors::{Channel, MeasurementModel};
+pub use crate::sensors::{ChannelSpec, Noise};
 use nalgebra::SVector;
 use rand::Rng;
 use rand_distr::{Distribution, StandardNormal};
+use std::sync::Arc;
 
-/// Noise of one channel.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Noise {
-    /// Fixed 1σ in the channel's unit.
-    Absolute(f64),
-    /// 1σ as a fraction of the true reading.
-    Relative(f64),
-}
-
-impl Noise {
-    /// 1σ for a true reading `value`.
-    pub fn sigma(&self, value: f64) -> f64 {
-        match *self {
-            Noise::Absolute(s) => s,
-            Noise::Relative(f) => f * value.abs(),
-        }
-    }
-}
-
-/// One measurement channel with its schedule and noise.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ChannelSpec {
-    /// What is measured.
-    pub channel: Channel,
-    /// Column name (SI unit suffix).
-    pub name: String,
-    /// Sample period \[s\].
-    pub period_s: f64,
-    /// Noise of the simulated sensor.
-    pub noise: Noise,
-    /// Noise the filters assume (differs from `noise` where the scenario says so).
-    pub filter_noise: Noise,
-    /// Constant bias added to the truth (accelerometers only).
-    pub bias: f64,
-}
+use super::onboard::{OnboardParts, onboard_view};
 
 /// A built scenario: everything a simulation or filter needs, in SI units and internal conventions.
 #[derive(Debug, Clone)]
@@ -60,12 +30,12 @@ pub struct Scenario {
     pub truth_model: EntryModel<AtmosphereModel>,
     /// Nominal truth initial state in the truth model's coordinates.
     pub truth_initial: SVector<f64, 6>,
-    /// Truth bank angle \[rad\].
+    /// Truth bank angle \[rad\] (the commanded bank; the onboard view starts with it too).
     pub truth_bank: f64,
-    /// Filter dynamics (onboard model).
-    pub filter_model: EntryModel<AtmosphereModel>,
-    /// Filter start: 6 kinematic states in the filter model's coordinates, then augmented states.
-    pub filter_initial: Vec<f64>,
+    /// What the vehicle knows onboard: the only input of a navigation filter (its dynamics and
+    /// atmosphere model, channels with the assumed noise, beacons, timing, tuning, the nominal
+    /// initial estimate).
+    pub onboard: Arc<Onboard>,
     /// Beacons, in file order.
     pub beacons: Vec<Beacon>,
     /// Beacon names, in file order.
@@ -131,10 +101,7 @@ pub fn state_to_model(
 impl Scenario {
     /// Build from a validated configuration. `load(path)` returns the text of a file the scenario
     /// refers to (tabulated atmospheres); the core never touches the file system itself.
-    pub fn build(
-        config: ScenarioConfig,
-        load: &dyn Fn(&str) -> Result<String, String>,
-    ) -> Result<Scenario, ScenarioError> {
+    pub fn build(config: ScenarioConfig, load: &FileLoader<'_>) -> Result<Scenario, ScenarioError> {
         config.validate()?;
         let planet = config.planet.resolve();
         let conv = config.heading_convention;
@@ -192,30 +159,50 @@ impl Scenario {
             .collect();
 
         let channels = channel_specs(&config, &beacon_names);
+        let measurement = config.sensors.measurement_model();
+        let truth_bank = config.truth.bank_deg.to_radians();
+        let onboard = Arc::new(onboard_view(OnboardParts {
+            config: &config,
+            model: filter_model,
+            climatology: truth_model.atmosphere.clone(),
+            measurement: measurement.clone(),
+            channels: &channels,
+            beacons: &beacons,
+            beacon_names: &beacon_names,
+            initial_bank: truth_bank,
+            initial_estimate: filter_initial,
+        }));
         Ok(Scenario {
-            measurement: config.sensors.measurement_model(),
+            measurement,
             config,
             planet,
             truth_model,
             truth_initial,
-            truth_bank: 0.0,
-            filter_model,
-            filter_initial,
+            truth_bank,
+            onboard,
             beacons,
             beacon_names,
             channels,
-        }
-        .with_bank())
+        })
     }
 
-    fn with_bank(mut self) -> Self {
-        self.truth_bank = self.config.truth.bank_deg.to_radians();
-        self
+    /// The filter's dynamics model (the onboard view's).
+    pub fn filter_model(&self) -> &EntryModel<AtmosphereModel> {
+        &self.onboard.model
     }
 
     /// Inertial (position, velocity) of every beacon at time `t`.
     pub fn beacon_states(&self, t: f64) -> Vec<([f64; 3], [f64; 3])> {
         self.beacons.iter().map(|b| b.state_at(t)).collect()
+    }
+
+    /// The nominal truth realisation: the scenario's truth initial state and mean truth model,
+    /// without dispersions.
+    pub fn nominal_truth(&self) -> TruthDraw {
+        TruthDraw {
+            initial: self.truth_initial,
+            model: self.truth_model.clone(),
+        }
     }
 
     /// Draw one truth realisation from `rng`: initial state, vehicle, density bias, atmosphere.

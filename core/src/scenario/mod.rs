@@ -9,6 +9,7 @@ pub mod build;
 pub mod builtin;
 pub mod config;
 pub mod error;
+mod onboard;
 pub mod validate;
 mod validate_density;
 

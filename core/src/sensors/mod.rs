@@ -9,9 +9,11 @@ pub mod channels;
 pub mod config;
 pub mod imu;
 pub mod radio;
+pub mod schedule;
 
 pub use airdata::{dynamic_pressure, sutton_graves_heating};
 pub use channels::{Channel, MeasurementModel};
 pub use config::{SensorError, SensorsConfig};
 pub use imu::{ImuFrame, body_from_velocity};
 pub use radio::{range, range_rate};
+pub use schedule::{ChannelSpec, MeasurementEpoch, Noise};

@@ -42,7 +42,7 @@ pub struct FinalRecord {
 }
 
 /// Everything one filter produced in one run.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct RunRecord {
     /// Per-epoch records, in time order.
     pub epochs: Vec<EpochRecord>,

@@ -1,21 +1,34 @@
-//! Simulation: the truth simulator (fixed-step RK4 truth plus sensor records), the filter
-//! harness, and the Monte Carlo engine with its metrics.
+//! Simulation: the one engine (truth, sensors and a navigation filter, step by step), the batch
+//! truth run, judging a filter against the truth, and the Monte Carlo studies built on them.
+//!
+//! * [`engine`] — the engine's step and the three step-wise simulators the FMUs wrap
+//!   ([`TruthSensors`](engine::TruthSensors), [`Navigator`](engine::Navigator),
+//!   [`EntryCoSim`](engine::EntryCoSim));
+//! * [`record`] — [`simulate_truth`]: a whole truth run recorded (a loop over the engine);
+//! * [`judge`] — the estimate beside the truth (error, NEES, deployment error);
+//! * [`start`] — a run's initial estimate (nominal, or drawn around the truth);
+//! * [`monte_carlo`], [`shard`], [`metrics`], [`report`] — trade studies: runs in parallel,
+//!   folded in run order, shardable, summarised;
+//! * [`density_eval`] — seed 001's density RMSPE (eq. 70) over a Monte Carlo;
+//! * [`training`] — seed 001 Algorithm 1's training trajectories and the whole offline training.
 
-pub mod cosim;
+pub mod density_eval;
+pub mod engine;
+pub mod judge;
 pub mod metrics;
 pub mod monte_carlo;
-pub mod navigation;
+pub mod record;
 pub mod report;
-pub mod truth;
+pub mod shard;
+pub mod start;
+pub mod training;
 
+pub use engine::{SimError, StopReason, TruthSample};
 pub use metrics::nees_bounds_95;
-pub use monte_carlo::{
-    McOptions, Shard, ShardResult, TradeError, TradeReport, merge_shards, run_shard, run_trade,
-    state_names,
-};
-pub use navigation::{FilterOutcome, NavStep, run_filter};
+pub use monte_carlo::{McOptions, TradeError, TradeReport, run_shard, run_trade, state_names};
+pub use record::{TruthRun, channel_names, is_radio, simulate_truth};
 pub use report::{Ellipse, FilterReport, Series};
-pub use truth::{MeasurementEpoch, SimError, StopReason, TruthRun, TruthSample, simulate_truth};
+pub use shard::{Shard, ShardResult, merge_shards};
 
 /// Seed of run `run` of a Monte Carlo with master seed `seed` (SplitMix64 of both), so every run's
 /// randomness is fixed by (seed, run) alone, whatever the thread count or scheduling.

@@ -7,21 +7,23 @@
 //! run-index order, so 1 or N threads give bit-identical statistics, and memory is bounded by the
 //! chunk size, not the number of runs.
 
+use super::engine::{NavStatus, Navigator, SimError};
 use super::metrics::{EpochRecord, FilterAccumulator, FinalRecord, RunRecord};
-use super::navigation::{FilterOutcome, NavStep, run_filter};
 use super::report::FilterReport;
-use super::{SimError, run_seed, simulate_truth};
-use crate::estimation::nav::setup::estimate_spherical;
-use crate::estimation::nav::{FilterKind, NavError, build_filter, filter_start};
-use crate::frames::spherical_to_fixed;
-use crate::math::wrap_pi;
-use crate::scenario::Scenario;
-use nalgebra::SVector;
+use super::shard::{
+    ACCUMULATION_BLOCK, BlockSums, SHARD_FORMAT, Shard, ShardResult, merge_shards,
+    scenario_fingerprint,
+};
+use super::start::initial_estimate;
+use super::{TruthRun, run_seed, simulate_truth};
+use crate::estimation::nav::{FilterKind, NavError};
+use crate::scenario::{Scenario, TruthDraw};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::sync::Arc;
+use std::time::Instant;
 use thiserror::Error;
 
 /// Why a trade study could not run.
@@ -38,7 +40,7 @@ pub enum TradeError {
         /// Cause.
         source: SimError,
     },
-    /// Bad options.
+    /// Bad options or shard files.
     #[error("{0}")]
     Options(String),
 }
@@ -82,7 +84,7 @@ pub struct TradeReport {
 
 /// State names of a scenario's filter model.
 pub fn state_names(scenario: &Scenario) -> Vec<String> {
-    let fm = &scenario.filter_model;
+    let fm = scenario.filter_model();
     let kin: [&str; 6] = if fm.kind.is_cartesian() {
         ["x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps"]
     } else {
@@ -99,91 +101,6 @@ pub fn state_names(scenario: &Scenario) -> Vec<String> {
         .map(|s| s.to_string())
         .chain(fm.augmented.iter().map(|a| a.name().to_string()))
         .collect()
-}
-
-/// Runs per accumulation block. Sums are formed per block in run order and blocks are combined
-/// in block order, so a study split into shards (whole blocks) and merged gives exactly the
-/// single-process statistics. Changing this constant changes results in the last bits.
-pub const ACCUMULATION_BLOCK: usize = 256;
-
-/// A slice `index` of `count` of a Monte Carlo study (contiguous accumulation blocks).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
-pub struct Shard {
-    /// Zero-based shard index.
-    pub index: usize,
-    /// Number of shards.
-    pub count: usize,
-}
-
-impl Shard {
-    /// Parse `i/n` (0 ≤ i < n).
-    pub fn parse(text: &str) -> Result<Shard, TradeError> {
-        let bad = || {
-            TradeError::Options(format!(
-                "--shard '{text}': expected I/N with 0 <= I < N, e.g. 0/4"
-            ))
-        };
-        let (i, n) = text.split_once('/').ok_or_else(bad)?;
-        let (index, count) = (
-            i.trim().parse::<usize>().map_err(|_| bad())?,
-            n.trim().parse::<usize>().map_err(|_| bad())?,
-        );
-        if count == 0 || index >= count {
-            return Err(bad());
-        }
-        Ok(Shard { index, count })
-    }
-
-    /// The accumulation blocks of this shard for a study of `runs` runs.
-    pub fn blocks(&self, runs: usize) -> std::ops::Range<usize> {
-        let n_blocks = runs.div_ceil(ACCUMULATION_BLOCK);
-        (self.index * n_blocks / self.count)..((self.index + 1) * n_blocks / self.count)
-    }
-}
-
-/// One accumulation block's sums, per filter.
-#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
-pub struct BlockSums {
-    /// Block index.
-    pub index: usize,
-    /// One accumulator per filter, in the study's filter order.
-    pub filters: Vec<FilterAccumulator>,
-}
-
-/// The output of `trade --shard i/n`: everything `trade merge` needs to rebuild the study.
-#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
-pub struct ShardResult {
-    /// Format version of this file.
-    pub format: u32,
-    /// Scenario name.
-    pub scenario: String,
-    /// Fingerprint of the full scenario (FNV-1a of its TOML), so overrides must match too.
-    pub scenario_fingerprint: String,
-    /// Total runs of the study.
-    pub runs: usize,
-    /// Master seed.
-    pub seed: u64,
-    /// Filter names, in order.
-    pub filters: Vec<String>,
-    /// State names.
-    pub states: Vec<String>,
-    /// Which shard this is.
-    pub shard: Shard,
-    /// The shard's blocks, in block order.
-    pub blocks: Vec<BlockSums>,
-}
-
-/// Shard file format version.
-pub const SHARD_FORMAT: u32 = 1;
-
-/// FNV-1a 64 fingerprint of a scenario's canonical TOML.
-pub fn scenario_fingerprint(scenario: &Scenario) -> String {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in scenario.config.to_toml_string().bytes() {
-        h ^= b as u64;
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    format!("{h:016x}")
 }
 
 /// Run a trade: `filters` on `scenario`, `opts.runs` runs; `progress(done)` is called as runs finish.
@@ -221,19 +138,10 @@ pub fn run_shard(
         )));
     }
     for f in filters {
-        f.check_fits(scenario)?;
+        f.check_fits(&scenario.onboard)?;
     }
-    let n = scenario.filter_model.state_dim();
     let shared = Arc::new(scenario.clone());
-    let sc = &shared;
-    let blocks = match n {
-        6 => blocks_n::<6>(sc, filters, opts, shard, progress)?,
-        7 => blocks_n::<7>(sc, filters, opts, shard, progress)?,
-        8 => blocks_n::<8>(sc, filters, opts, shard, progress)?,
-        9 => blocks_n::<9>(sc, filters, opts, shard, progress)?,
-        10 => blocks_n::<10>(sc, filters, opts, shard, progress)?,
-        other => return Err(NavError::Dimension(other).into()),
-    };
+    let blocks = run_blocks(&shared, filters, opts, shard, progress)?;
     Ok(ShardResult {
         format: SHARD_FORMAT,
         scenario: scenario.config.name.clone(),
@@ -247,94 +155,7 @@ pub fn run_shard(
     })
 }
 
-/// Combine the shards of one study into its report. Refuses shards of different scenarios, seeds,
-/// run counts, filters or shard counts, duplicates, and missing shards or blocks.
-pub fn merge_shards(mut shards: Vec<ShardResult>) -> Result<TradeReport, TradeError> {
-    let first = shards
-        .first()
-        .ok_or_else(|| TradeError::Options("no shard to merge".into()))?
-        .clone();
-    for s in &shards {
-        if s.format != SHARD_FORMAT {
-            return Err(TradeError::Options(format!(
-                "shard format {} is not supported (expected {SHARD_FORMAT})",
-                s.format
-            )));
-        }
-        let what = if s.scenario != first.scenario
-            || s.scenario_fingerprint != first.scenario_fingerprint
-        {
-            Some(format!(
-                "scenario {} ({}) vs {} ({})",
-                s.scenario, s.scenario_fingerprint, first.scenario, first.scenario_fingerprint
-            ))
-        } else if s.seed != first.seed {
-            Some(format!("seed {} vs {}", s.seed, first.seed))
-        } else if s.runs != first.runs {
-            Some(format!("runs {} vs {}", s.runs, first.runs))
-        } else if s.filters != first.filters {
-            Some(format!("filters {:?} vs {:?}", s.filters, first.filters))
-        } else if s.shard.count != first.shard.count {
-            Some(format!(
-                "shard count {} vs {}",
-                s.shard.count, first.shard.count
-            ))
-        } else {
-            None
-        };
-        if let Some(w) = what {
-            return Err(TradeError::Options(format!(
-                "cannot merge shards of different studies: {w}"
-            )));
-        }
-    }
-    shards.sort_by_key(|s| s.shard.index);
-    let want: Vec<usize> = (0..first.shard.count).collect();
-    let have: Vec<usize> = shards.iter().map(|s| s.shard.index).collect();
-    if have != want {
-        let missing: Vec<usize> = want.iter().filter(|i| !have.contains(i)).copied().collect();
-        return Err(TradeError::Options(format!(
-            "shards must be 0..{} exactly once; got {have:?} (missing {missing:?})",
-            first.shard.count
-        )));
-    }
-    let n_blocks = first.runs.div_ceil(ACCUMULATION_BLOCK);
-    let mut totals = vec![FilterAccumulator::default(); first.filters.len()];
-    let mut next = 0;
-    for s in &shards {
-        for b in &s.blocks {
-            if b.index != next || b.filters.len() != totals.len() {
-                return Err(TradeError::Options(format!(
-                    "shard {} is incomplete or corrupt at block {next}",
-                    s.shard.index
-                )));
-            }
-            for (t, a) in totals.iter_mut().zip(&b.filters) {
-                t.merge(a);
-            }
-            next += 1;
-        }
-    }
-    if next != n_blocks {
-        return Err(TradeError::Options(format!(
-            "the shards hold {next} of {n_blocks} blocks"
-        )));
-    }
-    Ok(TradeReport {
-        scenario: first.scenario.clone(),
-        runs: first.runs,
-        seed: first.seed,
-        filters: first
-            .filters
-            .iter()
-            .zip(&totals)
-            .map(|(k, a)| a.report(k, &first.states))
-            .collect(),
-        states: first.states,
-    })
-}
-
-fn blocks_n<const N: usize>(
+fn run_blocks(
     scenario: &Arc<Scenario>,
     filters: &[FilterKind],
     opts: &McOptions,
@@ -352,7 +173,7 @@ fn blocks_n<const N: usize>(
             let end = (start + chunk).min(last);
             let records: Vec<Result<Vec<RunRecord>, TradeError>> = (start..end)
                 .into_par_iter()
-                .map(|run| one_run::<N>(scenario, filters, opts.seed, run))
+                .map(|run| one_run(scenario, filters, opts.seed, run))
                 .collect();
             for (i, rec) in records.into_iter().enumerate() {
                 for (acc, r) in accs.iter_mut().zip(rec?.iter()) {
@@ -370,8 +191,12 @@ fn blocks_n<const N: usize>(
     Ok(out)
 }
 
-/// Everything for one run: truth, measurements and each filter's records.
-pub fn one_run<const N: usize>(
+/// Everything for one run: the truth run to its end, the filters' common initial estimate, and
+/// each filter's records (the engine's navigation step over the recorded epochs).
+///
+/// Run `run` draws everything from `ChaCha8Rng::seed_from_u64(run_seed(seed, run))`, in this
+/// order: the truth dispersions, the measurement noise of the whole run, the initial estimate.
+pub fn one_run(
     scenario: &Arc<Scenario>,
     filters: &[FilterKind],
     seed: u64,
@@ -381,102 +206,55 @@ pub fn one_run<const N: usize>(
     let draw = scenario.draw_truth(&mut rng);
     let truth = simulate_truth(scenario, &draw, &mut rng)
         .map_err(|source| TradeError::Truth { run, source })?;
-    let start = filter_start::<N>(scenario, &draw, &truth.samples[0], &mut rng);
-    let mut out = Vec::with_capacity(filters.len());
-    for kind in filters {
-        let mut rec = RunRecord {
-            epochs: Vec::new(),
-            times: Vec::new(),
-            final_: None,
-            failure: None,
-            filter_ns: 0,
-            steps: 0,
-        };
-        let mut last: Option<NavStep<N>> = None;
-        match build_filter::<N>(*kind, scenario, &start) {
-            Err(e) => rec.failure = Some((0.0, e.to_string())),
-            Ok(mut filter) => {
-                let summary = run_filter(scenario, &draw, &truth, filter.as_mut(), |step| {
-                    rec.times.push(step.t);
-                    rec.epochs.push(epoch_record(scenario, step));
-                    last = Some(step.clone());
-                });
-                rec.filter_ns = summary.filter_ns;
-                rec.steps = summary.steps;
-                match summary.outcome {
-                    FilterOutcome::Failed { t, reason } => rec.failure = Some((t, reason)),
-                    FilterOutcome::Completed => {
-                        if let Some(step) = &last {
-                            rec.final_ = Some(FinalRecord {
-                                downrange_crossrange: downrange_crossrange(scenario, step),
-                            });
-                        }
-                    }
-                }
-            }
+    let x0 = initial_estimate(scenario, &draw, &truth.samples[0], &mut rng);
+    Ok(filters
+        .iter()
+        .map(|&kind| filter_run(scenario, &draw, &truth, kind, &x0))
+        .collect())
+}
+
+/// One filter over a recorded truth run, judged at every epoch.
+fn filter_run(
+    scenario: &Arc<Scenario>,
+    draw: &TruthDraw,
+    truth: &TruthRun,
+    kind: FilterKind,
+    x0: &[f64],
+) -> RunRecord {
+    let mut rec = RunRecord::default();
+    let mut nav = match Navigator::new_checked(Arc::clone(&scenario.onboard), kind, x0) {
+        Ok(nav) => nav,
+        Err(e) => {
+            rec.failure = Some((0.0, e.to_string()));
+            return rec;
         }
-        out.push(rec);
+    };
+    let mut last = None;
+    for (epoch, sample) in truth.epochs_with_truth() {
+        let clock = Instant::now();
+        nav.process(epoch);
+        rec.filter_ns += clock.elapsed().as_nanos();
+        if let NavStatus::Failed { t, reason } = nav.status() {
+            rec.failure = Some((*t, reason.to_string()));
+            return rec;
+        }
+        rec.steps += 1;
+        let j = nav.judge(scenario, draw, sample);
+        let est = nav.estimate();
+        rec.times.push(epoch.t);
+        rec.epochs.push(EpochRecord {
+            err: j.err,
+            sigma: est.sigma.clone(),
+            pos_vel_err: j.pos_vel_err,
+            nees: j.nees,
+            density_rel_err: j.density_profile_rel_err,
+            density_at_estimate_rel_err: j.density_at_estimate_rel_err,
+            weights: est.info.weights.clone(),
+        });
+        last = Some(j.downrange_crossrange);
     }
-    Ok(out)
-}
-
-fn epoch_record<const N: usize>(scenario: &Scenario, step: &NavStep<N>) -> EpochRecord {
-    let err: Vec<f64> = step.err.iter().copied().collect();
-    let sigma: Vec<f64> = (0..N).map(|i| step.p[(i, i)].max(0.0).sqrt()).collect();
-    EpochRecord {
-        pos_vel_err: pos_vel_error(scenario, step),
-        nees: step.nees(),
-        density_rel_err: step
-            .density_profile_est
-            .map(|d| (d - step.density_true) / step.density_true),
-        density_at_estimate_rel_err: step
-            .density_est
-            .map(|d| (d - step.density_true) / step.density_true),
-        weights: step.info.weights.clone(),
-        err,
-        sigma,
-    }
-}
-
-fn pos_vel_error<const N: usize>(scenario: &Scenario, step: &NavStep<N>) -> (f64, f64) {
-    if scenario.filter_model.kind.is_cartesian() {
-        let e = &step.err;
-        (
-            (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt(),
-            (e[3] * e[3] + e[4] * e[4] + e[5] * e[5]).sqrt(),
-        )
-    } else {
-        let x: [f64; 6] = [
-            step.x[0], step.x[1], step.x[2], step.x[3], step.x[4], step.x[5],
-        ];
-        let tr: [f64; 6] = [
-            step.truth[0],
-            step.truth[1],
-            step.truth[2],
-            step.truth[3],
-            step.truth[4],
-            step.truth[5],
-        ];
-        let (pe, ve) = spherical_to_fixed(&x);
-        let (pt, vt) = spherical_to_fixed(&tr);
-        let d = |a: [f64; 3], b: [f64; 3]| {
-            ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-        };
-        (d(pe, pt), d(ve, vt))
-    }
-}
-
-/// Downrange/crossrange position error \[m\] of the estimate at the final epoch, in the local
-/// horizontal plane at the true position, downrange along the true heading.
-fn downrange_crossrange<const N: usize>(scenario: &Scenario, step: &NavStep<N>) -> (f64, f64) {
-    let est = estimate_spherical(
-        scenario,
-        &SVector::<f64, N>::from_fn(|i, _| step.x[i]),
-        step.t,
-    );
-    let tr = step.truth_spherical;
-    let dn = tr[0] * wrap_pi(est[2] - tr[2]);
-    let de = tr[0] * tr[2].cos() * wrap_pi(est[1] - tr[1]);
-    let (s, c) = tr[5].sin_cos();
-    (dn * c + de * s, -dn * s + de * c)
+    rec.final_ = last.map(|downrange_crossrange| FinalRecord {
+        downrange_crossrange,
+    });
+    rec
 }

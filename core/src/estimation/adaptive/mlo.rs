@@ -47,9 +47,9 @@ pub struct MloSettings {
 /// One measurement epoch in the loss: the prior kinematics it is evaluated at, the measured
 /// values, the inverse noise variances and the channels.
 #[derive(Debug, Clone)]
-pub struct LossTerm {
-    /// Prior state (first 8 components: kinematic + augmented).
-    pub x: SVector<f64, 8>,
+pub struct LossTerm<const N: usize = 8> {
+    /// Prior navigation state (kinematic + augmented states).
+    pub x: SVector<f64, N>,
     /// Kinematics of `x` (density unused).
     pub kin: Kinematics<f64>,
     /// Altitude of `x` \[m\].
@@ -78,10 +78,10 @@ pub struct LossContext<'a, A> {
 impl<A: Atmosphere> LossContext<'_, A> {
     /// Loss of `terms` under `set` (eq. 52), adding its gradient for band `band` into `grad` if
     /// given (terms served by other bands contribute to the loss only).
-    pub fn loss(
+    pub fn loss<const N: usize>(
         &self,
         set: &DensityNetworkSet,
-        terms: &[LossTerm],
+        terms: &[LossTerm<N>],
         band: usize,
         mut grad: Option<&mut [f64]>,
         act: &mut Activations,
@@ -109,8 +109,8 @@ impl<A: Atmosphere> LossContext<'_, A> {
     }
 
     /// One term's loss νᵀR⁻¹ν and its derivative with respect to the density.
-    pub fn term_loss(&self, term: &LossTerm, rho: f64) -> (f64, f64) {
-        let xd: SVector<Dual64, 8> = term.x.map(Dual64::from);
+    pub fn term_loss<const N: usize>(&self, term: &LossTerm<N>, rho: f64) -> (f64, f64) {
+        let xd: SVector<Dual64, N> = term.x.map(Dual64::from);
         let lift = |v: &V3<f64>| v.map(Dual64::from);
         let kin = Kinematics {
             pos: lift(&term.kin.pos),
@@ -153,12 +153,12 @@ pub struct MloOutcome {
 
 /// Algorithm 2 on the network of `band` with step size `lr` (= α_𝓛 at this epoch).
 #[allow(clippy::too_many_arguments)]
-pub fn maximise_likelihood<A: Atmosphere>(
+pub fn maximise_likelihood<A: Atmosphere, const N: usize>(
     ctx: &LossContext<'_, A>,
     set: &mut DensityNetworkSet,
     band: usize,
     state: &mut OnlineAdam,
-    terms: &[LossTerm],
+    terms: &[LossTerm<N>],
     lr: f64,
     s: &MloSettings,
     act: &mut Activations,

@@ -9,60 +9,60 @@
 //!   networks embedded from `scenarios/`, and the network-backed onboard atmosphere;
 //! * [`mlo`] — online maximum-likelihood adaptation with Adam and patience (eq. 52–60,
 //!   Algorithm 2), optionally over a window of past measurements;
-//! * [`evaluate`] — density RMSPE (eq. 70, Table 6) in its two readings and the per-run density
-//!   error of Fig. 10.
+//! * [`config`] — the `[filter.density]` settings and their seed-001 defaults.
+//!
+//! The Monte Carlo evaluation of the density estimates (eq. 70, Table 6, Fig. 10) and the
+//! simulation of Algorithm 1's training trajectories drive the simulation engine, so they live in
+//! the simulation layer (`sim::density_eval`, `sim::training`).
 //!
 //! UKF-AC (eq. 24–26) needs no building block beyond the UKF: its correction factor is an
 //! augmented random-walk state (see [`super::nav::ukf_ac`]).
 
+pub mod config;
 pub mod covariance_matching;
-pub mod evaluate;
+pub mod error;
 pub mod mlo;
 pub mod network;
 pub mod nn;
 pub mod training;
 
+pub use config::{DensityFilterConfig, DensityTrainingConfig};
 pub use covariance_matching::CovarianceMatching;
-pub use evaluate::{
-    DensityEvalOptions, DensityEvalReport, DensityFilter, evaluate_density_filters,
-};
+pub use error::NetworkError;
 pub use mlo::{LossContext, LossTerm, MloOutcome, MloSettings, OnlineAdam, maximise_likelihood};
 pub use network::{
-    BUILTIN_NETWORKS, DensityNetworkSet, NetworkFile, NetworkRecord, NnAtmosphere,
-    builtin_network_toml,
+    BUILTIN_NETWORKS, DensityNetworkSet, NETWORK_FORMAT, NetworkFile, NetworkRecord, NnAtmosphere,
+    TrainingRecord, builtin_network_toml,
 };
 pub use nn::{Activations, Adam, DensityNetwork, Normalisation, tanh_fast};
 pub use training::{
-    BandedExponential, TrainedNetwork, TrainingData, fit_onboard_exponential, generate_data,
-    train_density_networks, train_network,
+    BandedExponential, TrainedNetwork, TrainingData, fit_onboard_exponential, train_network,
 };
 
-use crate::scenario::{DensityFilterConfig, Scenario};
+use super::Onboard;
 
-/// The density settings of `scenario` (`filter.density`, or the seed-001 defaults).
-pub fn density_config(scenario: &Scenario) -> DensityFilterConfig {
-    scenario.config.filter.density.clone().unwrap_or_default()
-}
-
-/// Load the network set named by `filter.density.network` (a built-in network file), checking
-/// that its planet radius is the scenario's.
-pub fn load_network_set(scenario: &Scenario) -> Result<DensityNetworkSet, String> {
-    let cfg = density_config(scenario);
+/// The USKF-NN network set of `onboard`: its loaded networks if any, else the built-in network
+/// file named by `filter.density.network`; checked to be trained for the onboard planet radius.
+pub fn load_network_set(onboard: &Onboard) -> Result<DensityNetworkSet, NetworkError> {
+    let cfg = onboard.tuning.density_settings();
     let name = cfg.network.trim();
-    let text = builtin_network_toml(name).ok_or_else(|| {
-        format!(
-            "filter.density.network = '{name}' is not a built-in network file (built-ins: {})",
-            BUILTIN_NETWORKS.join(", ")
-        )
-    })?;
-    let file = NetworkFile::from_toml_str(text, name)?;
-    let set = file.to_set()?;
-    let r = scenario.filter_model.planet.radius;
+    let set = match &onboard.density_networks {
+        Some(set) => set.clone(),
+        None => {
+            let text = builtin_network_toml(name).ok_or_else(|| NetworkError::UnknownNetwork {
+                name: name.to_string(),
+                known: BUILTIN_NETWORKS.join(", "),
+            })?;
+            NetworkFile::from_toml_str(text, name)?.to_set()?
+        }
+    };
+    let r = onboard.model.planet.radius;
     if (set.planet_radius_m - r).abs() > 1e-6 * r {
-        return Err(format!(
-            "network file '{name}' was trained for planet radius {} m but the scenario uses {r} m",
-            set.planet_radius_m
-        ));
+        return Err(NetworkError::PlanetMismatch {
+            name: name.to_string(),
+            trained: set.planet_radius_m,
+            used: r,
+        });
     }
     Ok(set)
 }

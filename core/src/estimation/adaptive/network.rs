@@ -8,6 +8,7 @@
 //! model", each adapted online while the estimate is inside its band — a file with several
 //! bands is that extension ([`DensityNetworkSet`]).
 
+use super::error::NetworkError;
 use super::nn::{Activations, DensityNetwork, Normalisation};
 use crate::atmosphere::Atmosphere;
 use crate::math::Real;
@@ -107,15 +108,14 @@ pub struct NetworkFile {
 
 impl NetworkRecord {
     /// The record as a network.
-    pub fn to_network(&self) -> Result<DensityNetwork, String> {
+    pub fn to_network(&self) -> Result<DensityNetwork, NetworkError> {
         let h = self.w_in.len();
         if self.b_in.len() != h || self.w_out.len() != h {
-            return Err(format!(
-                "w_in, b_in and w_out must have the same length (got {}, {}, {})",
-                h,
-                self.b_in.len(),
-                self.w_out.len()
-            ));
+            return Err(NetworkError::LayerLengths {
+                w_in: h,
+                b_in: self.b_in.len(),
+                w_out: self.w_out.len(),
+            });
         }
         let mut xi = Vec::with_capacity(3 * h + 1);
         xi.extend_from_slice(&self.w_in);
@@ -148,15 +148,22 @@ impl NetworkRecord {
 
 impl NetworkFile {
     /// Parse and check a network file; `source` names it in errors.
-    pub fn from_toml_str(text: &str, source: &str) -> Result<NetworkFile, String> {
-        let f: NetworkFile = toml::from_str(text).map_err(|e| format!("{source}: {e}"))?;
+    pub fn from_toml_str(text: &str, source: &str) -> Result<NetworkFile, NetworkError> {
+        let f: NetworkFile = toml::from_str(text).map_err(|e| NetworkError::Parse {
+            source_name: source.to_string(),
+            message: e.to_string(),
+        })?;
         if f.format != NETWORK_FORMAT {
-            return Err(format!(
-                "{source}: format = '{}', expected '{NETWORK_FORMAT}'",
-                f.format
-            ));
+            return Err(NetworkError::Format {
+                source_name: source.to_string(),
+                found: f.format.clone(),
+                expected: NETWORK_FORMAT,
+            });
         }
-        f.to_set().map_err(|e| format!("{source}: {e}"))?;
+        f.to_set().map_err(|e| NetworkError::InFile {
+            source_name: source.to_string(),
+            source: Box::new(e),
+        })?;
         Ok(f)
     }
 
@@ -166,36 +173,32 @@ impl NetworkFile {
     }
 
     /// The networks as a set ready for use.
-    pub fn to_set(&self) -> Result<DensityNetworkSet, String> {
+    pub fn to_set(&self) -> Result<DensityNetworkSet, NetworkError> {
         let mut nets = Vec::with_capacity(self.networks.len());
         let mut tops = Vec::with_capacity(self.networks.len());
         if self.networks.is_empty() {
-            return Err("the file holds no network".into());
+            return Err(NetworkError::Empty);
         }
         if !(self.planet_radius_m.is_finite() && self.planet_radius_m > 0.0) {
-            return Err(format!(
-                "planet_radius_m = {} must be positive",
-                self.planet_radius_m
-            ));
+            return Err(NetworkError::PlanetRadius(self.planet_radius_m));
         }
         for (k, rec) in self.networks.iter().enumerate() {
             let [lo, hi] = rec.altitude_band_km;
             if !(lo.is_finite() && hi.is_finite() && lo < hi) {
-                return Err(format!(
-                    "networks[{k}].altitude_band_km = [{lo}, {hi}] must be increasing"
-                ));
+                return Err(NetworkError::BandOrder { index: k, lo, hi });
             }
             if k > 0 && (lo - self.networks[k - 1].altitude_band_km[1]).abs() > 1e-9 {
-                return Err(format!(
-                    "networks[{k}] starts at {lo} km but networks[{}] ends at {} km: bands must be contiguous",
-                    k - 1,
-                    self.networks[k - 1].altitude_band_km[1]
-                ));
+                return Err(NetworkError::BandGap {
+                    index: k,
+                    lo,
+                    previous: k - 1,
+                    previous_top: self.networks[k - 1].altitude_band_km[1],
+                });
             }
-            nets.push(
-                rec.to_network()
-                    .map_err(|e| format!("networks[{k}]: {e}"))?,
-            );
+            nets.push(rec.to_network().map_err(|e| NetworkError::InNetwork {
+                index: k,
+                source: Box::new(e),
+            })?);
             tops.push(hi * 1e3);
         }
         Ok(DensityNetworkSet {

@@ -32,6 +32,7 @@
 //! written so that the compiler vectorises the hidden layer. Its absolute error is below 3e-16
 //! (tested against `f64::tanh`).
 
+use super::error::NetworkError;
 use serde::{Deserialize, Serialize};
 
 /// Hidden-layer width used by seed 001 (§IV.A: "one hidden layer containing 100 neurons").
@@ -144,19 +145,19 @@ pub struct Activations {
 impl DensityNetwork {
     /// A network with `hidden` neurons, parameters `xi` (length 3H + 1) and normalisation `norm`.
     /// Errors if the lengths do not match, a value is non-finite or a standard deviation ≤ 0.
-    pub fn new(hidden: usize, xi: Vec<f64>, norm: Normalisation) -> Result<Self, String> {
+    pub fn new(hidden: usize, xi: Vec<f64>, norm: Normalisation) -> Result<Self, NetworkError> {
         if hidden == 0 {
-            return Err("the hidden layer needs at least one neuron".into());
+            return Err(NetworkError::NoHiddenNeurons);
         }
         if xi.len() != 3 * hidden + 1 {
-            return Err(format!(
-                "{} parameters given, a 1-{hidden}-1 network has {}",
-                xi.len(),
-                3 * hidden + 1
-            ));
+            return Err(NetworkError::ParameterCount {
+                given: xi.len(),
+                hidden,
+                expected: 3 * hidden + 1,
+            });
         }
         if let Some(i) = xi.iter().position(|v| !v.is_finite()) {
-            return Err(format!("parameter {i} is not finite"));
+            return Err(NetworkError::NonFiniteParameter(i));
         }
         let n = &norm;
         for (name, v) in [
@@ -165,14 +166,12 @@ impl DensityNetwork {
             ("shift", n.shift),
         ] {
             if !v.is_finite() {
-                return Err(format!("{name} = {v} is not finite"));
+                return Err(NetworkError::NonFiniteNormalisation { name, value: v });
             }
         }
         for (name, v) in [("r_std_m", n.r_std_m), ("out_std", n.out_std)] {
             if !(v.is_finite() && v > 0.0) {
-                return Err(format!(
-                    "{name} = {v} must be a positive standard deviation"
-                ));
+                return Err(NetworkError::BadStandardDeviation { name, value: v });
             }
         }
         Ok(DensityNetwork { hidden, xi, norm })

@@ -6,7 +6,7 @@
 //!    extension of §VI) each band gets its own fit over its altitudes.
 //! 2. N trajectories are simulated on that model from initial states and vehicles drawn from
 //!    the scenario's dispersions (Table 1), and (r, ρ) is recorded every `sample_interval_s`
-//!    for `duration_s` ([`generate_data`]).
+//!    for `duration_s` (`sim::training::generate_data`, which drives the simulation engine).
 //! 3. Densities are transformed by ϱ = √(𝓑 − log₁₀ ρ) (eq. 29, 𝓑 = 0), inputs and outputs are
 //!    normalised with the training-set mean and standard deviation (eq. 30–31), the samples
 //!    are split into training and validation sets, and a 1-H-1 tanh network (eq. 32–33) is
@@ -18,11 +18,13 @@
 //! uniform initialisation) and the mini-batch order. Mini-batch gradients are summed over a
 //! fixed number of chunks in chunk order, so the result does not depend on the thread count.
 
-use super::network::{NETWORK_FORMAT, NetworkFile, NetworkRecord, TrainingRecord};
+use super::config::DensityTrainingConfig;
+use super::error::NetworkError;
+use super::network::TrainingRecord;
 use super::nn::{Activations, Adam, DensityNetwork, Normalisation};
+use crate::atmosphere::AtmosphereError;
 use crate::atmosphere::{Atmosphere, Exponential};
 use crate::math::Real;
-use crate::scenario::{DensityTrainingConfig, Scenario};
 use rand::seq::SliceRandom;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -37,7 +39,7 @@ pub fn fit_onboard_exponential(
     mean: &impl Atmosphere,
     lo_km: f64,
     hi_km: f64,
-) -> Result<Exponential, String> {
+) -> Result<Exponential, AtmosphereError> {
     let n = ((hi_km - lo_km).floor() as usize).max(1);
     let samples: Vec<(f64, f64)> = (0..=n)
         .map(|k| {
@@ -45,7 +47,7 @@ pub fn fit_onboard_exponential(
             (h, mean.density(h))
         })
         .collect();
-    Exponential::fit_least_squares(&samples).map_err(|e| e.to_string())
+    Exponential::fit_least_squares(&samples)
 }
 
 /// Piecewise-exponential training atmosphere: one exponential per band (`tops_m` = band tops).
@@ -82,63 +84,6 @@ pub struct TrainingData {
     pub rho: Vec<f64>,
     /// Trajectory each sample comes from.
     pub trajectory: Vec<u32>,
-}
-
-/// Algorithm 1 lines 1–10: simulate `cfg.trajectories` entries of `scenario` (initial state and
-/// vehicle dispersed as the truth, no process noise) on `atmosphere`, recording (r, ρ) every
-/// `cfg.sample_interval_s` from t = 0 to `cfg.duration_s` (a trajectory that reaches the
-/// ground stops there). Trajectory j draws from `ChaCha8(seed ⊕ j)`.
-pub fn generate_data(
-    scenario: &Scenario,
-    atmosphere: &BandedExponential,
-    cfg: &DensityTrainingConfig,
-) -> TrainingData {
-    let step = scenario.config.timing.truth_step_s;
-    let per_sample = (cfg.sample_interval_s / step).round().max(1.0) as usize;
-    let n_steps = (cfg.duration_s / step).round() as usize;
-    let runs: Vec<Vec<(f64, f64)>> = (0..cfg.trajectories)
-        .into_par_iter()
-        .map(|j| {
-            let mut rng = ChaCha8Rng::seed_from_u64(
-                cfg.seed ^ (0x9E37_79B9_7F4A_7C15_u64.wrapping_mul(j as u64 + 1)),
-            );
-            let draw = scenario.draw_truth(&mut rng);
-            let mut model = crate::dynamics::EntryModel {
-                kind: draw.model.kind,
-                planet: draw.model.planet,
-                atmosphere: atmosphere.clone(),
-                vehicle: draw.model.vehicle,
-                augmented: vec![],
-                rho0_model: 1.0,
-                density_factor: 1.0,
-            };
-            model.density_factor = 1.0;
-            let mut x = draw.initial;
-            let mut out = Vec::with_capacity(n_steps / per_sample + 1);
-            for k in 0..=n_steps {
-                let h = model.altitude(&x);
-                if h < 0.0 || !h.is_finite() {
-                    break;
-                }
-                if k % per_sample == 0 {
-                    out.push((h + model.planet.radius, model.atmosphere.density(h)));
-                }
-                if k < n_steps {
-                    x = model.step(&x, scenario.truth_bank, step);
-                }
-            }
-            out
-        })
-        .collect();
-    let mut data = TrainingData::default();
-    for (j, run) in runs.iter().enumerate() {
-        for &(r, rho) in run {
-            data.r_m.push(r);
-            data.rho.push(rho);
-            data.trajectory.push(j as u32);
-        }
-    }
-    data
 }
 
 /// Result of training one network.
@@ -185,11 +130,11 @@ pub fn train_network(
     cfg: &DensityTrainingConfig,
     seed: u64,
     progress: &(dyn Fn(usize, f64) + Sync),
-) -> Result<TrainedNetwork, String> {
+) -> Result<TrainedNetwork, NetworkError> {
     let clock = Instant::now();
     let n = data.r_m.len();
     if n < 10 {
-        return Err(format!("only {n} training samples; need at least 10"));
+        return Err(NetworkError::TooFewSamples(n));
     }
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut order: Vec<usize> = (0..n).collect();
@@ -309,77 +254,4 @@ pub fn train_network(
         network: net,
         train_mse_history: history,
     })
-}
-
-/// The whole of Algorithm 1 for `scenario`: fit, simulate, train one network per band (one band
-/// when `cfg.bands_km` is empty), and return the network file. `progress(band, epoch, mse)` is
-/// called after every epoch.
-pub fn train_density_networks(
-    scenario: &Scenario,
-    cfg: &DensityTrainingConfig,
-    progress: &(dyn Fn(usize, usize, f64) + Sync),
-) -> Result<(NetworkFile, BandedExponential), String> {
-    let mean = &scenario.truth_model.atmosphere;
-    let [lo, hi] = cfg.fit_altitude_km;
-    let edges: Vec<f64> = if cfg.bands_km.is_empty() {
-        vec![lo, hi]
-    } else {
-        cfg.bands_km.clone()
-    };
-    let mut models = Vec::new();
-    for w in edges.windows(2) {
-        models.push(fit_onboard_exponential(mean, w[0], w[1])?);
-    }
-    let atmosphere = BandedExponential {
-        tops_m: edges[1..].iter().map(|e| e * 1e3).collect(),
-        models,
-    };
-    let data = generate_data(scenario, &atmosphere, cfg);
-    let mut networks = Vec::new();
-    let nb = atmosphere.models.len();
-    for b in 0..nb {
-        // A band's network learns its band plus a 2 km margin each side (its own exponential).
-        let (blo, bhi) = (edges[b] * 1e3 - 2e3, edges[b + 1] * 1e3 + 2e3);
-        let exp = atmosphere.models[b];
-        let mut d = TrainingData::default();
-        for k in 0..data.r_m.len() {
-            let h = data.r_m[k] - scenario.planet.radius;
-            if nb == 1 || (h >= blo && h <= bhi) || (b == 0 && h < blo) || (b == nb - 1 && h > bhi)
-            {
-                d.r_m.push(data.r_m[k]);
-                d.rho.push(exp.density(h));
-                d.trajectory.push(data.trajectory[k]);
-            }
-        }
-        let seed = cfg.seed.wrapping_add(1_000_003 * b as u64);
-        let mut t = train_network(&d, cfg, seed, &|e, m| progress(b, e, m))?;
-        t.record.scenario = scenario.config.name.clone();
-        t.record.trajectories = cfg.trajectories;
-        networks.push(NetworkRecord::from_network(
-            &t.network,
-            [edges[b], edges[b + 1]],
-            [exp.rho_ref, exp.h_ref / 1e3, exp.scale_height / 1e3],
-            t.record,
-        ));
-    }
-    let description = if nb == 1 {
-        format!(
-            "Seed 001 density network (1-{}-1 tanh) for scenario '{}', trained on the least-squares exponential fit to the truth mean profile over {lo}-{hi} km (Algorithm 1).",
-            cfg.hidden, scenario.config.name
-        )
-    } else {
-        format!(
-            "Seed 001 density networks (1-{}-1 tanh), one per altitude band {:?} km, for scenario '{}', each trained on the least-squares exponential fit to the truth mean profile over its band (seed 001 Sec. VI extension).",
-            cfg.hidden, edges, scenario.config.name
-        )
-    };
-    Ok((
-        NetworkFile {
-            format: NETWORK_FORMAT.to_string(),
-            description,
-            planet_radius_m: scenario.planet.radius,
-            networks,
-        },
-        atmosphere,
-    ))
 }

@@ -2,16 +2,16 @@
 //! mixture of experts.
 
 use super::ekf_nav::EkfNav;
-use super::setup::FilterStart;
+use super::start::FilterStart;
 use super::{NavFilter, StepInfo};
 use crate::estimation::EstimationError;
+use crate::estimation::Onboard;
 use crate::estimation::mmae::{
     ClassicBank, DEFAULT_ETA, DEFAULT_P_MIN, MixtureOfExperts, fuse_bank, gaussian_log_likelihood,
 };
 use crate::math::V3;
-use crate::scenario::Scenario;
 use crate::sensors::Channel;
-use crate::sim::MeasurementEpoch;
+use crate::sensors::MeasurementEpoch;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use std::sync::Arc;
 
@@ -39,7 +39,7 @@ pub struct BankNav<const N: usize> {
     members: Vec<Option<EkfNav<N>>>,
     deltas: Vec<f64>,
     gate: Gate,
-    scenario: Arc<Scenario>,
+    onboard: Arc<Onboard>,
     fused: (SVector<f64, N>, SMatrix<f64, N, N>),
     weights: Vec<f64>,
     t: f64,
@@ -50,11 +50,11 @@ pub struct BankNav<const N: usize> {
 impl<const N: usize> BankNav<N> {
     /// A bank over `filter.model_bank_density_bias`; `moe` selects the mixture-of-experts gating.
     pub fn new(
-        scenario: &Arc<Scenario>,
+        onboard: &Arc<Onboard>,
         start: &FilterStart<N>,
         moe: bool,
     ) -> Result<Self, EstimationError> {
-        let deltas = scenario.config.filter.model_bank_density_bias.clone();
+        let deltas = onboard.tuning.model_bank_density_bias.clone();
         if deltas.len() < 2 {
             return Err(EstimationError::InvalidInput(
                 "a model bank needs at least two density biases".into(),
@@ -62,13 +62,13 @@ impl<const N: usize> BankNav<N> {
         }
         let members = deltas
             .iter()
-            .map(|d| EkfNav::new(scenario, start, None, 1.0 + d).map(Some))
+            .map(|d| EkfNav::new(onboard, start, None, 1.0 + d).map(Some))
             .collect::<Result<Vec<_>, _>>()?;
         let n = deltas.len();
         let gate = if moe {
             Gate::Moe(MixtureOfExperts::new(
                 n,
-                scenario.channels.len(),
+                onboard.channels.len(),
                 DEFAULT_ETA,
             )?)
         } else {
@@ -78,11 +78,11 @@ impl<const N: usize> BankNav<N> {
             members,
             deltas,
             gate,
-            scenario: Arc::clone(scenario),
+            onboard: Arc::clone(onboard),
             fused: (start.x0, start.p0),
             weights: vec![1.0 / n as f64; n],
             t: 0.0,
-            bank: scenario.truth_bank,
+            bank: onboard.initial_bank,
         })
     }
 
@@ -92,14 +92,14 @@ impl<const N: usize> BankNav<N> {
     }
 
     fn normalised(&self, epoch: &MeasurementEpoch) -> DVector<f64> {
-        let p = &self.scenario.planet;
+        let p = &self.onboard.model.planet;
         let g0 = p.surface_gravity();
         DVector::from_iterator(
             epoch.values.len(),
             epoch
                 .values
                 .iter()
-                .zip(&self.scenario.channels)
+                .zip(&self.onboard.channels)
                 .map(|(v, spec)| {
                     let Some(z) = v else { return 0.0 };
                     match spec.channel {
@@ -199,7 +199,7 @@ impl<const N: usize> NavFilter<N> for BankNav<N> {
     }
 
     fn density_estimate(&self) -> Option<f64> {
-        self.density_profile(self.scenario.filter_model.altitude(&self.fused.0))
+        self.density_profile(self.onboard.model.altitude(&self.fused.0))
     }
 
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {

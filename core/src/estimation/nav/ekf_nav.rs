@@ -1,16 +1,16 @@
 //! The EKF navigation filter: centralised over every channel, or local over a channel subset.
 
-use super::setup::FilterStart;
+use super::start::FilterStart;
 use super::ukf_common::substeps;
 use super::{NavFilter, StepInfo, channel_sigma};
 use crate::atmosphere::AtmosphereModel;
 use crate::dynamics::EntryModel;
 use crate::estimation::EstimationError;
+use crate::estimation::Onboard;
 use crate::estimation::ekf::{Ekf, LinearizedMeasurement};
 use crate::math::{V3, dual_gradient, seed_duals};
-use crate::scenario::Scenario;
+use crate::sensors::MeasurementEpoch;
 use crate::sensors::channels::kinematics;
-use crate::sim::MeasurementEpoch;
 use nalgebra::{SMatrix, SVector};
 use std::sync::Arc;
 
@@ -25,35 +25,36 @@ use std::sync::Arc;
 ///   Relative-noise channels use σ = fraction·|z|.
 #[derive(Debug, Clone)]
 pub struct EkfNav<const N: usize> {
-    scenario: Arc<Scenario>,
+    onboard: Arc<Onboard>,
     model: EntryModel<AtmosphereModel>,
     ekf: Ekf<N>,
     q: SMatrix<f64, N, N>,
     t: f64,
     channels: Option<Vec<usize>>,
-    /// Bank-angle command of the onboard models \[rad\] (starts at the scenario's).
+    /// Bank-angle command of the onboard models \[rad\] (starts at the onboard initial bank).
     bank: f64,
 }
 
 impl<const N: usize> EkfNav<N> {
-    /// A filter on `scenario` from `start`; `channels` restricts it to those channel slots (a local
-    /// filter), `density_factor` scales its density model (a bank member with bias Δ: 1 + Δ).
+    /// A filter on the `onboard` models from `start`; `channels` restricts it to those channel
+    /// slots (a local filter), `density_factor` scales its density model (a bank member with bias
+    /// Δ: 1 + Δ).
     pub fn new(
-        scenario: &Arc<Scenario>,
+        onboard: &Arc<Onboard>,
         start: &FilterStart<N>,
         channels: Option<Vec<usize>>,
         density_factor: f64,
     ) -> Result<Self, EstimationError> {
-        let mut model = scenario.filter_model.clone();
+        let mut model = onboard.model.clone();
         model.density_factor = density_factor;
         Ok(EkfNav {
-            scenario: Arc::clone(scenario),
+            onboard: Arc::clone(onboard),
             model,
             ekf: Ekf::new(start.x0, start.p0)?,
             q: start.q,
             t: 0.0,
             channels,
-            bank: scenario.truth_bank,
+            bank: onboard.initial_bank,
         })
     }
 
@@ -72,7 +73,7 @@ impl<const N: usize> EkfNav<N> {
         if dt <= 0.0 {
             return Vec::new();
         }
-        let step = self.scenario.config.timing.filter_step_s;
+        let step = self.onboard.filter_step_s;
         let (n, h) = substeps(dt, step);
         let q = self.q * (h / step);
         let mut x = self.ekf.x;
@@ -170,8 +171,8 @@ impl<const N: usize> EkfNav<N> {
             {
                 continue;
             }
-            let spec = &self.scenario.channels[c];
-            let d = self.scenario.measurement.evaluate_with(
+            let spec = &self.onboard.channels[c];
+            let d = self.onboard.measurement.evaluate_with(
                 &self.model,
                 &xd,
                 &kin,

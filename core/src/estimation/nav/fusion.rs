@@ -2,13 +2,13 @@
 //! intersection, with or without information feedback (seed 000 §2.3.3, §3.3–3.4).
 
 use super::ekf_nav::EkfNav;
-use super::setup::FilterStart;
+use super::start::FilterStart;
 use super::{NavFilter, StepInfo};
 use crate::estimation::EstimationError;
+use crate::estimation::Onboard;
 use crate::estimation::ci::{CiWeighting, covariance_intersection, feedback};
 use crate::math::V3;
-use crate::scenario::Scenario;
-use crate::sim::MeasurementEpoch;
+use crate::sensors::MeasurementEpoch;
 use nalgebra::{SMatrix, SVector};
 use std::sync::Arc;
 
@@ -36,11 +36,11 @@ pub struct FusionNav<const N: usize> {
 impl<const N: usize> FusionNav<N> {
     /// Local filters over the non-radio channels plus the radio channels of each beacon.
     pub fn new(
-        scenario: &Arc<Scenario>,
+        onboard: &Arc<Onboard>,
         start: &FilterStart<N>,
         with_feedback: bool,
     ) -> Result<Self, EstimationError> {
-        let common: Vec<usize> = scenario
+        let common: Vec<usize> = onboard
             .channels
             .iter()
             .enumerate()
@@ -48,15 +48,7 @@ impl<const N: usize> FusionNav<N> {
             .map(|(i, _)| i)
             .collect();
         let mut locals = Vec::new();
-        let n_beacons = scenario.beacons.len();
-        let radio: Vec<usize> = (0..n_beacons)
-            .filter(|&b| {
-                scenario
-                    .channels
-                    .iter()
-                    .any(|c| c.channel.beacon() == Some(b))
-            })
-            .collect();
+        let radio = onboard.radio_beacons();
         let mut local_start = start.clone();
         if with_feedback {
             local_start.p0 = start.p0 * radio.len() as f64;
@@ -64,14 +56,14 @@ impl<const N: usize> FusionNav<N> {
         for b in radio {
             let mut mask = common.clone();
             mask.extend(
-                scenario
+                onboard
                     .channels
                     .iter()
                     .enumerate()
                     .filter(|(_, c)| c.channel.beacon() == Some(b))
                     .map(|(i, _)| i),
             );
-            locals.push(Some(EkfNav::new(scenario, &local_start, Some(mask), 1.0)?));
+            locals.push(Some(EkfNav::new(onboard, &local_start, Some(mask), 1.0)?));
         }
         if locals.len() < 2 {
             return Err(EstimationError::InvalidInput(
@@ -89,7 +81,7 @@ impl<const N: usize> FusionNav<N> {
             feedback: with_feedback,
             fused: (start.x0, start.p0),
             t: 0.0,
-            bank: scenario.truth_bank,
+            bank: onboard.initial_bank,
         })
     }
 }

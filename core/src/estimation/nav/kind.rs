@@ -1,6 +1,7 @@
 //! Filter names and whether a filter fits a scenario.
 
-use crate::scenario::Scenario;
+use crate::estimation::Onboard;
+use crate::state_dim::UnsupportedDimension;
 use thiserror::Error;
 
 /// Why a filter cannot be used as asked.
@@ -29,8 +30,8 @@ pub enum NavError {
         fits: String,
     },
     /// The filter state dimension is not supported.
-    #[error("filter state dimension {0} is not supported (supported: 6 to 10)")]
-    Dimension(usize),
+    #[error(transparent)]
+    Dimension(#[from] UnsupportedDimension),
 }
 
 /// The navigation filters available to trade studies.
@@ -86,7 +87,7 @@ impl FilterKind {
         }
     }
 
-    /// Parse a filter name.
+    /// Parse a filter name (the one parser of filter names; [`FromStr`](std::str::FromStr) calls it).
     pub fn parse(name: &str) -> Result<FilterKind, NavError> {
         FilterKind::ALL
             .into_iter()
@@ -97,39 +98,33 @@ impl FilterKind {
             })
     }
 
-    /// Why this filter cannot run on `scenario`, if it cannot.
-    pub fn misfit(self, scenario: &Scenario) -> Option<String> {
-        let radio_beacons = (0..scenario.beacons.len())
-            .filter(|&i| {
-                scenario
-                    .channels
-                    .iter()
-                    .any(|c| c.channel.beacon() == Some(i))
-            })
-            .count();
+    /// Why this filter cannot run on the `onboard` configuration, if it cannot.
+    pub fn misfit(self, onboard: &Onboard) -> Option<String> {
+        let radio_beacons = onboard.radio_beacons().len();
         match self {
             FilterKind::Ci | FilterKind::Dcifaif if radio_beacons < 2 => Some(format!(
                 "it fuses one local filter per radio beacon and needs at least 2 beacons with radio measurements (the scenario has {radio_beacons})"
             )),
-            FilterKind::Mmae | FilterKind::MmaeMoe if scenario.config.filter.model_bank_density_bias.len() < 2 => Some(
+            FilterKind::Mmae | FilterKind::MmaeMoe if onboard.tuning.model_bank_density_bias.len() < 2 => Some(
                 "it needs a model bank: set filter.model_bank_density_bias to at least two density biases".to_string(),
             ),
-            FilterKind::UkfAc | FilterKind::UskfNn => density_filter_misfit(self, scenario),
+            FilterKind::UkfAc | FilterKind::UskfNn => density_filter_misfit(self, onboard),
             _ => None,
         }
     }
 
-    /// Check that the filter fits `scenario`, with an error listing the filters that do.
-    pub fn check_fits(self, scenario: &Scenario) -> Result<(), NavError> {
-        match self.misfit(scenario) {
+    /// Check that the filter fits the `onboard` configuration, with an error listing the filters
+    /// that do.
+    pub fn check_fits(self, onboard: &Onboard) -> Result<(), NavError> {
+        match self.misfit(onboard) {
             None => Ok(()),
             Some(reason) => Err(NavError::DoesNotFit {
                 filter: self.name().to_string(),
-                scenario: scenario.config.name.clone(),
+                scenario: onboard.scenario_name.clone(),
                 reason,
                 fits: FilterKind::ALL
                     .iter()
-                    .filter(|k| k.misfit(scenario).is_none())
+                    .filter(|k| k.misfit(onboard).is_none())
                     .map(|k| k.name())
                     .collect::<Vec<_>>()
                     .join(", "),
@@ -137,12 +132,12 @@ impl FilterKind {
         }
     }
 
-    /// Parse a comma-separated list and check every filter fits the scenario.
-    pub fn parse_list(list: &str, scenario: &Scenario) -> Result<Vec<FilterKind>, NavError> {
+    /// Parse a comma-separated list and check every filter fits the `onboard` configuration.
+    pub fn parse_list(list: &str, onboard: &Onboard) -> Result<Vec<FilterKind>, NavError> {
         let mut out = Vec::new();
         for name in list.split(',').filter(|s| !s.trim().is_empty()) {
             let k = FilterKind::parse(name)?;
-            k.check_fits(scenario)?;
+            k.check_fits(onboard)?;
             if !out.contains(&k) {
                 out.push(k);
             }
@@ -158,23 +153,22 @@ impl FilterKind {
 }
 
 /// Why UKF-AC or USKF-NN (seed 001's 8-state layout plus one internal density state) cannot run
-/// on `scenario`.
-fn density_filter_misfit(kind: FilterKind, scenario: &Scenario) -> Option<String> {
+/// on the `onboard` configuration.
+fn density_filter_misfit(kind: FilterKind, onboard: &Onboard) -> Option<String> {
     use crate::dynamics::AugmentedParam;
     use crate::sensors::Channel;
-    let f = &scenario.config.filter;
-    if scenario.filter_model.kind.is_cartesian() {
+    let augment = &onboard.model.augmented;
+    if onboard.model.kind.is_cartesian() {
         return Some(
             "it needs the spherical state [r, lon, lat, v, fpa, heading, CdS/m, L/D] (filter.dynamics = \"spherical\")"
                 .to_string(),
         );
     }
-    let layout = f.augment.len() == 2
-        && f.augment.contains(&AugmentedParam::CdSOverM)
-        && f.augment.contains(&AugmentedParam::LiftToDrag);
+    let layout = augment.len() == 2
+        && augment.contains(&AugmentedParam::CdSOverM)
+        && augment.contains(&AugmentedParam::LiftToDrag);
     if !layout {
-        let names: Vec<String> = f
-            .augment
+        let names: Vec<String> = augment
             .iter()
             .map(|a| {
                 format!(
@@ -192,7 +186,7 @@ fn density_filter_misfit(kind: FilterKind, scenario: &Scenario) -> Option<String
             names.join(", ")
         ));
     }
-    let density_sensor = scenario.channels.iter().any(|c| {
+    let density_sensor = onboard.channels.iter().any(|c| {
         matches!(
             c.channel,
             Channel::Accel(_) | Channel::DynamicPressure | Channel::Heating
@@ -205,15 +199,29 @@ fn density_filter_misfit(kind: FilterKind, scenario: &Scenario) -> Option<String
         );
     }
     if kind == FilterKind::UskfNn {
-        if f.density.is_none() {
+        if onboard.tuning.density.is_none() {
             return Some(
                 "it needs a [filter.density] section naming a trained network (see `entrynav train-density`)"
                     .to_string(),
             );
         }
-        if let Err(e) = crate::estimation::adaptive::load_network_set(scenario) {
-            return Some(e);
+        if let Err(e) = crate::estimation::adaptive::load_network_set(onboard) {
+            return Some(e.to_string());
         }
     }
     None
+}
+
+impl std::str::FromStr for FilterKind {
+    type Err = NavError;
+
+    fn from_str(name: &str) -> Result<FilterKind, NavError> {
+        FilterKind::parse(name)
+    }
+}
+
+impl std::fmt::Display for FilterKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
 }

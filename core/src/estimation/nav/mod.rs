@@ -1,15 +1,16 @@
 //! Navigation filters: estimators wired to a scenario's dynamics and sensors.
 //!
 //! Every filter implements [`NavFilter`]: predict to the next measurement epoch, update with the
-//! channels available there, and expose its estimate. The harness in [`crate::sim`] drives the
-//! filters over a truth run; the same filters drive the FMU.
+//! channels available there, and expose its estimate. A filter is built from an
+//! [`Onboard`](crate::estimation::Onboard) value and a [`FilterStart`] only, so it cannot see the
+//! truth; the simulation engine (`sim::engine`) drives it and judges it against the truth.
 
 pub mod bank;
 pub mod build;
 pub mod ekf_nav;
 pub mod fusion;
 pub mod kind;
-pub mod setup;
+pub mod start;
 pub mod ukf_ac;
 pub mod ukf_cm;
 mod ukf_common;
@@ -21,12 +22,12 @@ pub use build::build_filter;
 pub use ekf_nav::EkfNav;
 pub use fusion::FusionNav;
 pub use kind::{FilterKind, NavError};
-pub use setup::{FilterStart, filter_start, truth_in_filter_coords};
+pub use start::FilterStart;
 pub use ukf_nav::UkfNav;
 
 use super::EstimationError;
 use crate::math::V3;
-use crate::sim::MeasurementEpoch;
+use crate::sensors::MeasurementEpoch;
 use nalgebra::{SMatrix, SVector};
 
 /// What a filter reports after an update.
@@ -70,8 +71,8 @@ pub trait NavFilter<const N: usize>: Send + NavFilterClone<N> {
     /// Current time of the estimate \[s\].
     fn time(&self) -> f64;
     /// Set the bank-angle command σ \[rad\] the filter's onboard dynamics and measurement models
-    /// use from now on (held until the next call). Every filter starts with the scenario's bank
-    /// (`scenario.truth_bank`); a guidance loop that commands another bank tells the filter here,
+    /// use from now on (held until the next call). Every filter starts with the onboard initial
+    /// bank ([`Onboard::initial_bank`](crate::estimation::Onboard::initial_bank)); a guidance loop that commands another bank tells the filter here,
     /// since the command is known onboard. Setting the current value changes nothing.
     fn set_bank_angle(&mut self, bank_rad: f64);
     /// The bank-angle command σ \[rad\] the filter's onboard models currently use.
@@ -91,6 +92,6 @@ pub trait NavFilter<const N: usize>: Send + NavFilterClone<N> {
 }
 
 /// Noise 1σ the filters assume for a channel with measured value `z`.
-pub(crate) fn channel_sigma(spec: &crate::scenario::build::ChannelSpec, z: f64) -> f64 {
-    spec.filter_noise.sigma(z)
+pub(crate) fn channel_sigma(spec: &crate::estimation::OnboardChannel, z: f64) -> f64 {
+    spec.noise.sigma(z)
 }

@@ -8,94 +8,103 @@
 //! (`filter.density.ac_p0`, `ac_q`). No consider analysis: 𝒦 is estimated and updated.
 //!
 //! Initial 𝒦: seed 001 initialises it "as the ratio between the true density and the nominal
-//! density". A filter cannot know a run's true density, so our reading is the ratio of the truth
-//! *mean* profile (the one the onboard model was fitted to, before the run's random
-//! perturbation) to the onboard model at the filter's initial altitude; `filter.density.ac_initial`
-//! overrides it with a number.
+//! density". A filter cannot know a run's true density, so our reading is the ratio of the
+//! pre-flight climatology ([`Onboard::climatology`]: the mean profile the onboard model was
+//! fitted to, before any run's random perturbation) to the onboard model at the filter's initial
+//! altitude; `filter.density.ac_initial` overrides it with a number.
+//!
+//! The filter is generic over the navigation dimension `N` (8 for seed 001's layout) with
+//! `L = N + 1` internal states.
 
-use super::setup::FilterStart;
+use super::start::FilterStart;
 use super::ukf_common::UkfCore;
 use super::{NavFilter, StepInfo};
 use crate::atmosphere::{Atmosphere, AtmosphereModel};
-use crate::estimation::EstimationError;
-use crate::estimation::adaptive::density_config;
-use crate::estimation::ukf::{Ukf, UkfParams};
+use crate::estimation::ukf::Ukf;
+use crate::estimation::{EstimationError, Onboard};
 use crate::math::V3;
-use crate::scenario::Scenario;
-use crate::sim::MeasurementEpoch;
+use crate::sensors::MeasurementEpoch;
 use nalgebra::{SMatrix, SVector};
 use std::sync::Arc;
 
-/// Augmented dimension: 8 navigation states + 𝒦.
-const L: usize = 9;
-
-/// UKF with the augmented density correction factor (`ukf-ac`), for 8-state spherical scenarios.
+/// UKF with the augmented density correction factor (`ukf-ac`): `N` navigation states plus 𝒦,
+/// `L = N + 1` states inside.
 #[derive(Debug, Clone)]
-pub struct UkfAcNav {
+pub struct UkfAcNav<const N: usize, const L: usize> {
     core: UkfCore<AtmosphereModel, L>,
     q: SMatrix<f64, L, L>,
 }
 
-/// Embed an 8-state start in the augmented space with extra state `(x, p, q)`.
-pub(crate) fn augment_start(
-    start: &FilterStart<8>,
+/// Embed an `N`-state start in the `L = N + 1`-state augmented space with extra state
+/// `(x, p, q)`.
+pub(crate) fn augment_start<const N: usize, const L: usize>(
+    start: &FilterStart<N>,
     x: f64,
     p: f64,
     q: f64,
-) -> (SVector<f64, L>, SMatrix<f64, L, L>, SMatrix<f64, L, L>) {
+) -> Result<FilterStart<L>, EstimationError> {
+    if L != N + 1 {
+        return Err(EstimationError::InvalidInput(format!(
+            "an augmented filter over {N} navigation states needs {} internal states, not {L}",
+            N + 1
+        )));
+    }
     let mut x0 = SVector::<f64, L>::zeros();
-    x0.fixed_rows_mut::<8>(0).copy_from(&start.x0);
-    x0[8] = x;
+    x0.fixed_rows_mut::<N>(0).copy_from(&start.x0);
+    x0[N] = x;
     let mut p0 = SMatrix::<f64, L, L>::zeros();
-    p0.fixed_view_mut::<8, 8>(0, 0).copy_from(&start.p0);
-    p0[(8, 8)] = p;
+    p0.fixed_view_mut::<N, N>(0, 0).copy_from(&start.p0);
+    p0[(N, N)] = p;
     let mut q0 = SMatrix::<f64, L, L>::zeros();
-    q0.fixed_view_mut::<8, 8>(0, 0).copy_from(&start.q);
-    q0[(8, 8)] = q;
-    (x0, p0, q0)
+    q0.fixed_view_mut::<N, N>(0, 0).copy_from(&start.q);
+    q0[(N, N)] = q;
+    Ok(FilterStart {
+        x0,
+        p0,
+        q: q0,
+    })
 }
 
-impl UkfAcNav {
-    /// A UKF-AC on `scenario` (8 states) from `start`.
-    pub fn new(scenario: &Arc<Scenario>, start: &FilterStart<8>) -> Result<Self, EstimationError> {
-        let cfg = density_config(scenario);
-        let model = scenario.filter_model.clone();
+impl<const N: usize, const L: usize> UkfAcNav<N, L> {
+    /// A UKF-AC on the `onboard` models from `start`.
+    pub fn new(onboard: &Arc<Onboard>, start: &FilterStart<N>) -> Result<Self, EstimationError> {
+        let cfg = onboard.tuning.density_settings();
+        let model = onboard.model.clone();
         let k0 = match cfg.ac_initial {
             Some(k) => k,
             None => {
                 let h0 = model.altitude(&start.x0);
                 let nominal = model.atmosphere.density(h0);
-                let mean = scenario.truth_model.atmosphere.density(h0);
+                let mean = onboard.climatology.density(h0);
                 if !(nominal > 0.0 && mean > 0.0) {
                     return Err(EstimationError::InvalidInput(format!(
-                        "UKF-AC: cannot form the initial correction factor at altitude {h0} m (truth mean {mean}, onboard {nominal} kg/m³)"
+                        "UKF-AC: cannot form the initial correction factor at altitude {h0} m (climatology {mean}, onboard {nominal} kg/m³)"
                     )));
                 }
                 mean / nominal
             }
         };
-        let (x0, p0, q) = augment_start(start, k0, cfg.ac_p0, cfg.ac_q);
-        let u = &scenario.config.filter.ukf;
-        let ukf = Ukf::new(x0, p0, UkfParams::new(u.alpha, u.beta, u.kappa), 0)?;
-        // eq. 26: 𝒦 (state 8) scales the onboard density in the dynamics and the measurements.
+        let aug = augment_start::<N, L>(start, k0, cfg.ac_p0, cfg.ac_q)?;
+        let ukf = Ukf::new(aug.x0, aug.p0, onboard.tuning.ukf, 0)?;
+        // eq. 26: 𝒦 (state N) scales the onboard density in the dynamics and the measurements.
         Ok(UkfAcNav {
-            core: UkfCore::new(scenario, model, ukf, Some(8)),
-            q,
+            core: UkfCore::new(onboard, model, ukf, Some(N)),
+            q: aug.q,
         })
     }
 
     /// The corrected density profile 𝒦̂·ρ_nominal(h) at altitude `altitude_m` [kg/m³] (eq. 26).
     pub fn density_profile(&self, altitude_m: f64) -> f64 {
-        self.core.ukf.x[8] * self.core.model.atmosphere.density(altitude_m)
+        self.core.ukf.x[N] * self.core.model.atmosphere.density(altitude_m)
     }
 
     /// Current correction factor 𝒦 and its variance.
     pub fn correction_factor(&self) -> (f64, f64) {
-        (self.core.ukf.x[8], self.core.ukf.p[(8, 8)])
+        (self.core.ukf.x[N], self.core.ukf.p[(N, N)])
     }
 }
 
-impl NavFilter<8> for UkfAcNav {
+impl<const N: usize, const L: usize> NavFilter<N> for UkfAcNav<N, L> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
         let Some((n, h, step)) = self.core.substeps_to(t_to) else {
             return Ok(());
@@ -113,8 +122,8 @@ impl NavFilter<8> for UkfAcNav {
         self.core.update(epoch, beacons)
     }
 
-    fn estimate(&self) -> (SVector<f64, 8>, SMatrix<f64, 8, 8>) {
-        self.core.estimate::<8>()
+    fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
+        self.core.estimate::<N>()
     }
 
     fn time(&self) -> f64 {

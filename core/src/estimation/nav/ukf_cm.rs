@@ -7,16 +7,16 @@
 //! (10) steps is available, every step replaces Q by the Myers–Tapley estimate over the last
 //! batch, reset to `diag(|Q̂ᵢᵢ|)` ([`CovarianceMatching`]). No consider analysis (§V.B).
 
-use super::setup::FilterStart;
+use super::start::FilterStart;
 use super::ukf_common::UkfCore;
 use super::{NavFilter, StepInfo};
 use crate::atmosphere::{Atmosphere, AtmosphereModel};
 use crate::estimation::EstimationError;
-use crate::estimation::adaptive::{CovarianceMatching, density_config};
-use crate::estimation::ukf::{Ukf, UkfParams};
+use crate::estimation::Onboard;
+use crate::estimation::adaptive::CovarianceMatching;
+use crate::estimation::ukf::Ukf;
 use crate::math::V3;
-use crate::scenario::Scenario;
-use crate::sim::MeasurementEpoch;
+use crate::sensors::MeasurementEpoch;
 use nalgebra::{SMatrix, SVector};
 use std::sync::Arc;
 
@@ -24,7 +24,7 @@ use std::sync::Arc;
 #[derive(Debug, Clone)]
 pub struct UkfCmNav<const N: usize> {
     core: UkfCore<AtmosphereModel, N>,
-    /// Process noise per filter step currently in use (the scenario's until the first batch).
+    /// Process noise per filter step currently in use (the tuning's until the first batch).
     q: SMatrix<f64, N, N>,
     cm: CovarianceMatching<N>,
     /// Prior mean, covariance and the process noise added since the last update.
@@ -32,15 +32,13 @@ pub struct UkfCmNav<const N: usize> {
 }
 
 impl<const N: usize> UkfCmNav<N> {
-    /// A UKF-CM on `scenario` from `start` (batch size from `filter.density.cm_batch`).
-    pub fn new(scenario: &Arc<Scenario>, start: &FilterStart<N>) -> Result<Self, EstimationError> {
-        let u = &scenario.config.filter.ukf;
-        let params = UkfParams::new(u.alpha, u.beta, u.kappa);
-        let ukf = Ukf::new(start.x0, start.p0, params, 0)?;
+    /// A UKF-CM on the `onboard` models from `start` (batch size from `filter.density.cm_batch`).
+    pub fn new(onboard: &Arc<Onboard>, start: &FilterStart<N>) -> Result<Self, EstimationError> {
+        let ukf = Ukf::new(start.x0, start.p0, onboard.tuning.ukf, 0)?;
         Ok(UkfCmNav {
-            core: UkfCore::new(scenario, scenario.filter_model.clone(), ukf, None),
+            core: UkfCore::new(onboard, onboard.model.clone(), ukf, None),
             q: start.q,
-            cm: CovarianceMatching::new(density_config(scenario).cm_batch),
+            cm: CovarianceMatching::new(onboard.tuning.density_settings().cm_batch),
             prior: None,
         })
     }

@@ -6,11 +6,11 @@ use super::StepInfo;
 use crate::atmosphere::Atmosphere;
 use crate::dynamics::EntryModel;
 use crate::estimation::EstimationError;
+use crate::estimation::Onboard;
 use crate::estimation::ukf::{Ukf, UkfUpdate, UkfWorkspace};
 use crate::math::V3;
-use crate::scenario::Scenario;
+use crate::sensors::MeasurementEpoch;
 use crate::sensors::channels::kinematics;
-use crate::sim::MeasurementEpoch;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use std::sync::Arc;
 
@@ -20,10 +20,10 @@ pub(crate) fn substeps(dt: f64, step: f64) -> (usize, f64) {
     (n, dt / n as f64)
 }
 
-/// The channels available at `epoch` (indices into `scenario.channels`), their values z and the
+/// The channels available at `epoch` (indices into `onboard.channels`), their values z and the
 /// diagonal noise covariance R the filters assume; `None` when nothing was measured.
 pub(crate) fn epoch_measurements(
-    scenario: &Scenario,
+    onboard: &Onboard,
     epoch: &MeasurementEpoch,
 ) -> Option<(Vec<usize>, DVector<f64>, DMatrix<f64>)> {
     let slots: Vec<usize> = epoch
@@ -44,7 +44,7 @@ pub(crate) fn epoch_measurements(
         slots
             .iter()
             .enumerate()
-            .map(|(i, &c)| scenario.channels[c].filter_noise.sigma(z[i]).powi(2)),
+            .map(|(i, &c)| onboard.channels[c].noise.sigma(z[i]).powi(2)),
     ));
     Some((slots, z, r))
 }
@@ -54,7 +54,7 @@ pub(crate) fn epoch_measurements(
 /// evaluated at each sigma point.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn predict_channels<A: Atmosphere, const L: usize>(
-    scenario: &Scenario,
+    onboard: &Onboard,
     model: &EntryModel<A>,
     x: &SVector<f64, L>,
     t: f64,
@@ -65,13 +65,13 @@ pub(crate) fn predict_channels<A: Atmosphere, const L: usize>(
 ) {
     let kin = kinematics(model, x, t);
     for (o, &c) in out.iter_mut().zip(slots) {
-        *o = scenario.measurement.evaluate_with(
+        *o = onboard.measurement.evaluate_with(
             model,
             x,
             &kin,
             bank,
             beacons,
-            scenario.channels[c].channel,
+            onboard.channels[c].channel,
         );
     }
 }
@@ -86,18 +86,18 @@ pub(crate) fn step_info(upd: &UkfUpdate, n_meas: usize) -> StepInfo {
     }
 }
 
-/// The state every UKF navigation filter carries (scenario, onboard model, UKF and its
+/// The state every UKF navigation filter carries (onboard knowledge, onboard model, UKF and its
 /// workspace, time, bank command) and the predict / update loops they share. The filters add
 /// what makes each one different: covariance matching (`ukf-cm`), the augmented correction
 /// factor (`ukf-ac`), the consider parameter and the network adaptation (`uskf-nn`).
 #[derive(Debug, Clone)]
 pub(crate) struct UkfCore<A, const L: usize> {
-    pub(crate) scenario: Arc<Scenario>,
+    pub(crate) onboard: Arc<Onboard>,
     pub(crate) model: EntryModel<A>,
     pub(crate) ukf: Ukf<L>,
     pub(crate) ws: UkfWorkspace<L>,
     pub(crate) t: f64,
-    /// Bank-angle command of the onboard models \[rad\] (starts at the scenario's).
+    /// Bank-angle command of the onboard models \[rad\] (starts at the onboard initial bank).
     pub(crate) bank: f64,
     /// `Some(i)`: state i scales the onboard density (𝒦 of UKF-AC, c of USKF-NN) at every sigma
     /// point, through the model's density factor.
@@ -105,32 +105,32 @@ pub(crate) struct UkfCore<A, const L: usize> {
 }
 
 impl<A: Atmosphere, const L: usize> UkfCore<A, L> {
-    /// A core on `scenario` with onboard `model` and filter `ukf`.
+    /// A core on `onboard` with dynamics `model` and filter `ukf`.
     pub(crate) fn new(
-        scenario: &Arc<Scenario>,
+        onboard: &Arc<Onboard>,
         model: EntryModel<A>,
         ukf: Ukf<L>,
         density_state: Option<usize>,
     ) -> Self {
         UkfCore {
-            scenario: Arc::clone(scenario),
+            onboard: Arc::clone(onboard),
             model,
             ukf,
             ws: UkfWorkspace::default(),
             t: 0.0,
-            bank: scenario.truth_bank,
+            bank: onboard.initial_bank,
             density_state,
         }
     }
 
-    /// The sub-steps `(n, h)` from the filter time to `t_to` and the scenario's filter step;
+    /// The sub-steps `(n, h)` from the filter time to `t_to` and the onboard filter step;
     /// `None` when `t_to` is not later than the filter time.
     pub(crate) fn substeps_to(&self, t_to: f64) -> Option<(usize, f64, f64)> {
         let dt = t_to - self.t;
         if dt <= 0.0 {
             return None;
         }
-        let step = self.scenario.config.timing.filter_step_s;
+        let step = self.onboard.filter_step_s;
         let (n, h) = substeps(dt, step);
         Some((n, h, step))
     }
@@ -176,7 +176,7 @@ impl<A: Atmosphere, const L: usize> UkfCore<A, L> {
         t: f64,
         beacons: &[(V3<f64>, V3<f64>)],
     ) -> Result<StepInfo, EstimationError> {
-        let (sc, bank, density_state) = (&*self.scenario, self.bank, self.density_state);
+        let (sc, bank, density_state) = (&*self.onboard, self.bank, self.density_state);
         let model = &mut self.model;
         let h = |x: &SVector<f64, L>, out: &mut [f64]| {
             if let Some(i) = density_state {
@@ -195,7 +195,7 @@ impl<A: Atmosphere, const L: usize> UkfCore<A, L> {
         epoch: &MeasurementEpoch,
         beacons: &[(V3<f64>, V3<f64>)],
     ) -> Result<StepInfo, EstimationError> {
-        match epoch_measurements(&self.scenario, epoch) {
+        match epoch_measurements(&self.onboard, epoch) {
             Some((slots, z, r)) => self.update_measured(&slots, &z, &r, epoch.t, beacons),
             None => Ok(StepInfo::default()),
         }

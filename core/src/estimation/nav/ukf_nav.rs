@@ -1,18 +1,18 @@
 //! The UKF navigation filter (seed 001 eq. 41–66; no consider states here).
 
-use super::setup::FilterStart;
+use super::start::FilterStart;
 use super::ukf_common::UkfCore;
 use super::{NavFilter, StepInfo};
 use crate::atmosphere::AtmosphereModel;
 use crate::estimation::EstimationError;
-use crate::estimation::ukf::{Ukf, UkfParams};
+use crate::estimation::Onboard;
+use crate::estimation::ukf::Ukf;
 use crate::math::V3;
-use crate::scenario::Scenario;
-use crate::sim::MeasurementEpoch;
+use crate::sensors::MeasurementEpoch;
 use nalgebra::{SMatrix, SVector};
 use std::sync::Arc;
 
-/// UKF navigation filter with the scenario's α, β, κ (`filter.ukf`). The sigma points are
+/// UKF navigation filter with the onboard tuning's α, β, κ (`filter.ukf`). The sigma points are
 /// propagated with the truth's RK4 scheme in sub-steps no longer than the filter step.
 #[derive(Debug, Clone)]
 pub struct UkfNav<const N: usize> {
@@ -21,17 +21,11 @@ pub struct UkfNav<const N: usize> {
 }
 
 impl<const N: usize> UkfNav<N> {
-    /// A UKF on `scenario` from `start`.
-    pub fn new(scenario: &Arc<Scenario>, start: &FilterStart<N>) -> Result<Self, EstimationError> {
-        let u = &scenario.config.filter.ukf;
-        let params = UkfParams {
-            alpha: u.alpha,
-            beta: u.beta,
-            kappa: u.kappa,
-        };
-        let ukf = Ukf::new(start.x0, start.p0, params, 0)?;
+    /// A UKF on the `onboard` models from `start`.
+    pub fn new(onboard: &Arc<Onboard>, start: &FilterStart<N>) -> Result<Self, EstimationError> {
+        let ukf = Ukf::new(start.x0, start.p0, onboard.tuning.ukf, 0)?;
         Ok(UkfNav {
-            core: UkfCore::new(scenario, scenario.filter_model.clone(), ukf, None),
+            core: UkfCore::new(onboard, onboard.model.clone(), ukf, None),
             q: start.q,
         })
     }

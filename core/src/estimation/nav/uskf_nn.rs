@@ -15,32 +15,31 @@
 //!    the consider parameter and its variance are not updated, its cross-covariance is
 //!    ([`Ukf`] with `n_consider = 1`).
 //!
+//! The filter is generic over the navigation dimension `N` (8 for seed 001's layout) with
+//! `L = N + 1` internal states.
+//!
 //! Options (seed 001 §VI, future work): `filter.density.window > 1` puts the last `window`
 //! measurement epochs (each at its own prior mean) in the loss; a network file with several
 //! altitude bands uses one network per band and adapts the one serving the prior altitude.
 
-use super::setup::FilterStart;
+use super::start::FilterStart;
 use super::ukf_ac::augment_start;
 use super::ukf_common::{UkfCore, epoch_measurements};
 use super::{NavFilter, StepInfo};
 use crate::atmosphere::Atmosphere;
 use crate::dynamics::EntryModel;
-use crate::estimation::EstimationError;
 use crate::estimation::adaptive::{
     Activations, DensityNetworkSet, LossContext, LossTerm, MloOutcome, MloSettings, NnAtmosphere,
-    OnlineAdam, density_config, load_network_set, maximise_likelihood,
+    OnlineAdam, load_network_set, maximise_likelihood,
 };
-use crate::estimation::ukf::{Ukf, UkfParams};
+use crate::estimation::ukf::Ukf;
+use crate::estimation::{EstimationError, Onboard};
 use crate::math::V3;
-use crate::scenario::Scenario;
+use crate::sensors::MeasurementEpoch;
 use crate::sensors::channels::kinematics;
-use crate::sim::MeasurementEpoch;
 use nalgebra::{SMatrix, SVector};
 use std::collections::VecDeque;
 use std::sync::Arc;
-
-/// Augmented dimension: 8 navigation states + the consider parameter c.
-const L: usize = 9;
 
 /// Running totals of the online adaptation (diagnostics).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -57,41 +56,43 @@ pub struct AdaptationStats {
     pub last: MloOutcome,
 }
 
-/// Unscented Schmidt–Kalman filter with the adapted density network (`uskf-nn`), for 8-state
-/// spherical scenarios.
+/// Unscented Schmidt–Kalman filter with the adapted density network (`uskf-nn`), for spherical
+/// scenarios with seed 001's augmented layout: `N` navigation states plus the consider parameter
+/// c, `L = N + 1` states inside.
 #[derive(Debug, Clone)]
-pub struct UskfNnNav {
+pub struct UskfNnNav<const N: usize, const L: usize> {
     core: UkfCore<NnAtmosphere, L>,
-    /// Process noise of the 8 navigation states per filter step.
-    q: SMatrix<f64, 8, 8>,
+    /// Process noise of the navigation states per filter step.
+    q: SMatrix<f64, N, N>,
     tau: f64,
     pss: f64,
     settings: MloSettings,
     window: usize,
-    terms: VecDeque<LossTerm>,
+    terms: VecDeque<LossTerm<N>>,
     adam: Vec<OnlineAdam>,
     act: Activations,
     stats: AdaptationStats,
 }
 
-impl UskfNnNav {
-    /// A USKF-NN on `scenario` (8 states) from `start`, with the network of
+impl<const N: usize, const L: usize> UskfNnNav<N, L> {
+    /// A USKF-NN on the `onboard` models from `start`, with the network of
     /// `filter.density.network`.
-    pub fn new(scenario: &Arc<Scenario>, start: &FilterStart<8>) -> Result<Self, EstimationError> {
-        let set = load_network_set(scenario).map_err(EstimationError::InvalidInput)?;
-        Self::with_networks(scenario, start, set)
+    pub fn new(onboard: &Arc<Onboard>, start: &FilterStart<N>) -> Result<Self, EstimationError> {
+        let set =
+            load_network_set(onboard).map_err(|e| EstimationError::InvalidInput(e.to_string()))?;
+        Self::with_networks(onboard, start, set)
     }
 
     /// As [`UskfNnNav::new`] with the networks `set` instead of `filter.density.network` (e.g. a
     /// network just trained).
     pub fn with_networks(
-        scenario: &Arc<Scenario>,
-        start: &FilterStart<8>,
+        onboard: &Arc<Onboard>,
+        start: &FilterStart<N>,
         set: DensityNetworkSet,
     ) -> Result<Self, EstimationError> {
-        let cfg = density_config(scenario);
+        let cfg = onboard.tuning.density_settings();
         let nb = set.nets.len();
-        let fm = &scenario.filter_model;
+        let fm = &onboard.model;
         let model = EntryModel {
             kind: fm.kind,
             planet: fm.planet,
@@ -101,12 +102,11 @@ impl UskfNnNav {
             rho0_model: 1.0,
             density_factor: 1.0,
         };
-        let (x0, p0, _) = augment_start(start, 1.0, cfg.consider_p0, 0.0);
-        let u = &scenario.config.filter.ukf;
-        let ukf = Ukf::new(x0, p0, UkfParams::new(u.alpha, u.beta, u.kappa), 1)?;
+        let aug = augment_start::<N, L>(start, 1.0, cfg.consider_p0, 0.0)?;
+        let ukf = Ukf::new(aug.x0, aug.p0, onboard.tuning.ukf, 1)?;
         Ok(UskfNnNav {
-            // eq. 45, 62: the consider parameter c (state 8) scales the network's density.
-            core: UkfCore::new(scenario, model, ukf, Some(8)),
+            // eq. 45, 62: the consider parameter c (state N) scales the network's density.
+            core: UkfCore::new(onboard, model, ukf, Some(N)),
             q: start.q,
             tau: cfg.consider_tau_s,
             pss: cfg.consider_pss,
@@ -129,7 +129,7 @@ impl UskfNnNav {
 
     /// The filter's density profile ĉ·NN(R + h, ξ_k) at altitude `altitude_m` [kg/m³].
     pub fn density_profile(&self, altitude_m: f64) -> f64 {
-        self.core.ukf.x[8]
+        self.core.ukf.x[N]
             * self
                 .core
                 .model
@@ -154,7 +154,7 @@ impl UskfNnNav {
     }
 }
 
-impl NavFilter<8> for UskfNnNav {
+impl<const N: usize, const L: usize> NavFilter<N> for UskfNnNav<N, L> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
         let Some((n, h, step)) = self.core.substeps_to(t_to) else {
             return Ok(());
@@ -162,12 +162,12 @@ impl NavFilter<8> for UskfNnNav {
         // eq. 51: ECRV transition and its process noise.
         let phi = (-h / self.tau).exp();
         let mut q = SMatrix::<f64, L, L>::zeros();
-        q.fixed_view_mut::<8, 8>(0, 0)
+        q.fixed_view_mut::<N, N>(0, 0)
             .copy_from(&(self.q * (h / step)));
-        q[(8, 8)] = (1.0 - phi * phi) * self.pss;
+        q[(N, N)] = (1.0 - phi * phi) * self.pss;
         // eq. 44–45: sigma point i flies the density c⁽ⁱ⁾·NN(r⁽ⁱ⁾, ξ_{k−1}); c decays to 1.
         self.core
-            .propagate(t_to, n, h, &q, |x, y| y[8] = 1.0 + phi * (x[8] - 1.0))
+            .propagate(t_to, n, h, &q, |x, y| y[N] = 1.0 + phi * (x[N] - 1.0))
     }
 
     fn update(
@@ -175,20 +175,20 @@ impl NavFilter<8> for UskfNnNav {
         epoch: &MeasurementEpoch,
         beacons: &[(V3<f64>, V3<f64>)],
     ) -> Result<StepInfo, EstimationError> {
-        let Some((slots, z, r)) = epoch_measurements(&self.core.scenario, epoch) else {
+        let Some((slots, z, r)) = epoch_measurements(&self.core.onboard, epoch) else {
             return Ok(StepInfo::default());
         };
-        let sc = &*self.core.scenario;
+        let sc = &*self.core.onboard;
         let (t, bank) = (epoch.t, self.core.bank);
 
         // Algorithm 2 at the prior mean (eq. 52–53).
         self.stats.epochs += 1;
         let k = self.stats.epochs;
-        let x8: SVector<f64, 8> = self.core.ukf.x.fixed_rows::<8>(0).into_owned();
-        let altitude = self.core.model.altitude(&x8);
+        let xn: SVector<f64, N> = self.core.ukf.x.fixed_rows::<N>(0).into_owned();
+        let altitude = self.core.model.altitude(&xn);
         let term = LossTerm {
-            x: x8,
-            kin: kinematics(&sc.filter_model, &x8, t),
+            x: xn,
+            kin: kinematics(&sc.model, &xn, t),
             altitude,
             z: z.iter().copied().collect(),
             r_inv: r.diagonal().iter().map(|v| 1.0 / v).collect(),
@@ -202,7 +202,7 @@ impl NavFilter<8> for UskfNnNav {
         let band = self.core.model.atmosphere.set.band(altitude);
         let ctx = LossContext {
             measurement: &sc.measurement,
-            model: &sc.filter_model,
+            model: &sc.model,
             bank,
         };
         let outcome = maximise_likelihood(
@@ -226,8 +226,8 @@ impl NavFilter<8> for UskfNnNav {
         self.core.update_measured(&slots, &z, &r, t, beacons)
     }
 
-    fn estimate(&self) -> (SVector<f64, 8>, SMatrix<f64, 8, 8>) {
-        self.core.estimate::<8>()
+    fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
+        self.core.estimate::<N>()
     }
 
     fn time(&self) -> f64 {
@@ -249,6 +249,6 @@ impl NavFilter<8> for UskfNnNav {
     /// ĉ·NN(r̂, ξ_k) at the posterior estimate.
     fn density_estimate(&self) -> Option<f64> {
         let h = self.core.model.altitude(&self.core.ukf.x);
-        Some(self.core.ukf.x[8] * self.core.model.atmosphere.density(h))
+        Some(self.core.ukf.x[N] * self.core.model.atmosphere.density(h))
     }
 }

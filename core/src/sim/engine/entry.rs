@@ -1,13 +1,19 @@
 //! [`EntryCoSim`]: truth, sensors and navigation filter together, the filter run at every
-//! measurement epoch of the truth.
+//! measurement epoch of the truth and judged against it.
 
-use super::*;
+use super::filter::Judgement;
+use super::navigator::{NavStatus, Navigator};
+use super::truth_sensors::TruthSensors;
+use super::{EngineError, StepReport, check_step};
+use crate::estimation::nav::FilterKind;
+use crate::scenario::Scenario;
+use std::sync::Arc;
 
 /// Truth, sensors and a navigation filter in one co-simulation slave.
 #[derive(Debug)]
 pub struct EntryCoSim {
     truth: TruthSensors,
-    nav: NavigationCoSim,
+    nav: Navigator,
     judgement: Judgement,
 }
 
@@ -18,11 +24,11 @@ impl EntryCoSim {
         kind: FilterKind,
         seed: u64,
         dispersed: bool,
-    ) -> Result<EntryCoSim, CoSimError> {
+    ) -> Result<EntryCoSim, EngineError> {
         let truth = TruthSensors::new(Arc::clone(&scenario), seed, dispersed);
         let nav =
-            NavigationCoSim::with_truth(scenario, kind, seed, truth.draw(), &truth.outputs.sample)?;
-        let judgement = nav.judge(truth.draw(), &truth.outputs.sample);
+            Navigator::for_truth(&scenario, kind, seed, truth.draw(), &truth.outputs().sample)?;
+        let judgement = nav.judge(&scenario, truth.draw(), &truth.outputs().sample);
         Ok(EntryCoSim {
             truth,
             nav,
@@ -38,8 +44,8 @@ impl EntryCoSim {
         h: f64,
         bank: f64,
         beacon_available: &[bool],
-    ) -> Result<StepReport, CoSimError> {
-        check_step(self.nav.time, t, h)?;
+    ) -> Result<StepReport, EngineError> {
+        check_step(self.nav.time(), t, h)?;
         let mut epochs = Vec::new();
         let mut report =
             self.truth
@@ -47,16 +53,17 @@ impl EntryCoSim {
                     epochs.push((epoch.clone(), sample.clone()));
                 })?;
         report.epochs = 0;
-        self.nav.filter.set_bank_angle(bank);
+        self.nav.set_bank_angle(bank)?;
+        let scenario = self.truth.scenario();
         for (epoch, sample) in &epochs {
             if self.nav.process(epoch) {
                 report.epochs += 1;
-                if self.nav.status == NavStatus::Running {
-                    self.judgement = self.nav.judge(self.truth.draw(), sample);
+                if *self.nav.status() == NavStatus::Running {
+                    self.judgement = self.nav.judge(scenario, self.truth.draw(), sample);
                 }
             }
         }
-        self.nav.time = t + h;
+        self.nav.set_time(t + h);
         Ok(report)
     }
 
@@ -66,7 +73,7 @@ impl EntryCoSim {
     }
 
     /// The filter.
-    pub fn nav(&self) -> &NavigationCoSim {
+    pub fn nav(&self) -> &Navigator {
         &self.nav
     }
 
@@ -77,6 +84,6 @@ impl EntryCoSim {
 
     /// Current communication point \[s\].
     pub fn time(&self) -> f64 {
-        self.nav.time
+        self.nav.time()
     }
 }

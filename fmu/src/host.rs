@@ -1,21 +1,108 @@
 //! Our FMI 2.0 host: unpacks a `.fmu`, loads its shared library with libloading and calls the
-//! fmi2 functions through a safe [`Slave`] wrapper (used by `check` and `fuzz`).
+//! fmi2 functions through a safe [`Slave`] wrapper. `entrynav fmu check` compares it with the
+//! in-process [`Instance`] bit for bit; `entrynav fmu fuzz` drives random call sequences through
+//! it.
+//!
+//! The logger is declared without the C varargs (stable Rust cannot define variadic functions);
+//! on x86-64 System V a variadic call to it is ABI-compatible, and our FMUs never pass format
+//! arguments (messages are pre-formatted, `%` escaped as `%%`).
 
 #![allow(non_snake_case)]
 
-use super::*;
+use crate::instance::{Instance, Status};
+use crate::vars::{Causality, Model, Type, Value, Var};
+use crate::xml::model_description;
+use entrynav::scenario::BUILTIN_NAMES;
+use std::ffi::{CStr, CString, NulError, c_char, c_int, c_void};
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use thiserror::Error;
 
-pub(super) type Comp = *mut c_void;
-pub(super) type HostLogger =
+/// Why the host could not unpack, load or drive an FMU.
+#[derive(Debug, Error)]
+pub enum HostError {
+    /// A file could not be opened, read or extracted.
+    #[error("{what} {path}: {source}")]
+    Io {
+        /// What was being done.
+        what: &'static str,
+        /// The file or folder.
+        path: String,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
+    /// Not a zip archive, or an entry is missing from it.
+    #[error("{path}: {message}")]
+    Archive {
+        /// The `.fmu` file.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// The archive's model description is not what this build generates.
+    #[error(
+        "modelDescription.xml is not what this build's variable table generates (stale FMU or drifted table)"
+    )]
+    StaleModelDescription,
+    /// A file the FMU must contain is missing.
+    #[error("the FMU has no {0}")]
+    MissingFile(String),
+    /// The shared library or one of its symbols cannot be loaded.
+    #[error("cannot load {path}: {message}")]
+    Load {
+        /// The library.
+        path: String,
+        /// The loader's message.
+        message: String,
+    },
+    /// A string with an interior NUL byte.
+    #[error(transparent)]
+    Nul(#[from] NulError),
+    /// `fmi2Instantiate` returned null.
+    #[error("fmi2Instantiate failed: {0:?}")]
+    Instantiate(Vec<(i32, String)>),
+    /// An fmi2 call returned a status other than OK.
+    #[error("{call} returned {status:?}: {messages:?}")]
+    Call {
+        /// The call.
+        call: &'static str,
+        /// The statuses returned.
+        status: Vec<i32>,
+        /// The instance's log.
+        messages: Vec<(i32, String)>,
+    },
+    /// The in-process instance refused a call.
+    #[error("in-process {call} failed: {status:?}")]
+    InProcess {
+        /// The call.
+        call: &'static str,
+        /// Its status.
+        status: Status,
+    },
+}
+
+type Result<T> = std::result::Result<T, HostError>;
+
+/// An fmi2Component.
+pub type Comp = *mut c_void;
+/// The host's logger, without C varargs (see the module documentation).
+pub type HostLogger =
     extern "C" fn(*mut c_void, *const c_char, c_int, *const c_char, *const c_char);
 
+/// fmi2CallbackFunctions as the host passes them.
 #[repr(C)]
-pub(super) struct Callbacks {
-    pub(super) logger: Option<HostLogger>,
-    pub(super) allocate: Option<extern "C" fn(usize, usize) -> *mut c_void>,
-    pub(super) free: Option<extern "C" fn(*mut c_void)>,
-    pub(super) step_finished: Option<extern "C" fn(*mut c_void, c_int)>,
-    pub(super) env: *mut c_void,
+pub struct Callbacks {
+    /// Logger.
+    pub logger: Option<HostLogger>,
+    /// Unused by our FMUs.
+    pub allocate: Option<extern "C" fn(usize, usize) -> *mut c_void>,
+    /// Unused by our FMUs.
+    pub free: Option<extern "C" fn(*mut c_void)>,
+    /// Unused by our FMUs.
+    pub step_finished: Option<extern "C" fn(*mut c_void, c_int)>,
+    /// Passed back to the logger: the instance's message buffer.
+    pub env: *mut c_void,
 }
 
 extern "C" fn host_logger(
@@ -44,21 +131,26 @@ extern "C" fn host_logger(
 macro_rules! api {
     ($($name:ident : $ty:ty;)*) => {
         /// The 34 fmi2 functions of a loaded FMU library.
-        #[allow(dead_code)]
-        pub(super) struct Api {
+        #[allow(dead_code, missing_docs)]
+        pub struct Api {
             _lib: libloading::Library,
-            $(pub(super) $name: $ty,)*
+            $(pub $name: $ty,)*
         }
 
         impl Api {
             fn load(path: &Path) -> Result<Api> {
                 // SAFETY: loading the FMU library runs no initialisers with preconditions.
-                let lib = unsafe { libloading::Library::new(path) }
-                    .with_context(|| format!("cannot load {}", path.display()))?;
+                let lib = unsafe { libloading::Library::new(path) }.map_err(|e| HostError::Load {
+                    path: path.display().to_string(),
+                    message: e.to_string(),
+                })?;
                 $(
                     // SAFETY: the symbol has the FMI 2.0 signature.
                     let $name: $ty = *unsafe { lib.get::<$ty>(concat!(stringify!($name), "\0").as_bytes()) }
-                        .with_context(|| format!("{} does not export {}", path.display(), stringify!($name)))?;
+                        .map_err(|e| HostError::Load {
+                            path: path.display().to_string(),
+                            message: format!("no symbol {}: {e}", stringify!($name)),
+                        })?;
                 )*
                 Ok(Api { _lib: lib, $($name,)* })
             }
@@ -103,11 +195,14 @@ api! {
     fmi2GetStringStatus: unsafe extern "C" fn(Comp, c_int, *mut *const c_char) -> c_int;
 }
 
-/// An unpacked FMU: its folder, model and loaded library.
-pub(super) struct Unpacked {
-    pub(super) dir: PathBuf,
-    pub(super) model: Model,
-    pub(super) api: Api,
+/// An unpacked FMU: its folder (removed on drop), model and loaded library.
+pub struct Unpacked {
+    /// Where it was extracted.
+    pub dir: PathBuf,
+    /// Which of our models it is.
+    pub model: Model,
+    /// Its fmi2 functions.
+    pub api: Api,
 }
 
 impl Drop for Unpacked {
@@ -116,58 +211,70 @@ impl Drop for Unpacked {
     }
 }
 
-pub(super) fn unpack(file: &Path) -> Result<Unpacked> {
-    let f = std::fs::File::open(file).with_context(|| format!("cannot open {}", file.display()))?;
-    let mut zip =
-        zip::ZipArchive::new(f).with_context(|| format!("{} is not a zip", file.display()))?;
+/// Unpack `file` into a fresh temporary folder and load its library; the FMU must be one of ours
+/// with the model description this build generates and every built-in scenario in `resources/`.
+pub fn unpack(file: &Path) -> Result<Unpacked> {
+    let io = |what, path: &Path| {
+        let path = path.display().to_string();
+        move |source| HostError::Io { what, path, source }
+    };
+    let archive = |message: String| HostError::Archive {
+        path: file.display().to_string(),
+        message,
+    };
+    let f = std::fs::File::open(file).map_err(io("cannot open", file))?;
+    let mut zip = zip::ZipArchive::new(f).map_err(|e| archive(format!("not a zip: {e}")))?;
     let mut xml = String::new();
     zip.by_name("modelDescription.xml")
-        .context("the FMU has no modelDescription.xml")?
-        .read_to_string(&mut xml)?;
+        .map_err(|e| archive(format!("no modelDescription.xml: {e}")))?
+        .read_to_string(&mut xml)
+        .map_err(io("cannot read modelDescription.xml of", file))?;
     let model = Model::ALL
         .into_iter()
         .find(|m| model_description(*m) == xml)
-        .with_context(|| {
-            "modelDescription.xml is not what this build's variable table generates (stale FMU or drifted table)"
-        })?;
+        .ok_or(HostError::StaleModelDescription)?;
     let dir = std::env::temp_dir().join(format!(
         "entrynav fmu check {} {}",
         std::process::id(),
         model.identifier()
     ));
     let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir)?;
+    std::fs::create_dir_all(&dir).map_err(io("cannot create", &dir))?;
     zip.extract(&dir)
-        .with_context(|| format!("cannot extract to {}", dir.display()))?;
+        .map_err(|e| archive(format!("cannot extract to {}: {e}", dir.display())))?;
     let so = dir
         .join("binaries/linux64")
         .join(format!("{}.so", model.identifier()));
-    ensure!(so.exists(), "the FMU has no {}", so.display());
+    if !so.exists() {
+        return Err(HostError::MissingFile(format!(
+            "binaries/linux64/{}.so",
+            model.identifier()
+        )));
+    }
     for name in BUILTIN_NAMES {
-        ensure!(
-            dir.join(format!("resources/{name}.toml")).exists(),
-            "the FMU has no resources/{name}.toml"
-        );
+        if !dir.join(format!("resources/{name}.toml")).exists() {
+            return Err(HostError::MissingFile(format!("resources/{name}.toml")));
+        }
     }
     let api = Api::load(&so)?;
     Ok(Unpacked { dir, model, api })
 }
 
 /// One instance through the host.
-pub(super) struct Slave<'a> {
-    pub(super) api: &'a Api,
-    pub(super) c: Comp,
-    pub(super) log: Box<Mutex<Vec<(i32, String)>>>,
-    pub(super) _callbacks: Box<Callbacks>,
+pub struct Slave<'a> {
+    /// The library's functions.
+    pub api: &'a Api,
+    /// The instance.
+    pub c: Comp,
+    /// Messages the instance logged: (status, text).
+    pub log: Box<Mutex<Vec<(i32, String)>>>,
+    _callbacks: Box<Callbacks>,
 }
 
 impl<'a> Slave<'a> {
-    pub(super) fn new(
-        u: &'a Unpacked,
-        name: &str,
-        guid: &str,
-        resources: &str,
-    ) -> Result<Slave<'a>> {
+    /// Instantiate `u`'s model as co-simulation slave `name` with `guid` and the resource URI
+    /// `resources`, logging on.
+    pub fn new(u: &'a Unpacked, name: &str, guid: &str, resources: &str) -> Result<Slave<'a>> {
         let log: Box<Mutex<Vec<(i32, String)>>> = Box::new(Mutex::new(Vec::new()));
         let callbacks = Box::new(Callbacks {
             logger: Some(host_logger),
@@ -192,16 +299,18 @@ impl<'a> Slave<'a> {
             _callbacks: callbacks,
         };
         if c.is_null() {
-            bail!("fmi2Instantiate failed: {:?}", s.messages());
+            return Err(HostError::Instantiate(s.messages()));
         }
         Ok(s)
     }
 
-    pub(super) fn messages(&self) -> Vec<(i32, String)> {
+    /// The messages logged so far.
+    pub fn messages(&self) -> Vec<(i32, String)> {
         self.log.lock().map(|l| l.clone()).unwrap_or_default()
     }
 
-    pub(super) fn set(&self, v: &Var, val: &Value) -> i32 {
+    /// Set one variable; returns the fmi2Status.
+    pub fn set(&self, v: &Var, val: &Value) -> i32 {
         let vr = [v.vr];
         // SAFETY: one reference and one value of the right type.
         unsafe {
@@ -220,7 +329,7 @@ impl<'a> Slave<'a> {
     }
 
     /// All values of `vars` (one call per type), as f64 bit patterns / integers.
-    pub(super) fn get_all(&self, groups: &OutputGroups) -> Result<Vec<u64>> {
+    pub fn get_all(&self, groups: &OutputGroups) -> Result<Vec<u64>> {
         let mut out = Vec::new();
         let mut r = vec![0.0; groups.real.len()];
         let mut i = vec![0; groups.int.len()];
@@ -233,11 +342,13 @@ impl<'a> Slave<'a> {
                 (self.api.fmi2GetBoolean)(self.c, groups.bool.as_ptr(), b.len(), b.as_mut_ptr()),
             ]
         };
-        ensure!(
-            st == [0, 0, 0],
-            "fmi2Get* returned {st:?}: {:?}",
-            self.messages()
-        );
+        if st != [0, 0, 0] {
+            return Err(HostError::Call {
+                call: "fmi2Get*",
+                status: st.to_vec(),
+                messages: self.messages(),
+            });
+        }
         out.extend(r.iter().map(|x| x.to_bits()));
         out.extend(i.iter().map(|x| *x as u64));
         out.extend(b.iter().map(|x| (*x != 0) as u64));
@@ -252,13 +363,18 @@ impl Drop for Slave<'_> {
     }
 }
 
-pub(super) struct OutputGroups {
-    pub(super) real: Vec<u32>,
-    pub(super) int: Vec<u32>,
-    pub(super) bool: Vec<u32>,
+/// The output value references of a model, by type.
+pub struct OutputGroups {
+    /// Real outputs.
+    pub real: Vec<u32>,
+    /// Integer outputs.
+    pub int: Vec<u32>,
+    /// Boolean outputs.
+    pub bool: Vec<u32>,
 }
 
-pub(super) fn output_groups(vars: &[Var]) -> OutputGroups {
+/// The output references of `vars`, grouped by type.
+pub fn output_groups(vars: &[Var]) -> OutputGroups {
     let pick = |t: Type| {
         vars.iter()
             .filter(|v| v.causality == Causality::Output && v.ty == t)
@@ -272,7 +388,8 @@ pub(super) fn output_groups(vars: &[Var]) -> OutputGroups {
     }
 }
 
-pub(super) fn in_process_get_all(inst: &mut Instance, g: &OutputGroups) -> Result<Vec<u64>> {
+/// [`Slave::get_all`] on an in-process instance.
+pub fn in_process_get_all(inst: &mut Instance, g: &OutputGroups) -> Result<Vec<u64>> {
     let mut out = Vec::new();
     for (t, vrs) in [
         (Type::Real, &g.real),
@@ -281,7 +398,10 @@ pub(super) fn in_process_get_all(inst: &mut Instance, g: &OutputGroups) -> Resul
     ] {
         let vals = inst
             .get("fmi2Get", t, vrs)
-            .map_err(|s| anyhow::anyhow!("in-process get failed: {s:?}"))?;
+            .map_err(|status| HostError::InProcess {
+                call: "fmi2Get",
+                status,
+            })?;
         out.extend(vals.into_iter().map(|v| match v {
             Value::Real(x) => x.to_bits(),
             Value::Integer(x) => x as u64,
@@ -292,7 +412,8 @@ pub(super) fn in_process_get_all(inst: &mut Instance, g: &OutputGroups) -> Resul
     Ok(out)
 }
 
-pub(super) fn file_uri(dir: &Path) -> String {
+/// The `file://` URI of a folder, percent-encoded.
+pub fn file_uri(dir: &Path) -> String {
     let mut s = String::from("file://");
     for b in dir.to_string_lossy().bytes() {
         match b {

@@ -10,7 +10,7 @@
 //!   of the estimated density with ... Mars-GRAM"). This is our reading of Table 6: it
 //!   reproduces its numbers (UKF-AC ≈ 30 %; USKF-NN ≈ |r error|/H, 0.7 % for the paper's 65 m).
 //! * **state** — the filter's density at its own estimate x̂ against the true density at the
-//!   true state ([`NavFilter::density_estimate`]). `entrynav trade` reports both readings
+//!   true state ([`NavFilter::density_estimate`](crate::estimation::nav::NavFilter::density_estimate)). `entrynav trade` reports both readings
 //!   (`density_rmspe_pct` is the profile reading, `density_at_estimate_rmspe_pct` this one). Any
 //!   filter that fits dynamic pressure scores well here, whatever its altitude error: UKF-AC moves
 //!   r̂ until 𝒦̂·ρ_nominal(r̂) matches the measured density.
@@ -18,71 +18,52 @@
 //! The runs are those of `entrynav trade` with the same seed (same truth, noise and filter
 //! start per run), folded in run order.
 
-use super::network::DensityNetworkSet;
-use crate::estimation::EstimationError;
-use crate::estimation::nav::ukf_ac::UkfAcNav;
-use crate::estimation::nav::ukf_cm::UkfCmNav;
-use crate::estimation::nav::uskf_nn::UskfNnNav;
-use crate::estimation::nav::{FilterKind, FilterStart, NavFilter, filter_start};
+use super::engine::{NavStatus, Navigator};
+use super::start::initial_estimate;
+use super::{run_seed, simulate_truth};
+use crate::estimation::Onboard;
+use crate::estimation::adaptive::DensityNetworkSet;
+use crate::estimation::nav::{FilterKind, NavError};
 use crate::scenario::Scenario;
-use crate::sim::{run_seed, simulate_truth};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use std::sync::Arc;
+use thiserror::Error;
 
-/// One of the density-adaptation filters, concretely (for access to its density profile).
-#[derive(Debug, Clone)]
-pub enum DensityFilter {
-    /// UKF-CM.
-    Cm(Box<UkfCmNav<8>>),
-    /// UKF-AC.
-    Ac(Box<UkfAcNav>),
-    /// USKF-NN.
-    Nn(Box<UskfNnNav>),
-}
-
-impl DensityFilter {
-    /// Build `kind` (ukf-cm, ukf-ac or uskf-nn); `networks` replaces the USKF-NN's built-in network.
-    pub fn build(
-        kind: FilterKind,
-        scenario: &Arc<Scenario>,
-        start: &FilterStart<8>,
-        networks: Option<&DensityNetworkSet>,
-    ) -> Result<Self, EstimationError> {
-        Ok(match kind {
-            FilterKind::UkfCm => DensityFilter::Cm(Box::new(UkfCmNav::new(scenario, start)?)),
-            FilterKind::UkfAc => DensityFilter::Ac(Box::new(UkfAcNav::new(scenario, start)?)),
-            FilterKind::UskfNn => DensityFilter::Nn(Box::new(match networks {
-                Some(set) => UskfNnNav::with_networks(scenario, start, set.clone())?,
-                None => UskfNnNav::new(scenario, start)?,
-            })),
-            other => {
-                return Err(EstimationError::InvalidInput(format!(
-                    "'{}' is not a density-adaptation filter (ukf-cm, ukf-ac, uskf-nn)",
-                    other.name()
-                )));
-            }
-        })
-    }
-
-    /// The filter as a navigation filter.
-    pub fn nav(&mut self) -> &mut dyn NavFilter<8> {
-        match self {
-            DensityFilter::Cm(f) => f.as_mut(),
-            DensityFilter::Ac(f) => f.as_mut(),
-            DensityFilter::Nn(f) => f.as_mut(),
-        }
-    }
-
-    /// The filter's density profile at altitude `altitude_m` [kg/m³].
-    pub fn density_profile(&self, altitude_m: f64) -> f64 {
-        match self {
-            DensityFilter::Cm(f) => f.density_profile(altitude_m),
-            DensityFilter::Ac(f) => f.density_profile(altitude_m),
-            DensityFilter::Nn(f) => f.density_profile(altitude_m),
-        }
-    }
+/// Why a density evaluation could not run.
+#[derive(Debug, Error)]
+pub enum DensityEvalError {
+    /// The scenario's filter does not have seed 001's 8-state layout.
+    #[error("density evaluation needs an 8-state scenario; '{scenario}' has {states}")]
+    StateDimension {
+        /// Scenario name.
+        scenario: String,
+        /// Its filter state dimension.
+        states: usize,
+    },
+    /// A filter that does not fit, or is not a density-adaptation filter.
+    #[error(transparent)]
+    Filter(#[from] NavError),
+    /// `kind` is not one of ukf-cm, ukf-ac, uskf-nn.
+    #[error("'{0}' is not a density-adaptation filter (ukf-cm, ukf-ac, uskf-nn)")]
+    NotDensityFilter(String),
+    /// A filter could not be built.
+    #[error("{filter}: {source}")]
+    Build {
+        /// Filter name.
+        filter: String,
+        /// Why.
+        source: super::engine::EngineError,
+    },
+    /// A truth run failed.
+    #[error("run {run}: {source}")]
+    Truth {
+        /// Run index.
+        run: usize,
+        /// Why.
+        source: super::engine::SimError,
+    },
 }
 
 /// Options of [`evaluate_density_filters`].
@@ -122,43 +103,53 @@ pub struct DensityEvalReport {
 /// Per run and filter: epoch times, (profile, state) relative errors, failed?
 type RunSeries = (Vec<f64>, Vec<(f64, f64)>, bool);
 
+/// The onboard view for the evaluation: the scenario's, with the USKF-NN networks replaced by
+/// `networks` if given.
+fn onboard_with(scenario: &Scenario, networks: Option<&DensityNetworkSet>) -> Arc<Onboard> {
+    match networks {
+        None => Arc::clone(&scenario.onboard),
+        Some(set) => {
+            let mut onboard = (*scenario.onboard).clone();
+            onboard.density_networks = Some(set.clone());
+            Arc::new(onboard)
+        }
+    }
+}
+
 fn one_run(
     scenario: &Arc<Scenario>,
+    onboard: &Arc<Onboard>,
     kinds: &[FilterKind],
-    networks: Option<&DensityNetworkSet>,
     seed: u64,
     run: usize,
-) -> Result<Vec<RunSeries>, String> {
+) -> Result<Vec<RunSeries>, DensityEvalError> {
     let mut rng = ChaCha8Rng::seed_from_u64(run_seed(seed, run as u64));
     let draw = scenario.draw_truth(&mut rng);
-    let truth = simulate_truth(scenario, &draw, &mut rng).map_err(|e| format!("run {run}: {e}"))?;
-    let start = filter_start::<8>(scenario, &draw, &truth.samples[0], &mut rng);
+    let truth = simulate_truth(scenario, &draw, &mut rng)
+        .map_err(|source| DensityEvalError::Truth { run, source })?;
+    let x0 = initial_estimate(scenario, &draw, &truth.samples[0], &mut rng);
     let mut out = Vec::with_capacity(kinds.len());
     for &kind in kinds {
-        let mut f = DensityFilter::build(kind, scenario, &start, networks)
-            .map_err(|e| format!("{}: {e}", kind.name()))?;
-        let (mut times, mut errs, mut failed) = (Vec::new(), Vec::new(), false);
-        let mut samples = truth.samples.iter().peekable();
-        for epoch in &truth.epochs {
-            while samples.peek().is_some_and(|s| s.t < epoch.t - 1e-9) {
-                samples.next();
+        let mut nav = Navigator::new_checked(Arc::clone(onboard), kind, &x0).map_err(|source| {
+            DensityEvalError::Build {
+                filter: kind.name().to_string(),
+                source,
             }
-            let Some(sample) = samples.peek() else { break };
-            let beacons = scenario.beacon_states(epoch.t);
-            let nav = f.nav();
-            if nav
-                .predict(epoch.t)
-                .and_then(|_| nav.update(epoch, &beacons))
-                .is_err()
-            {
+        })?;
+        let (mut times, mut errs, mut failed) = (Vec::new(), Vec::new(), false);
+        for (epoch, sample) in truth.epochs_with_truth() {
+            nav.process(epoch);
+            if matches!(nav.status(), NavStatus::Failed { .. }) {
                 failed = true;
                 break;
             }
-            let state = nav.density_estimate().unwrap_or(f64::NAN);
-            let profile = f.density_profile(sample.altitude);
-            let rho = sample.density;
+            let j = nav.judge(scenario, &draw, sample);
+            let nan = f64::NAN;
             times.push(epoch.t);
-            errs.push(((profile - rho) / rho, (state - rho) / rho));
+            errs.push((
+                j.density_profile_rel_err.unwrap_or(nan),
+                j.density_at_estimate_rel_err.unwrap_or(nan),
+            ));
         }
         out.push((times, errs, failed));
     }
@@ -173,16 +164,23 @@ pub fn evaluate_density_filters(
     networks: Option<&DensityNetworkSet>,
     opts: &DensityEvalOptions,
     progress: &(dyn Fn(usize) + Sync),
-) -> Result<Vec<DensityEvalReport>, String> {
-    if scenario.filter_model.state_dim() != 8 {
-        return Err(format!(
-            "density evaluation needs an 8-state scenario; '{}' has {}",
-            scenario.config.name,
-            scenario.filter_model.state_dim()
-        ));
+) -> Result<Vec<DensityEvalReport>, DensityEvalError> {
+    let states = scenario.onboard.state_dim();
+    if states != 8 {
+        return Err(DensityEvalError::StateDimension {
+            scenario: scenario.config.name.clone(),
+            states,
+        });
     }
-    for k in kinds {
-        k.check_fits(scenario).map_err(|e| e.to_string())?;
+    let onboard = onboard_with(scenario, networks);
+    for &k in kinds {
+        if !matches!(
+            k,
+            FilterKind::UkfCm | FilterKind::UkfAc | FilterKind::UskfNn
+        ) {
+            return Err(DensityEvalError::NotDensityFilter(k.name().to_string()));
+        }
+        k.check_fits(&onboard)?;
     }
     let nk = kinds.len();
     // Per filter and epoch: Σ|e_p|, Σ|e_s|, Σe_p², Σe_s², n.
@@ -194,9 +192,9 @@ pub fn evaluate_density_filters(
     let mut done = 0;
     for start in (0..opts.runs).step_by(chunk) {
         let end = (start + chunk).min(opts.runs);
-        let runs: Vec<Result<Vec<RunSeries>, String>> = (start..end)
+        let runs: Vec<Result<Vec<RunSeries>, DensityEvalError>> = (start..end)
             .into_par_iter()
-            .map(|run| one_run(scenario, kinds, networks, opts.seed, run))
+            .map(|run| one_run(scenario, &onboard, kinds, opts.seed, run))
             .collect();
         for (i, r) in runs.into_iter().enumerate() {
             for (j, (t, e, f)) in r?.into_iter().enumerate() {

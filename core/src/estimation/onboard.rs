@@ -1,0 +1,109 @@
+//! [`Onboard`]: what the vehicle knows onboard — the only thing a navigation filter is built from.
+//!
+//! A filter holds an `Arc<Onboard>` and nothing else from the scenario: its own dynamics and
+//! atmosphere model, the deterministic measurement model, the channels with the noise it
+//! *assumes*, the beacon ephemerides, its timing and tuning, and the commanded bank at the start.
+//! It cannot reach the truth model, the truth's dispersions, the sensor biases and true noise, or
+//! the raw scenario configuration: those stay in the scenario and the simulation engine, which is
+//! where a filter is judged against the truth.
+//!
+//! The scenario layer builds the value (`Scenario::build`); the estimation layer never imports
+//! the scenario or the simulation.
+
+use super::adaptive::{DensityFilterConfig, DensityNetworkSet};
+use super::ukf::UkfParams;
+use crate::atmosphere::AtmosphereModel;
+use crate::beacons::{Beacon, BeaconMotion};
+use crate::dynamics::EntryModel;
+use crate::sensors::{Channel, MeasurementModel, Noise};
+
+/// One measurement channel as the filter sees it: what it measures and the noise the filter
+/// assumes (which may differ from the sensor's true noise). Slot `c` of a
+/// [`MeasurementEpoch`](crate::sensors::MeasurementEpoch) is channel `c` of [`Onboard::channels`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct OnboardChannel {
+    /// What is measured.
+    pub channel: Channel,
+    /// Column name (SI unit suffix).
+    pub name: String,
+    /// Noise 1σ the filter assumes.
+    pub noise: Noise,
+}
+
+/// Filter tuning: start covariance, process noise and the per-filter settings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FilterTuning {
+    /// Start covariance diagonal P0 (SI, rad), in state order; missing entries count as 1.
+    pub p0_diag: Vec<f64>,
+    /// Process-noise diagonal per filter step Q_k (SI, rad); missing entries count as 0.
+    pub q_diag: Vec<f64>,
+    /// UKF constants α, β, κ.
+    pub ukf: UkfParams,
+    /// Density biases Δ of a multiple-model bank (seed 003 Table 4).
+    pub model_bank_density_bias: Vec<f64>,
+    /// Settings of the density-adaptation filters (`[filter.density]`; `None` when the scenario
+    /// has no such section, in which case the seed-001 defaults apply where a filter needs them).
+    pub density: Option<DensityFilterConfig>,
+}
+
+impl FilterTuning {
+    /// The density-adaptation settings, or seed 001's defaults.
+    pub fn density_settings(&self) -> DensityFilterConfig {
+        self.density.clone().unwrap_or_default()
+    }
+}
+
+/// Everything a navigation filter may know.
+#[derive(Debug, Clone)]
+pub struct Onboard {
+    /// Name of the scenario this was built from (for messages only).
+    pub scenario_name: String,
+    /// The filter's dynamics: equations of motion, planet, onboard atmosphere, vehicle constants
+    /// as the filter believes them, augmented states.
+    pub model: EntryModel<AtmosphereModel>,
+    /// Pre-flight climatology: the mean atmosphere the onboard model was fitted to (in our
+    /// scenarios the truth's mean profile *before* any per-run perturbation and density bias).
+    /// Only UKF-AC uses it, for its initial correction factor 𝒦₀ (seed 001 §V.B) when
+    /// `filter.density.ac_initial` is not given. It is not the atmosphere of a run.
+    pub climatology: AtmosphereModel,
+    /// Deterministic measurement model (IMU frame, heating constants).
+    pub measurement: MeasurementModel,
+    /// Measurement channels in epoch-slot order.
+    pub channels: Vec<OnboardChannel>,
+    /// Beacons (their ephemerides are known onboard), in scenario order.
+    pub beacons: Vec<Beacon>,
+    /// Beacon names, in scenario order.
+    pub beacon_names: Vec<String>,
+    /// Longest prediction sub-step \[s\] (`timing.filter_step_s`).
+    pub filter_step_s: f64,
+    /// Commanded bank angle at the start \[rad\] (the scenario's `truth.bank_deg`, which is the
+    /// guidance command, known onboard).
+    pub initial_bank: f64,
+    /// Nominal initial estimate: six kinematic states in the filter model's coordinates, then
+    /// the augmented states.
+    pub initial_estimate: Vec<f64>,
+    /// USKF-NN density networks loaded onboard in place of the built-in file named by
+    /// `filter.density.network` (e.g. networks just trained); `None` loads that file.
+    pub density_networks: Option<DensityNetworkSet>,
+    /// Tuning.
+    pub tuning: FilterTuning,
+}
+
+impl Onboard {
+    /// Filter state dimension (6 kinematic + augmented states).
+    pub fn state_dim(&self) -> usize {
+        self.model.state_dim()
+    }
+
+    /// Inertial (position, velocity) of every beacon at time `t` (the ephemerides).
+    pub fn beacon_states(&self, t: f64) -> Vec<([f64; 3], [f64; 3])> {
+        self.beacons.iter().map(|b| b.state_at(t)).collect()
+    }
+
+    /// Indices of the beacons that have at least one radio channel.
+    pub fn radio_beacons(&self) -> Vec<usize> {
+        (0..self.beacons.len())
+            .filter(|&b| self.channels.iter().any(|c| c.channel.beacon() == Some(b)))
+            .collect()
+    }
+}

@@ -1,0 +1,62 @@
+//! The onboard view of a scenario: the [`Onboard`] value every navigation filter is built from.
+//!
+//! This is where the scenario decides what the vehicle knows: the filter's own dynamics,
+//! atmosphere and vehicle constants, the channels with the noise the filter *assumes*
+//! (`filter.imu_sigma_mps2` may differ from the sensor's), the beacons' ephemerides, the filter
+//! step, the tuning and the nominal initial estimate. The truth model, the dispersions, the
+//! sensor biases and the true noise stay out.
+
+use super::build::ChannelSpec;
+use super::config::ScenarioConfig;
+use crate::atmosphere::AtmosphereModel;
+use crate::beacons::Beacon;
+use crate::dynamics::EntryModel;
+use crate::estimation::ukf::UkfParams;
+use crate::estimation::{FilterTuning, Onboard, OnboardChannel};
+use crate::sensors::MeasurementModel;
+
+/// What [`onboard_view`] is built from (the pieces of a scenario being built).
+pub(super) struct OnboardParts<'a> {
+    pub config: &'a ScenarioConfig,
+    pub model: EntryModel<AtmosphereModel>,
+    pub climatology: AtmosphereModel,
+    pub measurement: MeasurementModel,
+    pub channels: &'a [ChannelSpec],
+    pub beacons: &'a [Beacon],
+    pub beacon_names: &'a [String],
+    pub initial_bank: f64,
+    pub initial_estimate: Vec<f64>,
+}
+
+/// The onboard view of a scenario being built.
+pub(super) fn onboard_view(p: OnboardParts<'_>) -> Onboard {
+    let f = &p.config.filter;
+    Onboard {
+        scenario_name: p.config.name.clone(),
+        model: p.model,
+        climatology: p.climatology,
+        measurement: p.measurement,
+        channels: p
+            .channels
+            .iter()
+            .map(|c| OnboardChannel {
+                channel: c.channel,
+                name: c.name.clone(),
+                noise: c.filter_noise,
+            })
+            .collect(),
+        beacons: p.beacons.to_vec(),
+        beacon_names: p.beacon_names.to_vec(),
+        filter_step_s: p.config.timing.filter_step_s,
+        initial_bank: p.initial_bank,
+        initial_estimate: p.initial_estimate,
+        density_networks: None,
+        tuning: FilterTuning {
+            p0_diag: f.p0_diag.clone(),
+            q_diag: f.q_diag.clone(),
+            ukf: UkfParams::new(f.ukf.alpha, f.ukf.beta, f.ukf.kappa),
+            model_bank_density_bias: f.model_bank_density_bias.clone(),
+            density: f.density.clone(),
+        },
+    }
+}

@@ -1,0 +1,114 @@
+//! The simulation engine: the one place where the truth, the sensors and a navigation filter
+//! advance. Every consumer drives it — the Monte Carlo trade, `simulate`, the observability
+//! analysis points, seed 001's training trajectories and the three FMUs — so a filter feature or
+//! a sensor rule is written once.
+//!
+//! # The engine's step
+//!
+//! 1. **Truth** ([`TruthPropagator`]): one fixed-step RK4 step at `timing.truth_step_s` with the
+//!    commanded bank; stop on the ground, below `timing.stop_speed_mps`, or at the duration.
+//! 2. **Sensors** ([`TruthSensors`]): if a channel of period P is due (t = P, 2P, …), one noise
+//!    value per due channel is drawn in channel order *whether or not the sample is available*,
+//!    and a radio sample is available when its beacon is commanded available, not in an outage
+//!    and (unless visibility is ignored) above the horizon. The result is a
+//!    [`MeasurementEpoch`](crate::sensors::MeasurementEpoch) with the truth sample at its time.
+//! 3. **Navigation** ([`Navigator`]): the filter, built from the scenario's
+//!    [`Onboard`](crate::estimation::Onboard) view only, predicts to the epoch with the onboard
+//!    models at the commanded bank and updates with the available channels; a numerical failure
+//!    freezes its estimate ([`NavStatus::Failed`]).
+//! 4. **Judgement** ([`Judgement`], [`crate::sim::judge`]): the estimate beside the truth (error,
+//!    NEES, position/velocity and deployment errors, density errors). Only the engine holds both.
+//!
+//! [`TruthSensors`] and [`Navigator`] advance by communication steps of any length (the FMI
+//! co-simulation interface); [`EntryCoSim`] combines them. A batch run is a loop over the same
+//! steps: [`crate::sim::simulate_truth`] runs the truth to its end, the Monte Carlo then feeds
+//! the recorded epochs to one [`Navigator`] per filter.
+//!
+//! # Randomness
+//!
+//! The truth generator is `ChaCha8Rng::seed_from_u64(seed)`, used for the dispersions (when
+//! `dispersed`) and then for the measurement noise, as `entrynav simulate --seed` does; the filter
+//! start (when `filter.sample_initial_from_p0`) is drawn from the same seed's ChaCha stream 1, so
+//! it does not depend on how long the truth runs. With constant inputs (bank angle of the
+//! scenario, every beacon available) the engine therefore reproduces `simulate_truth` bit for bit,
+//! and with a fixed filter start it reproduces Monte Carlo run `r` of `trade --seed S` for
+//! `seed = run_seed(S, r)`, `dispersed = true`.
+//!
+//! # Bank angle
+//!
+//! The commanded bank is known onboard, so the filter's onboard dynamics and measurement models
+//! use it too (`NavFilter::set_bank_angle`). [`EntryCoSim::do_step`] gives the step's bank to
+//! both the truth and the filter, and [`Navigator::do_step`] takes it as an input; the filter
+//! starts with the scenario's bank (`truth.bank_deg`) and uses the bank of a step for every epoch
+//! that step processes (the prediction from the previous epoch included). When the measurement
+//! epochs fall on communication points (a communication step that is a multiple of the sensor
+//! periods) the filter's bank history is therefore exactly the truth's. A [`Navigator`] fed the
+//! epochs of a separate [`TruthSensors`] one step late should get the bank of the step those
+//! epochs were measured in (the command delayed by the same step).
+//!
+//! Everything is deterministic: the same parameters and the same sequence of `do_step` calls give
+//! bit-identical outputs, which is what the FMU's state serialisation (a replay log) relies on.
+
+mod entry;
+mod filter;
+mod navigator;
+mod truth;
+mod truth_sensors;
+
+pub use entry::EntryCoSim;
+pub use filter::{BuildError, FilterFailure, Judgement, NavEstimate};
+pub use navigator::{NavStatus, Navigator};
+pub use truth::{SimError, StopReason, TruthPropagator, TruthSample, TruthStep, truth_sample};
+pub use truth_sensors::{StepReport, TruthOutputs, TruthSensors};
+
+use crate::estimation::nav::NavError;
+use thiserror::Error;
+
+/// Why an engine step or set-up failed.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum EngineError {
+    /// The filter does not fit the scenario.
+    #[error(transparent)]
+    Nav(#[from] NavError),
+    /// The filter could not be built.
+    #[error(transparent)]
+    Build(#[from] BuildError),
+    /// The truth became non-finite.
+    #[error(transparent)]
+    Truth(#[from] SimError),
+    /// A step that does not start where the previous one ended.
+    #[error("step starts at t = {got} s but the current communication point is t = {expected} s")]
+    CommunicationPoint {
+        /// Current time of the engine \[s\].
+        expected: f64,
+        /// Start time asked for \[s\].
+        got: f64,
+    },
+    /// A step size that is not finite and positive.
+    #[error("communication step size must be finite and > 0 (got {0})")]
+    StepSize(f64),
+    /// A non-finite input.
+    #[error("input '{0}' is not finite")]
+    NonFiniteInput(&'static str),
+}
+
+/// Whether two communication points are the same instant (relative tolerance 1e-9).
+pub fn same_time(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(1.0)
+}
+
+pub(super) fn check_step(time: f64, t: f64, h: f64) -> Result<(), EngineError> {
+    if !t.is_finite() || !same_time(time, t) {
+        return Err(EngineError::CommunicationPoint {
+            expected: time,
+            got: t,
+        });
+    }
+    if !(h.is_finite() && h > 0.0) {
+        return Err(EngineError::StepSize(h));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests;

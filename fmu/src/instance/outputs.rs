@@ -1,0 +1,146 @@
+//! Output values of an instance, computed from its engine, and the checks on values set.
+
+use super::Instance;
+use super::engine::{Engine, InstanceError};
+use crate::vars::{Key, MAX_STATES, MAX_WEIGHTS, Type, Value};
+use entrynav::estimation::nav::FilterKind;
+use entrynav::frames::inertial_to_spherical;
+use entrynav::sim::StopReason;
+use entrynav::sim::engine::Navigator;
+
+impl Instance {
+    pub(super) fn output(&self, key: Key) -> Value {
+        let Some(engine) = &self.engine else {
+            return Value::Real(f64::NAN);
+        };
+        let scenario = engine.scenario();
+        let nan = f64::NAN;
+        let real = Value::Real;
+        if let Some(ts) = engine.truth() {
+            let o = ts.outputs();
+            let nb = scenario.beacons.len();
+            match key {
+                Key::TruthSph(k) => return real(o.sample.spherical[k]),
+                Key::TruthAltitude => return real(o.sample.altitude),
+                Key::TruthDensity => return real(o.sample.density),
+                Key::TruthDynamicPressure => return real(o.sample.dynamic_pressure),
+                Key::TruthHeating => return real(o.sample.heating),
+                Key::TruthAeroAccel => return real(o.sample.aero_accel),
+                Key::TruthSensedAccel(k) => return real(o.sensed_accel[k]),
+                Key::BeaconRange(i) => return real(if i < nb { o.ranges[i] } else { 0.0 }),
+                Key::BeaconVisible(i) => {
+                    return Value::Boolean(i < nb && o.sample.visible[i]);
+                }
+                Key::TruthStop => {
+                    return Value::Integer(match ts.stop() {
+                        None => 0,
+                        Some(StopReason::Duration) => 1,
+                        Some(StopReason::StopSpeed) => 2,
+                        Some(StopReason::Ground) => 3,
+                    });
+                }
+                Key::NBeacons => return Value::Integer(nb as i32),
+                Key::MeasEpoch => return Value::Boolean(ts.last_epoch().is_some()),
+                Key::MeasTime => return real(ts.last_epoch().map(|e| e.t).unwrap_or(0.0)),
+                Key::Meas(s) | Key::MeasValid(s) => {
+                    let v = ts
+                        .last_epoch()
+                        .zip(self.slot_channel.get(&s))
+                        .and_then(|(e, &c)| e.values[c]);
+                    return if matches!(key, Key::Meas(_)) {
+                        real(v.unwrap_or(0.0))
+                    } else {
+                        Value::Boolean(v.is_some())
+                    };
+                }
+                _ => {}
+            }
+        }
+        if let Some(nav) = engine.nav() {
+            let est = nav.estimate();
+            let n = est.x.len();
+            let slot = |v: &[f64], i: usize| real(if i < n { v[i] } else { 0.0 });
+            match key {
+                Key::NavTime => return real(est.t),
+                Key::NavStatus => return Value::Integer(nav.status().code()),
+                Key::NStates => return Value::Integer(n as i32),
+                Key::EstX(i) => return slot(&est.x, i),
+                Key::EstSigma(i) => return slot(&est.sigma, i),
+                Key::EstSph(k) => {
+                    let fm = scenario.filter_model();
+                    let x = &est.x;
+                    let s = if fm.kind.is_cartesian() {
+                        inertial_to_spherical(
+                            &[x[0], x[1], x[2]],
+                            &[x[3], x[4], x[5]],
+                            est.t,
+                            fm.planet.rotation_rate,
+                        )
+                    } else {
+                        [x[0], x[1], x[2], x[3], x[4], x[5]]
+                    };
+                    return real(s[k]);
+                }
+                Key::EstDensity => return real(est.density.unwrap_or(nan)),
+                Key::Nis => return real(est.info.nis.unwrap_or(nan)),
+                Key::NMeas => return Value::Integer(est.info.n_meas as i32),
+                Key::Weight(i) => {
+                    return real(
+                        est.info
+                            .weights
+                            .as_ref()
+                            .and_then(|w| w.get(i).copied())
+                            .unwrap_or(0.0),
+                    );
+                }
+                Key::NWeights => {
+                    let nw = nav_weights(nav);
+                    return Value::Integer(nw.min(MAX_WEIGHTS) as i32);
+                }
+                _ => {}
+            }
+        }
+        if let Engine::Combined(c) = engine {
+            let j = c.judgement();
+            let n = j.err.len();
+            let slot = |v: &[f64], i: usize| real(if i < n { v[i] } else { 0.0 });
+            match key {
+                Key::TruthX(i) => return slot(&j.truth, i),
+                Key::Err(i) => return slot(&j.err, i),
+                Key::Nees => return real(j.nees.map(|x| x.0).unwrap_or(nan)),
+                Key::NeesDof => return Value::Integer(j.nees.map(|x| x.1 as i32).unwrap_or(0)),
+                Key::NavTruthDensity => return real(j.density_true),
+                _ => {}
+            }
+        }
+        let _ = MAX_STATES;
+        match self.vars.iter().find(|v| v.key == key).map(|v| v.ty) {
+            Some(Type::Integer) => Value::Integer(0),
+            Some(Type::Boolean) => Value::Boolean(false),
+            Some(Type::String) => Value::String(String::new()),
+            _ => real(nan),
+        }
+    }
+}
+
+fn nav_weights(nav: &Navigator) -> usize {
+    nav.estimate()
+        .info
+        .weights
+        .as_ref()
+        .map(Vec::len)
+        .unwrap_or(0)
+}
+
+/// Check a value before it is stored.
+pub(super) fn validate(key: Key, v: &Value) -> Result<(), InstanceError> {
+    match (key, v) {
+        (_, Value::Real(x)) if !x.is_finite() => Err(InstanceError::NonFinite(*x)),
+        (Key::Seed, Value::Integer(s)) if *s < 0 => Err(InstanceError::NegativeSeed(*s)),
+        (Key::Filter, Value::String(s)) => Ok(FilterKind::parse(s).map(|_| ())?),
+        (Key::Scenario, Value::String(s)) if s.trim().is_empty() => {
+            Err(InstanceError::EmptyScenario)
+        }
+        _ => Ok(()),
+    }
+}

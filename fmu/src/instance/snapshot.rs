@@ -1,0 +1,103 @@
+//! FMU states of an instance: a snapshot is a replay log, restored by rebuilding the engine and
+//! replaying the steps (see [`crate::state`]).
+
+use super::{Instance, STATE, Status};
+use crate::state::{Phase::*, Snapshot};
+use crate::vars::{Value, guid_of};
+
+impl Instance {
+    /// fmi2GetFMUstate.
+    pub fn get_state(&self) -> Result<Snapshot, Status> {
+        self.check("fmi2GetFMUstate", STATE)?;
+        Ok(Snapshot {
+            model: self.model,
+            guid: guid_of(self.model),
+            phase: self.phase,
+            start_time: self.start_time,
+            stop_time: self.stop_time,
+            values: self.values.clone(),
+            steps: self.steps.clone(),
+        })
+    }
+
+    /// Check a state-function call is legal.
+    pub fn check_state_call(&self, func: &str) -> Result<(), Status> {
+        self.check(func, STATE)
+    }
+
+    /// Check a snapshot fits this instance (model, GUID, table).
+    pub fn check_snapshot(&self, func: &str, s: &Snapshot) -> Result<(), Status> {
+        if s.model != self.model || s.guid != guid_of(self.model) {
+            return Err(self.error(&format!(
+                "{func}: the FMU state belongs to {} {}, not to this {} instance",
+                s.model.identifier(),
+                s.guid,
+                self.model.identifier()
+            )));
+        }
+        let types_ok = s.values.len() == self.vars.len()
+            && s.values.iter().zip(&self.vars).all(|(v, var)| match v {
+                None => !var.settable(),
+                Some(v) => var.settable() && v.ty() == var.ty,
+            })
+            && s.steps.iter().all(|st| {
+                st.inputs.len() == self.inputs.len()
+                    && st
+                        .inputs
+                        .iter()
+                        .zip(&self.inputs)
+                        .all(|(v, &i)| v.ty() == self.vars[i].ty)
+            });
+        if !types_ok {
+            return Err(self.error(&format!(
+                "{func}: the FMU state's values do not match the variables of {}",
+                self.model.identifier()
+            )));
+        }
+        Ok(())
+    }
+
+    /// fmi2SetFMUstate: rebuild and replay.
+    pub fn set_state(&mut self, s: &Snapshot) -> Status {
+        if let Err(st) = self.check("fmi2SetFMUstate", STATE) {
+            return st;
+        }
+        if let Err(st) = self.check_snapshot("fmi2SetFMUstate", s) {
+            return st;
+        }
+        self.engine = None;
+        self.steps.clear();
+        self.start_time = s.start_time;
+        self.stop_time = s.stop_time;
+        self.values = s.values.clone();
+        self.phase = s.phase;
+        let needs_engine = matches!(s.phase, StepComplete | Terminated) || !s.steps.is_empty();
+        if needs_engine {
+            if let Err(e) = self.ensure_engine() {
+                self.phase = Error;
+                return self.error(&format!("fmi2SetFMUstate: cannot rebuild the engine: {e}"));
+            }
+            let current: Vec<Option<Value>> = self.values.clone();
+            for st in &s.steps {
+                for (&i, v) in self.inputs.iter().zip(&st.inputs) {
+                    self.values[i] = Some(v.clone());
+                }
+                if let Err(e) = self.step_engine(st.t, st.h) {
+                    self.phase = Error;
+                    self.values = current;
+                    return self.error(&format!(
+                        "fmi2SetFMUstate: replay failed at t = {}: {e}",
+                        st.t
+                    ));
+                }
+                self.steps.push(st.clone());
+            }
+            self.values = current;
+        }
+        self.info(&format!(
+            "FMU state restored ({} steps replayed)",
+            s.steps.len()
+        ));
+        Status::Ok
+    }
+}

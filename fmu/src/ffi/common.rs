@@ -1,0 +1,199 @@
+//! The fmi2 functions common to every FMI 2.0 interface: version, logging, instantiation,
+//! experiment set-up, initialisation, termination and reset.
+
+use super::*;
+
+/// `fmi2GetTypesPlatform`.
+#[unsafe(no_mangle)]
+pub extern "C" fn fmi2GetTypesPlatform() -> *const c_char {
+    c"default".as_ptr()
+}
+
+/// `fmi2GetVersion`.
+#[unsafe(no_mangle)]
+pub extern "C" fn fmi2GetVersion() -> *const c_char {
+    c"2.0".as_ptr()
+}
+
+/// `fmi2SetDebugLogging`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetDebugLogging(
+    c: Fmi2Component,
+    logging_on: Fmi2Boolean,
+    n: usize,
+    categories: *const *const c_char,
+) -> Fmi2Status {
+    status(c, "fmi2SetDebugLogging", |inner| {
+        // SAFETY: the master passes `n` category strings.
+        let Some(cats) = (unsafe { slice(categories, n) }) else {
+            return null_arg(inner, "fmi2SetDebugLogging", "categories");
+        };
+        let mut names = Vec::with_capacity(n);
+        for p in cats {
+            // SAFETY: each entry is a C string (checked for null).
+            match unsafe { text(*p) } {
+                Some(s) => names.push(s.to_string()),
+                None => return null_arg(inner, "fmi2SetDebugLogging", "a category"),
+            }
+        }
+        inner.inst.set_debug_logging(logging_on != 0, &names)
+    })
+}
+
+/// `fmi2Instantiate`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2Instantiate(
+    instance_name: *const c_char,
+    fmu_type: c_int,
+    guid: *const c_char,
+    resource_location: *const c_char,
+    functions: *const CallbackFunctions,
+    _visible: Fmi2Boolean,
+    logging_on: Fmi2Boolean,
+) -> Fmi2Component {
+    let r = catch_unwind(AssertUnwindSafe(|| {
+        if functions.is_null() {
+            return std::ptr::null_mut();
+        }
+        // SAFETY: non-null and, per FMI 2.0, a valid fmi2CallbackFunctions.
+        let fns = unsafe { &*functions };
+        // SAFETY: null or C strings.
+        let name = unsafe { text(instance_name) };
+        let logger = CLogger {
+            f: fns.logger,
+            env: fns.component_environment,
+            name: c_text(name.unwrap_or("")),
+        };
+        let sink: LogSink = Box::new(move |s, cat, msg| logger.log(s, cat, msg));
+        let fail = |sink: LogSink, msg: &str| {
+            sink(Status::Error, "logStatusError", msg);
+            std::ptr::null_mut()
+        };
+        let Some(name) = name else {
+            return fail(
+                sink,
+                "fmi2Instantiate: instanceName is a null pointer or not UTF-8",
+            );
+        };
+        if fmu_type != 1 {
+            return fail(
+                sink,
+                &format!(
+                    "fmi2Instantiate: fmuType {fmu_type} requested; this FMU supports only co-simulation (fmi2CoSimulation = 1), not model exchange"
+                ),
+            );
+        }
+        // SAFETY: null or C strings.
+        let Some(guid) = (unsafe { text(guid) }) else {
+            return fail(sink, "fmi2Instantiate: fmuGUID is a null pointer");
+        };
+        // SAFETY: null or C strings.
+        let res = unsafe { text(resource_location) };
+        match Instance::new(name, guid, res, logging_on != 0, sink) {
+            Ok(inst) => Box::into_raw(Box::new(Handle {
+                magic: MAGIC,
+                inner: Mutex::new(Inner {
+                    inst,
+                    strings: Vec::new(),
+                    snapshots: HashMap::new(),
+                }),
+            })) as Fmi2Component,
+            Err((sink, msg)) => fail(sink, &msg),
+        }
+    }));
+    r.unwrap_or(std::ptr::null_mut())
+}
+
+/// `fmi2FreeInstance`: safe with NULL and after any error.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2FreeInstance(c: Fmi2Component) {
+    let _ = catch_unwind(AssertUnwindSafe(|| {
+        if c.is_null() {
+            return;
+        }
+        let h = c as *mut Handle;
+        // SAFETY: a pointer from fmi2Instantiate (see `with_inst`).
+        let handle = unsafe { &mut *h };
+        if handle.magic != MAGIC {
+            return;
+        }
+        if handle
+            .inner
+            .try_lock()
+            .is_err_and(|e| matches!(e, TryLockError::WouldBlock))
+        {
+            return; // in use by another thread: leaking beats a use-after-free
+        }
+        handle.magic = FREED;
+        // SAFETY: created by Box::into_raw in fmi2Instantiate, freed once (magic now cleared).
+        drop(unsafe { Box::from_raw(h) });
+    }));
+}
+
+/// `fmi2SetupExperiment`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetupExperiment(
+    c: Fmi2Component,
+    _tolerance_defined: Fmi2Boolean,
+    _tolerance: f64,
+    start_time: f64,
+    stop_time_defined: Fmi2Boolean,
+    stop_time: f64,
+) -> Fmi2Status {
+    status(c, "fmi2SetupExperiment", |i| {
+        i.inst
+            .setup_experiment(start_time, (stop_time_defined != 0).then_some(stop_time))
+    })
+}
+
+/// `fmi2EnterInitializationMode`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2EnterInitializationMode(c: Fmi2Component) -> Fmi2Status {
+    status(c, "fmi2EnterInitializationMode", |i| {
+        i.inst.enter_initialization_mode()
+    })
+}
+
+/// `fmi2ExitInitializationMode`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2ExitInitializationMode(c: Fmi2Component) -> Fmi2Status {
+    status(c, "fmi2ExitInitializationMode", |i| {
+        i.inst.exit_initialization_mode()
+    })
+}
+
+/// `fmi2Terminate`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2Terminate(c: Fmi2Component) -> Fmi2Status {
+    status(c, "fmi2Terminate", |i| i.inst.terminate())
+}
+
+/// `fmi2Reset`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2Reset(c: Fmi2Component) -> Fmi2Status {
+    status(c, "fmi2Reset", |i| i.inst.reset())
+}

@@ -1,0 +1,199 @@
+//! FMU states: get, set, free, serialise and deserialise (snapshots owned by the instance).
+
+use super::*;
+
+/// A snapshot pointer owned by this instance (null, foreign and freed pointers are rejected).
+fn known(inner: &Inner, p: Fmi2State) -> bool {
+    !p.is_null() && inner.snapshots.contains_key(&(p as usize))
+}
+
+fn store_snapshot(inner: &mut Inner, slot: &mut Fmi2State, snap: Snapshot) {
+    if known(inner, *slot) {
+        if let Some(b) = inner.snapshots.get_mut(&(*slot as usize)) {
+            **b = snap;
+        }
+    } else {
+        let mut b = Box::new(snap);
+        let p = &mut *b as *mut Snapshot as Fmi2State;
+        inner.snapshots.insert(p as usize, b);
+        *slot = p;
+    }
+}
+
+/// `fmi2GetFMUstate`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetFMUstate(c: Fmi2Component, state: *mut Fmi2State) -> Fmi2Status {
+    status(c, "fmi2GetFMUstate", |i| {
+        if state.is_null() {
+            return null_arg(i, "fmi2GetFMUstate", "FMUstate");
+        }
+        // SAFETY: non-null pointer to the master's fmi2FMUstate variable.
+        let slot = unsafe { &mut *state };
+        if !slot.is_null() && !known(i, *slot) {
+            return i
+                .inst
+                .error("fmi2GetFMUstate: *FMUstate is neither NULL nor a state of this instance");
+        }
+        match i.inst.get_state() {
+            Ok(snap) => {
+                store_snapshot(i, slot, snap);
+                Status::Ok
+            }
+            Err(s) => s,
+        }
+    })
+}
+
+/// `fmi2SetFMUstate`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetFMUstate(c: Fmi2Component, state: Fmi2State) -> Fmi2Status {
+    status(c, "fmi2SetFMUstate", |i| {
+        if !known(i, state) {
+            return i
+                .inst
+                .error("fmi2SetFMUstate: FMUstate is not a state of this instance (null, freed or foreign)");
+        }
+        let snap = (*i.snapshots[&(state as usize)]).clone();
+        i.inst.set_state(&snap)
+    })
+}
+
+/// `fmi2FreeFMUstate`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2FreeFMUstate(c: Fmi2Component, state: *mut Fmi2State) -> Fmi2Status {
+    status(c, "fmi2FreeFMUstate", |i| {
+        if let Err(s) = i.inst.check_state_call("fmi2FreeFMUstate") {
+            return s;
+        }
+        if state.is_null() {
+            return null_arg(i, "fmi2FreeFMUstate", "FMUstate");
+        }
+        // SAFETY: non-null pointer to the master's fmi2FMUstate variable.
+        let slot = unsafe { &mut *state };
+        if slot.is_null() {
+            return Status::Ok;
+        }
+        if i.snapshots.remove(&(*slot as usize)).is_none() {
+            return i
+                .inst
+                .error("fmi2FreeFMUstate: FMUstate is not a state of this instance");
+        }
+        *slot = std::ptr::null_mut();
+        Status::Ok
+    })
+}
+
+/// `fmi2SerializedFMUstateSize`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
+    c: Fmi2Component,
+    state: Fmi2State,
+    size: *mut usize,
+) -> Fmi2Status {
+    status(c, "fmi2SerializedFMUstateSize", |i| {
+        if let Err(s) = i.inst.check_state_call("fmi2SerializedFMUstateSize") {
+            return s;
+        }
+        if size.is_null() {
+            return null_arg(i, "fmi2SerializedFMUstateSize", "size");
+        }
+        if !known(i, state) {
+            return i
+                .inst
+                .error("fmi2SerializedFMUstateSize: FMUstate is not a state of this instance");
+        }
+        let n = i.snapshots[&(state as usize)].to_bytes().len();
+        // SAFETY: non-null pointer to the master's size_t.
+        unsafe { *size = n };
+        Status::Ok
+    })
+}
+
+/// `fmi2SerializeFMUstate`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SerializeFMUstate(
+    c: Fmi2Component,
+    state: Fmi2State,
+    bytes: *mut u8,
+    size: usize,
+) -> Fmi2Status {
+    status(c, "fmi2SerializeFMUstate", |i| {
+        if let Err(s) = i.inst.check_state_call("fmi2SerializeFMUstate") {
+            return s;
+        }
+        if !known(i, state) {
+            return i
+                .inst
+                .error("fmi2SerializeFMUstate: FMUstate is not a state of this instance");
+        }
+        let data = i.snapshots[&(state as usize)].to_bytes();
+        if size < data.len() {
+            return i.inst.error(&format!(
+                "fmi2SerializeFMUstate: buffer of {size} bytes is smaller than the state ({} bytes; ask fmi2SerializedFMUstateSize)",
+                data.len()
+            ));
+        }
+        // SAFETY: the master provides `size` writable bytes.
+        let Some(out) = (unsafe { slice_mut(bytes, size) }) else {
+            return null_arg(i, "fmi2SerializeFMUstate", "serializedState");
+        };
+        out[..data.len()].copy_from_slice(&data);
+        Status::Ok
+    })
+}
+
+/// `fmi2DeSerializeFMUstate`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
+    c: Fmi2Component,
+    bytes: *const u8,
+    size: usize,
+    state: *mut Fmi2State,
+) -> Fmi2Status {
+    status(c, "fmi2DeSerializeFMUstate", |i| {
+        if let Err(s) = i.inst.check_state_call("fmi2DeSerializeFMUstate") {
+            return s;
+        }
+        // SAFETY: the master passes `size` readable bytes.
+        let Some(data) = (unsafe { slice(bytes, size) }) else {
+            return null_arg(i, "fmi2DeSerializeFMUstate", "serializedState");
+        };
+        if state.is_null() {
+            return null_arg(i, "fmi2DeSerializeFMUstate", "FMUstate");
+        }
+        // SAFETY: non-null pointer to the master's fmi2FMUstate variable.
+        let slot = unsafe { &mut *state };
+        if !slot.is_null() && !known(i, *slot) {
+            return i.inst.error(
+                "fmi2DeSerializeFMUstate: *FMUstate is neither NULL nor a state of this instance",
+            );
+        }
+        let snap = match Snapshot::from_bytes(data) {
+            Ok(s) => s,
+            Err(e) => return i.inst.error(&format!("fmi2DeSerializeFMUstate: {e}")),
+        };
+        if let Err(s) = i.inst.check_snapshot("fmi2DeSerializeFMUstate", &snap) {
+            return s;
+        }
+        store_snapshot(i, slot, snap);
+        Status::Ok
+    })
+}

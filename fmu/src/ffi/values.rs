@@ -1,0 +1,235 @@
+//! fmi2Get* and fmi2Set*: variable values across the C ABI.
+
+use super::*;
+
+fn get_values<T>(
+    inner: &mut Inner,
+    func: &str,
+    ty: Type,
+    vr: *const u32,
+    nvr: usize,
+    out: *mut T,
+    mut conv: impl FnMut(Value, &mut Vec<CString>) -> T,
+) -> Status {
+    // SAFETY: the master passes `nvr` references and room for `nvr` values.
+    let (Some(vrs), Some(out)) = (unsafe { slice(vr, nvr) }, unsafe { slice_mut(out, nvr) }) else {
+        return null_arg(inner, func, "vr or value");
+    };
+    match inner.inst.get(func, ty, vrs) {
+        Ok(values) => {
+            // Strings handed out by fmi2GetString stay valid until the next fmi2GetString.
+            if ty == Type::String {
+                inner.strings.clear();
+            }
+            for (o, v) in out.iter_mut().zip(values) {
+                *o = conv(v, &mut inner.strings);
+            }
+            Status::Ok
+        }
+        Err(s) => s,
+    }
+}
+
+/// `fmi2GetReal`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetReal(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    value: *mut f64,
+) -> Fmi2Status {
+    status(c, "fmi2GetReal", |i| {
+        get_values(
+            i,
+            "fmi2GetReal",
+            Type::Real,
+            vr,
+            nvr,
+            value,
+            |v, _| match v {
+                Value::Real(x) => x,
+                _ => f64::NAN,
+            },
+        )
+    })
+}
+
+/// `fmi2GetInteger`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetInteger(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    value: *mut c_int,
+) -> Fmi2Status {
+    status(c, "fmi2GetInteger", |i| {
+        get_values(
+            i,
+            "fmi2GetInteger",
+            Type::Integer,
+            vr,
+            nvr,
+            value,
+            |v, _| match v {
+                Value::Integer(x) => x,
+                _ => 0,
+            },
+        )
+    })
+}
+
+/// `fmi2GetBoolean`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetBoolean(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    value: *mut Fmi2Boolean,
+) -> Fmi2Status {
+    status(c, "fmi2GetBoolean", |i| {
+        get_values(
+            i,
+            "fmi2GetBoolean",
+            Type::Boolean,
+            vr,
+            nvr,
+            value,
+            |v, _| matches!(v, Value::Boolean(true)) as Fmi2Boolean,
+        )
+    })
+}
+
+/// `fmi2GetString`: the returned strings stay valid until the next fmi2GetString call on the
+/// same instance (or its freeing).
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetString(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    value: *mut *const c_char,
+) -> Fmi2Status {
+    status(c, "fmi2GetString", |i| {
+        get_values(
+            i,
+            "fmi2GetString",
+            Type::String,
+            vr,
+            nvr,
+            value,
+            |v, store| {
+                let s = match v {
+                    Value::String(s) => c_text(&s),
+                    _ => CString::default(),
+                };
+                let p = s.as_ptr();
+                store.push(s);
+                p
+            },
+        )
+    })
+}
+
+fn set_values<T: Copy>(
+    inner: &mut Inner,
+    func: &str,
+    vr: *const u32,
+    nvr: usize,
+    value: *const T,
+    mut conv: impl FnMut(T) -> Option<Value>,
+) -> Status {
+    // SAFETY: the master passes `nvr` references and values.
+    let (Some(vrs), Some(vals)) = (unsafe { slice(vr, nvr) }, unsafe { slice(value, nvr) }) else {
+        return null_arg(inner, func, "vr or value");
+    };
+    let mut values = Vec::with_capacity(nvr);
+    for v in vals {
+        match conv(*v) {
+            Some(v) => values.push(v),
+            None => return null_arg(inner, func, "a string value"),
+        }
+    }
+    inner.inst.set(func, vrs, values)
+}
+
+/// `fmi2SetReal`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetReal(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    value: *const f64,
+) -> Fmi2Status {
+    status(c, "fmi2SetReal", |i| {
+        set_values(i, "fmi2SetReal", vr, nvr, value, |x| Some(Value::Real(x)))
+    })
+}
+
+/// `fmi2SetInteger`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetInteger(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    value: *const c_int,
+) -> Fmi2Status {
+    status(c, "fmi2SetInteger", |i| {
+        set_values(i, "fmi2SetInteger", vr, nvr, value, |x| {
+            Some(Value::Integer(x))
+        })
+    })
+}
+
+/// `fmi2SetBoolean`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetBoolean(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    value: *const Fmi2Boolean,
+) -> Fmi2Status {
+    status(c, "fmi2SetBoolean", |i| {
+        set_values(i, "fmi2SetBoolean", vr, nvr, value, |x| {
+            Some(Value::Boolean(x != 0))
+        })
+    })
+}
+
+/// `fmi2SetString`.
+///
+/// # Safety
+/// FMI 2.0 calling conventions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetString(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    value: *const *const c_char,
+) -> Fmi2Status {
+    status(c, "fmi2SetString", |i| {
+        set_values(i, "fmi2SetString", vr, nvr, value, |p| {
+            // SAFETY: each value is null (rejected) or a C string.
+            unsafe { text(p) }.map(|s| Value::String(s.to_string()))
+        })
+    })
+}

@@ -58,11 +58,7 @@ pub(crate) fn augment_start<const N: usize, const L: usize>(
     let mut q0 = SMatrix::<f64, L, L>::zeros();
     q0.fixed_view_mut::<N, N>(0, 0).copy_from(&start.q);
     q0[(N, N)] = q;
-    Ok(FilterStart {
-        x0,
-        p0,
-        q: q0,
-    })
+    Ok(FilterStart { x0, p0, q: q0 })
 }
 
 impl<const N: usize, const L: usize> UkfAcNav<N, L> {

@@ -114,6 +114,7 @@ pub struct SelectionProblem {
     summed: Vec<Matrix3<f64>>,
     k: usize,
     criterion: SelectionCriterion,
+    solver_verbose: bool,
 }
 
 /// `ln det` of a 3×3 symmetric PSD matrix, floored at `ln 1e-300` (finite).
@@ -174,7 +175,15 @@ impl SelectionProblem {
             summed,
             k,
             criterion,
+            solver_verbose: false,
         })
+    }
+
+    /// The same problem with clarabel's iteration log printed to stdout (`on`) or not (the
+    /// default).
+    pub fn with_solver_verbose(mut self, on: bool) -> SelectionProblem {
+        self.solver_verbose = on;
+        self
     }
 
     /// Number of candidates m.

@@ -116,7 +116,7 @@ impl SelectionProblem {
         let a_mat = a.into_csc(row, n_var);
         let p = CscMatrix::<f64>::zeros((n_var, n_var));
         let settings = DefaultSettings::<f64> {
-            verbose: std::env::var_os("ENTRYNAV_CLARABEL_VERBOSE").is_some(),
+            verbose: self.solver_verbose,
             max_iter: 200,
             ..DefaultSettings::default()
         };
@@ -147,6 +147,8 @@ impl SelectionProblem {
     }
 }
 
+/// Coordinate (triplet) entries of the constraint matrix, assembled by clarabel's
+/// [`CscMatrix::new_from_triplets`] (sorted by column then row, repeated entries summed).
 #[derive(Default)]
 struct Triplets {
     rows: Vec<usize>,
@@ -161,28 +163,8 @@ impl Triplets {
         self.vals.push(v);
     }
 
-    /// Compressed sparse column form (entries sorted by column then row, duplicates summed).
+    /// The `m × n` compressed sparse column matrix of the entries.
     fn into_csc(self, m: usize, n: usize) -> CscMatrix<f64> {
-        let mut order: Vec<usize> = (0..self.vals.len()).collect();
-        order.sort_by_key(|&t| (self.cols[t], self.rows[t]));
-        let mut colptr = vec![0usize; n + 1];
-        let mut rowval: Vec<usize> = Vec::with_capacity(order.len());
-        let mut nzval: Vec<f64> = Vec::with_capacity(order.len());
-        let mut last: Option<(usize, usize)> = None;
-        for t in order {
-            let (r, c) = (self.rows[t], self.cols[t]);
-            if last == Some((r, c)) {
-                *nzval.last_mut().expect("an entry was pushed") += self.vals[t];
-                continue;
-            }
-            rowval.push(r);
-            nzval.push(self.vals[t]);
-            colptr[c + 1] += 1;
-            last = Some((r, c));
-        }
-        for c in 0..n {
-            colptr[c + 1] += colptr[c];
-        }
-        CscMatrix::new(m, n, colptr, rowval, nzval)
+        CscMatrix::new_from_triplets(m, n, self.rows, self.cols, self.vals)
     }
 }

@@ -7,7 +7,7 @@
 
 use crate::load;
 use anyhow::{Context, Result, bail};
-use clap::{Args, Subcommand};
+use clap::{Args, Subcommand, ValueEnum};
 use entrynav::beacons::BeaconConfig;
 use entrynav::observability::{DegreeSeries, Method};
 use entrynav::scenario::ScenarioConfig;
@@ -115,8 +115,8 @@ pub struct OrbitersArgs {
     altitude_km: Option<f64>,
     /// Objective: det-n3 (seed 002 eq. 57, 3 orbiters) or logdet (any n >= 3); default det-n3
     /// for 3 orbiters, else logdet.
-    #[arg(long, value_parser = ["det-n3", "logdet"])]
-    objective: Option<String>,
+    #[arg(long, value_enum)]
+    objective: Option<OrbiterObjectiveArg>,
     /// Seconds between trajectory samples of the time integral (trapezoid rule).
     #[arg(long, default_value_t = 1.0)]
     step: f64,
@@ -140,11 +140,11 @@ pub struct GroundArgs {
     beacons: Option<usize>,
     /// Objective: min-delta (eq. 49), logdet (integral of ln det FIM) or min-eig (min over time
     /// of lambda_min(FIM)).
-    #[arg(long, default_value = "min-delta", value_parser = ["min-delta", "logdet", "min-eig"])]
-    objective: String,
+    #[arg(long, value_enum, default_value_t = GroundObjectiveArg::MinDelta)]
+    objective: GroundObjectiveArg,
     /// Observability method for min-delta (see `entrynav observe`).
-    #[arg(long, default_value = "lie", value_parser = ["lie", "quadratic", "linear"])]
-    method: String,
+    #[arg(long, value_enum, default_value_t = MethodArg::Lie)]
+    method: MethodArg,
     /// Maximise the scaled delta instead of the raw-SI one (the papers' convention).
     #[arg(long)]
     scaled: bool,
@@ -179,8 +179,8 @@ pub struct SelectArgs {
     #[arg(long, default_value_t = 0.5)]
     grid_deg: f64,
     /// Criterion: logdet (D-optimal) or min-eig (E-optimal).
-    #[arg(long, default_value = "logdet", value_parser = ["logdet", "min-eig"])]
-    criterion: String,
+    #[arg(long, value_enum, default_value_t = CriterionArg::Logdet)]
+    criterion: CriterionArg,
     /// With min-eig: maximise the minimum over epochs this many seconds apart of lambda_min of
     /// the instantaneous FIM (max-min over time) instead of lambda_min of the time-averaged FIM.
     #[arg(long, value_name = "SECONDS")]
@@ -204,6 +204,87 @@ pub struct SelectArgs {
     /// Write the selected sites as a scenario file (accepted by `entrynav trade`).
     #[arg(long)]
     write_scenario: Option<PathBuf>,
+    /// Print clarabel's iteration log of the relaxation.
+    #[arg(long)]
+    solver_verbose: bool,
+}
+
+/// `--objective` of `optimize orbiters` (names of [`OrbiterObjective::name`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum OrbiterObjectiveArg {
+    /// The integral of det(N3) (eq. 57), three orbiters.
+    #[value(name = "det-n3")]
+    DetN3,
+    /// The integral of ln det of the FIM.
+    #[value(name = "logdet")]
+    Logdet,
+}
+
+impl From<OrbiterObjectiveArg> for OrbiterObjective {
+    fn from(a: OrbiterObjectiveArg) -> OrbiterObjective {
+        match a {
+            OrbiterObjectiveArg::DetN3 => OrbiterObjective::DetN3,
+            OrbiterObjectiveArg::Logdet => OrbiterObjective::LogDet,
+        }
+    }
+}
+
+/// `--objective` of `optimize ground` (names of [`GroundObjective::name`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum GroundObjectiveArg {
+    /// min over time of delta (eq. 49).
+    #[value(name = "min-delta")]
+    MinDelta,
+    /// The integral of ln det FIM.
+    #[value(name = "logdet")]
+    Logdet,
+    /// min over time of lambda_min(FIM).
+    #[value(name = "min-eig")]
+    MinEig,
+}
+
+/// `--method` (names of [`Method::name`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum MethodArg {
+    /// Exact Lie derivatives.
+    #[value(name = "lie")]
+    Lie,
+    /// Quadratic approximation of the Lie derivatives.
+    #[value(name = "quadratic")]
+    Quadratic,
+    /// Linearised system.
+    #[value(name = "linear")]
+    Linear,
+}
+
+impl From<MethodArg> for Method {
+    fn from(a: MethodArg) -> Method {
+        match a {
+            MethodArg::Lie => Method::Lie,
+            MethodArg::Quadratic => Method::Quadratic,
+            MethodArg::Linear => Method::Linear,
+        }
+    }
+}
+
+/// `--criterion` of `optimize select` (names of [`SelectionCriterion::name`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum CriterionArg {
+    /// D-optimal: ln det.
+    #[value(name = "logdet")]
+    Logdet,
+    /// E-optimal: lambda_min.
+    #[value(name = "min-eig")]
+    MinEig,
+}
+
+impl From<CriterionArg> for SelectionCriterion {
+    fn from(a: CriterionArg) -> SelectionCriterion {
+        match a {
+            CriterionArg::Logdet => SelectionCriterion::LogDet,
+            CriterionArg::MinEig => SelectionCriterion::MinEig,
+        }
+    }
 }
 
 /// Run the command.

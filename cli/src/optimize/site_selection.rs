@@ -19,10 +19,7 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
     let (cfg, dir) = load::scenario_config(&a.scenario)?;
     let cfg = load::apply_overrides(cfg, &a.sets)?;
     let load = loader(&dir);
-    let criterion = match a.criterion.as_str() {
-        "logdet" => SelectionCriterion::LogDet,
-        _ => SelectionCriterion::MinEig,
-    };
+    let criterion = SelectionCriterion::from(a.criterion);
     if a.eig_epochs.is_some() && criterion != SelectionCriterion::MinEig {
         bail!("--eig-epochs applies to --criterion min-eig only");
     }
@@ -76,7 +73,8 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
         add(format!("sites of {}", path.display()), list, &mut sites);
     }
     let blocks = site_information(&ground, &sites, a.eig_epochs)?;
-    let problem = SelectionProblem::new(blocks, a.k, criterion)?;
+    let problem =
+        SelectionProblem::new(blocks, a.k, criterion)?.with_solver_verbose(a.solver_verbose);
     let report = problem.solve()?;
     let brute = problem.brute_force(a.brute_force_limit);
     let r = &report.relaxation;

@@ -126,9 +126,13 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
             chosen.join(" ")
         );
     };
-    show("rounded (top-k of z)", &report.rounded);
+    if let Some(s) = &report.rounded {
+        show("rounded (top-k of z)", s);
+    }
     show("swap-improved (answer)", &report.improved);
-    show("greedy", &report.greedy);
+    if let Some(s) = &report.greedy {
+        show("greedy", s);
+    }
     if let Some(b) = &brute {
         show("brute force (exact optimum)", b);
     }
@@ -208,8 +212,8 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
                 "solve_time_s": r.solve_time_s,
                 "support": support,
             },
-            "rounded": selection_json(&report.rounded, &sites, &report),
-            "greedy": selection_json(&report.greedy, &sites, &report),
+            "rounded": report.rounded.as_ref().map(|s| selection_json(s, &sites, &report)),
+            "greedy": report.greedy.as_ref().map(|s| selection_json(s, &sites, &report)),
             "brute_force": brute.as_ref().map(|b| selection_json(b, &sites, &report)),
             "certified": extra_sel.iter().map(|(label, s)| {
                 let mut o = selection_json(s, &sites, &report);

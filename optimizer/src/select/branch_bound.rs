@@ -29,14 +29,15 @@ use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 use std::time::Duration;
 
-/// The certified gap at or below which an answer is called optimal (absolute, in the criterion's
-/// units): the accuracy of the node relaxations, well above floating-point rounding.
+/// The certified gap at or below which an answer is called optimal, on the criterion's scale
+/// ([`SelectionProblem::tolerance`]): above the accuracy of the node relaxations and far above
+/// floating-point rounding.
 pub const PROOF_GAP: f64 = 1e-6;
 
 /// How the search stopped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ProofStatus {
-    /// The answer is optimal: certified gap ≤ [`PROOF_GAP`].
+    /// The answer is optimal: certified gap ≤ [`PROOF_GAP`] (on the criterion's scale).
     Optimal,
     /// The search finished with the requested (looser) gap: certified gap ≤ `gap`.
     Gap,
@@ -61,7 +62,8 @@ impl ProofStatus {
 /// Options of [`SelectionProblem::branch_and_bound`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct BranchBoundOptions {
-    /// Close a node when its bound exceeds the incumbent by at most this (absolute).
+    /// Close a node when its bound exceeds the incumbent by at most this, on the criterion's
+    /// scale ([`SelectionProblem::tolerance`]).
     pub gap: f64,
     /// Stop after this wall time (checked between batches; the first batch always runs).
     pub time_limit: Option<Duration>,
@@ -113,6 +115,9 @@ pub struct BranchBoundReport {
     pub bound: f64,
     /// `bound − best.value` (≥ 0): the certified gap.
     pub gap: f64,
+    /// The certified gap at or below which `best` counts as optimal: [`PROOF_GAP`] on the
+    /// criterion's scale ([`SelectionProblem::tolerance`]).
+    pub proof_tolerance: f64,
     /// How the search stopped.
     pub status: ProofStatus,
     /// The root relaxation's bound.
@@ -184,6 +189,17 @@ impl Ord for Queued {
 }
 
 impl SelectionProblem {
+    /// The absolute gap that `gap` means at the value `value`: D-optimal, `gap` itself (ln det is
+    /// already a log scale: a gap of 1e-6 is a relative 1e-6 in det F); E-optimal, `gap · |value|`
+    /// (relative to λ_min, whose size depends on the units and the epochs).
+    pub fn tolerance(&self, gap: f64, value: f64) -> f64 {
+        match self.criterion {
+            SelectionCriterion::LogDet => gap,
+            SelectionCriterion::MinEig if value.is_finite() => gap * value.abs(),
+            SelectionCriterion::MinEig => 0.0,
+        }
+    }
+
     /// Branch and bound for the best admissible k-subset (module docs). `start` (a k-subset,
     /// e.g. the heuristic answer of [`SelectionProblem::solve`]) seeds the incumbent; `progress`
     /// is called on the calling thread after every batch.
@@ -227,7 +243,6 @@ impl SelectionProblem {
             }
         }
         let initial_value = best.as_ref().map_or(f64::NEG_INFINITY, |b| b.value);
-        let tol = opts.gap;
         let mut r = BranchBoundReport {
             best: Selection {
                 indices: Vec::new(),
@@ -235,6 +250,7 @@ impl SelectionProblem {
             },
             bound: f64::INFINITY,
             gap: f64::INFINITY,
+            proof_tolerance: 0.0,
             status: ProofStatus::Optimal,
             root_bound: f64::INFINITY,
             initial_value,
@@ -262,6 +278,7 @@ impl SelectionProblem {
         let value = |b: &Option<Selection>| b.as_ref().map_or(f64::NEG_INFINITY, |s| s.value);
         let stopped = loop {
             let inc = value(&best);
+            let tol = self.tolerance(opts.gap, inc);
             let open_bound = queue
                 .peek()
                 .map(|q| q.0.bound)
@@ -348,7 +365,8 @@ impl SelectionProblem {
                         if let Some(s) = incumbent {
                             offer(&mut best, s, &mut r.incumbent_updates);
                         }
-                        if bound <= value(&best) + tol {
+                        let inc = value(&best);
+                        if bound <= inc + self.tolerance(opts.gap, inc) {
                             closed = closed.max(bound);
                             r.pruned_relaxation += 1;
                             continue;
@@ -383,9 +401,10 @@ impl SelectionProblem {
         if r.root_bound == f64::INFINITY {
             r.root_bound = r.bound;
         }
+        r.proof_tolerance = self.tolerance(PROOF_GAP, best.value);
         r.status = match stopped {
             Some(s) => s,
-            None if r.gap <= PROOF_GAP => ProofStatus::Optimal,
+            None if r.gap <= r.proof_tolerance => ProofStatus::Optimal,
             None => ProofStatus::Gap,
         };
         r.best = best;

@@ -7,24 +7,29 @@
 
 use crate::load;
 use anyhow::{Context, Result, bail};
-use clap::{Args, Subcommand, ValueEnum};
+use clap::{Args, Subcommand};
 use entrynav::beacons::BeaconConfig;
 use entrynav::observability::{DegreeSeries, Method};
 use entrynav::scenario::ScenarioConfig;
 use entrynav_optimizer::ground::{self, GroundEvaluation};
 use entrynav_optimizer::orbiters::{self, OrbiterEvaluation};
 use entrynav_optimizer::output::{self, template_noise};
-use entrynav_optimizer::select::{Selection, SelectionReport, site_information};
+use entrynav_optimizer::select::{
+    BranchBoundReport, ProofStatus, Selection, separation_constraints, site_information,
+};
 use entrynav_optimizer::{
     GroundObjective, GroundProblem, OrbitElements, OrbiterObjective, OrbiterProblem, SearchOptions,
     SearchResult, SelectionCriterion, SelectionProblem, Site, Trajectory,
 };
 use indicatif::{ProgressBar, ProgressStyle};
+use names::{CriterionArg, GroundObjectiveArg, MethodArg, OrbiterObjectiveArg};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+mod exact_selection;
 mod ground_sites;
+mod names;
 mod orbit_elements;
 mod site_selection;
 
@@ -207,84 +212,43 @@ pub struct SelectArgs {
     /// Print clarabel's iteration log of the relaxation.
     #[arg(long)]
     solver_verbose: bool,
-}
-
-/// `--objective` of `optimize orbiters` (names of [`OrbiterObjective::name`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-enum OrbiterObjectiveArg {
-    /// The integral of det(N3) (eq. 57), three orbiters.
-    #[value(name = "det-n3")]
-    DetN3,
-    /// The integral of ln det of the FIM.
-    #[value(name = "logdet")]
-    Logdet,
-}
-
-impl From<OrbiterObjectiveArg> for OrbiterObjective {
-    fn from(a: OrbiterObjectiveArg) -> OrbiterObjective {
-        match a {
-            OrbiterObjectiveArg::DetN3 => OrbiterObjective::DetN3,
-            OrbiterObjectiveArg::Logdet => OrbiterObjective::LogDet,
-        }
-    }
-}
-
-/// `--objective` of `optimize ground` (names of [`GroundObjective::name`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-enum GroundObjectiveArg {
-    /// min over time of delta (eq. 49).
-    #[value(name = "min-delta")]
-    MinDelta,
-    /// The integral of ln det FIM.
-    #[value(name = "logdet")]
-    Logdet,
-    /// min over time of lambda_min(FIM).
-    #[value(name = "min-eig")]
-    MinEig,
-}
-
-/// `--method` (names of [`Method::name`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-enum MethodArg {
-    /// Exact Lie derivatives.
-    #[value(name = "lie")]
-    Lie,
-    /// Quadratic approximation of the Lie derivatives.
-    #[value(name = "quadratic")]
-    Quadratic,
-    /// Linearised system.
-    #[value(name = "linear")]
-    Linear,
-}
-
-impl From<MethodArg> for Method {
-    fn from(a: MethodArg) -> Method {
-        match a {
-            MethodArg::Lie => Method::Lie,
-            MethodArg::Quadratic => Method::Quadratic,
-            MethodArg::Linear => Method::Linear,
-        }
-    }
-}
-
-/// `--criterion` of `optimize select` (names of [`SelectionCriterion::name`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-enum CriterionArg {
-    /// D-optimal: ln det.
-    #[value(name = "logdet")]
-    Logdet,
-    /// E-optimal: lambda_min.
-    #[value(name = "min-eig")]
-    MinEig,
-}
-
-impl From<CriterionArg> for SelectionCriterion {
-    fn from(a: CriterionArg) -> SelectionCriterion {
-        match a {
-            CriterionArg::Logdet => SelectionCriterion::LogDet,
-            CriterionArg::MinEig => SelectionCriterion::MinEig,
-        }
-    }
+    /// Minimum great-circle separation between chosen sites [deg] (a linear constraint
+    /// z_i + z_j <= 1 of the relaxation for every closer pair).
+    #[arg(long, value_name = "DEG")]
+    min_separation_deg: Option<f64>,
+    /// Keep only candidates inside this latitude/longitude box [deg].
+    #[arg(
+        long,
+        value_delimiter = ',',
+        num_args = 1,
+        allow_hyphen_values = true,
+        value_names = ["LAT_MIN", "LAT_MAX", "LON_MIN", "LON_MAX"]
+    )]
+    region: Option<Vec<f64>>,
+    /// Prove the optimum: branch and bound on the relaxation (status optimal, gap or time-limit).
+    #[arg(long)]
+    exact: bool,
+    /// With --exact: stop after this many seconds and report the certified gap (the only
+    /// speed-dependent output).
+    #[arg(long, value_name = "SECONDS", requires = "exact")]
+    time_limit: Option<f64>,
+    /// With --exact: stop when the certified gap (bound - value) is at most this (logdet:
+    /// absolute in ln det, i.e. relative in det; min-eig: relative to lambda_min).
+    #[arg(long, default_value_t = 1e-6, requires = "exact")]
+    gap: f64,
+    /// With --exact: stop after this many nodes (a speed-independent limit).
+    #[arg(long, requires = "exact")]
+    node_limit: Option<usize>,
+    /// With --exact: nodes evaluated per parallel round (the answer depends on it, not on the
+    /// thread count).
+    #[arg(long, default_value_t = 8, requires = "exact")]
+    batch: usize,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
 }
 
 /// Run the command.
@@ -296,7 +260,7 @@ pub fn run(args: &OptimizeArgs) -> Result<()> {
         OptimizeProblem::Ground(a) => {
             with_threads(a.common.threads, || ground_sites::run_ground(a))
         }
-        OptimizeProblem::Select(a) => site_selection::run_select(a),
+        OptimizeProblem::Select(a) => with_threads(a.threads, || site_selection::run_select(a)),
     }
 }
 

@@ -1,9 +1,11 @@
 //! `entrynav optimize select --exact`: the branch and bound of
 //! `entrynav_optimizer::select::branch_bound` with a progress line (incumbent, bound, open nodes),
-//! its summary and its JSON.
+//! its summary and its JSON, and the run without a heuristic start.
 
+use super::ground_sites::sites_json;
+use super::site_selection::{constraints_json, selection_json, write_selected};
 use super::*;
-use entrynav_optimizer::select::{BranchBoundOptions, BranchBoundProgress, BranchBoundReport};
+use entrynav_optimizer::select::{BranchBoundOptions, BranchBoundProgress};
 use std::time::Duration;
 
 /// Run the branch and bound from `start` (the heuristic answer, if any).
@@ -101,7 +103,7 @@ pub(super) fn exact_json(a: &SelectArgs, r: &BranchBoundReport, sites: &[Site]) 
         "status": r.status.name(),
         "value": r.best.value,
         "indices": r.best.indices,
-        "sites": super::ground_sites::sites_json(&chosen),
+        "sites": sites_json(&chosen),
         "bound": r.bound,
         "gap": r.gap,
         "requested_gap": a.gap,
@@ -127,4 +129,73 @@ pub(super) fn exact_json(a: &SelectArgs, r: &BranchBoundReport, sites: &[Site]) 
         "threads": rayon::current_num_threads(),
         "elapsed_s": r.elapsed_s,
     })
+}
+
+/// `--exact` when the heuristic failed: the branch and bound alone, its summary, JSON and
+/// scenario file.
+pub(super) fn finish_exact_only(
+    a: &SelectArgs,
+    cfg: &ScenarioConfig,
+    problem: &SelectionProblem,
+    sites: &[Site],
+    grid_count: usize,
+    wall: Instant,
+) -> Result<()> {
+    let e = run_exact(a, problem, None)?;
+    let brute = problem.brute_force(a.brute_force_limit);
+    let show = |label: &str, s: &Selection| {
+        let chosen: Vec<String> = s
+            .indices
+            .iter()
+            .map(|&i| {
+                let [lat, lon] = sites[i].degrees();
+                format!("({lat:.2}, {lon:.2})")
+            })
+            .collect();
+        println!(
+            "{label:<30} value {:>11.6}  gap {:>10.3e}  sites {}",
+            s.value,
+            (e.bound - s.value).max(0.0),
+            chosen.join(" ")
+        );
+    };
+    if let Some(b) = &brute {
+        show("brute force (exact optimum)", b);
+    }
+    show("branch and bound (answer)", &e.best);
+    print_proof(a, &e);
+    write_selected(
+        a,
+        cfg,
+        sites,
+        problem.criterion(),
+        &e.best,
+        e.bound,
+        Some(&e),
+    )?;
+    if let Some(path) = &a.json {
+        let chosen: Vec<Site> = e.best.indices.iter().map(|&i| sites[i]).collect();
+        write_json(
+            path,
+            &json!({
+                "problem": "select",
+                "scenario": cfg.name,
+                "objective": problem.criterion().name(),
+                "answer": "exact",
+                "value": e.best.value,
+                "sites": sites_json(&chosen),
+                "bound": e.bound,
+                "gap": e.gap,
+                "k": a.k,
+                "candidates": sites.len(),
+                "grid_candidates": grid_count,
+                "grid_deg": a.grid_deg,
+                "wall_s": wall.elapsed().as_secs_f64(),
+                "constraints": constraints_json(a, problem.constraints().len()),
+                "brute_force": brute.as_ref().map(|b| selection_json(b, sites, e.bound)),
+                "exact": exact_json(a, &e, sites),
+            }),
+        )?;
+    }
+    Ok(())
 }

@@ -2,12 +2,12 @@
 //! bound with clarabel, then local search; `--exact`: branch and bound, in
 //! [`exact_selection`](super::exact_selection)).
 
-use super::exact_selection::{exact_json, print_proof, run_exact};
+use super::exact_selection::{exact_json, finish_exact_only, print_proof, run_exact};
 use super::ground_sites::{scenario_sites, sites_json};
 use super::*;
 
 /// `value` and `gap = bound − value` of a selection (`bound`: the best bound known).
-fn selection_json(s: &Selection, sites: &[Site], bound: f64) -> Value {
+pub(super) fn selection_json(s: &Selection, sites: &[Site], bound: f64) -> Value {
     let chosen: Vec<Site> = s.indices.iter().map(|&i| sites[i]).collect();
     json!({
         "indices": s.indices,
@@ -291,7 +291,7 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
     Ok(())
 }
 
-fn constraints_json(a: &SelectArgs, pairs: usize) -> Value {
+pub(super) fn constraints_json(a: &SelectArgs, pairs: usize) -> Value {
     json!({
         "min_separation_deg": a.min_separation_deg,
         "close_pairs": pairs,
@@ -300,7 +300,7 @@ fn constraints_json(a: &SelectArgs, pairs: usize) -> Value {
 }
 
 /// `--write-scenario`: the answer's sites as the scenario's beacons.
-fn write_selected(
+pub(super) fn write_selected(
     a: &SelectArgs,
     cfg: &ScenarioConfig,
     sites: &[Site],
@@ -333,67 +333,5 @@ fn write_selected(
     )?;
     write_text(path, &text)?;
     println!("wrote {}", path.display());
-    Ok(())
-}
-
-/// `--exact` when the heuristic failed: the branch and bound alone, its summary, JSON and
-/// scenario file.
-fn finish_exact_only(
-    a: &SelectArgs,
-    cfg: &ScenarioConfig,
-    problem: &SelectionProblem,
-    sites: &[Site],
-    grid_count: usize,
-    wall: Instant,
-) -> Result<()> {
-    let e = run_exact(a, problem, None)?;
-    let chosen: Vec<String> = e
-        .best
-        .indices
-        .iter()
-        .map(|&i| {
-            let [lat, lon] = sites[i].degrees();
-            format!("({lat:.2}, {lon:.2})")
-        })
-        .collect();
-    println!(
-        "branch and bound (answer)      value {:>11.6}  gap {:>10.3e}  sites {}",
-        e.best.value,
-        e.gap,
-        chosen.join(" ")
-    );
-    print_proof(a, &e);
-    write_selected(
-        a,
-        cfg,
-        sites,
-        problem.criterion(),
-        &e.best,
-        e.bound,
-        Some(&e),
-    )?;
-    if let Some(path) = &a.json {
-        let chosen: Vec<Site> = e.best.indices.iter().map(|&i| sites[i]).collect();
-        write_json(
-            path,
-            &json!({
-                "problem": "select",
-                "scenario": cfg.name,
-                "objective": problem.criterion().name(),
-                "answer": "exact",
-                "value": e.best.value,
-                "sites": sites_json(&chosen),
-                "bound": e.bound,
-                "gap": e.gap,
-                "k": a.k,
-                "candidates": sites.len(),
-                "grid_candidates": grid_count,
-                "grid_deg": a.grid_deg,
-                "wall_s": wall.elapsed().as_secs_f64(),
-                "constraints": constraints_json(a, problem.constraints().len()),
-                "exact": exact_json(a, &e, sites),
-            }),
-        )?;
-    }
     Ok(())
 }

@@ -2,12 +2,13 @@
 //! `entrynav optimize select --exact` on `ground-beacons-3`, as a report (node counts, bound,
 //! optimum, wall time), not a timed test.
 //!
-//! Options: `--k 3,4,5` `--grid-deg 0.5` `--criterion logdet|min-eig` `--time-limit 60` (s)
-//! `--eig-epochs S` (min-eig over epochs S seconds apart) `--batch 8` `--no-dives` `--no-screening` `--threads N`
-//! `--json FILE`. Candidates are the visible grid sites
-//! plus, for k = 3, the scenario's three hand-placed sites (as `optimize select` does).
-//! Without `--bench` (i.e. under `cargo test --benches`) it runs nothing.
+//! Options: `--k 3,4,5` `--grid-deg 0.5` `--criterion logdet|min-eig` `--eig-epochs S`
+//! (min-eig over epochs S seconds apart) `--time-limit 60` (s) `--batch 8` `--no-dives`
+//! `--no-screening` `--threads N` `--json FILE`. Candidates are the visible grid sites plus, when
+//! k equals their number, the scenario's hand-placed sites (as `optimize select` does). Without
+//! `--bench` (i.e. under `cargo test --benches`) it runs nothing.
 
+use entrynav::beacons::BeaconConfig;
 use entrynav::scenario::ScenarioConfig;
 use entrynav_optimizer::select::{BranchBoundOptions, site_information};
 use entrynav_optimizer::{
@@ -51,7 +52,15 @@ fn main() {
     let ground = GroundProblem::new(&cfg, &no_files, 3, GroundObjective::LogDet, 1.0, 0.0)
         .expect("ground problem");
     let grid_sites = ground.visible_grid(grid).expect("grid");
-    let hand = [(-23.5, -81.95), (-29.5, -81.35), (-25.6, -73.8)];
+    // The scenario's hand-placed surface sites (lat/lon form), certified like `optimize select`.
+    let hand: Vec<Site> = cfg
+        .beacons
+        .iter()
+        .filter_map(|b| match b {
+            BeaconConfig::Surface(s) => Some(Site::from_degrees(s.lat_deg?, s.lon_deg?)),
+            BeaconConfig::Orbiter(_) => None,
+        })
+        .collect();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads.unwrap_or(0))
         .build()
@@ -82,7 +91,7 @@ fn main() {
     for &k in &ks {
         let mut sites = grid_sites.clone();
         if k == hand.len() {
-            sites.extend(hand.iter().map(|&(lat, lon)| Site::from_degrees(lat, lon)));
+            sites.extend(hand.iter().copied());
         }
         let blocks = site_information(&ground, &sites, epochs).expect("blocks");
         let problem = SelectionProblem::new(blocks, k, criterion).expect("problem");

@@ -44,7 +44,10 @@ pub mod trajectory;
 pub use ground::{GroundObjective, GroundProblem, GroundSolution, Site};
 pub use orbiters::{OrbitElements, OrbiterObjective, OrbiterProblem, OrbiterSolution};
 pub use search::{SearchOptions, SearchResult, minimize};
-pub use select::{Selection, SelectionCriterion, SelectionProblem, SelectionReport};
+pub use select::{
+    AtMost, BranchBoundOptions, BranchBoundReport, ProofStatus, Selection, SelectionCriterion,
+    SelectionProblem, SelectionReport,
+};
 pub use trajectory::Trajectory;
 
 use entrynav::beacons::BeaconError;

@@ -92,14 +92,14 @@ pub(super) fn run_ground(a: &GroundArgs) -> Result<()> {
     let count = a
         .beacons
         .unwrap_or(if own.is_empty() { 3 } else { own.len() });
-    let method = Method::from_name(&a.method).context("unknown observability method")?;
-    let objective = match a.objective.as_str() {
-        "min-delta" => GroundObjective::MinDelta {
+    let method = Method::from(a.method);
+    let objective = match a.objective {
+        GroundObjectiveArg::MinDelta => GroundObjective::MinDelta {
             method,
             scaled: a.scaled,
         },
-        "logdet" => GroundObjective::LogDet,
-        _ => GroundObjective::MinEig,
+        GroundObjectiveArg::Logdet => GroundObjective::LogDet,
+        GroundObjectiveArg::MinEig => GroundObjective::MinEig,
     };
     let load = loader(&dir);
     let min_el = a.min_elevation_deg.to_radians();

@@ -14,17 +14,22 @@ use entrynav_loader as load;
 use entrynav_optimizer::ground::{self, GroundEvaluation};
 use entrynav_optimizer::orbiters::{self, OrbiterEvaluation};
 use entrynav_optimizer::output::{self, template_noise};
-use entrynav_optimizer::select::{Selection, SelectionReport, site_information};
+use entrynav_optimizer::select::{
+    BranchBoundReport, ProofStatus, Selection, separation_constraints, site_information,
+};
 use entrynav_optimizer::{
     GroundObjective, GroundProblem, OrbitElements, OrbiterObjective, OrbiterProblem, SearchOptions,
     SearchResult, SelectionCriterion, SelectionProblem, Site, Trajectory,
 };
 use indicatif::{ProgressBar, ProgressStyle};
+use names::{CriterionArg, GroundObjectiveArg, MethodArg, OrbiterObjectiveArg};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+mod exact_selection;
 mod ground_sites;
+mod names;
 mod orbit_elements;
 mod site_selection;
 
@@ -115,8 +120,8 @@ pub struct OrbitersArgs {
     altitude_km: Option<f64>,
     /// Objective: det-n3 (seed 002 eq. 57, 3 orbiters) or logdet (any n >= 3); default det-n3
     /// for 3 orbiters, else logdet.
-    #[arg(long, value_parser = ["det-n3", "logdet"])]
-    objective: Option<String>,
+    #[arg(long, value_enum)]
+    objective: Option<OrbiterObjectiveArg>,
     /// Seconds between trajectory samples of the time integral (trapezoid rule).
     #[arg(long, default_value_t = 1.0)]
     step: f64,
@@ -140,11 +145,11 @@ pub struct GroundArgs {
     beacons: Option<usize>,
     /// Objective: min-delta (eq. 49), logdet (integral of ln det FIM) or min-eig (min over time
     /// of lambda_min(FIM)).
-    #[arg(long, default_value = "min-delta", value_parser = ["min-delta", "logdet", "min-eig"])]
-    objective: String,
+    #[arg(long, value_enum, default_value_t = GroundObjectiveArg::MinDelta)]
+    objective: GroundObjectiveArg,
     /// Observability method for min-delta (see `entrynav observe`).
-    #[arg(long, default_value = "lie", value_parser = ["lie", "quadratic", "linear"])]
-    method: String,
+    #[arg(long, value_enum, default_value_t = MethodArg::Lie)]
+    method: MethodArg,
     /// Maximise the scaled delta instead of the raw-SI one (the papers' convention).
     #[arg(long)]
     scaled: bool,
@@ -179,8 +184,8 @@ pub struct SelectArgs {
     #[arg(long, default_value_t = 0.5)]
     grid_deg: f64,
     /// Criterion: logdet (D-optimal) or min-eig (E-optimal).
-    #[arg(long, default_value = "logdet", value_parser = ["logdet", "min-eig"])]
-    criterion: String,
+    #[arg(long, value_enum, default_value_t = CriterionArg::Logdet)]
+    criterion: CriterionArg,
     /// With min-eig: maximise the minimum over epochs this many seconds apart of lambda_min of
     /// the instantaneous FIM (max-min over time) instead of lambda_min of the time-averaged FIM.
     #[arg(long, value_name = "SECONDS")]
@@ -204,6 +209,46 @@ pub struct SelectArgs {
     /// Write the selected sites as a scenario file (accepted by `entrynav trade`).
     #[arg(long)]
     write_scenario: Option<PathBuf>,
+    /// Print clarabel's iteration log of the relaxation.
+    #[arg(long)]
+    solver_verbose: bool,
+    /// Minimum great-circle separation between chosen sites [deg] (a linear constraint
+    /// z_i + z_j <= 1 of the relaxation for every closer pair).
+    #[arg(long, value_name = "DEG")]
+    min_separation_deg: Option<f64>,
+    /// Keep only candidates inside this latitude/longitude box [deg].
+    #[arg(
+        long,
+        value_delimiter = ',',
+        num_args = 1,
+        allow_hyphen_values = true,
+        value_names = ["LAT_MIN", "LAT_MAX", "LON_MIN", "LON_MAX"]
+    )]
+    region: Option<Vec<f64>>,
+    /// Prove the optimum: branch and bound on the relaxation (status optimal, gap or time-limit).
+    #[arg(long)]
+    exact: bool,
+    /// With --exact: stop after this many seconds and report the certified gap (the only
+    /// speed-dependent output).
+    #[arg(long, value_name = "SECONDS", requires = "exact")]
+    time_limit: Option<f64>,
+    /// With --exact: stop when the certified gap (bound - value) is at most this (logdet:
+    /// absolute in ln det, i.e. relative in det; min-eig: relative to lambda_min).
+    #[arg(long, default_value_t = 1e-6, requires = "exact")]
+    gap: f64,
+    /// With --exact: stop after this many nodes (a speed-independent limit).
+    #[arg(long, requires = "exact")]
+    node_limit: Option<usize>,
+    /// With --exact: nodes evaluated per parallel round (the answer depends on it, not on the
+    /// thread count).
+    #[arg(long, default_value_t = 8, requires = "exact")]
+    batch: usize,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
 }
 
 /// Run the command.
@@ -215,7 +260,7 @@ pub fn run(args: &OptimizeArgs) -> Result<()> {
         OptimizeProblem::Ground(a) => {
             with_threads(a.common.threads, || ground_sites::run_ground(a))
         }
-        OptimizeProblem::Select(a) => site_selection::run_select(a),
+        OptimizeProblem::Select(a) => with_threads(a.threads, || site_selection::run_select(a)),
     }
 }
 

@@ -61,10 +61,7 @@ pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
             cfg.name
         ),
     };
-    let objective = a.objective.as_deref().map(|o| match o {
-        "det-n3" => OrbiterObjective::DetN3,
-        _ => OrbiterObjective::LogDet,
-    });
+    let objective = a.objective.map(OrbiterObjective::from);
     let scenario = load::build(cfg.clone(), &dir)?;
     let trajectory = Trajectory::from_scenario(&scenario, a.step)?;
     let problem = OrbiterProblem::new(trajectory, count, altitude_m, objective)?;

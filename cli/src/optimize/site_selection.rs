@@ -1,16 +1,38 @@
 //! `entrynav optimize select`: certified choice of k candidate sites (Joshi & Boyd relaxation
-//! bound with clarabel, then local search).
+//! bound with clarabel, then local search; `--exact`: branch and bound, in
+//! [`exact_selection`](super::exact_selection)).
 
+use super::exact_selection::{exact_json, finish_exact_only, print_proof, run_exact};
 use super::ground_sites::{scenario_sites, sites_json};
 use super::*;
 
-fn selection_json(s: &Selection, sites: &[Site], r: &SelectionReport) -> Value {
+/// `value` and `gap = bound − value` of a selection (`bound`: the best bound known).
+pub(super) fn selection_json(s: &Selection, sites: &[Site], bound: f64) -> Value {
     let chosen: Vec<Site> = s.indices.iter().map(|&i| sites[i]).collect();
     json!({
         "indices": s.indices,
         "sites": sites_json(&chosen),
         "value": s.value,
-        "gap": r.gap(s),
+        "gap": (bound - s.value).max(0.0),
+    })
+}
+
+/// `--region LAT_MIN,LAT_MAX,LON_MIN,LON_MAX` as a predicate on sites.
+fn region_filter(region: &Option<Vec<f64>>) -> Result<impl Fn(&Site) -> bool + use<>> {
+    let b = match region.as_deref() {
+        None => None,
+        Some(&[lat0, lat1, lon0, lon1]) if lat0 <= lat1 && lon0 <= lon1 => {
+            Some([lat0, lat1, lon0, lon1])
+        }
+        Some(v) => {
+            bail!("--region needs LAT_MIN,LAT_MAX,LON_MIN,LON_MAX with min <= max (deg), got {v:?}")
+        }
+    };
+    Ok(move |s: &Site| {
+        b.is_none_or(|[lat0, lat1, lon0, lon1]| {
+            let [lat, lon] = s.degrees();
+            (lat0..=lat1).contains(&lat) && (lon0..=lon1).contains(&lon)
+        })
     })
 }
 
@@ -19,10 +41,7 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
     let (cfg, dir) = load::resolve(&a.scenario, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &a.sets)?;
     let load = loader(&dir);
-    let criterion = match a.criterion.as_str() {
-        "logdet" => SelectionCriterion::LogDet,
-        _ => SelectionCriterion::MinEig,
-    };
+    let criterion = SelectionCriterion::from(a.criterion);
     if a.eig_epochs.is_some() && criterion != SelectionCriterion::MinEig {
         bail!("--eig-epochs applies to --criterion min-eig only");
     }
@@ -34,20 +53,25 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
         a.step,
         a.min_elevation_deg.to_radians(),
     )?;
+    let inside = region_filter(&a.region)?;
     let mut sites = ground.visible_grid(a.grid_deg)?;
+    sites.retain(&inside);
+    if sites.is_empty() {
+        bail!("no visible grid site lies inside --region {:?}", a.region);
+    }
     let grid_count = sites.len();
     // Heuristic answers to certify: the scenario's own surface sites (if k of them, all
     // feasible) and the sites of a ground-optimizer JSON file.
     let mut extra: Vec<(String, Vec<usize>)> = Vec::new();
     let mut add = |label: String, list: Vec<Site>, sites: &mut Vec<Site>| {
-        if list.len() == a.k && list.iter().all(|s| ground.is_feasible(s)) {
+        if list.len() == a.k && list.iter().all(|s| ground.is_feasible(s) && inside(s)) {
             let start = sites.len();
             sites.extend(list);
             extra.push((label, (start..sites.len()).collect()));
         } else {
             println!(
                 "note: {label} not certified (needs exactly k = {} sites, each visible during the \
-                 whole entry)",
+                 whole entry and inside --region)",
                 a.k
             );
         }
@@ -76,10 +100,33 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
         add(format!("sites of {}", path.display()), list, &mut sites);
     }
     let blocks = site_information(&ground, &sites, a.eig_epochs)?;
-    let problem = SelectionProblem::new(blocks, a.k, criterion)?;
-    let report = problem.solve()?;
+    let spacing = match a.min_separation_deg {
+        Some(d) => separation_constraints(&sites, d.to_radians())?,
+        None => Vec::new(),
+    };
+    let pairs = spacing.len();
+    let problem = SelectionProblem::new(blocks, a.k, criterion)?
+        .with_solver_verbose(a.solver_verbose)
+        .with_constraints(spacing)?;
+    // The heuristic; with --exact the branch and bound can go on without it.
+    let report = match problem.solve() {
+        Ok(r) => r,
+        Err(e) if a.exact => {
+            println!("note: the heuristic failed ({e}); branch and bound starts without it");
+            return finish_exact_only(a, &cfg, &problem, &sites, grid_count, wall);
+        }
+        Err(e) => return Err(e.into()),
+    };
     let brute = problem.brute_force(a.brute_force_limit);
+    let exact = if a.exact {
+        Some(run_exact(a, &problem, Some(&report.improved))?)
+    } else {
+        None
+    };
     let r = &report.relaxation;
+    // Gaps are measured from the best bound known: the proof's, else the relaxation's.
+    let bound = exact.as_ref().map_or(r.bound, |e| e.bound);
+    let answer = exact.as_ref().map_or(&report.improved, |e| &e.best);
 
     println!("scenario    {}", cfg.name);
     println!(
@@ -93,6 +140,18 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
             String::new()
         }
     );
+    if a.min_separation_deg.is_some() || a.region.is_some() {
+        println!(
+            "constraints {}{}",
+            a.min_separation_deg.map_or(String::new(), |d| format!(
+                "sites at least {d} deg apart ({pairs} closer pairs, z_i + z_j <= 1); "
+            )),
+            a.region.as_ref().map_or(String::new(), |b| format!(
+                "candidates inside lat [{}, {}], lon [{}, {}] deg",
+                b[0], b[1], b[2], b[3]
+            ))
+        );
+    }
     println!(
         "criterion   {} over k = {} of m = {} ({})",
         criterion.name(),
@@ -122,17 +181,36 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
             })
             .collect();
         println!(
-            "{label:<30} value {:>11.6}  gap {:>10.3e}  sites {}",
+            "{label:<30} value {:>11.6}  gap {:>10.3e}  sites {}{}",
             s.value,
-            report.gap(s),
-            chosen.join(" ")
+            (bound - s.value).max(0.0),
+            chosen.join(" "),
+            if problem.admissible(&s.indices) {
+                ""
+            } else {
+                "  (breaks the side constraints)"
+            }
         );
     };
-    show("rounded (top-k of z)", &report.rounded);
-    show("swap-improved (answer)", &report.improved);
-    show("greedy", &report.greedy);
+    if let Some(s) = &report.rounded {
+        show("rounded (top-k of z)", s);
+    }
+    show(
+        if exact.is_some() {
+            "swap-improved (heuristic)"
+        } else {
+            "swap-improved (answer)"
+        },
+        &report.improved,
+    );
+    if let Some(s) = &report.greedy {
+        show("greedy", s);
+    }
     if let Some(b) = &brute {
         show("brute force (exact optimum)", b);
+    }
+    if let Some(e) = &exact {
+        show("branch and bound (answer)", &e.best);
     }
     let extra_sel: Vec<(String, Selection)> = extra
         .iter()
@@ -154,29 +232,13 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
         report.evaluations,
         wall.elapsed().as_secs_f64()
     );
-
-    if let Some(path) = &a.write_scenario {
-        let noise = template_noise(&cfg, false)?;
-        let chosen: Vec<Site> = report.improved.indices.iter().map(|&i| sites[i]).collect();
-        let (_, text) = output::with_beacons(
-            &cfg,
-            output::surface_beacons(&chosen, &noise),
-            &file_stem(path),
-            &format!(
-                "Sites chosen by `entrynav optimize select` ({}, k = {}, grid {} deg): value {:.6}, certified gap {:.3e}.",
-                criterion.name(),
-                a.k,
-                a.grid_deg,
-                report.improved.value,
-                report.gap(&report.improved)
-            ),
-        )?;
-        write_text(path, &text)?;
-        println!("wrote {}", path.display());
+    if let Some(e) = &exact {
+        print_proof(a, e);
     }
+
+    write_selected(a, &cfg, &sites, criterion, answer, bound, exact.as_ref())?;
     if let Some(path) = &a.json {
-        let improved = &report.improved;
-        let chosen: Vec<Site> = improved.indices.iter().map(|&i| sites[i]).collect();
+        let chosen: Vec<Site> = answer.indices.iter().map(|&i| sites[i]).collect();
         let support: Vec<Value> =
             r.z.iter()
                 .enumerate()
@@ -191,10 +253,11 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
             "scenario": cfg.name,
             "objective": criterion.name(),
             "eig_epochs_s": a.eig_epochs,
-            "value": improved.value,
+            "answer": if exact.is_some() { "exact" } else { "heuristic" },
+            "value": answer.value,
             "sites": sites_json(&chosen),
-            "bound": r.bound,
-            "gap": report.gap(improved),
+            "bound": bound,
+            "gap": (bound - answer.value).max(0.0),
             "k": a.k,
             "candidates": sites.len(),
             "grid_candidates": grid_count,
@@ -210,16 +273,65 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
                 "solve_time_s": r.solve_time_s,
                 "support": support,
             },
-            "rounded": selection_json(&report.rounded, &sites, &report),
-            "greedy": selection_json(&report.greedy, &sites, &report),
-            "brute_force": brute.as_ref().map(|b| selection_json(b, &sites, &report)),
+            "rounded": report.rounded.as_ref().map(|s| selection_json(s, &sites, bound)),
+            "greedy": report.greedy.as_ref().map(|s| selection_json(s, &sites, bound)),
+            "heuristic": selection_json(&report.improved, &sites, bound),
+            "brute_force": brute.as_ref().map(|b| selection_json(b, &sites, bound)),
             "certified": extra_sel.iter().map(|(label, s)| {
-                let mut o = selection_json(s, &sites, &report);
+                let mut o = selection_json(s, &sites, bound);
                 o["label"] = json!(label);
+                o["admissible"] = json!(problem.admissible(&s.indices));
                 o
             }).collect::<Vec<_>>(),
+            "constraints": constraints_json(a, pairs),
+            "exact": exact.as_ref().map(|e| exact_json(a, e, &sites)),
         });
         write_json(path, &v)?;
     }
+    Ok(())
+}
+
+pub(super) fn constraints_json(a: &SelectArgs, pairs: usize) -> Value {
+    json!({
+        "min_separation_deg": a.min_separation_deg,
+        "close_pairs": pairs,
+        "region_deg": a.region,
+    })
+}
+
+/// `--write-scenario`: the answer's sites as the scenario's beacons.
+pub(super) fn write_selected(
+    a: &SelectArgs,
+    cfg: &ScenarioConfig,
+    sites: &[Site],
+    criterion: SelectionCriterion,
+    answer: &Selection,
+    bound: f64,
+    exact: Option<&BranchBoundReport>,
+) -> Result<()> {
+    let Some(path) = &a.write_scenario else {
+        return Ok(());
+    };
+    let noise = template_noise(cfg, false)?;
+    let chosen: Vec<Site> = answer.indices.iter().map(|&i| sites[i]).collect();
+    let (_, text) = output::with_beacons(
+        cfg,
+        output::surface_beacons(&chosen, &noise),
+        &file_stem(path),
+        &format!(
+            "Sites chosen by `entrynav optimize select` ({}, k = {}, grid {} deg{}): value {:.6}, certified gap {:.3e}.",
+            criterion.name(),
+            a.k,
+            a.grid_deg,
+            exact.map_or(String::new(), |e| format!(
+                ", branch and bound: {}",
+                e.status.name()
+            )),
+            answer.value,
+            (bound - answer.value).max(0.0)
+        ),
+    )?;
+    write_text(path, &text)?;
+    println!("wrote {}", path.display());
     Ok(())
 }

@@ -23,17 +23,40 @@
 //!
 //! **Rounding.** The k largest `z_i`, then a swap local search (exchange a chosen and an unchosen
 //! site while the value improves). The greedy selection, also swap-improved, is a second start;
-//! the better local optimum is the answer.
+//! the better local optimum is the answer ([`heuristics`]).
+//!
+//! **Side constraints.** [`AtMost`] rows `Σ_{i∈G} z_i ≤ u` (e.g. a minimum spacing between
+//! sites: `z_i + z_j ≤ 1` for every close pair, [`separation_constraints`]) enter the relaxation
+//! as linear constraints; every heuristic and the enumeration keep to them.
+//!
+//! **Exact answer.** [`branch_bound`] proves which k-subset is optimal (or certifies a gap) by
+//! branch and bound on `z_i ∈ {0, 1}` over the node relaxations, with the cheaper dual bounds of
+//! [`bounds`] tried first.
+//!
+//! | file | role |
+//! |---|---|
+//! | `mod.rs` | the problem, its values and side constraints |
+//! | [`heuristics`] | rounding, swap, greedy, brute force, [`SelectionProblem::solve`] |
+//! | `relaxation.rs` | the clarabel conic program of a (node) relaxation |
+//! | [`bounds`] | valid upper bounds from dual points (Lagrangian duality) |
+//! | `node.rs` | one branch-and-bound node: bound, incumbent, branching variable |
+//! | [`branch_bound`] | the search: batches, best-first with dives, proof status |
+//! | `information.rs` | information blocks of ground sites, spacing constraints |
 
 use crate::OptimizerError;
-use crate::ground::{GroundProblem, Site};
-use entrynav::beacons::ground_visibility_margin;
-use entrynav::math::{norm, sub};
 use nalgebra::Matrix3;
-use nalgebra::Vector3;
 use std::time::Instant;
 
+pub mod bounds;
+pub mod branch_bound;
+pub mod heuristics;
+mod information;
+mod node;
 mod relaxation;
+
+pub use bounds::DualPoint;
+pub use branch_bound::{BranchBoundOptions, BranchBoundProgress, BranchBoundReport, ProofStatus};
+pub use information::{separation_constraints, site_information};
 
 /// The design criterion.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -87,13 +110,13 @@ pub struct Relaxation {
 pub struct SelectionReport {
     /// The relaxation and its bound.
     pub relaxation: Relaxation,
-    /// The k largest relaxed weights.
-    pub rounded: Selection,
+    /// The k largest relaxed weights (`None` when the side constraints stop the rounding).
+    pub rounded: Option<Selection>,
     /// The better of the swap local searches started from `rounded` and from `greedy`: the
     /// answer.
     pub improved: Selection,
-    /// The greedy heuristic.
-    pub greedy: Selection,
+    /// The greedy heuristic (`None` when the side constraints stop it).
+    pub greedy: Option<Selection>,
     /// Criterion evaluations made by rounding, swaps and greedy.
     pub evaluations: usize,
     /// Wall time of everything \[s\].
@@ -107,6 +130,16 @@ impl SelectionReport {
     }
 }
 
+/// A side constraint: at most `max` of the candidates `sites` are chosen (the linear constraint
+/// `Σ_{i∈sites} z_i ≤ max` of the relaxation).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct AtMost {
+    /// Candidate indices.
+    pub sites: Vec<usize>,
+    /// How many of them may be chosen.
+    pub max: usize,
+}
+
 /// Choose `k` of the candidates.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SelectionProblem {
@@ -114,7 +147,14 @@ pub struct SelectionProblem {
     summed: Vec<Matrix3<f64>>,
     k: usize,
     criterion: SelectionCriterion,
+    solver_verbose: bool,
+    constraints: Vec<AtMost>,
+    /// For each candidate, the constraints it belongs to.
+    member_of: Vec<Vec<usize>>,
 }
+
+/// The floor of [`SelectionProblem::value`] for the D-optimal criterion: `ln 1e-300`.
+pub const LN_DET_FLOOR: f64 = -690.7755278982137;
 
 /// `ln det` of a 3×3 symmetric PSD matrix, floored at `ln 1e-300` (finite).
 fn ln_det(m: &Matrix3<f64>) -> f64 {
@@ -174,7 +214,66 @@ impl SelectionProblem {
             summed,
             k,
             criterion,
+            solver_verbose: false,
+            constraints: Vec::new(),
+            member_of: vec![Vec::new(); m],
         })
+    }
+
+    /// The same problem with side constraints (replacing any earlier ones). Sites are sorted and
+    /// deduplicated; constraints that cannot bind (`max ≥` their size) are dropped. Errors: a
+    /// site index out of range.
+    pub fn with_constraints(
+        mut self,
+        constraints: Vec<AtMost>,
+    ) -> Result<SelectionProblem, OptimizerError> {
+        let m = self.candidates();
+        self.constraints.clear();
+        self.member_of = vec![Vec::new(); m];
+        for mut c in constraints {
+            if let Some(bad) = c.sites.iter().find(|&&i| i >= m) {
+                return Err(OptimizerError::InvalidInput(format!(
+                    "side constraint names candidate {bad}, but there are only {m}"
+                )));
+            }
+            c.sites.sort_unstable();
+            c.sites.dedup();
+            if c.max >= c.sites.len() {
+                continue;
+            }
+            let id = self.constraints.len();
+            for &i in &c.sites {
+                self.member_of[i].push(id);
+            }
+            self.constraints.push(c);
+        }
+        Ok(self)
+    }
+
+    /// The side constraints that can bind.
+    pub fn constraints(&self) -> &[AtMost] {
+        &self.constraints
+    }
+
+    /// Whether the (partial) selection `indices` keeps every side constraint.
+    pub fn admissible(&self, indices: &[usize]) -> bool {
+        if self.constraints.is_empty() {
+            return true;
+        }
+        let mut hits: Vec<usize> = indices
+            .iter()
+            .flat_map(|&i| self.member_of[i].iter().copied())
+            .collect();
+        hits.sort_unstable();
+        hits.chunk_by(|a, b| a == b)
+            .all(|run| run.len() <= self.constraints[run[0]].max)
+    }
+
+    /// The same problem with clarabel's iteration log printed to stdout (`on`) or not (the
+    /// default).
+    pub fn with_solver_verbose(mut self, on: bool) -> SelectionProblem {
+        self.solver_verbose = on;
+        self
     }
 
     /// Number of candidates m.
@@ -236,211 +335,12 @@ impl SelectionProblem {
         }
     }
 
-    fn selection(&self, mut indices: Vec<usize>) -> Selection {
+    /// The selection of `indices` (sorted) with its value.
+    pub(crate) fn selection(&self, mut indices: Vec<usize>) -> Selection {
         indices.sort_unstable();
         let value = self.value(&indices);
         Selection { indices, value }
     }
-
-    /// The `k` candidates with the largest weights (ties to the lower index).
-    pub fn round(&self, z: &[f64]) -> Selection {
-        let mut order: Vec<usize> = (0..self.candidates()).collect();
-        order.sort_by(|&i, &j| z[j].total_cmp(&z[i]).then(i.cmp(&j)));
-        order.truncate(self.k);
-        self.selection(order)
-    }
-
-    /// Swap local search from `start`: repeatedly apply the best exchange of a chosen and an
-    /// unchosen candidate while it improves the value by more than 1e-12 (relative). Returns the
-    /// local optimum and the number of evaluations.
-    pub fn swap_improve(&self, start: &Selection) -> (Selection, usize) {
-        let m = self.candidates();
-        let mut current = start.clone();
-        let mut evals = 0;
-        for _ in 0..10_000 {
-            let mut best: Option<(usize, usize, f64)> = None;
-            for pos in 0..current.indices.len() {
-                for cand in 0..m {
-                    if current.indices.contains(&cand) {
-                        continue;
-                    }
-                    let mut trial = current.indices.clone();
-                    trial[pos] = cand;
-                    let v = self.value(&trial);
-                    evals += 1;
-                    if best.is_none_or(|b| v > b.2) {
-                        best = Some((pos, cand, v));
-                    }
-                }
-            }
-            match best {
-                Some((pos, cand, v))
-                    if v > current.value + 1e-12 * current.value.abs().max(1.0) =>
-                {
-                    let mut idx = current.indices.clone();
-                    idx[pos] = cand;
-                    current = self.selection(idx);
-                }
-                _ => break,
-            }
-        }
-        (current, evals)
-    }
-
-    /// Greedy selection: add the candidate that increases the value most, k times.
-    pub fn greedy(&self) -> (Selection, usize) {
-        let mut chosen: Vec<usize> = Vec::with_capacity(self.k);
-        let mut evals = 0;
-        for _ in 0..self.k {
-            let mut best: Option<(usize, f64)> = None;
-            for c in 0..self.candidates() {
-                if chosen.contains(&c) {
-                    continue;
-                }
-                let mut trial = chosen.clone();
-                trial.push(c);
-                // With fewer than three sites log det may be −∞-like; rank by the regularised
-                // value so the first picks are still informative.
-                let v = if trial.len() < 3 && self.criterion == SelectionCriterion::LogDet {
-                    let m = trial
-                        .iter()
-                        .fold(Matrix3::zeros(), |a, &i| a + self.summed[i]);
-                    ln_det(&(m + Matrix3::identity() * 1e-6))
-                } else {
-                    self.value(&trial)
-                };
-                evals += 1;
-                if best.is_none_or(|b| v > b.1) {
-                    best = Some((c, v));
-                }
-            }
-            if let Some((c, _)) = best {
-                chosen.push(c);
-            }
-        }
-        (self.selection(chosen), evals)
-    }
-
-    /// The best k-subset by enumeration, when there are at most `limit` subsets.
-    pub fn brute_force(&self, limit: usize) -> Option<Selection> {
-        let m = self.candidates();
-        let k = self.k;
-        let mut count: f64 = 1.0;
-        for j in 0..k {
-            count *= (m - j) as f64 / (j + 1) as f64;
-        }
-        if count > limit as f64 {
-            return None;
-        }
-        let mut idx: Vec<usize> = (0..k).collect();
-        let mut best = self.selection(idx.clone());
-        loop {
-            // Next combination in lexicographic order.
-            let mut i = k;
-            while i > 0 && idx[i - 1] == m - k + i - 1 {
-                i -= 1;
-            }
-            if i == 0 {
-                return Some(best);
-            }
-            idx[i - 1] += 1;
-            for j in i..k {
-                idx[j] = idx[j - 1] + 1;
-            }
-            let v = self.value(&idx);
-            if v > best.value {
-                best = Selection {
-                    indices: idx.clone(),
-                    value: v,
-                };
-            }
-        }
-    }
-
-    /// Relaxation, rounding, swap improvement and greedy.
-    pub fn solve(&self) -> Result<SelectionReport, OptimizerError> {
-        let started = Instant::now();
-        let relaxation = self.relax()?;
-        let rounded = self.round(&relaxation.z);
-        let (from_rounded, e1) = self.swap_improve(&rounded);
-        let (greedy, e2) = self.greedy();
-        let (from_greedy, e3) = self.swap_improve(&greedy);
-        let improved = if from_greedy.value > from_rounded.value {
-            from_greedy
-        } else {
-            from_rounded
-        };
-        Ok(SelectionReport {
-            relaxation,
-            evaluations: e1 + e2 + e3 + 1,
-            rounded,
-            improved,
-            greedy,
-            elapsed_s: started.elapsed().as_secs_f64(),
-        })
-    }
-}
-
-/// Information blocks of candidate `sites` on `ground`'s trajectory (planet-fixed frame, unit σ):
-///
-/// * `epoch_step_s = None` — one block per site, the time-averaged FIM
-///   `A_i = (1/T) Σ_k w_k n_i(t_k) n_i(t_k)ᵀ` (trace ≤ 1, so `ln det Σ_{i∈S} A_i ≤ 3 ln(k/3)`);
-/// * `Some(s)` — the instantaneous `n_i(t) n_i(t)ᵀ` at samples about `s` seconds apart (first and
-///   last sample included), for the max-min-over-time E-optimal design.
-///
-/// Samples where a site does not see the vehicle (eq. 52) contribute nothing.
-pub fn site_information(
-    ground: &GroundProblem,
-    sites: &[Site],
-    epoch_step_s: Option<f64>,
-) -> Result<Vec<Vec<Matrix3<f64>>>, OptimizerError> {
-    let tr = ground.trajectory();
-    let fixed = ground.fixed_positions();
-    let radius = tr.planet.radius;
-    let outer = |b: &[f64; 3], k: usize| -> Matrix3<f64> {
-        let v = fixed[k];
-        if ground_visibility_margin(b, &v) <= 0.0 {
-            return Matrix3::zeros();
-        }
-        let d = sub(&v, b);
-        let u = Vector3::from(d) / norm(&d);
-        u * u.transpose()
-    };
-    let epochs: Option<Vec<usize>> = match epoch_step_s {
-        None => None,
-        Some(s) => {
-            if !(s.is_finite() && s > 0.0) {
-                return Err(OptimizerError::InvalidInput(format!(
-                    "epoch spacing {s} s must be positive"
-                )));
-            }
-            let mut ks = Vec::new();
-            let mut next = tr.times[0];
-            for (k, t) in tr.times.iter().enumerate() {
-                if *t >= next - 1e-9 {
-                    ks.push(k);
-                    next = t + s;
-                }
-            }
-            if ks.last() != Some(&(tr.len() - 1)) {
-                ks.push(tr.len() - 1);
-            }
-            Some(ks)
-        }
-    };
-    let duration = tr.duration();
-    Ok(sites
-        .iter()
-        .map(|site| {
-            let b = site.fixed_position(radius);
-            match &epochs {
-                None => vec![(0..tr.len()).fold(Matrix3::zeros(), |acc, k| {
-                    acc + outer(&b, k) * (tr.weights[k] / duration)
-                })],
-                Some(ks) => ks.iter().map(|&k| outer(&b, k)).collect(),
-            }
-        })
-        .collect())
 }
 
 #[cfg(test)]

@@ -1,5 +1,13 @@
 //! The convex relaxation of the k-of-m selection as a clarabel conic program (the conic forms are
-//! written out in the [parent module](super)'s documentation).
+//! written out in the [parent module](super)'s documentation), for the whole problem and for a
+//! branch-and-bound node.
+//!
+//! A node fixes some sites in (`z_i = 1`, their blocks summed into a constant `C`) and some out
+//! (`z_i = 0`, dropped); only the free sites keep a variable, so the node's program is the root
+//! program on fewer candidates with `C` added to the information matrix (in `b`) and `r = k − |in|`
+//! on the cardinality row. clarabel 0.11 has no warm start of its interior-point iterates, so every
+//! node is solved from clarabel's own initial point; the parent's dual point is reused instead by
+//! the cheap bounds of [`super::bounds`].
 
 use super::*;
 use clarabel::algebra::CscMatrix;
@@ -8,19 +16,87 @@ use clarabel::solver::{
     SupportedConeT::{ExponentialConeT, NonnegativeConeT, PSDTriangleConeT, ZeroConeT},
 };
 
+/// A node of the relaxation: `fixed` chosen, `free` undecided (ascending), `r` more to choose.
+pub(super) struct Subproblem<'a> {
+    pub fixed: &'a [usize],
+    pub free: &'a [usize],
+    pub r: usize,
+}
+
+/// clarabel's answer to a [`Subproblem`], whatever its status.
+pub(super) struct RawRelaxation {
+    /// Weights of the free sites, clamped to [0, 1].
+    pub z: Vec<f64>,
+    /// Primal and dual objectives (maximisation sign).
+    pub primal: f64,
+    pub dual: f64,
+    pub status: SolverStatus,
+    pub iterations: u32,
+    /// The dual matrix of the information block of each PSD cone: `Y_e` per epoch
+    /// (E-optimal), or the `C + X` block of the 6×6 cone (D-optimal, a candidate `W`).
+    pub psd_duals: Vec<Matrix3<f64>>,
+    /// Multiplier of each side constraint's row (0 for a row that was not needed).
+    pub row_duals: Vec<f64>,
+}
+
+/// clarabel's `max_step_fraction` of each attempt: its default (0.99), then shorter steps.
+const MAX_STEP_FRACTIONS: [f64; 3] = [0.99, 0.9, 0.8];
+
+/// svec row offset of entry (r, c), r ≤ c, and its weight (√2 off the diagonal).
+fn svec(r: usize, c: usize) -> (usize, f64) {
+    let w = if r == c {
+        1.0
+    } else {
+        std::f64::consts::SQRT_2
+    };
+    (c * (c + 1) / 2 + r, w)
+}
+
 impl SelectionProblem {
     /// Solve the convex relaxation with clarabel.
     pub fn relax(&self) -> Result<Relaxation, OptimizerError> {
         let started = Instant::now();
-        let m = self.candidates();
+        let all: Vec<usize> = (0..self.candidates()).collect();
+        let raw = self.solve_subproblem(&Subproblem {
+            fixed: &[],
+            free: &all,
+            r: self.k,
+        })?;
+        if !matches!(
+            raw.status,
+            SolverStatus::Solved | SolverStatus::AlmostSolved
+        ) {
+            return Err(OptimizerError::Solver(format!(
+                "clarabel did not solve the relaxation: {:?}",
+                raw.status
+            )));
+        }
+        Ok(Relaxation {
+            bound: raw.primal.max(raw.dual),
+            z: raw.z,
+            primal: raw.primal,
+            dual: raw.dual,
+            iterations: raw.iterations,
+            status: format!("{:?}", raw.status),
+            solve_time_s: started.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// Build and solve the relaxation of `sub` (needs `1 ≤ r < free.len()`). Errors only when
+    /// clarabel rejects the data; an unsolved status is returned for the caller to judge.
+    pub(super) fn solve_subproblem(
+        &self,
+        sub: &Subproblem<'_>,
+    ) -> Result<RawRelaxation, OptimizerError> {
+        let m = sub.free.len();
         let mut a = Triplets::default();
         let mut b = Vec::new();
         let mut cones: Vec<SupportedConeT<f64>> = Vec::new();
-        // Σ z = k.
+        // Σ z = r.
         for i in 0..m {
             a.push(0, i, 1.0);
         }
-        b.push(self.k as f64);
+        b.push(sub.r as f64);
         cones.push(ZeroConeT(1));
         // z ≥ 0 (s = z) and z ≤ 1 (s = 1 − z).
         for i in 0..m {
@@ -29,12 +105,38 @@ impl SelectionProblem {
         }
         b.extend(std::iter::repeat_n(0.0, m));
         b.extend(std::iter::repeat_n(1.0, m));
-        cones.push(NonnegativeConeT(2 * m));
         let mut row = 1 + 2 * m;
+        // Side constraints on the free sites: Σ_{G ∩ free} z ≤ max − |G ∩ fixed| (s = rhs − Σ z).
+        let mut constraint_rows = Vec::new();
+        for (id, c) in self.constraints.iter().enumerate() {
+            let members: Vec<usize> = (0..m)
+                .filter(|&p| c.sites.binary_search(&sub.free[p]).is_ok())
+                .collect();
+            if members.is_empty() {
+                continue;
+            }
+            let taken = sub
+                .fixed
+                .iter()
+                .filter(|i| c.sites.binary_search(i).is_ok())
+                .count();
+            for p in members {
+                a.push(row, p, 1.0);
+            }
+            b.push(c.max as f64 - taken as f64);
+            constraint_rows.push((id, row));
+            row += 1;
+        }
+        cones.push(NonnegativeConeT(row - 1));
         let n_var;
         let mut q;
+        let mut psd_rows = Vec::new();
         match self.criterion {
             SelectionCriterion::LogDet => {
+                let constant = sub
+                    .fixed
+                    .iter()
+                    .fold(Matrix3::zeros(), |acc, &i| acc + self.summed[i]);
                 // Variables: z (m), L lower-triangular (6: (0,0) (1,0) (1,1) (2,0) (2,1) (2,2)),
                 // u (3).
                 let l_index = |r: usize, c: usize| m + r * (r + 1) / 2 + c;
@@ -44,18 +146,20 @@ impl SelectionProblem {
                 for j in 0..3 {
                     q[u_index(j)] = -1.0;
                 }
-                // svec of M = [[X, L], [Lᵀ, Diag(d)]] (6×6, upper triangle by columns, off-diagonal
-                // entries × √2); s = b − A x = svec(M), so A = −coefficients, b = 0.
-                let r2 = std::f64::consts::SQRT_2;
+                // svec of M = [[C + X, L], [Lᵀ, Diag(d)]] (6×6, upper triangle by columns,
+                // off-diagonal entries × √2); s = b − A x = svec(M), so A = −coefficients and b
+                // carries C.
+                b.extend(std::iter::repeat_n(0.0, 21));
                 for c in 0..6 {
                     for r in 0..=c {
-                        let idx = row + c * (c + 1) / 2 + r;
-                        let w = if r == c { 1.0 } else { r2 };
+                        let (off, w) = svec(r, c);
+                        let idx = row + off;
                         if c < 3 {
-                            for (i, s) in self.summed.iter().enumerate() {
-                                let v = s[(r, c)];
+                            b[idx] = w * constant[(r, c)];
+                            for (p, &i) in sub.free.iter().enumerate() {
+                                let v = self.summed[i][(r, c)];
                                 if v != 0.0 {
-                                    a.push(idx, i, -w * v);
+                                    a.push(idx, p, -w * v);
                                 }
                             }
                         } else if r < 3 {
@@ -70,8 +174,9 @@ impl SelectionProblem {
                         }
                     }
                 }
-                b.extend(std::iter::repeat_n(0.0, 21));
                 cones.push(PSDTriangleConeT(6));
+                // The first six svec entries are the C + X block: its dual is the W of the bound.
+                psd_rows.push(row);
                 row += 21;
                 // (u_j, 1, d_j) ∈ K_exp.
                 for j in 0..3 {
@@ -85,68 +190,94 @@ impl SelectionProblem {
                 }
             }
             SelectionCriterion::MinEig => {
-                // Variables: z (m), t. s = svec(Σ z A^e − t I) for every epoch.
+                // Variables: z (m), t. s = svec(C_e + Σ z A^e − t I) for every epoch.
                 let t_index = m;
                 n_var = m + 1;
                 q = vec![0.0; n_var];
                 q[t_index] = -1.0;
-                let r2 = std::f64::consts::SQRT_2;
                 for e in 0..self.blocks[0].len() {
+                    let constant = sub
+                        .fixed
+                        .iter()
+                        .fold(Matrix3::zeros(), |acc, &i| acc + self.blocks[i][e]);
                     for c in 0..3 {
                         for r in 0..=c {
-                            let idx = row + c * (c + 1) / 2 + r;
-                            let w = if r == c { 1.0 } else { r2 };
-                            for (i, blk) in self.blocks.iter().enumerate() {
-                                let v = blk[e][(r, c)];
+                            let (off, w) = svec(r, c);
+                            let idx = row + off;
+                            for (p, &i) in sub.free.iter().enumerate() {
+                                let v = self.blocks[i][e][(r, c)];
                                 if v != 0.0 {
-                                    a.push(idx, i, -w * v);
+                                    a.push(idx, p, -w * v);
                                 }
                             }
                             if r == c {
                                 a.push(idx, t_index, 1.0);
                             }
+                            b.push(w * constant[(r, c)]);
                         }
                     }
-                    b.extend(std::iter::repeat_n(0.0, 6));
+                    // b above was pushed in svec order (c outer, r inner), as the rows are.
                     cones.push(PSDTriangleConeT(3));
+                    psd_rows.push(row);
                     row += 6;
                 }
             }
         }
-        let a_mat = a.into_csc(row, n_var);
+        let a_mat = CscMatrix::new_from_triplets(row, n_var, a.rows, a.cols, a.vals);
         let p = CscMatrix::<f64>::zeros((n_var, n_var));
-        let settings = DefaultSettings::<f64> {
-            verbose: std::env::var_os("ENTRYNAV_CLARABEL_VERBOSE").is_some(),
-            max_iter: 200,
-            ..DefaultSettings::default()
-        };
-        let mut solver = DefaultSolver::new(&p, &q, &a_mat, &b, &cones, settings)
-            .map_err(|e| OptimizerError::Solver(format!("clarabel setup: {e:?}")))?;
-        solver.solve();
-        let status = solver.solution.status;
-        if !matches!(status, SolverStatus::Solved | SolverStatus::AlmostSolved) {
-            return Err(OptimizerError::Solver(format!(
-                "clarabel did not solve the relaxation: {status:?}"
-            )));
+        // clarabel's defaults first; on a numerical failure (e.g. `InsufficientProgress` on the
+        // 0.5° grid with k = 4, where the default full steps stall), shorter steps.
+        let mut solver = None;
+        for step in MAX_STEP_FRACTIONS {
+            let settings = DefaultSettings::<f64> {
+                verbose: self.solver_verbose,
+                max_iter: 200,
+                max_step_fraction: step,
+                ..DefaultSettings::default()
+            };
+            let mut s = DefaultSolver::new(&p, &q, &a_mat, &b, &cones, settings)
+                .map_err(|e| OptimizerError::Solver(format!("clarabel setup: {e:?}")))?;
+            s.solve();
+            let solved = matches!(
+                s.solution.status,
+                SolverStatus::Solved | SolverStatus::AlmostSolved
+            );
+            solver = Some(s);
+            if solved {
+                break;
+            }
         }
-        let z: Vec<f64> = solver.solution.x[..m]
-            .iter()
-            .map(|v| v.clamp(0.0, 1.0))
-            .collect();
-        let primal = -solver.info.cost_primal;
-        let dual = -solver.info.cost_dual;
-        Ok(Relaxation {
-            bound: primal.max(dual),
-            z,
-            primal,
-            dual,
+        let solver = solver.expect("at least one attempt");
+        let sol = &solver.solution;
+        let smat = |r0: usize| {
+            let mut y = Matrix3::zeros();
+            for c in 0..3 {
+                for r in 0..=c {
+                    let (off, w) = svec(r, c);
+                    y[(r, c)] = sol.z[r0 + off] / w;
+                    y[(c, r)] = y[(r, c)];
+                }
+            }
+            y
+        };
+        let mut row_duals = vec![0.0; self.constraints.len()];
+        for &(id, r) in &constraint_rows {
+            row_duals[id] = sol.z[r];
+        }
+        Ok(RawRelaxation {
+            z: sol.x[..m].iter().map(|v| v.clamp(0.0, 1.0)).collect(),
+            primal: -solver.info.cost_primal,
+            dual: -solver.info.cost_dual,
+            status: sol.status,
             iterations: solver.info.iterations,
-            status: format!("{status:?}"),
-            solve_time_s: started.elapsed().as_secs_f64(),
+            psd_duals: psd_rows.iter().map(|&r0| smat(r0)).collect(),
+            row_duals,
         })
     }
 }
 
+/// Coordinate (triplet) entries of the constraint matrix, assembled by clarabel's
+/// [`CscMatrix::new_from_triplets`] (sorted by column then row, repeated entries summed).
 #[derive(Default)]
 struct Triplets {
     rows: Vec<usize>,
@@ -159,30 +290,5 @@ impl Triplets {
         self.rows.push(r);
         self.cols.push(c);
         self.vals.push(v);
-    }
-
-    /// Compressed sparse column form (entries sorted by column then row, duplicates summed).
-    fn into_csc(self, m: usize, n: usize) -> CscMatrix<f64> {
-        let mut order: Vec<usize> = (0..self.vals.len()).collect();
-        order.sort_by_key(|&t| (self.cols[t], self.rows[t]));
-        let mut colptr = vec![0usize; n + 1];
-        let mut rowval: Vec<usize> = Vec::with_capacity(order.len());
-        let mut nzval: Vec<f64> = Vec::with_capacity(order.len());
-        let mut last: Option<(usize, usize)> = None;
-        for t in order {
-            let (r, c) = (self.rows[t], self.cols[t]);
-            if last == Some((r, c)) {
-                *nzval.last_mut().expect("an entry was pushed") += self.vals[t];
-                continue;
-            }
-            rowval.push(r);
-            nzval.push(self.vals[t]);
-            colptr[c + 1] += 1;
-            last = Some((r, c));
-        }
-        for c in 0..n {
-            colptr[c + 1] += colptr[c];
-        }
-        CscMatrix::new(m, n, colptr, rowval, nzval)
     }
 }

@@ -1,0 +1,85 @@
+//! The names of objectives, criteria and methods on the command line, each parsed once by clap
+//! (an unknown name is a usage error listing the valid ones) and converted into the optimizer's
+//! and the core's enums. The spellings are those of their `name()` methods.
+
+use clap::ValueEnum;
+use entrynav::observability::Method;
+use entrynav_optimizer::{OrbiterObjective, SelectionCriterion};
+
+/// `--objective` of `optimize orbiters` (names of [`OrbiterObjective::name`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(super) enum OrbiterObjectiveArg {
+    /// The integral of det(N3) (eq. 57), three orbiters.
+    #[value(name = "det-n3")]
+    DetN3,
+    /// The integral of ln det of the FIM.
+    #[value(name = "logdet")]
+    Logdet,
+}
+
+impl From<OrbiterObjectiveArg> for OrbiterObjective {
+    fn from(a: OrbiterObjectiveArg) -> OrbiterObjective {
+        match a {
+            OrbiterObjectiveArg::DetN3 => OrbiterObjective::DetN3,
+            OrbiterObjectiveArg::Logdet => OrbiterObjective::LogDet,
+        }
+    }
+}
+
+/// `--objective` of `optimize ground` (names of [`GroundObjective::name`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(super) enum GroundObjectiveArg {
+    /// min over time of delta (eq. 49).
+    #[value(name = "min-delta")]
+    MinDelta,
+    /// The integral of ln det FIM.
+    #[value(name = "logdet")]
+    Logdet,
+    /// min over time of lambda_min(FIM).
+    #[value(name = "min-eig")]
+    MinEig,
+}
+
+/// `--method` (names of [`Method::name`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(super) enum MethodArg {
+    /// Exact Lie derivatives.
+    #[value(name = "lie")]
+    Lie,
+    /// Quadratic approximation of the Lie derivatives.
+    #[value(name = "quadratic")]
+    Quadratic,
+    /// Linearised system.
+    #[value(name = "linear")]
+    Linear,
+}
+
+impl From<MethodArg> for Method {
+    fn from(a: MethodArg) -> Method {
+        match a {
+            MethodArg::Lie => Method::Lie,
+            MethodArg::Quadratic => Method::Quadratic,
+            MethodArg::Linear => Method::Linear,
+        }
+    }
+}
+
+/// `--criterion` of `optimize select` (names of [`SelectionCriterion::name`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(super) enum CriterionArg {
+    /// D-optimal: ln det.
+    #[value(name = "logdet")]
+    Logdet,
+    /// E-optimal: lambda_min.
+    #[value(name = "min-eig")]
+    MinEig,
+}
+
+impl From<CriterionArg> for SelectionCriterion {
+    fn from(a: CriterionArg) -> SelectionCriterion {
+        match a {
+            CriterionArg::Logdet => SelectionCriterion::LogDet,
+            CriterionArg::MinEig => SelectionCriterion::MinEig,
+        }
+    }
+}

@@ -16,8 +16,8 @@ use entrynav_optimizer::{
 };
 use std::time::{Duration, Instant};
 
-fn no_files(p: &str) -> Result<String, String> {
-    Err(format!("no file {p}"))
+fn no_files(p: &str) -> Result<String, entrynav::files::FileError> {
+    Err(entrynav::files::FileError::new(p, "no files here"))
 }
 
 fn arg(args: &[String], name: &str) -> Option<String> {

@@ -17,8 +17,8 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::{RngCore, SeedableRng};
 use std::time::Duration;
 
-fn no_files(p: &str) -> Result<String, String> {
-    Err(format!("no file {p}"))
+fn no_files(p: &str) -> Result<String, entrynav::files::FileError> {
+    Err(entrynav::files::FileError::new(p, "no files here"))
 }
 
 fn ground(step_s: f64) -> GroundProblem {

@@ -318,7 +318,7 @@ pub fn run(grid_path: &Path, out_dir: &Path, quiet: bool) -> Result<()> {
                 pos_rmse_final_m: f.rmse_final.get("pos_m").copied().flatten(),
                 vel_rmse_final_mps: f.rmse_final.get("vel_mps").copied().flatten(),
                 pos_rmse_avg_m: f.rmse_time_avg.get("pos_m").copied().flatten(),
-                anees: f.anees,
+                anees: f.consistency.anees,
                 min_within_3sigma: f
                     .within_3sigma_frac
                     .values()

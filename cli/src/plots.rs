@@ -237,8 +237,8 @@ pub fn trade_plots(dir: &Path, report: &TradeReport) -> Result<()> {
     if let Some(f) = report.filters.first() {
         let t: Vec<f64> = f.series.times_s.clone();
         for (b, name) in [
-            (f.nees_bounds_95[0], "95% lower"),
-            (f.nees_bounds_95[1], "95% upper"),
+            (f.consistency.nees_bounds_95[0], "95% lower"),
+            (f.consistency.nees_bounds_95[1], "95% upper"),
         ] {
             curves.push(Curve {
                 name: name.into(),

@@ -271,16 +271,45 @@ fn print_tables(report: &TradeReport, elapsed: f64) {
 }
 
 fn print_consistency(f: &FilterReport) {
-    println!(
-        "  ANEES {} (dof {}, per-epoch 95% bounds [{:.3}, {:.3}], {} of epochs inside)",
-        fmt(f.anees),
-        f.nees_dof,
-        f.nees_bounds_95[0],
-        f.nees_bounds_95[1],
-        f.nees_in_bounds_frac
-            .map(|v| format!("{:.0}%", 100.0 * v))
+    let c = &f.consistency;
+    let pct = |v: Option<f64>| {
+        v.map(|v| format!("{:.0}%", 100.0 * v))
             .unwrap_or_else(|| "-".into())
+    };
+    let per_dof = |a: Option<f64>, dof: f64| a.map(|a| format!("{:.3}", a / dof));
+    println!(
+        "  ANEES {} (dof {}, /dof {}, per-epoch 95% bounds [{:.3}, {:.3}], {} of epochs inside)",
+        fmt(c.anees),
+        c.nees_dof,
+        per_dof(c.anees, c.nees_dof as f64).unwrap_or_else(|| "-".into()),
+        c.nees_bounds_95[0],
+        c.nees_bounds_95[1],
+        pct(c.nees_in_bounds_frac)
     );
+    println!(
+        "  ANEES kinematic {} (dof 6, /dof {}, bounds [{:.3}, {:.3}], {} inside)",
+        fmt(c.anees_kinematic),
+        per_dof(c.anees_kinematic, 6.0).unwrap_or_else(|| "-".into()),
+        c.nees_kinematic_bounds_95[0],
+        c.nees_kinematic_bounds_95[1],
+        pct(c.nees_kinematic_in_bounds_frac)
+    );
+    if let (Some(anis), Some(dof)) = (c.anis, c.nis_dof) {
+        let channels: Vec<String> = c
+            .nis_per_channel
+            .iter()
+            .map(|(name, n)| format!("{name} {:.3}", n.anis_per_dof))
+            .collect();
+        println!(
+            "  ANIS {} (dof {dof:.2}, /dof {}, bounds [{:.3}, {:.3}], {} of epochs inside); per channel /dof: {}",
+            fmt(Some(anis)),
+            fmt(c.anis_per_dof),
+            c.nis_bounds_95[0],
+            c.nis_bounds_95[1],
+            pct(c.nis_in_bounds_frac),
+            channels.join(", ")
+        );
+    }
     if let Some(d) = f.density_rmspe_pct {
         let at_est = f
             .density_at_estimate_rmspe_pct
@@ -301,11 +330,28 @@ fn print_consistency(f: &FilterReport) {
         );
     }
     println!(
-        "  diverged {} of {} runs; {:.2} µs per filter step",
-        f.diverged, f.runs, f.us_per_step
+        "  failed {} of {} runs (numerical), diverged {} (final NEES > 100 x dof); {:.2} µs per filter step",
+        f.failed, f.runs, f.diverged, f.us_per_step
     );
-    for m in &f.failures {
-        println!("    {m}");
+    for p in &f.failures {
+        println!(
+            "    run {} at t = {} s ({}): {}",
+            p.run,
+            p.t_s,
+            match p.kind {
+                entrynav::sim::metrics::ProblemKind::Numerical => "numerical",
+                entrynav::sim::metrics::ProblemKind::Nees => "NEES",
+            },
+            p.reason
+        );
+    }
+    let bad = f.failed + f.diverged;
+    if bad * 100 > f.runs {
+        println!(
+            "  WARNING: {bad} of {} runs ({:.1}%) failed or diverged; replay one with --replay-run RUN --csv-dir DIR",
+            f.runs,
+            100.0 * bad as f64 / f.runs.max(1) as f64
+        );
     }
 }
 

@@ -31,6 +31,7 @@ fn model(kind: DynamicsKind, augmented: Vec<AugmentedParam>) -> EntryModel<Atmos
         augmented,
         rho0_model: 2e-4,
         density_factor: 1.0,
+        bias_tau_s: None,
     }
 }
 

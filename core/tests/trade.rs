@@ -84,12 +84,22 @@ fn a_correctly_modelled_filter_is_consistent() {
     let s = scenario("orbiters-3");
     let r = trade(&s, &[FilterKind::Ekf, FilterKind::Ukf], 40, 7, 64, 2);
     for f in &r.filters {
-        let anees = f.anees.unwrap();
+        let anees = f.consistency.anees.unwrap();
         assert!(
             anees > 3.0 && anees < 9.0,
             "{}: ANEES {anees} for 6 states",
             f.name
         );
+        // Without the truth the innovations tell the same: every ν²/s averages about 1.
+        let anis = f.consistency.anis_per_dof.unwrap();
+        assert!((0.8..1.25).contains(&anis), "{}: ANIS/dof {anis}", f.name);
+        for (channel, n) in &f.consistency.nis_per_channel {
+            assert!(
+                (0.7..1.4).contains(&n.anis_per_dof),
+                "{} {channel}: {n:?}",
+                f.name
+            );
+        }
         for (state, frac) in &f.within_3sigma_frac {
             assert!(
                 frac.unwrap() > 0.98,
@@ -98,7 +108,7 @@ fn a_correctly_modelled_filter_is_consistent() {
                 frac
             );
         }
-        assert_eq!(f.diverged, 0);
+        assert_eq!((f.failed, f.diverged), (0, 0));
         // Range-only navigation to three orbiters pins the position to tens of metres.
         assert!(
             f.rmse_final["pos_m"].unwrap() < 50.0,

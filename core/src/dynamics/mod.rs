@@ -1,9 +1,11 @@
 //! Entry dynamics: spherical 3-DOF (with or without planet rotation) and Cartesian inertial.
 //!
 //! [`EntryModel`] wraps one of the right-hand sides with a vehicle, an atmosphere and an optional
-//! list of *augmented constant states* (ρ0, L/D, C_D S/m) appended after the six kinematic states,
-//! as the filters of seeds 000 (§2.3.1) and 001 (eq. 34) estimate them. Jacobians are exact, by
-//! forward-mode AD through the same generic code ([`EntryModel::jacobian`]).
+//! list of *augmented states* appended after the six kinematic states: constants the filters of
+//! seeds 000 (§2.3.1) and 001 (eq. 34) estimate (ρ0, L/D, C_D S/m), seed 003's density bias Δ
+//! (eq. 6), and accelerometer biases (random constants, or first-order Gauss–Markov processes
+//! ḃ = −b/τ). Jacobians are exact, by forward-mode AD through the same generic code
+//! ([`EntryModel::jacobian`]).
 
 pub mod aero;
 pub mod cartesian;
@@ -40,7 +42,8 @@ impl DynamicsKind {
     }
 }
 
-/// A constant parameter appended to the state vector (zero dynamics; random walk in the filter).
+/// A parameter appended to the state vector: zero dynamics (a random constant; a random walk
+/// with the filter's process noise), except accelerometer biases under a Gauss–Markov model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum AugmentedParam {
@@ -50,6 +53,14 @@ pub enum AugmentedParam {
     LiftToDrag,
     /// C_D S/m [m²/kg] (seed 001 state 7, "B").
     CdSOverM,
+    /// Density bias Δ: the density is the model's times (1 + Δ) (seed 003 eq. 6).
+    DensityBias,
+    /// Accelerometer bias on IMU axis x [m/s²] (added to the axis' reading).
+    AccelBiasX,
+    /// Accelerometer bias on IMU axis y [m/s²].
+    AccelBiasY,
+    /// Accelerometer bias on IMU axis z [m/s²].
+    AccelBiasZ,
 }
 
 impl AugmentedParam {
@@ -59,6 +70,33 @@ impl AugmentedParam {
             AugmentedParam::Rho0 => "rho0_kgm3",
             AugmentedParam::LiftToDrag => "lift_to_drag",
             AugmentedParam::CdSOverM => "cd_s_over_m_m2kg",
+            AugmentedParam::DensityBias => "density_bias",
+            AugmentedParam::AccelBiasX => "accel_bias_x_mps2",
+            AugmentedParam::AccelBiasY => "accel_bias_y_mps2",
+            AugmentedParam::AccelBiasZ => "accel_bias_z_mps2",
+        }
+    }
+
+    /// The name in scenario files (`filter.augment`).
+    pub fn config_name(self) -> &'static str {
+        match self {
+            AugmentedParam::Rho0 => "rho0",
+            AugmentedParam::LiftToDrag => "lift-to-drag",
+            AugmentedParam::CdSOverM => "cd-s-over-m",
+            AugmentedParam::DensityBias => "density-bias",
+            AugmentedParam::AccelBiasX => "accel-bias-x",
+            AugmentedParam::AccelBiasY => "accel-bias-y",
+            AugmentedParam::AccelBiasZ => "accel-bias-z",
+        }
+    }
+
+    /// The IMU axis of an accelerometer-bias state.
+    pub fn accel_axis(self) -> Option<u8> {
+        match self {
+            AugmentedParam::AccelBiasX => Some(0),
+            AugmentedParam::AccelBiasY => Some(1),
+            AugmentedParam::AccelBiasZ => Some(2),
+            _ => None,
         }
     }
 }
@@ -90,6 +128,9 @@ pub struct EntryModel<A> {
     pub rho0_model: f64,
     /// Constant density factor 1 + Δ (seed 003 eq. 6: ρ = ρ_model·(1 + Δ)); 1 for the model itself.
     pub density_factor: f64,
+    /// Time constant τ \[s\] of the accelerometer-bias states, first-order Gauss–Markov
+    /// ḃ = −b/τ; `None`: random constants (ḃ = 0).
+    pub bias_tau_s: Option<f64>,
 }
 
 impl<A: Atmosphere> EntryModel<A> {
@@ -129,12 +170,27 @@ impl<A: Atmosphere> EntryModel<A> {
                 }
                 AugmentedParam::LiftToDrag => p.lift_to_drag = val,
                 AugmentedParam::CdSOverM => p.cd_s_over_m = val,
+                AugmentedParam::DensityBias => {
+                    p.density_scale = (val + T::from(1.0)) * self.density_factor
+                }
+                AugmentedParam::AccelBiasX
+                | AugmentedParam::AccelBiasY
+                | AugmentedParam::AccelBiasZ => {}
             }
         }
         p
     }
 
-    /// `ẋ = f(x)` for the full (possibly augmented) state; augmented states have zero derivative.
+    /// The accelerometer bias the state `x` carries on IMU axis `axis`, if it has such a state.
+    pub fn accel_bias<T: Real, const N: usize>(&self, x: &SVector<T, N>, axis: u8) -> Option<T> {
+        self.augmented
+            .iter()
+            .position(|a| a.accel_axis() == Some(axis))
+            .and_then(|k| x.as_slice().get(6 + k).copied())
+    }
+
+    /// `ẋ = f(x)` for the full (possibly augmented) state; augmented states have zero derivative,
+    /// except accelerometer biases under a Gauss–Markov model (`bias_tau_s`): ḃ = −b/τ.
     pub fn rhs<T: Real, const N: usize>(&self, x: &SVector<T, N>, bank: f64) -> SVector<T, N> {
         let p = self.aero_params(x, bank);
         let k: [T; 6] = [x[0], x[1], x[2], x[3], x[4], x[5]];
@@ -147,6 +203,13 @@ impl<A: Atmosphere> EntryModel<A> {
         let mut out = SVector::<T, N>::from_element(T::from(0.0));
         for i in 0..6 {
             out[i] = d[i];
+        }
+        if let Some(tau) = self.bias_tau_s {
+            for (k, a) in self.augmented.iter().enumerate() {
+                if a.accel_axis().is_some() && 6 + k < N {
+                    out[6 + k] = -x[6 + k] / T::from(tau);
+                }
+            }
         }
         out
     }

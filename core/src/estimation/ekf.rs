@@ -1,4 +1,7 @@
-//! Extended Kalman filter with Joseph-form updates (seed 000 eq. 17–18).
+//! Extended Kalman filter with Joseph-form updates (seed 000 eq. 17–18), optionally in Schmidt
+//! consider form: the last `n_consider` states are parameters whose uncertainty enters every gain
+//! but which are never updated (Schmidt 1966; Tapley, Schutz & Born, *Statistical Orbit
+//! Determination*, §6.4: K_c = 0, covariance by the Joseph form, which holds for any gain).
 
 use super::{EstimationError, check_covariance, symmetrize};
 use nalgebra::{SMatrix, SVector};
@@ -22,6 +25,8 @@ pub struct Ekf<const N: usize> {
     pub x: SVector<f64, N>,
     /// Covariance P.
     pub p: SMatrix<f64, N, N>,
+    /// The last `n_consider` states are Schmidt consider parameters (never updated).
+    n_consider: usize,
 }
 
 impl<const N: usize> Ekf<N> {
@@ -31,7 +36,25 @@ impl<const N: usize> Ekf<N> {
         Ok(Ekf {
             x: x0,
             p: symmetrize(&p0),
+            n_consider: 0,
         })
+    }
+
+    /// The same filter with its last `n` states as Schmidt consider parameters (at least one
+    /// state must stay estimated).
+    pub fn with_consider(mut self, n: usize) -> Result<Self, EstimationError> {
+        if n >= N {
+            return Err(EstimationError::InvalidInput(format!(
+                "{n} consider parameters leave no estimated state in a {N}-state filter"
+            )));
+        }
+        self.n_consider = n;
+        Ok(self)
+    }
+
+    /// Number of consider parameters (the last states).
+    pub fn n_consider(&self) -> usize {
+        self.n_consider
     }
 
     /// Time update, seed 000 eq. 17: x̂⁻ = f(x̂⁺) (given), P⁻ = Φ P⁺ Φᵀ + Q.
@@ -60,7 +83,7 @@ impl<const N: usize> Ekf<N> {
     /// One scalar measurement update in Joseph form (seed 000 eq. 18 with a 1×N `H`):
     ///
     /// ```text
-    /// s = h P hᵀ + r,  K = P hᵀ / s,  x̂ += K (z − ẑ),
+    /// s = h P hᵀ + r,  K = P hᵀ / s (rows of consider states set to 0),  x̂ += K (z − ẑ),
     /// P = (I − K h) P (I − K h)ᵀ + K r Kᵀ
     /// ```
     ///
@@ -92,7 +115,10 @@ impl<const N: usize> Ekf<N> {
                 what: "innovation variance".into(),
             });
         }
-        let k = ph / s;
+        let mut k = ph / s;
+        for i in N - self.n_consider..N {
+            k[i] = 0.0;
+        }
         let nu = z - predicted;
         self.x += k * nu;
         // Joseph form, expanded for a rank-one gain: (I−khᵀ)P(I−khᵀ)ᵀ + k r kᵀ
@@ -109,22 +135,26 @@ impl<const N: usize> Ekf<N> {
     }
 
     /// Batch-equivalent EKF update of several scalar measurements linearised at the prior `x_prior`:
-    /// each item is `(h_i(x_prior), H_i, z_i, r_i)`. Returns the innovations and the normalised
-    /// innovation squared of the whole batch, νᵀ S⁻¹ ν, accumulated exactly by the sequential form.
+    /// each item is `(h_i(x_prior), H_i, z_i, r_i)`. Returns the innovations z_i − h_i(x_prior),
+    /// the normalised innovation squared of each scalar in the sequence, ν_i²/s_i, and their sum,
+    /// the NIS of the whole batch νᵀ S⁻¹ ν (exact for the sequential form).
     pub fn update_linearized(
         &mut self,
         x_prior: &SVector<f64, N>,
         items: &[LinearizedMeasurement<N>],
-    ) -> Result<(Vec<f64>, f64), EstimationError> {
+    ) -> Result<(Vec<f64>, Vec<f64>, f64), EstimationError> {
         let mut nis = 0.0;
         let mut nus = Vec::with_capacity(items.len());
+        let mut terms = Vec::with_capacity(items.len());
         for (h0, hrow, z, r) in items {
             let predicted = h0 + hrow.dot(&(self.x - x_prior));
             let inn = self.update_scalar(predicted, hrow, *z, *r)?;
-            nis += inn.nu * inn.nu / inn.s;
+            let term = inn.nu * inn.nu / inn.s;
+            nis += term;
+            terms.push(term);
             nus.push(*z - h0);
         }
-        Ok((nus, nis))
+        Ok((nus, terms, nis))
     }
 }
 
@@ -155,7 +185,8 @@ mod tests {
                 (row.dot(&x0), row, z[i], r[(i, i)])
             })
             .collect();
-        let (_, nis) = f.update_linearized(&x0, &items).unwrap();
+        let (_, terms, nis) = f.update_linearized(&x0, &items).unwrap();
+        assert_eq!(terms.iter().sum::<f64>(), nis);
         assert!((f.x - xb).abs().max() < 1e-12);
         assert!((f.p - pb).abs().max() < 1e-12);
         assert!((nis - nis_b).abs() < 1e-12);

@@ -37,6 +37,9 @@ pub struct FilterTuning {
     pub p0_diag: Vec<f64>,
     /// Process-noise diagonal per filter step Q_k (SI, rad); missing entries count as 0.
     pub q_diag: Vec<f64>,
+    /// Number of Schmidt consider parameters: the last `n_consider` states, carried in the
+    /// covariance but never updated (`filter.consider`).
+    pub n_consider: usize,
     /// UKF constants α, β, κ.
     pub ukf: UkfParams,
     /// Density biases Δ of a multiple-model bank (seed 003 Table 4).

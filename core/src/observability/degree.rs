@@ -135,6 +135,10 @@ impl Scaling {
                 AugmentedParam::Rho0 => 1e-5,
                 AugmentedParam::LiftToDrag => 1e-2,
                 AugmentedParam::CdSOverM => 1e-3,
+                AugmentedParam::DensityBias => 1e-2,
+                AugmentedParam::AccelBiasX
+                | AugmentedParam::AccelBiasY
+                | AugmentedParam::AccelBiasZ => 1e-3,
             });
             names.push(a.name());
         }

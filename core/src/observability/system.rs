@@ -156,13 +156,13 @@ fn analysis_point(scenario: &Scenario, t: f64, x: &SVector<f64, 6>) -> AnalysisP
             .get(6 + k)
             .copied()
             .unwrap_or(0.0);
+        let draw = scenario.nominal_truth();
         state.push(match a {
-            AugmentedParam::LiftToDrag => truth.vehicle.lift_to_drag,
-            AugmentedParam::CdSOverM => truth.vehicle.cd_s_over_m,
             AugmentedParam::Rho0 => match scenario.config.truth.atmosphere.reference_density() {
                 Some(_) => truth.rho0_model * truth.density_factor,
                 None => fallback,
             },
+            _ => scenario.truth_parameter(&draw, *a).unwrap_or(fallback),
         });
     }
     let radius = truth.planet.radius;

@@ -118,6 +118,7 @@ impl Scenario {
             augmented: vec![],
             rho0_model: config.truth.atmosphere.reference_density().unwrap_or(1.0),
             density_factor: 1.0 + config.truth.density_bias,
+            bias_tau_s: None,
         };
         let truth_initial = state_to_model(
             &config.truth.initial,
@@ -136,14 +137,16 @@ impl Scenario {
                 cd_s_over_m: f.vehicle.cd_s_over_m(),
                 lift_to_drag: f.vehicle.lift_to_drag,
             },
-            augmented: f.augment.clone(),
+            augmented: f.state_params(),
             rho0_model: f.atmosphere.reference_density().unwrap_or(1.0),
             density_factor: 1.0,
+            bias_tau_s: f.accel_bias_tau_s,
         };
         let start = f.initial.as_ref().unwrap_or(&config.truth.initial);
         let kin = state_to_model(start, "filter.initial", conv, f.dynamics, &planet)?;
         let mut filter_initial: Vec<f64> = kin.iter().copied().collect();
         filter_initial.extend_from_slice(&f.initial_augmented);
+        filter_initial.extend_from_slice(&f.initial_consider);
 
         // Surface beacons turn with the planet only if the truth planet rotates.
         let mut beacon_planet = planet;

@@ -184,9 +184,21 @@ pub struct FilterConfig {
     pub vehicle: VehicleConfig,
     /// Onboard density model.
     pub atmosphere: AtmosphereConfig,
-    /// Augmented constant states.
+    /// Augmented states the filter estimates, after the six kinematic states.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub augment: Vec<AugmentedParam>,
+    /// Schmidt consider parameters, after the augmented states: carried in the state and the
+    /// covariance (their uncertainty enters every gain) but never updated by a measurement.
+    /// Supported by `ekf`, `ukf`, `ci`, `dcifaif` and the banks.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub consider: Vec<AugmentedParam>,
+    /// Start values of the consider parameters, in `consider` order (SI).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub initial_consider: Vec<f64>,
+    /// Time constant τ \[s\] of the accelerometer-bias states (`accel-bias-x/y/z`) as first-order
+    /// Gauss–Markov processes ḃ = −b/τ; absent: random constants (ḃ = 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accel_bias_tau_s: Option<f64>,
     /// Filter start; absent means the truth's nominal initial state.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub initial: Option<StateConfig>,
@@ -256,5 +268,17 @@ impl Default for MonteCarloConfig {
         MonteCarloConfig {
             runs: default_runs(),
         }
+    }
+}
+
+impl FilterConfig {
+    /// The filter's augmented states in state order: `augment`, then `consider`.
+    pub fn state_params(&self) -> Vec<AugmentedParam> {
+        self.augment.iter().chain(&self.consider).copied().collect()
+    }
+
+    /// Filter state dimension: 6 kinematic + augmented + consider states.
+    pub fn state_dim(&self) -> usize {
+        6 + self.augment.len() + self.consider.len()
     }
 }

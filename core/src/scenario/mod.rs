@@ -10,6 +10,7 @@ pub mod builtin;
 pub mod config;
 pub mod error;
 mod onboard;
+mod truth_values;
 pub mod validate;
 mod validate_density;
 

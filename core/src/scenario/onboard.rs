@@ -54,6 +54,7 @@ pub(super) fn onboard_view(p: OnboardParts<'_>) -> Onboard {
         tuning: FilterTuning {
             p0_diag: f.p0_diag.clone(),
             q_diag: f.q_diag.clone(),
+            n_consider: f.consider.len(),
             ukf: UkfParams::new(f.ukf.alpha, f.ukf.beta, f.ukf.kappa),
             model_bank_density_bias: f.model_bank_density_bias.clone(),
             density: f.density.clone(),

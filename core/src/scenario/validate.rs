@@ -362,15 +362,16 @@ impl ScenarioConfig {
         if let Some(s) = &f.initial {
             s.validate_state("filter.initial", &planet)?;
         }
-        let n = 6 + f.augment.len();
+        let n = f.state_dim();
         for (name, v) in [("filter.p0_diag", &f.p0_diag), ("filter.q_diag", &f.q_diag)] {
             if v.len() != n {
                 return Err(ScenarioError::invalid(
                     name,
                     format!(
-                        "has {} entries but the filter state has {n} (6 kinematic + {} augmented)",
+                        "has {} entries but the filter state has {n} (6 kinematic + {} augmented + {} consider)",
                         v.len(),
-                        f.augment.len()
+                        f.augment.len(),
+                        f.consider.len()
                     ),
                 ));
             }
@@ -393,37 +394,69 @@ impl ScenarioConfig {
                 "must be >= 0 (a variance) and finite",
             )?;
         }
-        if f.initial_augmented.len() != f.augment.len() {
-            return Err(ScenarioError::invalid(
-                "filter.initial_augmented",
-                format!(
-                    "has {} values but filter.augment lists {} states",
-                    f.initial_augmented.len(),
-                    f.augment.len()
-                ),
-            ));
-        }
-        for (k, (a, v)) in f.augment.iter().zip(&f.initial_augmented).enumerate() {
-            let field = format!("filter.initial_augmented[{k}]");
-            match a {
-                AugmentedParam::Rho0 => {
-                    within(&field, *v, 0.0, 1.0, "ρ0 must be > 0 and < 1 kg/m³")?
-                }
-                AugmentedParam::LiftToDrag => {
-                    within(&field, *v, -0.001, 3.0, "L/D must be >= 0 and < 3")?
-                }
-                AugmentedParam::CdSOverM => {
-                    within(&field, *v, 0.0, 1.0, "C_D S/m must be > 0 and < 1 m²/kg")?
-                }
+        for (field, params, values) in [
+            ("initial_augmented", &f.augment, &f.initial_augmented),
+            ("initial_consider", &f.consider, &f.initial_consider),
+        ] {
+            if values.len() != params.len() {
+                return Err(ScenarioError::invalid(
+                    format!("filter.{field}"),
+                    format!(
+                        "has {} values but filter.{} lists {} states",
+                        values.len(),
+                        if field == "initial_augmented" {
+                            "augment"
+                        } else {
+                            "consider"
+                        },
+                        params.len()
+                    ),
+                ));
+            }
+            for (k, (a, v)) in params.iter().zip(values.iter()).enumerate() {
+                validate_augmented_value(&format!("filter.{field}[{k}]"), *a, *v)?;
             }
         }
-        if f.augment.contains(&AugmentedParam::Rho0)
+        let all = f.state_params();
+        for (k, a) in all.iter().enumerate() {
+            if all[..k].contains(a) {
+                return Err(ScenarioError::invalid(
+                    "filter.augment",
+                    format!(
+                        "'{}' is listed twice in filter.augment and filter.consider",
+                        a.config_name()
+                    ),
+                ));
+            }
+        }
+        if all.contains(&AugmentedParam::Rho0) && all.contains(&AugmentedParam::DensityBias) {
+            return Err(ScenarioError::invalid(
+                "filter.augment",
+                "rho0 and density-bias both scale the density: use one of them",
+            ));
+        }
+        if all.contains(&AugmentedParam::Rho0)
             && self.filter.atmosphere.reference_density().is_none()
         {
             return Err(ScenarioError::invalid(
                 "filter.augment",
                 "rho0 can only be augmented with an exponential filter atmosphere",
             ));
+        }
+        if all.iter().any(|a| a.accel_axis().is_some()) && self.sensors.imu.is_none() {
+            return Err(ScenarioError::invalid(
+                "filter.augment",
+                "accelerometer-bias states need an accelerometer ([sensors.imu])",
+            ));
+        }
+        if let Some(tau) = f.accel_bias_tau_s {
+            within(
+                "filter.accel_bias_tau_s",
+                tau,
+                0.0,
+                1e9,
+                "must be > 0 s (the Gauss-Markov time constant) and finite",
+            )?;
         }
         within(
             "filter.ukf.alpha",
@@ -563,5 +596,24 @@ impl ScenarioConfig {
             ));
         }
         Ok(())
+    }
+}
+
+/// Range check of the start value of an augmented or consider state.
+fn validate_augmented_value(field: &str, a: AugmentedParam, v: f64) -> Result<(), ScenarioError> {
+    match a {
+        AugmentedParam::Rho0 => within(field, v, 0.0, 1.0, "ρ0 must be > 0 and < 1 kg/m³"),
+        AugmentedParam::LiftToDrag => within(field, v, -0.001, 3.0, "L/D must be >= 0 and < 3"),
+        AugmentedParam::CdSOverM => within(field, v, 0.0, 1.0, "C_D S/m must be > 0 and < 1 m²/kg"),
+        AugmentedParam::DensityBias => within(field, v, -1.0, 10.0, "Δ must be > -1 and < 10"),
+        AugmentedParam::AccelBiasX | AugmentedParam::AccelBiasY | AugmentedParam::AccelBiasZ => {
+            within(
+                field,
+                v,
+                -10.0,
+                10.0,
+                "an accelerometer bias must be within ±10 m/s²",
+            )
+        }
     }
 }

@@ -143,7 +143,11 @@ impl MeasurementModel {
                 let p = model.aero_params(x, bank);
                 let (d, l) = drag_lift(kin.density, kin.airspeed, &p);
                 let a = self.imu_frame.express(&specific_force_wind(d, l, p.bank));
-                a[(axis as usize).min(2)]
+                let axis = axis.min(2);
+                match model.accel_bias(x, axis) {
+                    Some(b) => a[axis as usize] + b,
+                    None => a[axis as usize],
+                }
             }
             Channel::DynamicPressure => dynamic_pressure(kin.density, kin.airspeed),
             Channel::Heating => sutton_graves_heating(

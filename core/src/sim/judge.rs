@@ -3,16 +3,16 @@
 //! and the density errors. This is the only code that puts an estimate beside the truth.
 
 use super::engine::TruthSample;
-use crate::dynamics::AugmentedParam;
 use crate::frames::{inertial_to_spherical, spherical_to_fixed, spherical_to_inertial};
 use crate::math::wrap_pi;
 use crate::scenario::{Scenario, TruthDraw};
 use nalgebra::{SMatrix, SVector};
 
 /// The truth of `sample` in the filter model's coordinates, `n` entries: six kinematic states,
-/// then the augmented states' true values. An augmented state with no truth counterpart (ρ0 when
-/// the truth atmosphere is not exponential) is NaN and is reported as unavailable, not as an
-/// error.
+/// then the augmented and consider states' truth-equivalent values
+/// ([`Scenario::truth_equivalent`]: e.g. a filter ρ0 that absorbs a wrong C_D S/m is judged
+/// against ρ0·B_true/B_filter). A state with no truth counterpart (ρ0 when the truth atmosphere
+/// is not exponential) is NaN and is reported as unavailable, not as an error.
 pub fn truth_in_filter_coords(
     scenario: &Scenario,
     draw: &TruthDraw,
@@ -32,21 +32,11 @@ pub fn truth_in_filter_coords(
     let mut x = vec![f64::NAN; n];
     let m = 6.min(n);
     x[..m].copy_from_slice(&kin[..m]);
-    let rho0_truth = scenario
-        .config
-        .truth
-        .atmosphere
-        .reference_density()
-        .map(|r| r * tm.density_factor);
     for (k, a) in fm.augmented.iter().enumerate() {
         if 6 + k >= n {
             break;
         }
-        x[6 + k] = match a {
-            AugmentedParam::Rho0 => rho0_truth.unwrap_or(f64::NAN),
-            AugmentedParam::LiftToDrag => tm.vehicle.lift_to_drag,
-            AugmentedParam::CdSOverM => tm.vehicle.cd_s_over_m,
-        };
+        x[6 + k] = scenario.truth_equivalent(draw, *a).unwrap_or(f64::NAN);
     }
     x
 }
@@ -86,6 +76,20 @@ pub fn nees<const N: usize>(
     let e = nalgebra::DVector::from_fn(m, |a, _| err[idx[a]]);
     let chol = p.cholesky()?;
     Some((e.dot(&chol.solve(&e)), m))
+}
+
+/// NEES over the six kinematic states (the leading 6×6 block of P), `None` if that block is not
+/// positive definite.
+pub fn nees_kinematic<const N: usize>(
+    err: &SVector<f64, N>,
+    p: &SMatrix<f64, N, N>,
+) -> Option<f64> {
+    if N < 6 {
+        return None;
+    }
+    let e = err.fixed_rows::<6>(0).into_owned();
+    let chol = p.fixed_view::<6, 6>(0, 0).into_owned().cholesky()?;
+    Some(e.dot(&chol.solve(&e)))
 }
 
 /// Convert a filter estimate to planet-relative spherical `[r, lon, lat, v, fpa, heading]` at `t`.

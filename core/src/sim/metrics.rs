@@ -10,9 +10,45 @@
 //!   and the filter's density at its own estimate x̂ (`density_at_estimate_rmspe_pct`: what the
 //!   dynamics see; small for every filter that processes density-sensitive measurements).
 //! * Final-epoch (parachute deployment) error mean/covariance and the 3σ downrange/crossrange ellipse.
-//! * NEES per epoch averaged over runs, ANEES, with two-sided 95 % χ² bounds.
+//! * NEES and NIS per epoch averaged over runs, with two-sided 95 % χ² bounds
+//!   ([`super::consistency`]).
+//! * Runs that went wrong, in two kinds: a **numerical failure** (the filter stopped: a
+//!   covariance lost positive definiteness, a value became non-finite) and a **NEES divergence**
+//!   (the run completed but its final NEES exceeds [`DIVERGENCE_NEES_PER_DOF`] × dof: the
+//!   filter is confidently wrong).
 
+use super::consistency::ConsistencySums;
 use serde::Serialize;
+
+/// A completed run whose final-epoch NEES exceeds this many times its degrees of freedom counts as
+/// diverged (a consistent filter exceeds 100·dof with probability far below 1e-9).
+pub const DIVERGENCE_NEES_PER_DOF: f64 = 100.0;
+
+/// Runs kept in a report's list of problems, per kind.
+const PROBLEMS_KEPT: usize = 20;
+
+/// What went wrong in one run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ProblemKind {
+    /// The filter stopped on a numerical failure.
+    Numerical,
+    /// The run completed with its final NEES above `DIVERGENCE_NEES_PER_DOF` × dof.
+    Nees,
+}
+
+/// One run that failed or diverged.
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
+pub struct RunProblem {
+    /// Run index (replay it with `trade --replay-run`).
+    pub run: usize,
+    /// Time of the failure, or of the first epoch whose NEES exceeded the threshold \[s\].
+    pub t_s: f64,
+    /// Which kind.
+    pub kind: ProblemKind,
+    /// What happened.
+    pub reason: String,
+}
 
 /// What one filter produced at one epoch of one run.
 #[derive(Debug, Clone, PartialEq)]
@@ -25,6 +61,10 @@ pub struct EpochRecord {
     pub pos_vel_err: (f64, f64),
     /// NEES eᵀP⁻¹e over the states with truth, and its degrees of freedom.
     pub nees: Option<(f64, usize)>,
+    /// NEES over the six kinematic states.
+    pub nees_kinematic: Option<f64>,
+    /// Per scalar measurement: channel slot and ν²/s.
+    pub nis_terms: Vec<(usize, f64)>,
     /// Density relative error (ρ̂(h) − ρ(h))/ρ(h) of the filter's profile at the true altitude h,
     /// for filters that estimate density.
     pub density_rel_err: Option<f64>,
@@ -83,9 +123,7 @@ pub struct FilterAccumulator {
     pub(super) sum_pos_sq: Vec<f64>,
     pub(super) sum_vel_sq: Vec<f64>,
     pub(super) n_epoch: Vec<u64>,
-    pub(super) nees_sum: Vec<f64>,
-    pub(super) nees_n: Vec<u64>,
-    pub(super) nees_dof: usize,
+    pub(super) consistency: ConsistencySums,
     pub(super) dens_abs: Vec<f64>,
     pub(super) dens_sq: Vec<f64>,
     pub(super) dens_n: Vec<u64>,
@@ -107,8 +145,9 @@ pub struct FilterAccumulator {
     pub(super) final_pos_sq: f64,
     pub(super) final_vel_sq: f64,
     pub(super) dr_cr: [f64; 5],
+    pub(super) failed: u64,
     pub(super) diverged: u64,
-    pub(super) failures: Vec<(usize, f64, String)>,
+    pub(super) problems: Vec<RunProblem>,
     pub(super) filter_ns: u128,
     pub(super) steps: u64,
     pub(super) runs: u64,
@@ -135,6 +174,12 @@ fn add_vec2<T: Copy + Default + std::ops::AddAssign>(a: &mut Vec<Vec<T>>, b: &[V
 }
 
 impl FilterAccumulator {
+    fn keep(&mut self, p: RunProblem) {
+        if self.problems.iter().filter(|q| q.kind == p.kind).count() < PROBLEMS_KEPT {
+            self.problems.push(p);
+        }
+    }
+
     /// Add another accumulator's sums (blocks are merged in block order, so a sharded study
     /// merged afterwards gives exactly the single-process sums).
     pub fn merge(&mut self, o: &FilterAccumulator) {
@@ -149,9 +194,7 @@ impl FilterAccumulator {
         add_vec(&mut self.sum_pos_sq, &o.sum_pos_sq);
         add_vec(&mut self.sum_vel_sq, &o.sum_vel_sq);
         add_vec(&mut self.n_epoch, &o.n_epoch);
-        add_vec(&mut self.nees_sum, &o.nees_sum);
-        add_vec(&mut self.nees_n, &o.nees_n);
-        self.nees_dof = self.nees_dof.max(o.nees_dof);
+        self.consistency.merge(&o.consistency);
         add_vec(&mut self.dens_abs, &o.dens_abs);
         add_vec(&mut self.dens_sq, &o.dens_sq);
         add_vec(&mut self.dens_n, &o.dens_n);
@@ -171,11 +214,10 @@ impl FilterAccumulator {
         for (a, b) in self.dr_cr.iter_mut().zip(o.dr_cr) {
             *a += b;
         }
+        self.failed += o.failed;
         self.diverged += o.diverged;
-        for f in &o.failures {
-            if self.failures.len() < 10 {
-                self.failures.push(f.clone());
-            }
+        for p in &o.problems {
+            self.keep(p.clone());
         }
         self.filter_ns += o.filter_ns;
         self.steps += o.steps;
@@ -194,7 +236,6 @@ impl FilterAccumulator {
         for v in [
             &mut self.sum_pos_sq,
             &mut self.sum_vel_sq,
-            &mut self.nees_sum,
             &mut self.dens_abs,
             &mut self.dens_sq,
             &mut self.dens_sum,
@@ -203,12 +244,7 @@ impl FilterAccumulator {
         ] {
             grow(v, n_ep);
         }
-        for v in [
-            &mut self.n_epoch,
-            &mut self.nees_n,
-            &mut self.dens_n,
-            &mut self.dest_n,
-        ] {
+        for v in [&mut self.n_epoch, &mut self.dens_n, &mut self.dest_n] {
             grow(v, n_ep);
         }
         grow(&mut self.count, n_ep);
@@ -250,11 +286,7 @@ impl FilterAccumulator {
             self.n_epoch[k] += 1;
             self.sum_pos_sq[k] += e.pos_vel_err.0 * e.pos_vel_err.0;
             self.sum_vel_sq[k] += e.pos_vel_err.1 * e.pos_vel_err.1;
-            if let Some((nees, dof)) = e.nees {
-                self.nees_sum[k] += nees;
-                self.nees_n[k] += 1;
-                self.nees_dof = dof;
-            }
+            self.consistency.add_epoch(k, e);
             if let Some(d) = e.density_rel_err {
                 self.dens_abs[k] += d.abs();
                 self.dens_sq[k] += d * d;
@@ -273,15 +305,30 @@ impl FilterAccumulator {
                 }
             }
         }
-        let last_nees = rec.epochs.last().and_then(|e| e.nees);
-        let blew_up = last_nees.is_some_and(|(v, dof)| v > 100.0 * dof as f64);
+        let exceeds = |e: &EpochRecord| {
+            e.nees
+                .is_some_and(|(v, dof)| v > DIVERGENCE_NEES_PER_DOF * dof as f64)
+        };
         if let Some((t, reason)) = &rec.failure {
+            self.failed += 1;
+            self.keep(RunProblem {
+                run: run_index,
+                t_s: *t,
+                kind: ProblemKind::Numerical,
+                reason: reason.clone(),
+            });
+        } else if let Some(last) = rec.epochs.last().filter(|e| exceeds(e)) {
             self.diverged += 1;
-            if self.failures.len() < 10 {
-                self.failures.push((run_index, *t, reason.clone()));
-            }
-        } else if blew_up {
-            self.diverged += 1;
+            let first = rec.epochs.iter().position(exceeds).unwrap_or(0);
+            let (nees, dof) = last.nees.unwrap_or((f64::NAN, 0));
+            self.keep(RunProblem {
+                run: run_index,
+                t_s: rec.times.get(first).copied().unwrap_or(f64::NAN),
+                kind: ProblemKind::Nees,
+                reason: format!(
+                    "final NEES {nees:.4e} > {DIVERGENCE_NEES_PER_DOF} x {dof} dof (first above at this time)"
+                ),
+            });
         }
         if let (Some(f), Some(last)) = (&rec.final_, rec.epochs.last()) {
             self.final_n += 1;

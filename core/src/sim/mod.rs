@@ -12,6 +12,7 @@
 //! * [`density_eval`] — seed 001's density RMSPE (eq. 70) over a Monte Carlo;
 //! * [`training`] — seed 001 Algorithm 1's training trajectories and the whole offline training.
 
+pub mod consistency;
 pub mod density_eval;
 pub mod engine;
 pub mod judge;

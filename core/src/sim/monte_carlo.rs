@@ -78,6 +78,8 @@ pub struct TradeReport {
     pub seed: u64,
     /// State names of the filter model, in state order (SI units in the suffix).
     pub states: Vec<String>,
+    /// Measurement channel names, in epoch-slot order.
+    pub channels: Vec<String>,
     /// One report per filter, in the order asked.
     pub filters: Vec<FilterReport>,
 }
@@ -150,6 +152,7 @@ pub fn run_shard(
         seed: opts.seed,
         filters: filters.iter().map(|k| k.name().to_string()).collect(),
         states: state_names(scenario),
+        channels: super::channel_names(scenario),
         shard,
         blocks,
     })
@@ -247,6 +250,8 @@ fn filter_run(
             sigma: est.sigma.clone(),
             pos_vel_err: j.pos_vel_err,
             nees: j.nees,
+            nees_kinematic: j.nees_kinematic,
+            nis_terms: est.info.nis_terms.clone(),
             density_rel_err: j.density_profile_rel_err,
             density_at_estimate_rel_err: j.density_at_estimate_rel_err,
             weights: est.info.weights.clone(),

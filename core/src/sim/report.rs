@@ -2,7 +2,8 @@
 //! ellipse and the time series behind the CSV files and plots. Built by
 //! [`FilterAccumulator::report`](super::metrics::FilterAccumulator::report).
 
-use super::metrics::{FilterAccumulator, nees_bounds_95};
+use super::consistency::Consistency;
+use super::metrics::{FilterAccumulator, RunProblem};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -60,8 +61,12 @@ pub struct Series {
     pub pos_rmse_m: Vec<Option<f64>>,
     /// Velocity-error RMS [m/s].
     pub vel_rmse_mps: Vec<Option<f64>>,
-    /// NEES averaged over runs.
+    /// NEES averaged over runs (all states with truth).
     pub nees_mean: Vec<Option<f64>>,
+    /// NEES of the kinematic states averaged over runs.
+    pub nees_kinematic_mean: Vec<Option<f64>>,
+    /// NIS averaged over the runs that measured.
+    pub nis_mean: Vec<Option<f64>>,
     /// RMS relative error of the density profile at the true altitude [%] (seed 001 Fig. 10).
     pub density_rms_pct: Vec<Option<f64>>,
     /// Mean relative error of the density profile at the true altitude [%].
@@ -90,18 +95,15 @@ pub struct FilterReport {
     /// Per state, the fraction of (run, epoch) samples whose error is inside the filter's own ±3σ
     /// (≈ 0.997 for a consistent Gaussian filter; seed 000 Fig. 6 judges consistency this way).
     pub within_3sigma_frac: BTreeMap<String, Option<f64>>,
-    /// Average NEES over epochs (of the per-epoch mean over runs).
-    pub anees: Option<f64>,
-    /// Degrees of freedom of the NEES.
-    pub nees_dof: usize,
-    /// Two-sided 95 % bounds for the per-epoch mean NEES.
-    pub nees_bounds_95: [f64; 2],
-    /// Fraction of epochs whose mean NEES is inside the bounds.
-    pub nees_in_bounds_frac: Option<f64>,
-    /// Runs that failed numerically or ended with NEES > 100·dof.
+    /// NEES and NIS: averages, χ² bounds, fractions inside, NIS per channel.
+    #[serde(flatten)]
+    pub consistency: Consistency,
+    /// Runs that stopped on a numerical failure.
+    pub failed: u64,
+    /// Runs that completed with their final NEES above 100 × dof.
     pub diverged: u64,
-    /// Up to ten numerical failures, described.
-    pub failures: Vec<String>,
+    /// The first runs of each kind (run index, time, kind, reason).
+    pub failures: Vec<RunProblem>,
     /// Mean CPU time per filter step \[µs\] (wall clock; not reproducible bit for bit).
     pub us_per_step: f64,
     /// Density RMSPE (seed 001 eq. 70, Table 6) [%] for filters that estimate density: the
@@ -117,8 +119,9 @@ pub struct FilterReport {
 }
 
 impl FilterAccumulator {
-    /// Summarise into a report for the filter `name` with state names `states`.
-    pub fn report(&self, name: &str, states: &[String]) -> FilterReport {
+    /// Summarise into a report for the filter `name` with state names `states` and channel names
+    /// `channels`.
+    pub fn report(&self, name: &str, states: &[String], channels: &[String]) -> FilterReport {
         let nk = self.times.len();
         let safe = |s: f64, n: u64| if n > 0 { Some(s / n as f64) } else { None };
         let mut rmse_series = vec![vec![None; states.len()]; nk];
@@ -178,25 +181,6 @@ impl FilterAccumulator {
             (self.final_n > 0).then(|| (self.final_vel_sq / self.final_n as f64).sqrt()),
         );
 
-        let nees_series: Vec<Option<f64>> = (0..nk)
-            .map(|k| safe(self.nees_sum[k], self.nees_n[k]))
-            .collect();
-        let runs_at_end = self.nees_n.iter().copied().max().unwrap_or(0) as usize;
-        let bounds = nees_bounds_95(self.nees_dof, runs_at_end.max(1));
-        let finite_nees: Vec<f64> = nees_series.iter().flatten().copied().collect();
-        let anees = (!finite_nees.is_empty())
-            .then(|| finite_nees.iter().sum::<f64>() / finite_nees.len() as f64);
-        let in_bounds = if finite_nees.is_empty() {
-            None
-        } else {
-            Some(
-                finite_nees
-                    .iter()
-                    .filter(|v| **v >= bounds.0 && **v <= bounds.1)
-                    .count() as f64
-                    / finite_nees.len() as f64,
-            )
-        };
         let dens: Vec<f64> = (0..nk)
             .filter_map(|k| safe(self.dens_abs[k], self.dens_n[k]))
             .collect();
@@ -254,16 +238,10 @@ impl FilterAccumulator {
                     (s.clone(), (c > 0).then(|| self.final_sum_err[i] / c as f64))
                 })
                 .collect(),
-            anees,
-            nees_dof: self.nees_dof,
-            nees_bounds_95: [bounds.0, bounds.1],
-            nees_in_bounds_frac: in_bounds,
+            consistency: self.consistency.report(channels),
+            failed: self.failed,
             diverged: self.diverged,
-            failures: self
-                .failures
-                .iter()
-                .map(|(r, t, m)| format!("run {r} at t = {t} s: {m}"))
-                .collect(),
+            failures: self.problems.clone(),
             us_per_step: if self.steps > 0 {
                 self.filter_ns as f64 / self.steps as f64 / 1e3
             } else {
@@ -279,7 +257,9 @@ impl FilterAccumulator {
                 bias: bias_series,
                 pos_rmse_m: pos_series,
                 vel_rmse_mps: vel_series,
-                nees_mean: nees_series,
+                nees_mean: self.consistency.nees_series(),
+                nees_kinematic_mean: self.consistency.nees_kinematic_series(),
+                nis_mean: self.consistency.nis_series(),
                 density_rms_pct: density_series,
                 density_mean_pct: density_bias_series,
                 density_at_estimate_rms_pct: density_at_estimate_series,

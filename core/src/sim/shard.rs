@@ -72,6 +72,8 @@ pub struct ShardResult {
     pub filters: Vec<String>,
     /// State names.
     pub states: Vec<String>,
+    /// Channel names.
+    pub channels: Vec<String>,
     /// Which shard this is.
     pub shard: Shard,
     /// The shard's blocks, in block order.
@@ -79,7 +81,7 @@ pub struct ShardResult {
 }
 
 /// Shard file format version.
-pub const SHARD_FORMAT: u32 = 1;
+pub const SHARD_FORMAT: u32 = 2;
 
 /// FNV-1a 64 fingerprint of a scenario's canonical TOML.
 pub fn scenario_fingerprint(scenario: &Scenario) -> String {
@@ -172,8 +174,9 @@ pub fn merge_shards(mut shards: Vec<ShardResult>) -> Result<TradeReport, TradeEr
             .filters
             .iter()
             .zip(&totals)
-            .map(|(k, a)| a.report(k, &first.states))
+            .map(|(k, a)| a.report(k, &first.states, &first.channels))
             .collect(),
         states: first.states,
+        channels: first.channels,
     })
 }

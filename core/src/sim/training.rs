@@ -43,6 +43,7 @@ pub fn generate_data(
                 augmented: vec![],
                 rho0_model: 1.0,
                 density_factor: 1.0,
+                bias_tau_s: None,
             };
             let mut out = Vec::with_capacity(n_steps / per_sample + 1);
             let mut record = |k: usize, x: &nalgebra::SVector<f64, 6>| {

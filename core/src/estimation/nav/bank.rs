@@ -133,9 +133,14 @@ impl<const N: usize> NavFilter<N> for BankNav<N> {
         beacons: &[(V3<f64>, V3<f64>)],
     ) -> Result<StepInfo, EstimationError> {
         let mut loglik = vec![f64::NEG_INFINITY; self.members.len()];
+        // Each live member's predicted measurements and innovation covariance, with its prior
+        // weight: the mixture's predictive distribution (for the NIS).
+        let mut predictive: Vec<(f64, DVector<f64>, DMatrix<f64>)> = Vec::new();
+        let mut epoch_slots = Vec::new();
+        let prior_weights = self.weights.clone();
         for (i, slot) in self.members.iter_mut().enumerate() {
             let Some(f) = slot else { continue };
-            let (_, items) = f.measurement_items(epoch, beacons);
+            let (slots, items) = f.measurement_items(epoch, beacons);
             if items.is_empty() {
                 loglik[i] = 0.0;
                 continue;
@@ -148,6 +153,9 @@ impl<const N: usize> NavFilter<N> for BankNav<N> {
                 if a == b { v + items[a].3 } else { v }
             });
             loglik[i] = gaussian_log_likelihood(&nu, &s).unwrap_or(f64::NEG_INFINITY);
+            let h0 = DVector::from_iterator(m, items.iter().map(|(h0, _, _, _)| *h0));
+            predictive.push((prior_weights[i], h0, s));
+            epoch_slots = slots;
             if f.update(epoch, beacons).is_err() {
                 *slot = None;
                 loglik[i] = f64::NEG_INFINITY;
@@ -170,11 +178,13 @@ impl<const N: usize> NavFilter<N> for BankNav<N> {
             .filter_map(|(m, w)| m.as_ref().map(|f| (*w, f.estimate())))
             .unzip();
         self.fused = fuse_bank(&w, &est)?;
+        let (nis, innovations, nis_terms) = mixture_nis(epoch, &epoch_slots, &predictive);
         Ok(StepInfo {
-            nis: None,
+            nis,
             n_meas: epoch.values.iter().flatten().count(),
-            innovations: Vec::new(),
+            innovations,
             weights: Some(self.weights.clone()),
+            nis_terms,
         })
     }
 
@@ -212,4 +222,43 @@ impl<const N: usize> NavFilter<N> for BankNav<N> {
             .sum();
         Some(crate::atmosphere::Atmosphere::density(&f.model().atmosphere, altitude_m) * factor)
     }
+}
+
+/// NIS of a bank's mixture predictive distribution over the channels `slots` of `epoch`: with
+/// member predictions ẑ_i, innovation covariances S_i and prior weights w_i (renormalised over
+/// the live members), ẑ = Σ w_i ẑ_i and S = Σ w_i (S_i + (ẑ_i − ẑ)(ẑ_i − ẑ)ᵀ), the moment-matched
+/// mixture (Bar-Shalom, Li & Kirubarajan, *Estimation with Applications to Tracking and
+/// Navigation*, §11.6). Returns νᵀS⁻¹ν, ν, and the per-channel marginals ν_j²/S_jj; `None` and
+/// nothing when no channel was measured or S is not positive definite.
+fn mixture_nis(
+    epoch: &MeasurementEpoch,
+    slots: &[usize],
+    members: &[(f64, DVector<f64>, DMatrix<f64>)],
+) -> (Option<f64>, Vec<f64>, Vec<(usize, f64)>) {
+    let m = slots.len();
+    let total: f64 = members.iter().map(|(w, _, _)| w).sum();
+    if m == 0 || members.is_empty() || total.is_nan() || total <= 0.0 {
+        return (None, Vec::new(), Vec::new());
+    }
+    let z = DVector::from_iterator(m, slots.iter().map(|&c| epoch.values[c].unwrap_or(0.0)));
+    let mut mean = DVector::zeros(m);
+    for (w, h, _) in members {
+        mean += h * (w / total);
+    }
+    let mut s = DMatrix::zeros(m, m);
+    for (w, h, si) in members {
+        let d = h - &mean;
+        s += (si + &d * d.transpose()) * (w / total);
+    }
+    let nu = z - mean;
+    let Some(chol) = s.clone().cholesky() else {
+        return (None, Vec::new(), Vec::new());
+    };
+    let nis = nu.dot(&chol.solve(&nu));
+    let terms = slots
+        .iter()
+        .enumerate()
+        .map(|(j, &c)| (c, nu[j] * nu[j] / s[(j, j)]))
+        .collect();
+    (Some(nis), nu.iter().copied().collect(), terms)
 }

@@ -50,7 +50,7 @@ impl<const N: usize> EkfNav<N> {
         Ok(EkfNav {
             onboard: Arc::clone(onboard),
             model,
-            ekf: Ekf::new(start.x0, start.p0)?,
+            ekf: Ekf::new(start.x0, start.p0)?.with_consider(onboard.tuning.n_consider)?,
             q: start.q,
             t: 0.0,
             channels,
@@ -64,39 +64,39 @@ impl<const N: usize> EkfNav<N> {
         self.ekf.p = p;
     }
 
-    /// The RK4 sub-steps `(x_next, Φ, Q_h)` that take the current estimate to `t_to`.
-    pub fn transition(
+    /// The sub-steps `(n, h, Q_h)` that take the estimate to `t_to` (`n = 0` when `t_to` is not
+    /// later than the filter time); an error past the sub-step limit.
+    pub fn substeps_to(
         &self,
         t_to: f64,
-    ) -> Vec<(SVector<f64, N>, SMatrix<f64, N, N>, SMatrix<f64, N, N>)> {
+    ) -> Result<(usize, f64, SMatrix<f64, N, N>), EstimationError> {
         let dt = t_to - self.t;
         if dt <= 0.0 {
-            return Vec::new();
+            return Ok((0, 0.0, SMatrix::zeros()));
         }
         let step = self.onboard.filter_step_s;
-        let (n, h) = substeps(dt, step);
-        let q = self.q * (h / step);
-        let mut x = self.ekf.x;
-        let mut out = Vec::with_capacity(n);
-        for _ in 0..n {
-            let (x_next, phi) = self.model.step_with_linear_stm(&x, self.bank, h);
-            out.push((x_next, phi, q));
-            x = x_next;
-        }
-        out
+        let (n, h) = substeps(dt, step)?;
+        Ok((n, h, self.q * (h / step)))
     }
 
-    /// Apply precomputed sub-steps (from [`EkfNav::transition`] of a filter with the same estimate).
-    pub fn apply_transition(
+    /// One RK4 sub-step of length `h` of the current estimate: `(x_next, Φ)`.
+    pub fn substep(&self, h: f64) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
+        self.model.step_with_linear_stm(&self.ekf.x, self.bank, h)
+    }
+
+    /// Apply one sub-step (from [`EkfNav::substep`] of a filter with the same estimate).
+    pub fn apply_substep(
         &mut self,
-        t_to: f64,
-        steps: &[(SVector<f64, N>, SMatrix<f64, N, N>, SMatrix<f64, N, N>)],
+        x_next: SVector<f64, N>,
+        phi: &SMatrix<f64, N, N>,
+        q: &SMatrix<f64, N, N>,
     ) -> Result<(), EstimationError> {
-        for (x_next, phi, q) in steps {
-            self.ekf.predict(*x_next, phi, q)?;
-        }
+        self.ekf.predict(x_next, phi, q)
+    }
+
+    /// Set the filter time after a prediction to `t_to`.
+    pub fn finish_prediction(&mut self, t_to: f64) {
         self.t = self.t.max(t_to);
-        Ok(())
     }
 
     /// Measurement update with precomputed linearised items (channel slot, item); only the slots
@@ -105,16 +105,16 @@ impl<const N: usize> EkfNav<N> {
         &mut self,
         items: &[(usize, LinearizedMeasurement<N>)],
     ) -> Result<StepInfo, EstimationError> {
-        let mine: Vec<LinearizedMeasurement<N>> = items
+        let (slots, mine): (Vec<usize>, Vec<LinearizedMeasurement<N>>) = items
             .iter()
             .filter(|(c, _)| self.channels.as_ref().is_none_or(|m| m.contains(c)))
-            .map(|(_, it)| *it)
-            .collect();
+            .map(|(c, it)| (*c, *it))
+            .unzip();
         if mine.is_empty() {
             return Ok(StepInfo::default());
         }
         let prior = self.ekf.x;
-        let (innovations, nis) = self.ekf.update_linearized(&prior, &mine)?;
+        let (innovations, terms, nis) = self.ekf.update_linearized(&prior, &mine)?;
         if self.ekf.x.iter().any(|v| !v.is_finite()) {
             return Err(EstimationError::NonFinite {
                 what: "updated state".into(),
@@ -125,6 +125,7 @@ impl<const N: usize> EkfNav<N> {
             n_meas: mine.len(),
             innovations,
             weights: None,
+            nis_terms: slots.into_iter().zip(terms).collect(),
         })
     }
 
@@ -190,8 +191,13 @@ impl<const N: usize> EkfNav<N> {
 
 impl<const N: usize> NavFilter<N> for EkfNav<N> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
-        let steps = self.transition(t_to);
-        self.apply_transition(t_to, &steps)
+        let (n, h, q) = self.substeps_to(t_to)?;
+        for _ in 0..n {
+            let (x_next, phi) = self.substep(h);
+            self.apply_substep(x_next, &phi, &q)?;
+        }
+        self.finish_prediction(t_to);
+        Ok(())
     }
 
     fn update(

@@ -89,21 +89,31 @@ impl<const N: usize> FusionNav<N> {
 impl<const N: usize> NavFilter<N> for FusionNav<N> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
         if self.feedback {
-            // After feedback every local filter holds x̂_CI: one transition serves them all.
-            let steps = match self.locals.iter().flatten().next() {
-                Some(f) => f.transition(t_to),
+            // After feedback every local filter holds x̂_CI: each sub-step's mean and Φ, computed
+            // once, serve them all.
+            let (n, h, q) = match self.locals.iter().flatten().next() {
+                Some(f) => f.substeps_to(t_to)?,
                 None => {
                     return Err(EstimationError::NotPositiveDefinite {
                         what: "every local filter's covariance".into(),
                     });
                 }
             };
-            for slot in self.locals.iter_mut() {
-                if let Some(f) = slot
-                    && f.apply_transition(t_to, &steps).is_err()
-                {
-                    *slot = None;
+            for _ in 0..n {
+                let Some((x_next, phi)) = self.locals.iter().flatten().next().map(|f| f.substep(h))
+                else {
+                    break;
+                };
+                for slot in self.locals.iter_mut() {
+                    if let Some(f) = slot
+                        && f.apply_substep(x_next, &phi, &q).is_err()
+                    {
+                        *slot = None;
+                    }
                 }
+            }
+            for f in self.locals.iter_mut().flatten() {
+                f.finish_prediction(t_to);
             }
             self.t = t_to;
             return Ok(());
@@ -131,6 +141,7 @@ impl<const N: usize> NavFilter<N> for FusionNav<N> {
     ) -> Result<StepInfo, EstimationError> {
         let mut nis = 0.0;
         let mut n_meas = 0;
+        let mut nis_terms = Vec::new();
         // With feedback the locals share x̂⁻, so one linearisation serves them all.
         let shared = if self.feedback {
             self.locals
@@ -151,6 +162,7 @@ impl<const N: usize> NavFilter<N> for FusionNav<N> {
                     Ok(info) => {
                         nis += info.nis.unwrap_or(0.0);
                         n_meas += info.n_meas;
+                        nis_terms.extend(info.nis_terms);
                     }
                     Err(_) => *slot = None,
                 }
@@ -186,6 +198,7 @@ impl<const N: usize> NavFilter<N> for FusionNav<N> {
             n_meas,
             innovations: Vec::new(),
             weights: Some(weights),
+            nis_terms,
         })
     }
 

@@ -158,6 +158,12 @@ fn density_filter_misfit(kind: FilterKind, onboard: &Onboard) -> Option<String> 
     use crate::dynamics::AugmentedParam;
     use crate::sensors::Channel;
     let augment = &onboard.model.augmented;
+    if onboard.tuning.n_consider > 0 {
+        return Some(
+            "it estimates its own density state and supports no consider parameters (remove filter.consider)"
+                .to_string(),
+        );
+    }
     if onboard.model.kind.is_cartesian() {
         return Some(
             "it needs the spherical state [r, lon, lat, v, fpa, heading, CdS/m, L/D] (filter.dynamics = \"spherical\")"
@@ -170,16 +176,7 @@ fn density_filter_misfit(kind: FilterKind, onboard: &Onboard) -> Option<String> 
     if !layout {
         let names: Vec<String> = augment
             .iter()
-            .map(|a| {
-                format!(
-                    "\"{}\"",
-                    match a {
-                        AugmentedParam::Rho0 => "rho0",
-                        AugmentedParam::LiftToDrag => "lift-to-drag",
-                        AugmentedParam::CdSOverM => "cd-s-over-m",
-                    }
-                )
-            })
+            .map(|a| format!("\"{}\"", a.config_name()))
             .collect();
         return Some(format!(
             "it needs the 8-state layout of seed 001 with filter.augment = [\"cd-s-over-m\", \"lift-to-drag\"] (the scenario has [{}])",

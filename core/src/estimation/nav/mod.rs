@@ -41,6 +41,11 @@ pub struct StepInfo {
     pub innovations: Vec<f64>,
     /// Fusion weights ω_i (CI filters) or model probabilities (banks).
     pub weights: Option<Vec<f64>>,
+    /// Per scalar measurement: the channel slot and its normalised innovation squared ν²/s
+    /// (sequential EKF updates: the conditional ν_i²/s_i, independent χ²(1) terms for a
+    /// consistent filter; batch updates: the marginal ν_i²/S_ii). What a flight team can check
+    /// without the truth.
+    pub nis_terms: Vec<(usize, f64)>,
 }
 
 /// Cloning a boxed filter (FMU state snapshots, benchmarks). Implemented for every `Clone` filter.

@@ -102,7 +102,7 @@ impl<const N: usize, const L: usize> UkfAcNav<N, L> {
 
 impl<const N: usize, const L: usize> NavFilter<N> for UkfAcNav<N, L> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
-        let Some((n, h, step)) = self.core.substeps_to(t_to) else {
+        let Some((n, h, step)) = self.core.substeps_to(t_to)? else {
             return Ok(());
         };
         // 𝒦 has zero derivative (random walk): the RK4 step leaves it unchanged.

@@ -34,7 +34,12 @@ pub struct UkfCmNav<const N: usize> {
 impl<const N: usize> UkfCmNav<N> {
     /// A UKF-CM on the `onboard` models from `start` (batch size from `filter.density.cm_batch`).
     pub fn new(onboard: &Arc<Onboard>, start: &FilterStart<N>) -> Result<Self, EstimationError> {
-        let ukf = Ukf::new(start.x0, start.p0, onboard.tuning.ukf, 0)?;
+        let ukf = Ukf::new(
+            start.x0,
+            start.p0,
+            onboard.tuning.ukf,
+            onboard.tuning.n_consider,
+        )?;
         Ok(UkfCmNav {
             core: UkfCore::new(onboard, onboard.model.clone(), ukf, None),
             q: start.q,
@@ -56,7 +61,7 @@ impl<const N: usize> UkfCmNav<N> {
 
 impl<const N: usize> NavFilter<N> for UkfCmNav<N> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
-        let Some((n, h, step)) = self.core.substeps_to(t_to) else {
+        let Some((n, h, step)) = self.core.substeps_to(t_to)? else {
             return Ok(());
         };
         let q = self.q * (h / step);

@@ -14,10 +14,22 @@ use crate::sensors::channels::kinematics;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use std::sync::Arc;
 
-/// Number and length of the RK4 sub-steps that cover `dt` with steps no longer than `step`.
-pub(crate) fn substeps(dt: f64, step: f64) -> (usize, f64) {
-    let n = ((dt / step) - 1e-9).ceil().max(1.0) as usize;
-    (n, dt / n as f64)
+/// Most RK4 sub-steps one prediction may take (about 0.2 s of EKF work; 28 h at a 1 s filter
+/// step). A longer prediction is refused with an error instead of running (or allocating) for an
+/// unbounded time: an FMI master can ask for any step size.
+pub const MAX_PREDICTION_SUBSTEPS: usize = 100_000;
+
+/// Number and length of the RK4 sub-steps that cover `dt` with steps no longer than `step`; an
+/// error past [`MAX_PREDICTION_SUBSTEPS`] or for a non-finite `dt`.
+pub(crate) fn substeps(dt: f64, step: f64) -> Result<(usize, f64), EstimationError> {
+    let n = ((dt / step) - 1e-9).ceil().max(1.0);
+    if !(n.is_finite() && n <= MAX_PREDICTION_SUBSTEPS as f64) {
+        return Err(EstimationError::InvalidInput(format!(
+            "a prediction over {dt} s needs {n} sub-steps of at most {step} s; the limit is {MAX_PREDICTION_SUBSTEPS}"
+        )));
+    }
+    let n = n as usize;
+    Ok((n, dt / n as f64))
 }
 
 /// The channels available at `epoch` (indices into `onboard.channels`), their values z and the
@@ -76,13 +88,18 @@ pub(crate) fn predict_channels<A: Atmosphere, const L: usize>(
     }
 }
 
-/// What a UKF update of `n_meas` scalar measurements reports.
-pub(crate) fn step_info(upd: &UkfUpdate, n_meas: usize) -> StepInfo {
+/// What a UKF update of the channels `slots` reports (per channel the marginal ν_i²/S_ii).
+pub(crate) fn step_info(upd: &UkfUpdate, slots: &[usize]) -> StepInfo {
     StepInfo {
         nis: Some(upd.nis),
-        n_meas,
+        n_meas: slots.len(),
         innovations: upd.innovation.iter().copied().collect(),
         weights: None,
+        nis_terms: slots
+            .iter()
+            .enumerate()
+            .map(|(i, &c)| (c, upd.innovation[i] * upd.innovation[i] / upd.s[(i, i)]))
+            .collect(),
     }
 }
 
@@ -125,14 +142,17 @@ impl<A: Atmosphere, const L: usize> UkfCore<A, L> {
 
     /// The sub-steps `(n, h)` from the filter time to `t_to` and the onboard filter step;
     /// `None` when `t_to` is not later than the filter time.
-    pub(crate) fn substeps_to(&self, t_to: f64) -> Option<(usize, f64, f64)> {
+    pub(crate) fn substeps_to(
+        &self,
+        t_to: f64,
+    ) -> Result<Option<(usize, f64, f64)>, EstimationError> {
         let dt = t_to - self.t;
         if dt <= 0.0 {
-            return None;
+            return Ok(None);
         }
         let step = self.onboard.filter_step_s;
-        let (n, h) = substeps(dt, step);
-        Some((n, h, step))
+        let (n, h) = substeps(dt, step)?;
+        Ok(Some((n, h, step)))
     }
 
     /// `n` UKF time updates of length `h` with process noise `q` each (the truth's RK4 step per
@@ -186,7 +206,7 @@ impl<A: Atmosphere, const L: usize> UkfCore<A, L> {
             Ok(())
         };
         let upd = self.ukf.update_with(&mut self.ws, h, z, r)?;
-        Ok(step_info(&upd, slots.len()))
+        Ok(step_info(&upd, slots))
     }
 
     /// UKF measurement update with every available channel of `epoch` (nothing when none is).

@@ -23,7 +23,12 @@ pub struct UkfNav<const N: usize> {
 impl<const N: usize> UkfNav<N> {
     /// A UKF on the `onboard` models from `start`.
     pub fn new(onboard: &Arc<Onboard>, start: &FilterStart<N>) -> Result<Self, EstimationError> {
-        let ukf = Ukf::new(start.x0, start.p0, onboard.tuning.ukf, 0)?;
+        let ukf = Ukf::new(
+            start.x0,
+            start.p0,
+            onboard.tuning.ukf,
+            onboard.tuning.n_consider,
+        )?;
         Ok(UkfNav {
             core: UkfCore::new(onboard, onboard.model.clone(), ukf, None),
             q: start.q,
@@ -33,7 +38,7 @@ impl<const N: usize> UkfNav<N> {
 
 impl<const N: usize> NavFilter<N> for UkfNav<N> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
-        let Some((n, h, step)) = self.core.substeps_to(t_to) else {
+        let Some((n, h, step)) = self.core.substeps_to(t_to)? else {
             return Ok(());
         };
         let q = self.q * (h / step);

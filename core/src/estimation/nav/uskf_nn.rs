@@ -101,6 +101,7 @@ impl<const N: usize, const L: usize> UskfNnNav<N, L> {
             augmented: fm.augmented.clone(),
             rho0_model: 1.0,
             density_factor: 1.0,
+            bias_tau_s: fm.bias_tau_s,
         };
         let aug = augment_start::<N, L>(start, 1.0, cfg.consider_p0, 0.0)?;
         let ukf = Ukf::new(aug.x0, aug.p0, onboard.tuning.ukf, 1)?;
@@ -156,7 +157,7 @@ impl<const N: usize, const L: usize> UskfNnNav<N, L> {
 
 impl<const N: usize, const L: usize> NavFilter<N> for UskfNnNav<N, L> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
-        let Some((n, h, step)) = self.core.substeps_to(t_to) else {
+        let Some((n, h, step)) = self.core.substeps_to(t_to)? else {
             return Ok(());
         };
         // eq. 51: ECRV transition and its process noise.

@@ -52,6 +52,8 @@ pub struct Judgement {
     pub err: Vec<f64>,
     /// NEES eᵀP⁻¹e over the states with a truth value, and its degrees of freedom.
     pub nees: Option<(f64, usize)>,
+    /// NEES over the six kinematic states (dof 6).
+    pub nees_kinematic: Option<f64>,
     /// True density at the epoch [kg/m³].
     pub density_true: f64,
     /// Position error norm \[m\] and velocity error norm [m/s].
@@ -125,6 +127,7 @@ impl<const N: usize> ErasedFilter for Dim<N> {
             truth: truth.iter().copied().collect(),
             err: err.iter().copied().collect(),
             nees: judge::nees(&err, &p, &truth),
+            nees_kinematic: judge::nees_kinematic(&err, &p),
             density_true: rho,
             pos_vel_err: judge::pos_vel_error(scenario, &x, &truth, &err),
             downrange_crossrange: judge::downrange_crossrange(

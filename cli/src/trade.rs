@@ -68,6 +68,11 @@ pub struct TradeArgs {
     /// `entrynav trade merge` combines the shards into exactly the single-process result.
     #[arg(long, value_name = "I/N")]
     pub shard: Option<String>,
+    /// Replay run K of this study (same scenario, --set overrides, seed and filters) and write
+    /// its full series per filter to --csv-dir: truth, estimate, σ, error, NEES, innovation and
+    /// NIS per channel, weights. Use it on a run listed under `failures`.
+    #[arg(long, value_name = "K", requires = "csv_dir", conflicts_with_all = ["shard", "grid"])]
+    pub replay_run: Option<usize>,
 }
 
 /// `entrynav trade merge`.
@@ -119,6 +124,9 @@ pub fn run(args: &TradeArgs) -> Result<()> {
     }
     let filters = FilterKind::parse_list(&args.filters, &scenario.onboard)?;
     let runs = args.runs.unwrap_or(scenario.config.monte_carlo.runs);
+    if let (Some(k), Some(dir)) = (args.replay_run, &args.csv_dir) {
+        return crate::replay::write_replay(&scenario, &filters, args.seed, k, dir);
+    }
     let opts = McOptions::new(runs, args.seed);
     if let Some(spec) = &args.shard {
         let shard = Shard::parse(spec)?;

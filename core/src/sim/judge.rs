@@ -57,29 +57,39 @@ pub fn estimation_error<const N: usize>(
 
 /// NEES eᵀP⁻¹e over the states that have a truth value, with its degrees of freedom (`None`
 /// when no state has a truth value or that block of P is not positive definite).
+///
+/// Computed on the correlation matrix, eᵀP⁻¹e = (D⁻¹e)ᵀ(D⁻¹PD⁻¹)⁻¹(D⁻¹e) with D = diag(√P_ii):
+/// the states span fifteen orders of magnitude (rad² to m²), and the Cholesky factor of the raw P
+/// loses the digits an ill-conditioned but valid covariance needs.
 pub fn nees<const N: usize>(
     err: &SVector<f64, N>,
     p: &SMatrix<f64, N, N>,
     truth: &SVector<f64, N>,
 ) -> Option<(f64, usize)> {
     let idx: Vec<usize> = (0..N).filter(|&i| truth[i].is_finite()).collect();
-    if idx.len() == N {
-        let chol = p.cholesky()?;
-        let v = chol.solve(err);
-        return Some((err.dot(&v), N));
-    }
-    let m = idx.len();
-    if m == 0 {
-        return None;
-    }
-    let p = nalgebra::DMatrix::from_fn(m, m, |a, b| p[(idx[a], idx[b])]);
-    let e = nalgebra::DVector::from_fn(m, |a, _| err[idx[a]]);
-    let chol = p.cholesky()?;
-    Some((e.dot(&chol.solve(&e)), m))
+    let value = scaled_quadratic_form(err, p, &idx)?;
+    Some((value, idx.len()))
 }
 
-/// NEES over the six kinematic states (the leading 6×6 block of P), `None` if that block is not
-/// positive definite.
+/// eᵀP⁻¹e over the entries `idx` of `e` and `P`, on the correlation matrix (see [`nees`]).
+fn scaled_quadratic_form<const N: usize>(
+    err: &SVector<f64, N>,
+    p: &SMatrix<f64, N, N>,
+    idx: &[usize],
+) -> Option<f64> {
+    let m = idx.len();
+    if m == 0 || idx.iter().any(|&i| p[(i, i)].is_nan() || p[(i, i)] <= 0.0) {
+        return None;
+    }
+    let d: Vec<f64> = idx.iter().map(|&i| p[(i, i)].sqrt()).collect();
+    let c = nalgebra::DMatrix::from_fn(m, m, |a, b| p[(idx[a], idx[b])] / (d[a] * d[b]));
+    let e = nalgebra::DVector::from_fn(m, |a, _| err[idx[a]] / d[a]);
+    let chol = c.cholesky()?;
+    Some(e.dot(&chol.solve(&e)))
+}
+
+/// NEES over the six kinematic states (the leading 6×6 block of P, on its correlation matrix),
+/// `None` if that block is not positive definite.
 pub fn nees_kinematic<const N: usize>(
     err: &SVector<f64, N>,
     p: &SMatrix<f64, N, N>,
@@ -87,9 +97,7 @@ pub fn nees_kinematic<const N: usize>(
     if N < 6 {
         return None;
     }
-    let e = err.fixed_rows::<6>(0).into_owned();
-    let chol = p.fixed_view::<6, 6>(0, 0).into_owned().cholesky()?;
-    Some(e.dot(&chol.solve(&e)))
+    scaled_quadratic_form(err, p, &[0, 1, 2, 3, 4, 5])
 }
 
 /// Convert a filter estimate to planet-relative spherical `[r, lon, lat, v, fpa, heading]` at `t`.

@@ -16,6 +16,7 @@ use super::shard::{
 };
 use super::start::initial_estimate;
 use super::{TruthRun, run_seed, simulate_truth};
+use crate::estimation::Onboard;
 use crate::estimation::nav::{FilterKind, NavError};
 use crate::scenario::{Scenario, TruthDraw};
 use rand::SeedableRng;
@@ -194,38 +195,65 @@ fn run_blocks(
     Ok(out)
 }
 
-/// Everything for one run: the truth run to its end, the filters' common initial estimate, and
-/// each filter's records (the engine's navigation step over the recorded epochs).
+/// One Monte Carlo run's truth, recorded: the realisation, the truth run with its measurement
+/// epochs, and the filters' common initial estimate. Filters can be run over it any number of
+/// times (common random numbers: `entrynav tune` compares tunings on the same runs).
+#[derive(Debug, Clone)]
+pub struct RecordedRun {
+    /// Run index.
+    pub run: usize,
+    /// The truth realisation.
+    pub draw: TruthDraw,
+    /// The truth run and its measurement epochs.
+    pub truth: TruthRun,
+    /// The filters' initial estimate.
+    pub x0: Vec<f64>,
+}
+
+/// Record run `run` of a study with master seed `seed`.
 ///
 /// Run `run` draws everything from `ChaCha8Rng::seed_from_u64(run_seed(seed, run))`, in this
 /// order: the truth dispersions, the measurement noise of the whole run, the initial estimate.
+pub fn record_run(scenario: &Scenario, seed: u64, run: usize) -> Result<RecordedRun, TradeError> {
+    let mut rng = ChaCha8Rng::seed_from_u64(run_seed(seed, run as u64));
+    let draw = scenario.draw_truth(&mut rng);
+    let truth = simulate_truth(scenario, &draw, &mut rng)
+        .map_err(|source| TradeError::Truth { run, source })?;
+    let x0 = initial_estimate(scenario, &draw, &truth.samples[0], &mut rng);
+    Ok(RecordedRun {
+        run,
+        draw,
+        truth,
+        x0,
+    })
+}
+
+/// Everything for one run: the truth recorded, then each filter's records (the engine's
+/// navigation step over its epochs).
 pub fn one_run(
     scenario: &Arc<Scenario>,
     filters: &[FilterKind],
     seed: u64,
     run: usize,
 ) -> Result<Vec<RunRecord>, TradeError> {
-    let mut rng = ChaCha8Rng::seed_from_u64(run_seed(seed, run as u64));
-    let draw = scenario.draw_truth(&mut rng);
-    let truth = simulate_truth(scenario, &draw, &mut rng)
-        .map_err(|source| TradeError::Truth { run, source })?;
-    let x0 = initial_estimate(scenario, &draw, &truth.samples[0], &mut rng);
+    let rec = record_run(scenario, seed, run)?;
     Ok(filters
         .iter()
-        .map(|&kind| filter_run(scenario, &draw, &truth, kind, &x0))
+        .map(|&kind| filter_run(scenario, &scenario.onboard, &rec, kind))
         .collect())
 }
 
-/// One filter over a recorded truth run, judged at every epoch.
-fn filter_run(
-    scenario: &Arc<Scenario>,
-    draw: &TruthDraw,
-    truth: &TruthRun,
+/// Filter `kind` built from `onboard` (the scenario's, or a re-tuned copy) over the recorded run
+/// `recorded`, judged at every epoch against its truth.
+pub fn filter_run(
+    scenario: &Scenario,
+    onboard: &Arc<Onboard>,
+    recorded: &RecordedRun,
     kind: FilterKind,
-    x0: &[f64],
 ) -> RunRecord {
+    let (draw, truth) = (&recorded.draw, &recorded.truth);
     let mut rec = RunRecord::default();
-    let mut nav = match Navigator::new_checked(Arc::clone(&scenario.onboard), kind, x0) {
+    let mut nav = match Navigator::new_checked(Arc::clone(onboard), kind, &recorded.x0) {
         Ok(nav) => nav,
         Err(e) => {
             rec.failure = Some((0.0, e.to_string()));

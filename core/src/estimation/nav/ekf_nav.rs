@@ -139,6 +139,14 @@ impl<const N: usize> EkfNav<N> {
         slots.into_iter().zip(items).collect()
     }
 
+    /// The channel slots this filter uses (all when it is not a local filter).
+    pub fn channel_mask(&self) -> &[usize] {
+        match &self.channels {
+            Some(m) => m,
+            None => &[],
+        }
+    }
+
     /// The filter's dynamics model.
     pub fn model(&self) -> &EntryModel<AtmosphereModel> {
         &self.model

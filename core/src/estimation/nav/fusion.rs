@@ -2,11 +2,12 @@
 //! intersection, with or without information feedback (seed 000 §2.3.3, §3.3–3.4).
 
 use super::ekf_nav::EkfNav;
+use super::fusion_exact::{fuse_exact, local_update};
 use super::start::FilterStart;
 use super::{NavFilter, StepInfo};
 use crate::estimation::EstimationError;
-use crate::estimation::Onboard;
 use crate::estimation::ci::{CiWeighting, covariance_intersection, feedback};
+use crate::estimation::{FusionCovariance, Onboard};
 use crate::math::V3;
 use crate::sensors::MeasurementEpoch;
 use nalgebra::{SMatrix, SVector};
@@ -16,9 +17,11 @@ use std::sync::Arc;
 ///
 /// * `ci` (no feedback): the local filters run independently from P0; each step their posteriors
 ///   are fused with determinant-optimal weights (the paper's "slowest" variant).
-/// * `dcifaif`: fast ∞-norm weights (eq. 21) and information feedback (eq. 22): every local filter
-///   is reset to (x̂_CI, P_CI/ω_i). The locals start from (x̂0, n·P0), the equal-weight feedback of
-///   (x̂0, P0).
+/// * `dcifaif`: fast ∞-norm weights (eq. 21) and information feedback. With
+///   `fusion_covariance = "exact"` (the default) the fused covariance is the exact covariance of
+///   the CI-weighted estimate and every local filter is reset to it ([`super::fusion_exact`]);
+///   with `"paper"` the fused covariance is the CI bound and every local filter is reset to
+///   (x̂_CI, P_CI/ω_i) (eq. 22), starting from (x̂0, n·P0), the equal-weight feedback of (x̂0, P0).
 ///
 /// A local filter that fails numerically is dropped from the fusion (its subsystem is weakly
 /// observable, seed 000 §2.4); the filter fails only when every local filter has.
@@ -27,6 +30,10 @@ pub struct FusionNav<const N: usize> {
     locals: Vec<Option<EkfNav<N>>>,
     method: CiWeighting,
     feedback: bool,
+    /// Feedback with the exact fused covariance (`dcifaif` with `fusion_covariance = "exact"`).
+    exact: bool,
+    /// Number of consider parameters (the last states).
+    n_consider: usize,
     fused: (SVector<f64, N>, SMatrix<f64, N, N>),
     t: f64,
     /// Bank-angle command of the local filters' onboard models \[rad\].
@@ -49,8 +56,9 @@ impl<const N: usize> FusionNav<N> {
             .collect();
         let mut locals = Vec::new();
         let radio = onboard.radio_beacons();
+        let exact = with_feedback && onboard.tuning.fusion_covariance == FusionCovariance::Exact;
         let mut local_start = start.clone();
-        if with_feedback {
+        if with_feedback && !exact {
             local_start.p0 = start.p0 * radio.len() as f64;
         }
         for b in radio {
@@ -79,9 +87,75 @@ impl<const N: usize> FusionNav<N> {
             locals,
             method,
             feedback: with_feedback,
+            exact,
+            n_consider: onboard.tuning.n_consider,
             fused: (start.x0, start.p0),
             t: 0.0,
             bank: onboard.initial_bank,
+        })
+    }
+}
+
+impl<const N: usize> FusionNav<N> {
+    /// The exact-covariance update: every live local updates the common prior with its channels,
+    /// the updates are fused with fast CI weights and the exact covariance, and every local is
+    /// reset to the result.
+    fn update_exact(
+        &mut self,
+        epoch: &MeasurementEpoch,
+        beacons: &[(V3<f64>, V3<f64>)],
+    ) -> Result<StepInfo, EstimationError> {
+        let Some(first) = self.locals.iter().flatten().next() else {
+            return Err(EstimationError::NotPositiveDefinite {
+                what: "every local filter's covariance".into(),
+            });
+        };
+        let (x, p) = first.estimate();
+        let items = first.all_measurement_items(epoch, beacons);
+        let mut updates = Vec::new();
+        let mut slots = Vec::new();
+        for (i, slot) in self.locals.iter_mut().enumerate() {
+            let Some(f) = slot else { continue };
+            match local_update(&x, &p, &items, f.channel_mask(), self.n_consider) {
+                Ok(Some(u)) => {
+                    updates.push(u);
+                    slots.push(i);
+                }
+                Ok(None) => {}
+                Err(_) => *slot = None,
+            }
+        }
+        let mut weights = vec![0.0; self.locals.len()];
+        let (mut nis, mut n_meas, mut nis_terms) = (0.0, 0, Vec::new());
+        for u in &updates {
+            nis += u.nis;
+            n_meas += u.nis_terms.len();
+            nis_terms.extend(u.nis_terms.iter().copied());
+        }
+        let (xf, pf) = match updates.len() {
+            0 => (x, p),
+            1 => {
+                weights[slots[0]] = 1.0;
+                (updates[0].x, updates[0].p)
+            }
+            _ => {
+                let (xf, pf, w) = fuse_exact(&p, &updates)?;
+                for (&i, wi) in slots.iter().zip(w) {
+                    weights[i] = wi;
+                }
+                (xf, pf)
+            }
+        };
+        for f in self.locals.iter_mut().flatten() {
+            f.set_estimate(xf, pf);
+        }
+        self.fused = (xf, pf);
+        Ok(StepInfo {
+            nis: (n_meas > 0).then_some(nis),
+            n_meas,
+            innovations: Vec::new(),
+            weights: Some(weights),
+            nis_terms,
         })
     }
 }
@@ -139,6 +213,9 @@ impl<const N: usize> NavFilter<N> for FusionNav<N> {
         epoch: &MeasurementEpoch,
         beacons: &[(V3<f64>, V3<f64>)],
     ) -> Result<StepInfo, EstimationError> {
+        if self.exact {
+            return self.update_exact(epoch, beacons);
+        }
         let mut nis = 0.0;
         let mut n_meas = 0;
         let mut nis_terms = Vec::new();

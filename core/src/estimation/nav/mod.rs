@@ -9,6 +9,7 @@ pub mod bank;
 pub mod build;
 pub mod ekf_nav;
 pub mod fusion;
+mod fusion_exact;
 pub mod kind;
 pub mod start;
 pub mod ukf_ac;

@@ -5,9 +5,11 @@ mod grid;
 mod observe;
 mod optimize;
 mod plots;
+mod replay;
 mod simulate;
 mod trade;
 mod train;
+mod tune;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -36,7 +38,19 @@ enum Command {
     /// Simulate the truth trajectory and the sensor measurements of a scenario.
     Simulate(simulate::SimulateArgs),
     /// Monte Carlo trade study of navigation filters on a scenario.
+    ///
+    /// Per filter: RMSE per state, consistency (NEES over all states with truth-equivalent
+    /// augmented parameters and over the six kinematic states; NIS overall and per channel; χ²
+    /// 95 % bounds), and two kinds of bad runs: FAILED = the filter stopped on a numerical
+    /// failure (a covariance lost positive definiteness, a value became non-finite); DIVERGED =
+    /// the run completed but its final NEES exceeds 100 × its degrees of freedom (confidently
+    /// wrong). `failures` lists run index, time and reason; `--replay-run K --csv-dir DIR`
+    /// writes run K's full series.
     Trade(trade::TradeArgs),
+    /// Tune a scenario's process noise (and optionally the assumed measurement noise) until its
+    /// filters are consistent (ANEES/dof and ANIS/dof near 1, no divergence), validate on fresh
+    /// runs and write the tuned scenario.
+    Tune(tune::TuneArgs),
     /// Degree of observability δ(t) and beacon Fisher information along a scenario's trajectory.
     Observe(observe::ObserveArgs),
     /// Train the USKF-NN density network offline (seed 001 Algorithm 1) and write its file.
@@ -83,6 +97,7 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Simulate(args) => simulate::run(&args),
         Command::Trade(args) => trade::run(&args),
+        Command::Tune(args) => tune::run(&args),
         Command::Observe(args) => observe::run(&args),
         Command::TrainDensity(args) => train::run(&args),
         Command::Fmu(args) => fmu::run(&args),

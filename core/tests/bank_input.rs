@@ -8,6 +8,7 @@ use entrynav::scenario::{Scenario, ScenarioConfig, TruthDraw};
 use entrynav::sim::judge::estimate_spherical;
 use entrynav::sim::start::initial_estimate;
 use entrynav::sim::{TruthRun, run_seed, simulate_truth};
+use entrynav::state_dim::{DimVisitor, with_state_dim};
 use nalgebra::{SMatrix, SVector};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -158,16 +159,37 @@ fn improvement<const N: usize, const L: usize>(
     (errors(&nominal, &told), errors(&nominal, &wrong))
 }
 
+struct Improvement<'a> {
+    name: &'a str,
+    kind: FilterKind,
+}
+
+impl DimVisitor for Improvement<'_> {
+    type Output = ((f64, f64), (f64, f64));
+    fn visit<const N: usize, const L: usize>(self) -> Self::Output {
+        improvement::<N, L>(self.name, self.kind)
+    }
+}
+
+struct Equivalence<'a> {
+    name: &'a str,
+    kind: FilterKind,
+}
+
+impl DimVisitor for Equivalence<'_> {
+    type Output = ();
+    fn visit<const N: usize, const L: usize>(self) {
+        bank_equivalence::<N, L>(self.name, self.kind)
+    }
+}
+
 #[test]
 fn filter_told_the_flown_bank_tracks_the_truth() {
     for (name, kinds) in CASES {
         for &kind in kinds {
+            let n = scenario(name, 0.0).filter_model().state_dim();
             let ((rms_t, fin_t), (rms_w, fin_w)) =
-                match scenario(name, 0.0).filter_model().state_dim() {
-                    6 => improvement::<6, 7>(name, kind),
-                    8 => improvement::<8, 9>(name, kind),
-                    n => panic!("{name}: {n} states"),
-                };
+                with_state_dim(n, Improvement { name, kind }).unwrap();
             println!(
                 "{name} {}: position error RMS {rms_t:.1} m (told {FLOWN_BANK_DEG}°) vs {rms_w:.1} m (left at 0°), final {fin_t:.1} vs {fin_w:.1} m",
                 kind.name()
@@ -215,11 +237,8 @@ fn bank_equivalence<const N: usize, const L: usize>(name: &str, kind: FilterKind
 fn setting_the_scenario_bank_changes_nothing_and_another_bank_equals_that_scenario() {
     for (name, kinds) in CASES {
         for &kind in kinds {
-            match scenario(name, 0.0).filter_model().state_dim() {
-                6 => bank_equivalence::<6, 7>(name, kind),
-                8 => bank_equivalence::<8, 9>(name, kind),
-                n => panic!("{name}: {n} states"),
-            }
+            let n = scenario(name, 0.0).filter_model().state_dim();
+            with_state_dim(n, Equivalence { name, kind }).unwrap();
         }
     }
 }

@@ -143,13 +143,50 @@ fn missing_table_file_is_refused_with_the_file_name() {
 
 #[test]
 fn structural_errors_name_the_field() {
+    let q_line = base()
+        .lines()
+        .find(|l| l.starts_with("q_diag = "))
+        .unwrap()
+        .to_string();
+    let msg = error_of(|s| s.replace(&q_line, "q_diag = [1.0]"));
+    assert!(msg.contains("filter.q_diag") && msg.contains("11"), "{msg}");
+    // Augmented and consider states: duplicates, two density scales, biases without an IMU, a
+    // start value out of range, a bad Gauss-Markov time constant, a bad noise factor.
+    let augment = "augment = [\"rho0\", \"lift-to-drag\", \"accel-bias-x\", \"accel-bias-y\", \"accel-bias-z\"]";
+    assert!(base().contains(augment));
     let msg = error_of(|s| {
         s.replace(
-            "q_diag = [1.0e2, 1.0e-8, 1.0e-8, 10.0, 1.0e-4, 1.0e-4, 1.0e-12, 1.0e-4]",
-            "q_diag = [1.0]",
+            augment,
+            &format!("{augment}\nconsider = [\"rho0\"]\ninitial_consider = [2e-4]"),
         )
     });
-    assert!(msg.contains("filter.q_diag") && msg.contains("8"), "{msg}");
+    assert!(
+        msg.contains("listed twice") && msg.contains("rho0"),
+        "{msg}"
+    );
+    let msg = error_of(|s| {
+        s.replace(augment, "augment = [\"rho0\", \"lift-to-drag\", \"accel-bias-x\", \"accel-bias-y\", \"density-bias\"]")
+    });
+    assert!(msg.contains("rho0 and density-bias"), "{msg}");
+    let msg = error_of(|s| s.replace("0.17, 0.0, 0.0, 0.0]", "0.17, 0.0, 0.0, 20.0]"));
+    assert!(
+        msg.contains("filter.initial_augmented[4]") && msg.contains("10"),
+        "{msg}"
+    );
+    let msg = error_of(|s| {
+        s.replace(
+            "dynamics = \"spherical\"\n# Seed 000's",
+            "dynamics = \"spherical\"\naccel_bias_tau_s = -5.0\n# Seed 000's",
+        )
+    });
+    assert!(msg.contains("filter.accel_bias_tau_s"), "{msg}");
+    let msg = error_of(|s| {
+        s.replace(
+            "[filter.vehicle]",
+            "[filter.noise_inflation]\nrange = 0.0\n\n[filter.vehicle]",
+        )
+    });
+    assert!(msg.contains("filter.noise_inflation.range"), "{msg}");
     let msg = error_of(|s| s.replacen("heading_deg = 5.156\n", "", 1));
     assert!(
         msg.contains("truth.initial") && msg.contains("heading_deg"),

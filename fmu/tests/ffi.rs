@@ -453,7 +453,7 @@ fn filter_fmu_bank_input_reaches_the_filter_and_is_restored() {
     for (k, e) in epochs.iter().enumerate().take(100) {
         step(&a, k, bank_of(k));
         nav.do_step(k as f64, 1.0, bank_of(k), e.as_ref()).unwrap();
-        assert_eq!(a.reals(&est), bits(&nav.estimate().x), "step {k}");
+        assert_eq!(a.reals(&est), bits(&nav.estimate().x[..6]), "step {k}");
         if k == 59 {
             // SAFETY: our instance.
             unsafe { assert_eq!(fmi2GetFMUstate(a.c, &mut st), 0) };
@@ -484,7 +484,7 @@ fn filter_fmu_bank_input_reaches_the_filter_and_is_restored() {
     let again: Vec<_> = (60..100).map(|k| step(&a, k, bank_of(k))).collect();
     let restored: Vec<_> = (60..100).map(|k| step(&b, k, bank_of(k))).collect();
     assert_eq!(again, restored);
-    assert_eq!(a.reals(&est), bits(&nav.estimate().x));
+    assert_eq!(a.reals(&est), bits(&nav.estimate().x[..6]));
     // SAFETY: our instances and states.
     unsafe {
         assert_eq!(fmi2FreeFMUstate(a.c, &mut st), 0);

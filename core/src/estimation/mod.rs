@@ -22,7 +22,7 @@ pub mod nav;
 pub mod onboard;
 pub mod ukf;
 
-pub use onboard::{FilterTuning, Onboard, OnboardChannel};
+pub use onboard::{FilterTuning, FusionCovariance, Onboard, OnboardChannel};
 
 use nalgebra::SMatrix;
 use thiserror::Error;

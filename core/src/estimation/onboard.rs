@@ -30,6 +30,18 @@ pub struct OnboardChannel {
     pub noise: Noise,
 }
 
+/// How DCIFAIF's fused covariance is formed and fed back (`filter.fusion_covariance`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FusionCovariance {
+    /// The exact covariance of the CI-weighted estimate, fed back to every local filter
+    /// (`nav::fusion_exact`).
+    #[default]
+    Exact,
+    /// Seed 000 as printed: the CI bound (eq. 20), fed back as P_CI/ω_i (eq. 22).
+    Paper,
+}
+
 /// Filter tuning: start covariance, process noise and the per-filter settings.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FilterTuning {
@@ -44,6 +56,8 @@ pub struct FilterTuning {
     pub ukf: UkfParams,
     /// Density biases Δ of a multiple-model bank (seed 003 Table 4).
     pub model_bank_density_bias: Vec<f64>,
+    /// DCIFAIF's fused covariance and feedback.
+    pub fusion_covariance: FusionCovariance,
     /// Settings of the density-adaptation filters (`[filter.density]`; `None` when the scenario
     /// has no such section, in which case the seed-001 defaults apply where a filter needs them).
     pub density: Option<DensityFilterConfig>,
@@ -101,6 +115,19 @@ impl Onboard {
     /// Inertial (position, velocity) of every beacon at time `t` (the ephemerides).
     pub fn beacon_states(&self, t: f64) -> Vec<([f64; 3], [f64; 3])> {
         self.beacons.iter().map(|b| b.state_at(t)).collect()
+    }
+
+    /// The same onboard view with process-noise diagonal `q_diag` and the assumed measurement noise
+    /// of channel `c` times `noise_factor[c]` (missing factors are 1): a re-tuned filter.
+    pub fn with_tuning(&self, q_diag: &[f64], noise_factor: &[f64]) -> Onboard {
+        let mut out = self.clone();
+        out.tuning.q_diag = q_diag.to_vec();
+        for (c, ch) in out.channels.iter_mut().enumerate() {
+            if let Some(&f) = noise_factor.get(c) {
+                ch.noise = ch.noise.scaled(f);
+            }
+        }
+        out
     }
 
     /// Indices of the beacons that have at least one radio channel.

@@ -303,6 +303,17 @@ impl Scenario {
 }
 
 fn channel_specs(config: &ScenarioConfig, beacon_names: &[String]) -> Vec<ChannelSpec> {
+    let mut out = channel_specs_as_sensed(config, beacon_names);
+    if let Some(inflation) = &config.filter.noise_inflation {
+        for spec in &mut out {
+            spec.filter_noise = spec.filter_noise.scaled(inflation.factor(spec.channel));
+        }
+    }
+    out
+}
+
+/// The channels with the filter noise before `filter.noise_inflation`.
+fn channel_specs_as_sensed(config: &ScenarioConfig, beacon_names: &[String]) -> Vec<ChannelSpec> {
     let mut out = Vec::new();
     let s = &config.sensors;
     if let Some(imu) = &s.imu {

@@ -1,9 +1,10 @@
 //! The built-in scenarios, embedded from the repository's `scenarios/` folder.
 
 /// Names of the built-in scenarios, in listing order.
-pub const BUILTIN_NAMES: [&str; 7] = [
+pub const BUILTIN_NAMES: [&str; 8] = [
     "four-beacon-fusion",
     "four-beacon-fusion-fault",
+    "four-beacon-fusion-paper",
     "msl-airdata",
     "ground-beacons-3",
     "orbiters-3",
@@ -17,6 +18,9 @@ pub fn builtin_toml(name: &str) -> Option<&'static str> {
         "four-beacon-fusion" => include_str!("../../../scenarios/four-beacon-fusion.toml"),
         "four-beacon-fusion-fault" => {
             include_str!("../../../scenarios/four-beacon-fusion-fault.toml")
+        }
+        "four-beacon-fusion-paper" => {
+            include_str!("../../../scenarios/four-beacon-fusion-paper.toml")
         }
         "msl-airdata" => include_str!("../../../scenarios/msl-airdata.toml"),
         "ground-beacons-3" => include_str!("../../../scenarios/ground-beacons-3.toml"),

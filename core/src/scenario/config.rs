@@ -7,6 +7,7 @@
 use crate::atmosphere::{AtmosphereConfig, PerturbationConfig};
 use crate::beacons::BeaconConfig;
 use crate::dynamics::{AugmentedParam, DynamicsKind};
+pub use crate::estimation::FusionCovariance;
 pub use crate::estimation::adaptive::{DensityFilterConfig, DensityTrainingConfig};
 use crate::frames::HeadingConvention;
 use crate::sensors::SensorsConfig;
@@ -224,6 +225,14 @@ pub struct FilterConfig {
     /// Density biases Δ of a multiple-model bank (seed 003 Table 4).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub model_bank_density_bias: Vec<f64>,
+    /// Factors on the measurement noise the filter assumes, per channel kind (1: the sensor's
+    /// own; `entrynav tune` writes them when it tunes the measurement noise).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub noise_inflation: Option<NoiseInflation>,
+    /// DCIFAIF: `"exact"` (default) feeds back the exact covariance of the fused estimate;
+    /// `"paper"` is seed 000 eq. 20 and 22 as printed (CI bound, fed back as P_CI/ω_i).
+    #[serde(default, skip_serializing_if = "is_default_fusion")]
+    pub fusion_covariance: FusionCovariance,
     /// Settings of the density-adaptation filters `ukf-cm`, `ukf-ac`, `uskf-nn` (seed 001).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub density: Option<DensityFilterConfig>,
@@ -280,5 +289,73 @@ impl FilterConfig {
     /// Filter state dimension: 6 kinematic + augmented + consider states.
     pub fn state_dim(&self) -> usize {
         6 + self.augment.len() + self.consider.len()
+    }
+}
+
+fn is_default_fusion(f: &FusionCovariance) -> bool {
+    *f == FusionCovariance::default()
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// Factors on the 1σ measurement noise the filter assumes, per channel kind
+/// (`[filter.noise_inflation]`; every key defaults to 1).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NoiseInflation {
+    /// Accelerometers (on top of `filter.imu_sigma_mps2`).
+    #[serde(default = "one")]
+    pub accel: f64,
+    /// Dynamic pressure.
+    #[serde(default = "one")]
+    pub dynamic_pressure: f64,
+    /// Heating.
+    #[serde(default = "one")]
+    pub heating: f64,
+    /// Range.
+    #[serde(default = "one")]
+    pub range: f64,
+    /// Range-rate.
+    #[serde(default = "one")]
+    pub range_rate: f64,
+}
+
+impl Default for NoiseInflation {
+    fn default() -> Self {
+        NoiseInflation {
+            accel: 1.0,
+            dynamic_pressure: 1.0,
+            heating: 1.0,
+            range: 1.0,
+            range_rate: 1.0,
+        }
+    }
+}
+
+impl NoiseInflation {
+    /// The factor of channel kind `channel`.
+    pub fn factor(&self, channel: crate::sensors::Channel) -> f64 {
+        use crate::sensors::Channel;
+        match channel {
+            Channel::Accel(_) => self.accel,
+            Channel::DynamicPressure => self.dynamic_pressure,
+            Channel::Heating => self.heating,
+            Channel::Range(_) => self.range,
+            Channel::RangeRate(_) => self.range_rate,
+        }
+    }
+
+    /// Set the factor of channel kind `channel`.
+    pub fn set_factor(&mut self, channel: crate::sensors::Channel, value: f64) {
+        use crate::sensors::Channel;
+        match channel {
+            Channel::Accel(_) => self.accel = value,
+            Channel::DynamicPressure => self.dynamic_pressure = value,
+            Channel::Heating => self.heating = value,
+            Channel::Range(_) => self.range = value,
+            Channel::RangeRate(_) => self.range_rate = value,
+        }
     }
 }

@@ -57,6 +57,7 @@ pub(super) fn onboard_view(p: OnboardParts<'_>) -> Onboard {
             n_consider: f.consider.len(),
             ukf: UkfParams::new(f.ukf.alpha, f.ukf.beta, f.ukf.kappa),
             model_bank_density_bias: f.model_bank_density_bias.clone(),
+            fusion_covariance: f.fusion_covariance,
             density: f.density.clone(),
         },
     }

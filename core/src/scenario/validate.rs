@@ -362,6 +362,24 @@ impl ScenarioConfig {
         if let Some(s) = &f.initial {
             s.validate_state("filter.initial", &planet)?;
         }
+        let all = f.state_params();
+        for (k, a) in all.iter().enumerate() {
+            if all[..k].contains(a) {
+                return Err(ScenarioError::invalid(
+                    "filter.augment",
+                    format!(
+                        "'{}' is listed twice in filter.augment and filter.consider",
+                        a.config_name()
+                    ),
+                ));
+            }
+        }
+        if all.contains(&AugmentedParam::Rho0) && all.contains(&AugmentedParam::DensityBias) {
+            return Err(ScenarioError::invalid(
+                "filter.augment",
+                "rho0 and density-bias both scale the density: use one of them",
+            ));
+        }
         let n = f.state_dim();
         for (name, v) in [("filter.p0_diag", &f.p0_diag), ("filter.q_diag", &f.q_diag)] {
             if v.len() != n {
@@ -417,24 +435,6 @@ impl ScenarioConfig {
                 validate_augmented_value(&format!("filter.{field}[{k}]"), *a, *v)?;
             }
         }
-        let all = f.state_params();
-        for (k, a) in all.iter().enumerate() {
-            if all[..k].contains(a) {
-                return Err(ScenarioError::invalid(
-                    "filter.augment",
-                    format!(
-                        "'{}' is listed twice in filter.augment and filter.consider",
-                        a.config_name()
-                    ),
-                ));
-            }
-        }
-        if all.contains(&AugmentedParam::Rho0) && all.contains(&AugmentedParam::DensityBias) {
-            return Err(ScenarioError::invalid(
-                "filter.augment",
-                "rho0 and density-bias both scale the density: use one of them",
-            ));
-        }
         if all.contains(&AugmentedParam::Rho0)
             && self.filter.atmosphere.reference_density().is_none()
         {
@@ -448,6 +448,23 @@ impl ScenarioConfig {
                 "filter.augment",
                 "accelerometer-bias states need an accelerometer ([sensors.imu])",
             ));
+        }
+        if let Some(n) = &f.noise_inflation {
+            for (name, v) in [
+                ("accel", n.accel),
+                ("dynamic_pressure", n.dynamic_pressure),
+                ("heating", n.heating),
+                ("range", n.range),
+                ("range_rate", n.range_rate),
+            ] {
+                within(
+                    &format!("filter.noise_inflation.{name}"),
+                    v,
+                    0.0,
+                    1e3,
+                    "must be > 0 and <= 1000 (a factor on the assumed 1-sigma noise)",
+                )?;
+            }
         }
         if let Some(tau) = f.accel_bias_tau_s {
             within(

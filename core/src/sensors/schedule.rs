@@ -20,6 +20,14 @@ impl Noise {
             Noise::Relative(f) => f * value.abs(),
         }
     }
+
+    /// The same noise with its 1σ times `factor`.
+    pub fn scaled(&self, factor: f64) -> Noise {
+        match *self {
+            Noise::Absolute(s) => Noise::Absolute(s * factor),
+            Noise::Relative(f) => Noise::Relative(f * factor),
+        }
+    }
 }
 
 /// One measurement channel with its schedule and noise.

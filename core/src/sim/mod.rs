@@ -19,10 +19,12 @@ pub mod judge;
 pub mod metrics;
 pub mod monte_carlo;
 pub mod record;
+pub mod replay;
 pub mod report;
 pub mod shard;
 pub mod start;
 pub mod training;
+pub mod tuning;
 
 pub use engine::{SimError, StopReason, TruthSample};
 pub use metrics::nees_bounds_95;

@@ -1,7 +1,7 @@
 //! The variable table: one list per FMU, used by the get/set code and by the `modelDescription.xml`
 //! generator, so the two cannot disagree. The GUID is a hash of the table.
 //!
-//! The layout is fixed whatever the scenario: filter states in slots 1..=10 (slots past the
+//! The layout is fixed whatever the scenario: filter states in slots 1..=12 (slots past the
 //! scenario's state dimension read 0), beacons in slots 1..=6 (past the scenario's beacon count:
 //! 0 / false), fusion weights or model probabilities in slots 1..=8. Values that exist but are not
 //! known read NaN (the truth of ρ0 when the truth atmosphere is not exponential, the NEES before it
@@ -10,7 +10,7 @@
 use entrynav::sensors::Channel;
 
 /// Filter state slots.
-pub const MAX_STATES: usize = 10;
+pub const MAX_STATES: usize = entrynav::state_dim::MAX_STATE_DIM;
 /// Beacon slots.
 pub const MAX_BEACONS: usize = 6;
 /// Fusion-weight / model-probability slots.

@@ -4,6 +4,7 @@
 use super::ekf_nav::EkfNav;
 use super::start::FilterStart;
 use super::{NavFilter, StepInfo};
+use crate::dynamics::AugmentedParam;
 use crate::estimation::EstimationError;
 use crate::estimation::Onboard;
 use crate::estimation::mmae::{
@@ -34,10 +35,19 @@ enum Gate {
 /// (pressure / 610 Pa, acceleration / g0, range / R, range-rate / √(g0 R), eq. 17–25). The output
 /// is the probability-weighted mixture of the members' posteriors. A member that fails
 /// numerically gets zero likelihood from then on.
+///
+/// With a density-bias state in the filter (estimated or a consider parameter), member i carries
+/// the residual δ_i of its hypothesis: its density is ρ_model·(1 + Δ_i)(1 + δ_i), δ_i starts at 0
+/// with the variance of a uniform density over the member's cell of the bank grid
+/// ((Δ_{i+1} − Δ_{i−1})/2)²/12 instead of the scenario's prior (the bank spans the prior; each
+/// member stands for its cell), and the member reports the total (1 + Δ_i)(1 + δ_i) − 1 to the
+/// mixture, so the bank's density-bias estimate is the probability-weighted Δ with its spread.
 #[derive(Debug, Clone)]
 pub struct BankNav<const N: usize> {
     members: Vec<Option<EkfNav<N>>>,
     deltas: Vec<f64>,
+    /// State index of a density-bias state, if the filter has one.
+    density_state: Option<usize>,
     gate: Gate,
     onboard: Arc<Onboard>,
     fused: (SVector<f64, N>, SMatrix<f64, N, N>),
@@ -60,9 +70,27 @@ impl<const N: usize> BankNav<N> {
                 "a model bank needs at least two density biases".into(),
             ));
         }
+        let density_state = onboard
+            .model
+            .augmented
+            .iter()
+            .position(|a| *a == AugmentedParam::DensityBias)
+            .map(|k| 6 + k)
+            .filter(|&k| k < N);
+        let cells = cell_sigmas(&deltas);
         let members = deltas
             .iter()
-            .map(|d| EkfNav::new(onboard, start, None, 1.0 + d).map(Some))
+            .zip(&cells)
+            .map(|(d, sigma)| {
+                let mut s = start.clone();
+                if let Some(k) = density_state {
+                    s.x0[k] = 0.0;
+                    s.p0.row_mut(k).fill(0.0);
+                    s.p0.column_mut(k).fill(0.0);
+                    s.p0[(k, k)] = sigma * sigma;
+                }
+                EkfNav::new(onboard, &s, None, 1.0 + d).map(Some)
+            })
             .collect::<Result<Vec<_>, _>>()?;
         let n = deltas.len();
         let gate = if moe {
@@ -77,6 +105,7 @@ impl<const N: usize> BankNav<N> {
         Ok(BankNav {
             members,
             deltas,
+            density_state,
             gate,
             onboard: Arc::clone(onboard),
             fused: (start.x0, start.p0),
@@ -89,6 +118,20 @@ impl<const N: usize> BankNav<N> {
     /// The density biases of the members.
     pub fn deltas(&self) -> &[f64] {
         &self.deltas
+    }
+
+    /// Member `i`'s estimate with its density-bias residual δ expressed as the total bias
+    /// (1 + Δ_i)(1 + δ) − 1 (a linear map of that state, so the covariance row and column scale
+    /// by 1 + Δ_i).
+    fn member_estimate(&self, i: usize, f: &EkfNav<N>) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
+        let (mut x, mut p) = f.estimate();
+        if let Some(k) = self.density_state {
+            let g = 1.0 + self.deltas[i];
+            x[k] = g * (1.0 + x[k]) - 1.0;
+            p.row_mut(k).scale_mut(g);
+            p.column_mut(k).scale_mut(g);
+        }
+        (x, p)
     }
 
     fn normalised(&self, epoch: &MeasurementEpoch) -> DVector<f64> {
@@ -174,8 +217,9 @@ impl<const N: usize> NavFilter<N> for BankNav<N> {
         let (w, est): (Vec<f64>, Vec<_>) = self
             .members
             .iter()
+            .enumerate()
             .zip(&self.weights)
-            .filter_map(|(m, w)| m.as_ref().map(|f| (*w, f.estimate())))
+            .filter_map(|((i, m), w)| m.as_ref().map(|f| (*w, self.member_estimate(i, f))))
             .unzip();
         self.fused = fuse_bank(&w, &est)?;
         let (nis, innovations, nis_terms) = mixture_nis(epoch, &epoch_slots, &predictive);
@@ -215,13 +259,39 @@ impl<const N: usize> NavFilter<N> for BankNav<N> {
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {
         let f = self.members.iter().flatten().next()?;
         let factor: f64 = self
-            .weights
+            .members
             .iter()
-            .zip(&self.deltas)
-            .map(|(w, d)| w * (1.0 + d))
+            .zip(self.weights.iter().zip(&self.deltas))
+            .map(|(m, (w, d))| {
+                let residual = match (m, self.density_state) {
+                    (Some(f), Some(k)) => f.estimate().0[k],
+                    _ => 0.0,
+                };
+                w * (1.0 + d) * (1.0 + residual)
+            })
             .sum();
         Some(crate::atmosphere::Atmosphere::density(&f.model().atmosphere, altitude_m) * factor)
     }
+}
+
+/// Per member, 1σ of a uniform density over its cell of the bank grid: the cell spans half-way to
+/// each neighbour (a grid end mirrors its one neighbour).
+fn cell_sigmas(deltas: &[f64]) -> Vec<f64> {
+    let mut order: Vec<usize> = (0..deltas.len()).collect();
+    order.sort_by(|&a, &b| deltas[a].total_cmp(&deltas[b]));
+    let mut out = vec![0.0; deltas.len()];
+    for (j, &i) in order.iter().enumerate() {
+        let left = j.checked_sub(1).map(|l| deltas[i] - deltas[order[l]]);
+        let right = order.get(j + 1).map(|&r| deltas[r] - deltas[i]);
+        let (l, r) = match (left, right) {
+            (Some(l), Some(r)) => (l, r),
+            (Some(l), None) => (l, l),
+            (None, Some(r)) => (r, r),
+            (None, None) => (0.0, 0.0),
+        };
+        out[i] = ((l + r) / 2.0 / 12f64.sqrt()).max(1e-6);
+    }
+    out
 }
 
 /// NIS of a bank's mixture predictive distribution over the channels `slots` of `epoch`: with

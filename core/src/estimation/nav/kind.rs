@@ -158,12 +158,6 @@ fn density_filter_misfit(kind: FilterKind, onboard: &Onboard) -> Option<String> 
     use crate::dynamics::AugmentedParam;
     use crate::sensors::Channel;
     let augment = &onboard.model.augmented;
-    if onboard.tuning.n_consider > 0 {
-        return Some(
-            "it estimates its own density state and supports no consider parameters (remove filter.consider)"
-                .to_string(),
-        );
-    }
     if onboard.model.kind.is_cartesian() {
         return Some(
             "it needs the spherical state [r, lon, lat, v, fpa, heading, CdS/m, L/D] (filter.dynamics = \"spherical\")"
@@ -182,6 +176,12 @@ fn density_filter_misfit(kind: FilterKind, onboard: &Onboard) -> Option<String> 
             "it needs the 8-state layout of seed 001 with filter.augment = [\"cd-s-over-m\", \"lift-to-drag\"] (the scenario has [{}])",
             names.join(", ")
         ));
+    }
+    if onboard.tuning.n_consider > 0 {
+        return Some(
+            "it estimates its own density state and supports no consider parameters (remove filter.consider)"
+                .to_string(),
+        );
     }
     let density_sensor = onboard.channels.iter().any(|c| {
         matches!(

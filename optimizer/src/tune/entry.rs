@@ -1,0 +1,224 @@
+//! Tuning the entry navigation filters of a scenario: which factors are tuned, and how a set of
+//! factors becomes a re-tuned onboard view evaluated over recorded Monte Carlo runs.
+//!
+//! Factors act on groups of the scenario's process-noise diagonal that describe one physical
+//! quantity (spherical: r; lon and lat; v; flight-path angle and heading; Cartesian: position;
+//! velocity; then each augmented state), so the search stays small and the tuned Q keeps the
+//! scenario's proportions inside a group. An entry whose base value is zero cannot be scaled
+//! and is not tuned (consider parameters never are). With measurement-noise tuning, one factor
+//! per channel kind multiplies the 1σ the filter assumes (`filter.noise_inflation`).
+
+use super::{Measured, TuningProblem};
+use crate::OptimizerError;
+use entrynav::estimation::nav::FilterKind;
+use entrynav::scenario::{NoiseInflation, ScenarioConfig};
+use entrynav::sensors::Channel;
+use entrynav::sim::report::FilterReport;
+use entrynav::sim::tuning::TuningRuns;
+use std::sync::Arc;
+
+/// One tuned factor.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ParameterGroup {
+    /// Process-noise entries (state indices) scaled together.
+    Process {
+        /// Name in reports, e.g. `q[v_mps]`.
+        name: String,
+        /// State indices.
+        states: Vec<usize>,
+    },
+    /// The assumed noise of every channel of one kind (e.g. all ranges).
+    Noise {
+        /// Name in reports, e.g. `r[range]`.
+        name: String,
+        /// A representative channel of the kind.
+        kind: Channel,
+    },
+}
+
+impl ParameterGroup {
+    /// Its name in reports.
+    pub fn name(&self) -> &str {
+        match self {
+            ParameterGroup::Process { name, .. } | ParameterGroup::Noise { name, .. } => name,
+        }
+    }
+}
+
+/// The entry filters `kinds` of the scenario of `runs`, tuned by group factors.
+pub struct EntryTuning<'a> {
+    runs: &'a TuningRuns,
+    kinds: Vec<FilterKind>,
+    groups: Vec<ParameterGroup>,
+}
+
+fn same_kind(a: Channel, b: Channel) -> bool {
+    std::mem::discriminant(&a) == std::mem::discriminant(&b)
+}
+
+impl<'a> EntryTuning<'a> {
+    /// Tune `kinds` over `runs`; with `tune_noise`, the assumed measurement noise too.
+    pub fn new(
+        runs: &'a TuningRuns,
+        kinds: &[FilterKind],
+        tune_noise: bool,
+    ) -> Result<Self, OptimizerError> {
+        if kinds.is_empty() {
+            return Err(OptimizerError::InvalidInput("no filter to tune".into()));
+        }
+        let sc = runs.scenario();
+        let onboard = &sc.onboard;
+        let names = entrynav::sim::state_names(sc);
+        let q = &onboard.tuning.q_diag;
+        let n_est = onboard.state_dim() - onboard.tuning.n_consider;
+        let kinematic: Vec<Vec<usize>> = if sc.filter_model().kind.is_cartesian() {
+            vec![vec![0, 1, 2], vec![3, 4, 5]]
+        } else {
+            vec![vec![0], vec![1, 2], vec![3], vec![4, 5]]
+        };
+        let mut groups = Vec::new();
+        for states in kinematic.into_iter().chain((6..n_est).map(|i| vec![i])) {
+            let states: Vec<usize> = states
+                .into_iter()
+                .filter(|&i| q.get(i).is_some_and(|v| *v > 0.0))
+                .collect();
+            if states.is_empty() {
+                continue;
+            }
+            let label: Vec<&str> = states.iter().map(|&i| names[i].as_str()).collect();
+            groups.push(ParameterGroup::Process {
+                name: format!("q[{}]", label.join(",")),
+                states,
+            });
+        }
+        if tune_noise {
+            let mut kinds_seen: Vec<Channel> = Vec::new();
+            for ch in &onboard.channels {
+                if !kinds_seen.iter().any(|k| same_kind(*k, ch.channel)) {
+                    kinds_seen.push(ch.channel);
+                    let label = match ch.channel {
+                        Channel::Accel(_) => "accel",
+                        Channel::DynamicPressure => "dynamic_pressure",
+                        Channel::Heating => "heating",
+                        Channel::Range(_) => "range",
+                        Channel::RangeRate(_) => "range_rate",
+                    };
+                    groups.push(ParameterGroup::Noise {
+                        name: format!("r[{label}]"),
+                        kind: ch.channel,
+                    });
+                }
+            }
+        }
+        Ok(EntryTuning {
+            runs,
+            kinds: kinds.to_vec(),
+            groups,
+        })
+    }
+
+    /// The tuned factors, in θ order.
+    pub fn groups(&self) -> &[ParameterGroup] {
+        &self.groups
+    }
+
+    /// The process-noise diagonal and per-channel noise factors of θ.
+    fn tuning(&self, theta: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let onboard = &self.runs.scenario().onboard;
+        let mut q = onboard.tuning.q_diag.clone();
+        let mut noise = vec![1.0; onboard.channels.len()];
+        for (g, t) in self.groups.iter().zip(theta) {
+            let f = 10f64.powf(*t);
+            match g {
+                ParameterGroup::Process { states, .. } => {
+                    for &i in states {
+                        q[i] *= f;
+                    }
+                }
+                ParameterGroup::Noise { kind, .. } => {
+                    for (c, ch) in onboard.channels.iter().enumerate() {
+                        if same_kind(ch.channel, *kind) {
+                            noise[c] = f;
+                        }
+                    }
+                }
+            }
+        }
+        (q, noise)
+    }
+
+    /// Reports of the filters tuned by θ over `runs` (the tuning runs or fresh ones of the same
+    /// scenario).
+    pub fn reports(
+        &self,
+        theta: &[f64],
+        runs: &TuningRuns,
+    ) -> Result<Vec<FilterReport>, OptimizerError> {
+        let (q, noise) = self.tuning(theta);
+        let onboard = Arc::new(runs.scenario().onboard.with_tuning(&q, &noise));
+        runs.evaluate(&onboard, &self.kinds)
+            .map_err(|e| OptimizerError::InvalidInput(e.to_string()))
+    }
+
+    /// The scenario configuration `base` with the tuning θ written in: `filter.q_diag` scaled and
+    /// `filter.noise_inflation` multiplied.
+    pub fn tuned_config(&self, base: &ScenarioConfig, theta: &[f64]) -> ScenarioConfig {
+        let (q, _) = self.tuning(theta);
+        let mut cfg = base.clone();
+        cfg.filter.q_diag = q;
+        let mut inflation = cfg.filter.noise_inflation.unwrap_or_default();
+        let mut changed = false;
+        for (g, t) in self.groups.iter().zip(theta) {
+            if let ParameterGroup::Noise { kind, .. } = g {
+                inflation.set_factor(*kind, inflation.factor(*kind) * 10f64.powf(*t));
+                changed = true;
+            }
+        }
+        if changed && inflation != NoiseInflation::default() {
+            cfg.filter.noise_inflation = Some(inflation);
+        }
+        cfg
+    }
+}
+
+/// The consistency of a set of reports: ANEES/dof and ANIS/dof averaged over the filters, the
+/// fraction of failed or diverged runs over all filters.
+pub fn measured(reports: &[FilterReport]) -> Measured {
+    let mean = |v: Vec<f64>| (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64);
+    let nees = mean(
+        reports
+            .iter()
+            .filter_map(|r| {
+                let c = &r.consistency;
+                c.anees.map(|a| a / c.nees_dof.max(1) as f64)
+            })
+            .collect(),
+    );
+    let nis = mean(
+        reports
+            .iter()
+            .filter_map(|r| r.consistency.anis_per_dof)
+            .collect(),
+    );
+    let runs: u64 = reports.iter().map(|r| r.runs).sum();
+    let bad: u64 = reports.iter().map(|r| r.failed + r.diverged).sum();
+    Measured {
+        anees_per_dof: nees,
+        anis_per_dof: nis,
+        bad_fraction: if runs > 0 {
+            bad as f64 / runs as f64
+        } else {
+            1.0
+        },
+    }
+}
+
+impl TuningProblem for EntryTuning<'_> {
+    fn dim(&self) -> usize {
+        self.groups.len()
+    }
+
+    fn evaluate(&self, theta: &[f64]) -> Result<Measured, OptimizerError> {
+        Ok(measured(&self.reports(theta, self.runs)?))
+    }
+}

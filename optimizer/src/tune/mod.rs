@@ -1,0 +1,256 @@
+//! Filter tuning: the process-noise diagonal (and, optionally, the measurement noise the filter
+//! assumes) that makes a navigation filter consistent, found by Nelder–Mead (argmin) on
+//! log₁₀ scale factors over a Monte Carlo with common random numbers.
+//!
+//! A filter is consistent when its normalised errors have the χ² means they claim: ANEES/dof = 1
+//! (needs the truth) and ANIS/dof = 1 (innovations only: what a flight team has). The objective is
+//!
+//! ```text
+//! J(θ) = ln²(ANEES/dof) + ln²(ANIS/dof) + 25·(fraction of runs that failed or diverged)
+//! ```
+//!
+//! (`--nis-only`: the NEES term dropped), each factor 10^θ_k bounded to 10^±[`THETA_BOUND`].
+//!
+//! The search has two phases. The overall scale of Q is usually off by decades (a paper's Q
+//! covers unmodelled errors the simulation does not have), so a scan of one common factor over
+//! 10⁻⁶ … 10³ in steps of half a decade comes first; Nelder–Mead then refines every factor from
+//! the best common one, with the rest of the budget. The
+//! logarithm makes an over-confident filter (ratio 10) and an over-cautious one (ratio 0.1) equally
+//! bad; the divergence term dominates any consistency gain (25 × 1 % = 0.25, a ratio of e^0.5 ≈ 1.65).
+//! Bar-Shalom, Li & Kirubarajan, *Estimation with Applications to Tracking and Navigation*,
+//! §5.4–5.5, give the consistency tests; tuning Q to pass them is their §5.5 "filter tuning".
+//!
+//! [`TuningProblem`] is what is tuned: the entry filters of a scenario ([`entry`]) or, in the
+//! tests, a linear Kalman filter whose optimal tuning is known.
+
+pub mod entry;
+
+use crate::OptimizerError;
+use argmin::core::{CostFunction, Error as ArgminError, Executor};
+use argmin::solver::neldermead::NelderMead;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+pub use entry::{EntryTuning, ParameterGroup};
+
+/// Largest |θ| (log₁₀ of a factor): factors stay within 10⁻⁶ … 10⁶.
+pub const THETA_BOUND: f64 = 6.0;
+
+/// Weight of the fraction of failed or diverged runs in the objective.
+pub const DIVERGENCE_PENALTY: f64 = 25.0;
+
+/// Consistency of a filter under one tuning.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Measured {
+    /// ANEES over its degrees of freedom (`None` without truth).
+    pub anees_per_dof: Option<f64>,
+    /// Mean normalised innovation squared per scalar measurement.
+    pub anis_per_dof: Option<f64>,
+    /// Fraction of runs that failed numerically or diverged.
+    pub bad_fraction: f64,
+}
+
+/// Which consistency the objective asks for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TuneObjective {
+    /// ANEES/dof and ANIS/dof → 1 (needs the truth: simulation).
+    NeesAndNis,
+    /// ANIS/dof → 1 only (innovations: what flight data gives).
+    NisOnly,
+}
+
+/// A filter tuned by log₁₀ factors θ.
+pub trait TuningProblem: Sync {
+    /// Number of factors.
+    fn dim(&self) -> usize;
+    /// Consistency of the filter tuned by the factors 10^θ.
+    fn evaluate(&self, theta: &[f64]) -> Result<Measured, OptimizerError>;
+}
+
+/// Options of [`tune`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TuneOptions {
+    /// What to make consistent.
+    pub objective: TuneObjective,
+    /// Budget of evaluations (each one a Monte Carlo over the tuning runs).
+    pub max_evaluations: usize,
+    /// Initial simplex edge in log₁₀ units (1: factors of 10).
+    pub initial_step: f64,
+}
+
+impl Default for TuneOptions {
+    fn default() -> Self {
+        TuneOptions {
+            objective: TuneObjective::NeesAndNis,
+            max_evaluations: 150,
+            initial_step: 1.0,
+        }
+    }
+}
+
+/// What [`tune`] found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TuneResult {
+    /// Best log₁₀ factors.
+    pub theta: Vec<f64>,
+    /// Their objective.
+    pub cost: f64,
+    /// Consistency at θ = 0 (the filter as given).
+    pub initial: Measured,
+    /// Consistency at the best θ.
+    pub tuned: Measured,
+    /// Evaluations used.
+    pub evaluations: usize,
+}
+
+/// The objective J of a measured consistency (see the module documentation).
+pub fn objective(m: &Measured, objective: TuneObjective) -> f64 {
+    let term = |v: Option<f64>| match v {
+        Some(r) if r.is_finite() && r > 0.0 => r.ln().powi(2),
+        _ => 1e3,
+    };
+    let consistency = match objective {
+        TuneObjective::NeesAndNis => term(m.anees_per_dof) + term(m.anis_per_dof),
+        TuneObjective::NisOnly => term(m.anis_per_dof),
+    };
+    consistency + DIVERGENCE_PENALTY * m.bad_fraction
+}
+
+struct Cost<'a, P> {
+    problem: &'a P,
+    objective: TuneObjective,
+    count: AtomicUsize,
+    budget: usize,
+    best: Mutex<Option<(f64, Vec<f64>, Measured)>>,
+    error: Mutex<Option<OptimizerError>>,
+    progress: &'a (dyn Fn(usize, usize, f64) + Sync),
+}
+
+impl<P: TuningProblem> CostFunction for Cost<'_, P> {
+    type Param = Vec<f64>;
+    type Output = f64;
+
+    fn cost(&self, theta: &Vec<f64>) -> Result<f64, ArgminError> {
+        let done = self.count.fetch_add(1, Ordering::Relaxed) + 1;
+        if done > self.budget {
+            // Past the budget every point is worse than the best one found: the simplex stops
+            // moving and the executor's iteration cap ends the search.
+            return Ok(f64::MAX / 4.0);
+        }
+        let outside: f64 = theta.iter().map(|t| (t.abs() - THETA_BOUND).max(0.0)).sum();
+        let clamped: Vec<f64> = theta
+            .iter()
+            .map(|t| t.clamp(-THETA_BOUND, THETA_BOUND))
+            .collect();
+        let m = match self.problem.evaluate(&clamped) {
+            Ok(m) => m,
+            Err(e) => {
+                if let Ok(mut slot) = self.error.lock() {
+                    slot.get_or_insert(e);
+                }
+                return Ok(f64::MAX / 4.0);
+            }
+        };
+        let j = objective(&m, self.objective) + 10.0 * outside;
+        if let Ok(mut best) = self.best.lock()
+            && best.as_ref().is_none_or(|b| j < b.0)
+        {
+            *best = Some((j, clamped, m));
+        }
+        let best_j = self
+            .best
+            .lock()
+            .ok()
+            .and_then(|b| b.as_ref().map(|b| b.0))
+            .unwrap_or(j);
+        (self.progress)(done, self.budget, best_j);
+        Ok(j)
+    }
+}
+
+/// Minimise the objective over θ from θ = 0 with Nelder–Mead; `progress(done, budget, best J)`
+/// is called after every evaluation.
+pub fn tune(
+    problem: &impl TuningProblem,
+    opts: &TuneOptions,
+    progress: &(dyn Fn(usize, usize, f64) + Sync),
+) -> Result<TuneResult, OptimizerError> {
+    let n = problem.dim();
+    if n == 0 {
+        return Err(OptimizerError::InvalidInput(
+            "nothing to tune: every process-noise entry is zero and measurement noise is not tuned"
+                .into(),
+        ));
+    }
+    if opts.max_evaluations < n + 2 {
+        return Err(OptimizerError::InvalidInput(format!(
+            "--max-evaluations {} is below the {} a {n}-parameter simplex needs",
+            opts.max_evaluations,
+            n + 2
+        )));
+    }
+    let initial = problem.evaluate(&vec![0.0; n])?;
+    let cost = Cost {
+        problem,
+        objective: opts.objective,
+        count: AtomicUsize::new(0),
+        budget: opts.max_evaluations,
+        best: Mutex::new(Some((
+            objective(&initial, opts.objective),
+            vec![0.0; n],
+            initial,
+        ))),
+        error: Mutex::new(None),
+        progress,
+    };
+    // Phase 1: one common factor, half-decade steps (at most a third of the budget).
+    let scan: Vec<f64> = (-12..=6)
+        .map(|k| k as f64 * 0.5)
+        .take((opts.max_evaluations / 3).max(1))
+        .collect();
+    let mut centre = 0.0;
+    let mut best_j = objective(&initial, opts.objective);
+    for c in scan {
+        let j = cost
+            .cost(&vec![c; n])
+            .map_err(|e| OptimizerError::Solver(e.to_string()))?;
+        if j < best_j {
+            (best_j, centre) = (j, c);
+        }
+    }
+    // Phase 2: Nelder–Mead on every factor from the best common one.
+    let mut simplex = vec![vec![centre; n]];
+    for k in 0..n {
+        let mut v = vec![centre; n];
+        v[k] += opts.initial_step;
+        simplex.push(v);
+    }
+    let nm = NelderMead::new(simplex)
+        .with_sd_tolerance(1e-6)
+        .map_err(|e| OptimizerError::Solver(format!("Nelder-Mead: {e}")))?;
+    let res = Executor::new(cost, nm)
+        .configure(|st| st.max_iters(opts.max_evaluations as u64))
+        .run()
+        .map_err(|e| OptimizerError::Solver(format!("Nelder-Mead: {e}")))?;
+    let cost = res
+        .problem
+        .problem
+        .ok_or_else(|| OptimizerError::Solver("Nelder-Mead returned without its problem".into()))?;
+    if let Some(e) = cost.error.into_inner().ok().flatten() {
+        return Err(e);
+    }
+    let evaluations = cost.count.load(Ordering::Relaxed).min(opts.max_evaluations);
+    let (j, theta, tuned) = cost
+        .best
+        .into_inner()
+        .ok()
+        .flatten()
+        .ok_or_else(|| OptimizerError::Solver("tuning found no point".into()))?;
+    Ok(TuneResult {
+        theta,
+        cost: j,
+        initial,
+        tuned,
+        evaluations,
+    })
+}

@@ -1,6 +1,7 @@
 //! fmi2Get* and fmi2Set*: variable values across the C ABI.
 
 use super::*;
+use crate::limits::{MAX_STRING_BYTES, MAX_VALUE_REFS};
 
 fn get_values<T>(
     inner: &mut Inner,
@@ -11,8 +12,10 @@ fn get_values<T>(
     out: *mut T,
     mut conv: impl FnMut(Value, &mut Vec<CString>) -> T,
 ) -> Status {
-    // SAFETY: the master passes `nvr` references and room for `nvr` values.
-    let (Some(vrs), Some(out)) = (unsafe { slice(vr, nvr) }, unsafe { slice_mut(out, nvr) }) else {
+    // SAFETY: the master passes `nvr` references and room for `nvr` values (nvr bounded first).
+    let (Some(vrs), Some(out)) = (unsafe { slice(vr, nvr, MAX_VALUE_REFS) }, unsafe {
+        slice_mut(out, nvr, MAX_VALUE_REFS)
+    }) else {
         return null_arg(inner, func, "vr or value");
     };
     match inner.inst.get(func, ty, vrs) {
@@ -147,17 +150,23 @@ fn set_values<T: Copy>(
     vr: *const u32,
     nvr: usize,
     value: *const T,
-    mut conv: impl FnMut(T) -> Option<Value>,
+    mut conv: impl FnMut(T) -> Result<Value, TextError>,
 ) -> Status {
-    // SAFETY: the master passes `nvr` references and values.
-    let (Some(vrs), Some(vals)) = (unsafe { slice(vr, nvr) }, unsafe { slice(value, nvr) }) else {
+    // SAFETY: the master passes `nvr` references and values (nvr bounded first).
+    let (Some(vrs), Some(vals)) = (unsafe { slice(vr, nvr, MAX_VALUE_REFS) }, unsafe {
+        slice(value, nvr, MAX_VALUE_REFS)
+    }) else {
         return null_arg(inner, func, "vr or value");
     };
     let mut values = Vec::with_capacity(nvr);
     for v in vals {
         match conv(*v) {
-            Some(v) => values.push(v),
-            None => return null_arg(inner, func, "a string value"),
+            Ok(v) => values.push(v),
+            Err(e) => {
+                return inner
+                    .inst
+                    .error(&format!("{func}: {}", e.describe("a string value")));
+            }
         }
     }
     inner.inst.set(func, vrs, values)
@@ -175,7 +184,7 @@ pub unsafe extern "C" fn fmi2SetReal(
     value: *const f64,
 ) -> Fmi2Status {
     status(c, "fmi2SetReal", |i| {
-        set_values(i, "fmi2SetReal", vr, nvr, value, |x| Some(Value::Real(x)))
+        set_values(i, "fmi2SetReal", vr, nvr, value, |x| Ok(Value::Real(x)))
     })
 }
 
@@ -192,7 +201,7 @@ pub unsafe extern "C" fn fmi2SetInteger(
 ) -> Fmi2Status {
     status(c, "fmi2SetInteger", |i| {
         set_values(i, "fmi2SetInteger", vr, nvr, value, |x| {
-            Some(Value::Integer(x))
+            Ok(Value::Integer(x))
         })
     })
 }
@@ -210,7 +219,7 @@ pub unsafe extern "C" fn fmi2SetBoolean(
 ) -> Fmi2Status {
     status(c, "fmi2SetBoolean", |i| {
         set_values(i, "fmi2SetBoolean", vr, nvr, value, |x| {
-            Some(Value::Boolean(x != 0))
+            Ok(Value::Boolean(x != 0))
         })
     })
 }
@@ -229,7 +238,7 @@ pub unsafe extern "C" fn fmi2SetString(
     status(c, "fmi2SetString", |i| {
         set_values(i, "fmi2SetString", vr, nvr, value, |p| {
             // SAFETY: each value is null (rejected) or a C string.
-            unsafe { text(p) }.map(|s| Value::String(s.to_string()))
+            unsafe { text(p, MAX_STRING_BYTES) }.map(|s| Value::String(s.to_string()))
         })
     })
 }

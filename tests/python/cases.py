@@ -122,11 +122,12 @@ def init(slave, vs, params, stop=None, logged=None):
 
 
 def outputs(md):
-    """Output value references grouped by type, in table order."""
+    """Output value references grouped by the function that reads them (an Enumeration is read
+    with fmi2GetInteger), in table order."""
     out = {"Real": [], "Integer": [], "Boolean": []}
     for v in md.modelVariables:
         if v.causality == "output":
-            out[v.type].append(v.valueReference)
+            out["Integer" if v.type == "Enumeration" else v.type].append(v.valueReference)
     return out
 
 
@@ -242,6 +243,15 @@ def case_illegal_sequences():
     msg = expect_error(logged, slave.exitInitializationMode, match="100%%-missing.toml")
     assert "100%-missing" not in msg.replace("%%", ""), msg
     checks += 3
+    # A failed fmi2ExitInitializationMode puts the instance in the error state (FMI 2.0): only
+    # fmi2Reset, fmi2SetFMUstate, fmi2FreeInstance and the queries lead on.
+    expect_error(logged, slave.setString, [vs["scenario"].valueReference], ["four-beacon-fusion"], match="Illegal call sequence")
+    expect_error(logged, slave.exitInitializationMode, match="Illegal call sequence")
+    expect_error(logged, slave.doStep, 0.0, 1.0, match="Illegal call sequence")
+    checks += 3
+    slave.reset()
+    slave.setupExperiment(startTime=0.0, stopTime=10.0)
+    slave.enterInitializationMode()
     # Fix the parameter in initialisation mode, then initialise.
     set_params(slave, vs, {"scenario": "four-beacon-fusion", "seed": 4})
     slave.exitInitializationMode()

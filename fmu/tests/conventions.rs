@@ -288,14 +288,19 @@ fn the_scenario_parameter_cannot_read_or_disclose_host_files() {
             "{name} discloses: {msg}"
         );
     }
-    // A scenario in resources/ loads; the same file through a path outside needs the parameter.
-    std::fs::write(
-        res.join("mine.toml"),
-        entrynav::scenario::builtin_toml("msl-pressure").unwrap(),
-    )
-    .unwrap();
+    // A scenario in resources/ loads.
+    let text = entrynav::scenario::builtin_toml("msl-pressure").unwrap();
+    std::fs::write(res.join("mine.toml"), text).unwrap();
     let i = Inst::with(Model::Truth, Some(&uri), false);
     assert_eq!(i.set_string(Key::Scenario, "./mine.toml"), 0);
     assert_eq!(i.init(), [0, 0, 0], "{}", i.last());
+    // A valid scenario whose run needs 4 million truth steps is over the bound of a run.
+    let long = text.replace("truth_step_s = 0.1", "truth_step_s = 0.0001");
+    assert_ne!(long, text);
+    std::fs::write(res.join("long.toml"), long).unwrap();
+    let i = Inst::with(Model::Truth, Some(&uri), false);
+    assert_eq!(i.set_string(Key::Scenario, "long.toml"), 0);
+    assert_eq!(i.init()[2], 3);
+    assert!(i.last().contains("4000000 truth steps"), "{}", i.last());
     std::fs::remove_dir_all(&base).unwrap();
 }

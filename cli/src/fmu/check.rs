@@ -66,6 +66,16 @@ pub(super) fn scenario_timing(sc: &entrynav::scenario::Scenario) -> (f64, f64) {
     )
 }
 
+/// The filter a check runs: `--filter`, else the FMU's default.
+fn filter_of(a: &CheckArgs, spec: &mars_entry_nav::ModelSpec) -> String {
+    a.filter.clone().unwrap_or_else(|| {
+        spec.specific()
+            .map(|s| s.filter.name())
+            .unwrap_or(mars_entry_nav::vars::DEFAULT_FILTER)
+            .to_string()
+    })
+}
+
 /// The scenario a check runs: the embedded one of a specific FMU, else `name` from `resources`.
 pub(super) fn check_scenario(
     u: &Unpacked,
@@ -110,7 +120,7 @@ pub(super) fn check(a: &CheckArgs) -> Result<()> {
         .filter_map(|(i, v)| {
             let val = match v.key {
                 Key::Scenario => Value::String(a.scenario.clone()),
-                Key::Filter => Value::String(a.filter.clone()),
+                Key::Filter => Value::String(filter_of(a, &spec)),
                 Key::Seed => Value::Integer(a.seed),
                 Key::Dispersed => Value::Boolean(!a.nominal),
                 _ => return None,
@@ -237,9 +247,9 @@ pub(super) fn check(a: &CheckArgs) -> Result<()> {
         n_steps,
         scenario.config.name,
         if m.has_filter() {
-            a.filter.as_str()
+            filter_of(a, &spec)
         } else {
-            "-"
+            "-".to_string()
         },
         a.seed,
         compared,
@@ -285,7 +295,7 @@ pub(super) fn bench(
         .map(|v| v.vr)
         .unwrap_or(0);
     let scenario = check_scenario(u, &a.scenario, &u.dir.join("resources"))?;
-    let kind = entrynav::estimation::nav::FilterKind::parse(&a.filter)?;
+    let kind = entrynav::estimation::nav::FilterKind::parse(&filter_of(a, &u.spec))?;
     let guid = u.spec.guid().to_string();
     let (mut host, mut direct, mut wrapped) = (Vec::new(), Vec::new(), Vec::new());
     for _ in 0..a.reps.max(1) {
@@ -352,7 +362,7 @@ pub(super) fn bench(
     println!(
         "bench {} / {} / {n_steps} steps of {h} s, median of {} runs: host (fmi2SetReal + fmi2DoStep via libloading) {:.3} ms ({:.2} us/step), in-process engine (EntryCoSim::do_step) {:.3} ms ({:.2} us/step), in-process instance wrapper {:.3} ms; host/in-process = {:.3}",
         scenario.config.name,
-        a.filter,
+        filter_of(a, &u.spec),
         a.reps.max(1),
         mh * 1e3,
         mh * 1e6 / n_steps as f64,

@@ -97,9 +97,9 @@ struct CheckArgs {
     /// Scenario parameter (built-in name or a file in the FMU's resources).
     #[arg(long, default_value = "four-beacon-fusion")]
     scenario: String,
-    /// Filter parameter.
-    #[arg(long, default_value = "dcifaif")]
-    filter: String,
+    /// Filter parameter (default: the FMU's, dcifaif for the generic FMUs).
+    #[arg(long)]
+    filter: Option<String>,
     /// Seed parameter.
     #[arg(long, default_value_t = 1)]
     seed: i32,

@@ -248,6 +248,38 @@ fn every_size_like_argument_is_bounded_before_it_is_used() {
     }
 }
 
+/// A master that steps forever with inputs that change at every step: the replay log stops at its
+/// bound, fmi2GetFMUstate refuses from then on, the run goes on, and fmi2Reset starts afresh.
+#[test]
+fn the_replay_log_is_bounded() {
+    let i = Inst::new(Model::Filter);
+    assert_eq!(i.set_string(Key::Filter, "ekf"), 0);
+    assert_eq!(i.init(), [0, 0, 0]);
+    let mut p: *mut c_void = std::ptr::null_mut();
+    let mut k = 0usize;
+    // About 224 bytes per step when every input changes: the log is full after ~75,000 steps.
+    while !i.messages().iter().any(|m| m.2.contains("replay log")) {
+        assert!(k < 200_000, "the log never filled");
+        assert_eq!(i.set_real(Key::Bank, (k % 7) as f64 * 0.01), 0);
+        assert_eq!(i.set_real(Key::MeasTime, k as f64 * 1e-6), 0);
+        assert_eq!(i.step(k as f64, 1.0), 0, "{}", i.last());
+        k += 1;
+    }
+    assert!(
+        k as f64 * 207.0 > (MAX_STATE_BYTES / 2) as f64,
+        "full after only {k} steps"
+    );
+    // SAFETY: our instance.
+    unsafe {
+        assert_eq!(fmi2GetFMUstate(i.c, &mut p), 3);
+        assert!(i.last().contains("outgrew"), "{}", i.last());
+        assert_eq!(i.step(k as f64, 1.0), 0, "the run goes on");
+        assert_eq!(fmi2Reset(i.c), 0);
+        assert_eq!(fmi2GetFMUstate(i.c, &mut p), 0);
+        assert_eq!(fmi2FreeFMUstate(i.c, &mut p), 0);
+    }
+}
+
 #[test]
 fn the_scenario_parameter_cannot_read_or_disclose_host_files() {
     let base = std::env::temp_dir().join(format!("entrynav-scenario-{}", std::process::id()));

@@ -234,7 +234,10 @@ impl Instance {
         if self.log_full_at.is_some() {
             return;
         }
-        if self.steps.bytes() + self.steps.cost(&r) > crate::limits::MAX_STATE_BYTES {
+        // The rest of a state (header, GUID, every variable's value) stays under this reserve,
+        // so a state whose log fits can always be serialized.
+        const RESERVE: usize = 64 << 10;
+        if self.steps.bytes() + self.steps.cost(&r) > crate::limits::MAX_STATE_BYTES - RESERVE {
             self.warn(&format!(
                 "fmi2DoStep: the replay log of this run reached {} bytes at t = {}; fmi2GetFMUstate is unavailable from now on (the run continues)",
                 self.steps.bytes(),

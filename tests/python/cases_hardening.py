@@ -3,6 +3,7 @@ the 7-call sequence that aborted the process, for every filter; each library acc
 model's GUID; the `scenario` parameter cannot read or disclose host files."""
 
 import ctypes
+import os
 import subprocess
 import tempfile
 from ctypes import byref, c_char_p, c_double, c_int, c_uint, c_void_p, POINTER
@@ -131,3 +132,33 @@ def case_scenario_files():
                 assert "root:x:" not in text and "daemon:" not in text, text
             results[path] = "refused without disclosure"
         return results
+
+
+def case_specific_binding():
+    """A scenario-specific FMU accepts only its GUID (not the generic MarsEntryNav's), and refuses
+    to start once its embedded scenario file has been changed."""
+    fmu = Path(os.environ["ENTRYNAV_SPECIFIC_FMU"])
+    lib, md, d = raw_lib(fmu)
+    res = Path(d) / "resources"
+    uri = res.as_uri().encode()
+
+    def instantiate(guid):
+        log = Logged()
+        c = lib.fmi2Instantiate(b"x", 1, guid.encode(), uri, ctypes.cast(byref(log.callbacks), c_void_p), 0, 0)
+        if c:
+            lib.fmi2FreeInstance(c)
+        return bool(c), log.text()
+
+    ok, text = instantiate(md.guid)
+    assert ok, text
+    generic = variables(COMBINED)[0].guid
+    ok, text = instantiate(generic)
+    assert not ok and "accepts only its GUID" in text, text
+    (toml,) = res.glob("*.toml")
+    original = toml.read_text()
+    changed = original.replace("duration_s = 350.0", "duration_s = 349.0")
+    assert changed != original
+    toml.write_text(changed)
+    ok, text = instantiate(md.guid)
+    assert not ok and "resources/ changed" in text, text
+    return {"own_guid": "accepted", "generic_guid": "refused", "changed_scenario": "refused"}

@@ -6,7 +6,7 @@ Cases that load an FMU library run in a subprocess (cases.py) with a timeout; no
 stderr (a Rust panic message would)."""
 
 import json
-import subprocess
+import os
 import sys
 import zipfile
 from pathlib import Path
@@ -20,8 +20,8 @@ HERE = Path(__file__).resolve().parent
 MIB = 1024 * 1024
 
 
-def run_case(case, **env):
-    out = run([sys.executable, HERE / "cases.py", case], timeout=600, **env)
+def run_case(case, **kw):
+    out = run([sys.executable, HERE / "cases.py", case], timeout=600, **kw)
     assert out.returncode == 0, f"case {case} failed (exit {out.returncode}):\n{out.stdout[-3000:]}\n{out.stderr[-6000:]}"
     assert out.stderr == "", f"case {case} wrote to stderr:\n{out.stderr[-3000:]}"
     return json.loads(out.stdout.strip().splitlines()[-1])
@@ -83,6 +83,7 @@ def test_scenario_specific_fmu(specific, tmp_path):
     r = run([ENTRYNAV, "fmu", "check", specific], timeout=600)
     assert r.returncode == 0 and "bitwise identical" in r.stdout, r.stdout + r.stderr
     print(r.stdout)
+    print(run_case("specific_binding", env=dict(os.environ, ENTRYNAV_SPECIFIC_FMU=str(specific))))
 
 
 def test_cross_check_files_pass_fmpy(fmus, specific, tmp_path):

@@ -66,8 +66,9 @@ def case_fmpy_simulate():
         shutil.rmtree(tmp, ignore_errors=True)
 
 
-def _libcosim_run(slaves, connections, params, steps, observe):
-    """Run slaves [(name, fmu)] in one libcosim execution with 1 s steps; return per-step values."""
+def _libcosim_run(slaves, connections, params, steps, observe, observe_int=None):
+    """Run slaves [(name, fmu)] in one libcosim execution with 1 s steps; return per-step values
+    of the Reals `observe` (and, under the key (name, "int"), of the Integers `observe_int`)."""
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimObserver import CosimObserver
     from libcosimpy.CosimSlave import CosimLocalSlave
@@ -99,12 +100,17 @@ def _libcosim_run(slaves, connections, params, steps, observe):
             assert rc == 0, f"cannot connect {src}.{n} -> {dst}.{n}"
     obs = CosimObserver.create_last_value()
     ex.add_observer(obs)
+    observe_int = observe_int or {}
     series = {name: [] for name in observe}
+    series.update({(name, "int"): [] for name in observe_int})
     for k in range(steps):
         assert ex.step(), f"libcosim step {k} failed"
         for name, names in observe.items():
             refs = [vmaps[name][n] for n in names]
             series[name].append(list(obs.last_real_values(idx[name], refs)))
+        for name, names in observe_int.items():
+            refs = [vmaps[name][n] for n in names]
+            series[(name, "int")].append(list(obs.last_integer_values(idx[name], refs)))
     return series
 
 
@@ -127,6 +133,8 @@ def case_libcosim():
         },
         steps=steps,
         observe={"combined": est + truth_names, "truth": truth_names, "filter": est},
+        # libcosim ignores FMI 2.0 Enumerations; the Integer twins carry the codes.
+        observe_int={"combined": ["nav_status_code", "truth_stop_code"]},
     )
     comb = np.array(series["combined"])
     filt = np.array(series["filter"])
@@ -150,6 +158,11 @@ def case_libcosim():
         ref = np.genfromtxt(ref_csv, delimiter=",", names=True, deletechars="", dtype=np.float64)
         for j, n in enumerate(est + truth_names):
             assert np.array_equal(comb[:, j], ref[n][1:], equal_nan=True), f"libcosim {n} differs from the in-process run"
+        codes = np.array(series[("combined", "int")])
+        for j, n in enumerate(["nav_status", "truth_stop"]):
+            assert np.array_equal(codes[:, j], ref[n][1:]), f"libcosim {n}_code differs from the in-process {n}"
+            assert np.array_equal(ref[f"{n}_code"], ref[n])
+        assert codes[-1, 0] == 1, "the filter is running at the end"
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     return {"steps": steps, "estimates_compared": int(filt[1:].size), "connected_variables": len(meas)}

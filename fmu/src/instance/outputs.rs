@@ -32,7 +32,7 @@ impl Instance {
                 Key::BeaconVisible(i) => {
                     return Value::Boolean(i < nb && o.sample.visible[i]);
                 }
-                Key::TruthStop => {
+                Key::TruthStop | Key::TruthStopCode => {
                     return Value::Integer(match ts.stop() {
                         None => 0,
                         Some(StopReason::Duration) => 1,
@@ -63,7 +63,9 @@ impl Instance {
             let slot = |v: &[f64], i: usize| real(if i < n { v[i] } else { 0.0 });
             match key {
                 Key::NavTime => return real(est.t),
-                Key::NavStatus => return Value::Integer(nav.status().code()),
+                Key::NavStatus | Key::NavStatusCode => {
+                    return Value::Integer(nav.status().code());
+                }
                 Key::NStates => return Value::Integer(n as i32),
                 Key::EstX(i) => return slot(&est.x, i),
                 Key::EstSigma(i) => return slot(&est.sigma, i),

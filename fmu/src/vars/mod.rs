@@ -27,8 +27,9 @@ pub const MAX_WEIGHTS: usize = 8;
 /// Version of the table layout and the meaning of its variables (part of the GUID).
 /// 2: `bank_angle` also drives the filter's onboard models (MarsEntryNav) and is an input of
 /// MarsEntryNavFilter.
-/// 3: `allow_external_files`; Enumeration types for `nav_status` and `truth_stop`; estimate
-/// outputs `discrete`; dimensionless units; no input feeds through (`dependencies`).
+/// 3: `allow_external_files`; Enumeration types for `nav_status` and `truth_stop` (with Integer
+/// twins `nav_status_code`, `truth_stop_code`); estimate outputs `discrete`; dimensionless units;
+/// no input feeds through (`dependencies`).
 pub const TABLE_VERSION: u32 = 3;
 /// `generationDateAndTime` of every description of [`TABLE_VERSION`]: the description is a pure
 /// function of the table, so it carries the table's date and is reproducible byte for byte.

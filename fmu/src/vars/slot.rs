@@ -128,12 +128,16 @@ pub enum Key {
     BeaconVisible(usize),
     /// Why the truth stopped.
     TruthStop,
+    /// [`Key::TruthStop`] as a plain Integer.
+    TruthStopCode,
     /// Number of beacons.
     NBeacons,
     /// Epoch of the estimate.
     NavTime,
     /// Filter status.
     NavStatus,
+    /// [`Key::NavStatus`] as a plain Integer.
+    NavStatusCode,
     /// Filter state dimension.
     NStates,
     /// Estimate, state slot i.

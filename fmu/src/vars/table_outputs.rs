@@ -85,6 +85,13 @@ pub(super) fn truth_outputs(b: &mut Builder, n_beacons: usize) {
         Key::TruthStop,
     );
     b.out(
+        "truth_stop_code",
+        Integer,
+        None,
+        "truth_stop as an Integer (0 running, 1 duration, 2 stop_speed, 3 ground), for importers without FMI 2.0 Enumeration support (libcosim ignores Enumeration variables)",
+        Key::TruthStopCode,
+    );
+    b.out(
         "n_beacons",
         Integer,
         None,
@@ -108,6 +115,13 @@ pub(super) fn nav_outputs(b: &mut Builder, specific: Option<&Specific>) {
         &NAV_STATUS,
         "Filter status: initial (no epoch yet), running, failed (estimate frozen, reason logged)",
         Key::NavStatus,
+    );
+    b.out(
+        "nav_status_code",
+        Integer,
+        None,
+        "nav_status as an Integer (0 initial, 1 running, 2 failed), for importers without FMI 2.0 Enumeration support (libcosim ignores Enumeration variables)",
+        Key::NavStatusCode,
     );
     b.out(
         "n_states",

@@ -7,7 +7,8 @@ mod common;
 use common::{Inst, callbacks};
 use mars_entry_nav::ffi::*;
 use mars_entry_nav::limits::{
-    MAX_CATEGORIES, MAX_SNAPSHOTS, MAX_STATE_BYTES, MAX_STRING_BYTES, MAX_VALUE_REFS,
+    MAX_CATEGORIES, MAX_SNAPSHOTS, MAX_STATE_BYTES, MAX_STRING_BYTES, MAX_STRING_REFS,
+    MAX_VALUE_REFS,
 };
 use mars_entry_nav::vars::{Key, Model};
 use std::ffi::{CString, c_char, c_int, c_void};
@@ -197,6 +198,16 @@ fn every_size_like_argument_is_bounded_before_it_is_used() {
             0,
             "{}",
             i.last()
+        );
+        let strs = vec![i.vr(Key::Scenario); MAX_STRING_REFS + 1];
+        let mut ptrs = vec![std::ptr::null::<c_char>(); MAX_STRING_REFS + 1];
+        assert_eq!(
+            fmi2GetString(i.c, strs.as_ptr(), MAX_STRING_REFS + 1, ptrs.as_mut_ptr()),
+            3
+        );
+        assert_eq!(
+            fmi2GetString(i.c, strs.as_ptr(), MAX_STRING_REFS, ptrs.as_mut_ptr()),
+            0
         );
         assert_eq!(fmi2SetString(i.c, &i.vr(Key::Filter), 1, &long.as_ptr()), 3);
         assert!(i.last().contains("longer than 4096 bytes"), "{}", i.last());

@@ -1,7 +1,7 @@
 //! fmi2Get* and fmi2Set*: variable values across the C ABI.
 
 use super::*;
-use crate::limits::{MAX_STRING_BYTES, MAX_VALUE_REFS};
+use crate::limits::{MAX_STRING_BYTES, MAX_STRING_REFS, MAX_VALUE_REFS};
 
 fn get_values<T>(
     inner: &mut Inner,
@@ -12,9 +12,14 @@ fn get_values<T>(
     out: *mut T,
     mut conv: impl FnMut(Value, &mut Vec<CString>) -> T,
 ) -> Status {
+    let max = if ty == Type::String {
+        MAX_STRING_REFS
+    } else {
+        MAX_VALUE_REFS
+    };
     // SAFETY: the master passes `nvr` references and room for `nvr` values (nvr bounded first).
-    let (Some(vrs), Some(out)) = (unsafe { slice(vr, nvr, MAX_VALUE_REFS) }, unsafe {
-        slice_mut(out, nvr, MAX_VALUE_REFS)
+    let (Some(vrs), Some(out)) = (unsafe { slice(vr, nvr, max) }, unsafe {
+        slice_mut(out, nvr, max)
     }) else {
         return null_arg(inner, func, "vr or value");
     };

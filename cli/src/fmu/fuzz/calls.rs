@@ -4,7 +4,8 @@ use super::model::{Expect, Sim, status_query};
 use super::ops::{State, same_or_close};
 use super::*;
 use mars_entry_nav::limits::{
-    MAX_CATEGORIES, MAX_SNAPSHOTS, MAX_STATE_BYTES, MAX_STRING_BYTES, MAX_VALUE_REFS,
+    MAX_CATEGORIES, MAX_SNAPSHOTS, MAX_STATE_BYTES, MAX_STRING_BYTES, MAX_STRING_REFS,
+    MAX_VALUE_REFS,
 };
 use std::ffi::{CString, c_char, c_int};
 
@@ -179,11 +180,19 @@ impl Fuzzer<'_> {
         let api = &u.api;
         self.stats.over_bound += 1;
         let n = MAX_VALUE_REFS + 1;
-        // SAFETY: buffers of MAX_VALUE_REFS + 1 elements; the huge count is refused unread.
+        let mut strings = vec![std::ptr::null::<c_char>(); MAX_STRING_REFS + 1];
+        // SAFETY: buffers of MAX_VALUE_REFS + 1 (MAX_STRING_REFS + 1) elements; the counts over
+        // the bound are refused unread.
         let r = unsafe {
-            match self.rng.random_range(0..3) {
+            match self.rng.random_range(0..4) {
                 0 => (api.fmi2GetReal)(s.c, self.big_vr.as_ptr(), n, self.big_out.as_mut_ptr()),
                 1 => (api.fmi2SetReal)(s.c, self.big_vr.as_ptr(), n, self.big_out.as_ptr()),
+                2 => (api.fmi2GetString)(
+                    s.c,
+                    self.big_vr.as_ptr(),
+                    MAX_STRING_REFS + 1,
+                    strings.as_mut_ptr(),
+                ),
                 _ => (api.fmi2GetReal)(
                     s.c,
                     self.big_vr.as_ptr(),

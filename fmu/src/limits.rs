@@ -8,7 +8,7 @@
 //!
 //! | what | bound |
 //! |---|---|
-//! | value references in one fmi2Get*/fmi2Set* call (fmi2GetString) | [`MAX_VALUE_REFS`] ([`MAX_STRING_REFS`]) |
+//! | value references in one fmi2Get*/fmi2Set* call (fmi2Get/SetString) | [`MAX_VALUE_REFS`] ([`MAX_STRING_REFS`]) |
 //! | bytes of a String value, instance name, log category | [`MAX_STRING_BYTES`] |
 //! | bytes of the fmuGUID / fmuResourceLocation | [`MAX_GUID_BYTES`] / [`MAX_LOCATION_BYTES`] |
 //! | categories in one fmi2SetDebugLogging | [`MAX_CATEGORIES`] |
@@ -30,7 +30,7 @@ use thiserror::Error;
 
 /// Value references in one fmi2Get*/fmi2Set* call (a table has about 200 variables).
 pub const MAX_VALUE_REFS: usize = 65_536;
-/// Value references in one fmi2GetString call: each answer is a copy of a string of up to
+/// Value references in one fmi2GetString or fmi2SetString call: each value is a copy of a string of up to
 /// [`MAX_STRING_BYTES`], so at most 4 MiB are copied per call.
 pub const MAX_STRING_REFS: usize = 1024;
 /// Bytes of one String value, the instance name or a log category name.

@@ -149,17 +149,20 @@ pub unsafe extern "C" fn fmi2GetString(
     })
 }
 
+/// `max`: the bound on `nvr` ([`MAX_STRING_REFS`] for strings, each of which is copied).
+#[allow(clippy::too_many_arguments)]
 fn set_values<T: Copy>(
     inner: &mut Inner,
     func: &str,
     vr: *const u32,
     nvr: usize,
     value: *const T,
+    max: usize,
     mut conv: impl FnMut(T) -> Result<Value, TextError>,
 ) -> Status {
     // SAFETY: the master passes `nvr` references and values (nvr bounded first).
-    let (Some(vrs), Some(vals)) = (unsafe { slice(vr, nvr, MAX_VALUE_REFS) }, unsafe {
-        slice(value, nvr, MAX_VALUE_REFS)
+    let (Some(vrs), Some(vals)) = (unsafe { slice(vr, nvr, max) }, unsafe {
+        slice(value, nvr, max)
     }) else {
         return null_arg(inner, func, "vr or value");
     };
@@ -189,7 +192,9 @@ pub unsafe extern "C" fn fmi2SetReal(
     value: *const f64,
 ) -> Fmi2Status {
     status(c, "fmi2SetReal", |i| {
-        set_values(i, "fmi2SetReal", vr, nvr, value, |x| Ok(Value::Real(x)))
+        set_values(i, "fmi2SetReal", vr, nvr, value, MAX_VALUE_REFS, |x| {
+            Ok(Value::Real(x))
+        })
     })
 }
 
@@ -205,7 +210,7 @@ pub unsafe extern "C" fn fmi2SetInteger(
     value: *const c_int,
 ) -> Fmi2Status {
     status(c, "fmi2SetInteger", |i| {
-        set_values(i, "fmi2SetInteger", vr, nvr, value, |x| {
+        set_values(i, "fmi2SetInteger", vr, nvr, value, MAX_VALUE_REFS, |x| {
             Ok(Value::Integer(x))
         })
     })
@@ -223,7 +228,7 @@ pub unsafe extern "C" fn fmi2SetBoolean(
     value: *const Fmi2Boolean,
 ) -> Fmi2Status {
     status(c, "fmi2SetBoolean", |i| {
-        set_values(i, "fmi2SetBoolean", vr, nvr, value, |x| {
+        set_values(i, "fmi2SetBoolean", vr, nvr, value, MAX_VALUE_REFS, |x| {
             Ok(Value::Boolean(x != 0))
         })
     })
@@ -241,7 +246,7 @@ pub unsafe extern "C" fn fmi2SetString(
     value: *const *const c_char,
 ) -> Fmi2Status {
     status(c, "fmi2SetString", |i| {
-        set_values(i, "fmi2SetString", vr, nvr, value, |p| {
+        set_values(i, "fmi2SetString", vr, nvr, value, MAX_STRING_REFS, |p| {
             // SAFETY: each value is null (rejected) or a C string.
             unsafe { text(p, MAX_STRING_BYTES) }.map(|s| Value::String(s.to_string()))
         })

@@ -10,6 +10,7 @@ cd "$(dirname "$0")/.."
 need_apt=()
 command -v gcc >/dev/null 2>&1 || need_apt+=(build-essential)
 command -v pkg-config >/dev/null 2>&1 || need_apt+=(pkg-config)
+command -v strip >/dev/null 2>&1 || need_apt+=(binutils)  # entrynav fmu pack strips the FMU library
 command -v python3 >/dev/null 2>&1 || need_apt+=(python3 python3-venv)
 [ -e /usr/lib/x86_64-linux-gnu/libopenblas.so ] || [ -e /usr/lib/libopenblas.so ] || need_apt+=(libopenblas-dev)
 ls /usr/lib/gcc/x86_64-linux-gnu/*/libgfortran.so >/dev/null 2>&1 || need_apt+=(libgfortran-12-dev)

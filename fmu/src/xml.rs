@@ -1,20 +1,23 @@
 //! `modelDescription.xml` from the variable table (quick-xml).
 
-use crate::vars::{Causality, Model, UNITS, Var, guid_of, variables};
-use entrynav::scenario::{Scenario, ScenarioConfig};
+use crate::vars::{Causality, ENUM_TYPES, Model, ModelSpec, TABLE_DATE, UNITS, Var};
 use quick_xml::Writer;
 use quick_xml::events::{BytesDecl, Event};
 use std::io;
 
 /// Log categories the FMUs use.
-pub const LOG_CATEGORIES: [(&str, &str); 4] = [
+pub const LOG_CATEGORIES: [(&str, &str); 5] = [
     (
         "logStatusError",
-        "Errors: illegal calls, bad arguments, failed steps",
+        "Errors: illegal calls, bad arguments, refused requests, failed steps, caught panics",
     ),
     (
         "logStatusWarning",
-        "Warnings: filter failures, dropped measurements",
+        "Warnings: filter failures, dropped measurements, a full replay log",
+    ),
+    (
+        "logStatusDiscard",
+        "Status queries this FMU cannot answer (fmi2Discard)",
     ),
     (
         "logEvents",
@@ -23,54 +26,49 @@ pub const LOG_CATEGORIES: [(&str, &str); 4] = [
     ("logAll", "Every message"),
 ];
 
-/// Start time, stop time and step size of the default experiment: the default scenario's
-/// duration, with one step per fastest sensor sample.
-pub fn default_experiment() -> (f64, f64, f64) {
-    let cfg = ScenarioConfig::builtin(crate::vars::DEFAULT_SCENARIO).expect("built-in scenario");
-    let stop = cfg.timing.duration_s;
-    let truth_step = cfg.timing.truth_step_s;
-    let step = Scenario::build(cfg, &entrynav::files::no_files)
-        .ok()
-        .and_then(|s| {
-            s.channels
-                .iter()
-                .map(|c| c.period_s)
-                .min_by(|a, b| a.total_cmp(b))
-        })
-        .unwrap_or(truth_step);
-    (0.0, stop, step)
-}
-
 fn fmt_f64(v: f64) -> String {
     format!("{v:?}")
 }
 
-/// The `modelDescription.xml` text of `model`.
+/// The `modelDescription.xml` text of the generic `model`.
 pub fn model_description(model: Model) -> String {
-    write(model).expect("writing XML to memory cannot fail")
+    description_of(&ModelSpec::generic(model))
 }
 
-fn write(model: Model) -> io::Result<String> {
-    let vars = variables(model);
+/// The `modelDescription.xml` text of `spec`.
+pub fn description_of(spec: &ModelSpec) -> String {
+    // Writing to a Vec cannot fail and the bytes are UTF-8 (every piece is a Rust string).
+    write(spec).unwrap_or_default()
+}
+
+fn write(spec: &ModelSpec) -> io::Result<String> {
+    let vars = spec.vars();
     let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
     w.write_event(Event::Decl(BytesDecl::new("1.0", Some("UTF-8"), None)))?;
-    let guid = guid_of(model);
     let version = env!("CARGO_PKG_VERSION");
-    let n_vars = vars.len().to_string();
+    let description = spec.description();
+    let used_enums: Vec<_> = ENUM_TYPES
+        .iter()
+        .filter(|e| {
+            vars.iter()
+                .any(|v| v.declared.is_some_and(|d| std::ptr::eq(d, **e)))
+        })
+        .collect();
     w.create_element("fmiModelDescription")
         .with_attribute(("fmiVersion", "2.0"))
-        .with_attribute(("modelName", model.identifier()))
-        .with_attribute(("guid", guid.as_str()))
-        .with_attribute(("description", model.description()))
+        .with_attribute(("modelName", spec.identifier()))
+        .with_attribute(("guid", spec.guid()))
+        .with_attribute(("description", description.as_str()))
         .with_attribute(("author", "entrynav"))
         .with_attribute(("version", version))
         .with_attribute(("license", "MIT OR Apache-2.0"))
         .with_attribute(("generationTool", "entrynav fmu pack"))
+        .with_attribute(("generationDateAndTime", TABLE_DATE))
         .with_attribute(("variableNamingConvention", "flat"))
         .with_attribute(("numberOfEventIndicators", "0"))
         .write_inner_content(|w| {
             w.create_element("CoSimulation")
-                .with_attribute(("modelIdentifier", model.identifier()))
+                .with_attribute(("modelIdentifier", spec.identifier()))
                 .with_attribute(("needsExecutionTool", "false"))
                 .with_attribute(("canHandleVariableCommunicationStepSize", "true"))
                 .with_attribute(("canInterpolateInputs", "false"))
@@ -106,6 +104,28 @@ fn write(model: Model) -> io::Result<String> {
                     }
                     Ok(())
                 })?;
+            w.create_element("TypeDefinitions")
+                .write_inner_content(|w| {
+                    for e in &used_enums {
+                        w.create_element("SimpleType")
+                            .with_attribute(("name", e.name))
+                            .with_attribute(("description", e.description))
+                            .write_inner_content(|w| {
+                                w.create_element("Enumeration").write_inner_content(|w| {
+                                    for (k, (name, d)) in e.items.iter().enumerate() {
+                                        w.create_element("Item")
+                                            .with_attribute(("name", *name))
+                                            .with_attribute(("value", k.to_string().as_str()))
+                                            .with_attribute(("description", *d))
+                                            .write_empty()?;
+                                    }
+                                    Ok(())
+                                })?;
+                                Ok(())
+                            })?;
+                    }
+                    Ok(())
+                })?;
             w.create_element("LogCategories").write_inner_content(|w| {
                 for (name, d) in LOG_CATEGORIES {
                     w.create_element("Category")
@@ -115,7 +135,7 @@ fn write(model: Model) -> io::Result<String> {
                 }
                 Ok(())
             })?;
-            let (start, stop, step) = default_experiment();
+            let (start, stop, step) = spec.default_experiment();
             w.create_element("DefaultExperiment")
                 .with_attribute(("startTime", fmt_f64(start).as_str()))
                 .with_attribute(("stopTime", fmt_f64(stop).as_str()))
@@ -123,24 +143,37 @@ fn write(model: Model) -> io::Result<String> {
                 .write_empty()?;
             w.create_element("ModelVariables")
                 .write_inner_content(|w| {
-                    for (i, v) in vars.iter().enumerate() {
-                        write_var(w, i + 1, v)?;
+                    for v in vars {
+                        write_var(w, v)?;
                     }
                     Ok(())
                 })?;
-            let outputs: Vec<usize> = vars
+            // ScalarVariable indices (1-based) of the outputs and of the parameters.
+            let indices = |c: Causality| -> Vec<usize> {
+                vars.iter()
+                    .enumerate()
+                    .filter(|(_, v)| v.causality == c)
+                    .map(|(i, _)| i + 1)
+                    .collect()
+            };
+            let outputs = indices(Causality::Output);
+            let parameters = indices(Causality::Parameter)
                 .iter()
-                .enumerate()
-                .filter(|(_, v)| v.causality == Causality::Output)
-                .map(|(i, _)| i + 1)
-                .collect();
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(" ");
+            // No input feeds through: an output at a communication point depends on the inputs
+            // held during the steps before it, never on the current ones (dependencies="").
+            // In Initialization Mode the outputs are computed from the parameters only.
             w.create_element("ModelStructure")
                 .write_inner_content(|w| {
-                    for list in ["Outputs", "InitialUnknowns"] {
+                    for (list, deps) in [("Outputs", ""), ("InitialUnknowns", parameters.as_str())]
+                    {
                         w.create_element(list).write_inner_content(|w| {
                             for i in &outputs {
                                 w.create_element("Unknown")
                                     .with_attribute(("index", i.to_string().as_str()))
+                                    .with_attribute(("dependencies", deps))
                                     .write_empty()?;
                             }
                             Ok(())
@@ -150,13 +183,12 @@ fn write(model: Model) -> io::Result<String> {
                 })?;
             Ok(())
         })?;
-    let _ = n_vars;
     let mut text = String::from_utf8(w.into_inner()).map_err(io::Error::other)?;
     text.push('\n');
     Ok(text)
 }
 
-fn write_var(w: &mut Writer<Vec<u8>>, index: usize, v: &Var) -> io::Result<()> {
+fn write_var(w: &mut Writer<Vec<u8>>, v: &Var) -> io::Result<()> {
     let vr = v.vr.to_string();
     let mut e = w
         .create_element("ScalarVariable")
@@ -168,9 +200,11 @@ fn write_var(w: &mut Writer<Vec<u8>>, index: usize, v: &Var) -> io::Result<()> {
     if v.causality == Causality::Parameter {
         e = e.with_attribute(("initial", "exact"));
     }
-    let _ = index;
     e.write_inner_content(|w| {
-        let mut t = w.create_element(v.ty.xml());
+        let mut t = w.create_element(v.xml_type());
+        if let Some(d) = v.declared {
+            t = t.with_attribute(("declaredType", d.name));
+        }
         if let Some(u) = v.unit {
             t = t.with_attribute(("unit", u));
         }

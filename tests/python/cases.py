@@ -3,208 +3,43 @@
 Each case runs in its own Python process (``python cases.py CASE``), started by the pytest files
 with a timeout, so a crash of the host process fails the test instead of taking pytest down, and a
 hang fails it instead of blocking. A case prints one JSON line with its results and exits 0, or
-raises (exit 1).
+raises (exit 1). The cases live here (illegal sequences, instances, threads, FMU states, resource
+URIs), in cases_tools.py (fmpy simulate, libcosimpy) and cases_hardening.py (the hardening issue).
 """
 
 import ctypes
 import json
-import os
 import shutil
-import subprocess
 import sys
 import tempfile
 import threading
-import time
-from ctypes import byref, c_char_p, c_double, c_int, c_size_t, c_uint, c_void_p, POINTER
+from ctypes import byref, c_void_p
 from pathlib import Path
 
-import numpy as np
-
-ROOT = Path(__file__).resolve().parents[2]
-FMU_DIR = Path(os.environ.get("ENTRYNAV_FMU_DIR", ROOT / "target" / "fmu"))
-ENTRYNAV = Path(os.environ.get("ENTRYNAV_BIN", ROOT / "target" / "release" / "entrynav"))
-COMBINED = FMU_DIR / "MarsEntryNav.fmu"
-FILTER = FMU_DIR / "MarsEntryNavFilter.fmu"
-TRUTH = FMU_DIR / "MarsEntryTruth.fmu"
-
-
-# ------------------------------------------------------------------------------------------------
-# helpers
-
-
-class Logged:
-    """fmi2CallbackFunctions whose logger records (status, category, message)."""
-
-    def __init__(self):
-        from fmpy import calloc, free
-        from fmpy.fmi2 import (
-            fmi2CallbackAllocateMemoryTYPE,
-            fmi2CallbackFreeMemoryTYPE,
-            fmi2CallbackFunctions,
-            fmi2CallbackLoggerTYPE,
-        )
-
-        self.messages = []
-
-        def logger(env, name, status, category, message):
-            self.messages.append(
-                (status, (category or b"").decode(), (message or b"").decode())
-            )
-
-        self.callbacks = fmi2CallbackFunctions()
-        self._logger = fmi2CallbackLoggerTYPE(logger)
-        self.callbacks.logger = self._logger
-        self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-        self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-
-    def text(self):
-        return "\n".join(m for _, _, m in self.messages)
-
-
-def extract(fmu, where=None):
-    from fmpy import extract as fmpy_extract
-
-    return fmpy_extract(str(fmu), unzipdir=where)
-
-
-def variables(fmu):
-    from fmpy import read_model_description
-
-    md = read_model_description(str(fmu))
-    return md, {v.name: v for v in md.modelVariables}
-
-
-def make_slave(fmu, name="inst", unzipdir=None, uri=None, logged=None):
-    """An instantiated FMU2Slave; returns (slave, md, vars, logged)."""
-    from fmpy.fmi2 import FMU2Slave
-
-    md, vs = variables(fmu)
-    unzipdir = unzipdir or extract(fmu)
-    slave = FMU2Slave(
-        guid=md.guid,
-        unzipDirectory=unzipdir,
-        modelIdentifier=md.coSimulation.modelIdentifier,
-        instanceName=name,
-    )
-    logged = logged or Logged()
-    if uri is None:
-        slave.instantiate(callbacks=logged.callbacks)
-    else:
-        slave.callbacks = logged.callbacks
-        slave.component = slave.fmi2Instantiate(
-            name.encode(), 1, md.guid.encode(), uri.encode(), byref(logged.callbacks), 0, 0
-        )
-        assert slave.component, logged.text()
-    return slave, md, vs, logged
-
-
-def set_params(slave, vs, params):
-    for k, v in params.items():
-        var = vs[k]
-        if var.type == "String":
-            slave.setString([var.valueReference], [v])
-        elif var.type == "Integer":
-            slave.setInteger([var.valueReference], [int(v)])
-        elif var.type == "Boolean":
-            slave.setBoolean([var.valueReference], [bool(v)])
-        else:
-            slave.setReal([var.valueReference], [float(v)])
-
-
-def init(slave, vs, params, stop=None, logged=None):
-    set_params(slave, vs, params)
-    slave.setupExperiment(startTime=0.0, stopTime=stop)
-    slave.enterInitializationMode()
-    try:
-        slave.exitInitializationMode()
-    except Exception as e:
-        raise AssertionError(f"initialisation failed: {logged.text() if logged else e}") from e
-
-
-def outputs(md):
-    """Output value references grouped by type, in table order."""
-    out = {"Real": [], "Integer": [], "Boolean": []}
-    for v in md.modelVariables:
-        if v.causality == "output":
-            out[v.type].append(v.valueReference)
-    return out
-
-
-def read_all(slave, groups):
-    """Every output as float64 bit patterns (reals) and ints, in one flat list."""
-    r = np.array(slave.getReal(groups["Real"]), dtype=np.float64).view(np.uint64).tolist()
-    i = [int(x) for x in slave.getInteger(groups["Integer"])]
-    b = [int(bool(x)) for x in slave.getBoolean(groups["Boolean"])]
-    return r + i + b
-
-
-def bank_profile(t):
-    """Bank command [rad]: 0, then a ramp to 0.4 rad between 100 s and 140 s, then -0.25 rad."""
-    if t < 100:
-        return 0.0
-    if t < 140:
-        return 0.01 * (t - 100)
-    return -0.25
-
-
-def beacon2(t):
-    """Beacon 2 available except during the commanded outage 120 s <= t < 180 s."""
-    return not (120 <= t < 180)
-
-
-def run_solo(fmu, params, steps, h=1.0, inputs=None, slave_name="solo"):
-    slave, md, vs, logged = make_slave(fmu, slave_name)
-    init(slave, vs, params)
-    groups = outputs(md)
-    rows = [read_all(slave, groups)]
-    for k in range(steps):
-        t = k * h
-        if inputs:
-            inputs(slave, vs, t)
-        slave.doStep(currentCommunicationPoint=t, communicationStepSize=h)
-        rows.append(read_all(slave, groups))
-    slave.terminate()
-    slave.freeInstance()
-    return rows
-
-
-def apply_inputs(slave, vs, t):
-    slave.setReal([vs["bank_angle"].valueReference], [bank_profile(t)])
-    slave.setBoolean([vs["beacon_available_2"].valueReference], [beacon2(t)])
-
-
-def expect_error(logged, fn, *args, match=None, **kw):
-    """fn must raise fmpy's FMICallException with fmi2Error and log `match`."""
-    from fmpy.fmi1 import FMICallException
-
-    before = len(logged.messages)
-    try:
-        fn(*args, **kw)
-    except FMICallException as e:
-        assert e.status == 3, f"{fn.__name__}: status {e.status}, expected fmi2Error"
-        new = "\n".join(m for _, _, m in logged.messages[before:])
-        if match is not None:
-            assert match in new, f"{fn.__name__}: log {new!r} lacks {match!r}"
-        return new
-    raise AssertionError(f"{getattr(fn, '__name__', fn)} did not fail")
-
-
-def raw_lib(fmu):
-    """The FMU's shared library loaded with ctypes, with a few signatures declared."""
-    d = extract(fmu)
-    md, _ = variables(fmu)
-    lib = ctypes.CDLL(str(Path(d) / "binaries" / "linux64" / f"{md.coSimulation.modelIdentifier}.so"))
-    lib.fmi2Instantiate.restype = c_void_p
-    lib.fmi2Instantiate.argtypes = [c_char_p, c_int, c_char_p, c_char_p, c_void_p, c_int, c_int]
-    lib.fmi2FreeInstance.argtypes = [c_void_p]
-    lib.fmi2FreeInstance.restype = None
-    lib.fmi2DoStep.argtypes = [c_void_p, c_double, c_double, c_int]
-    lib.fmi2GetReal.argtypes = [c_void_p, POINTER(c_uint), c_size_t, POINTER(c_double)]
-    lib.fmi2Terminate.argtypes = [c_void_p]
-    lib.fmi2GetTypesPlatform.restype = c_char_p
-    lib.fmi2GetVersion.restype = c_char_p
-    return lib, md, d
-
+import cases_hardening
+import cases_tools
+from fmu_helpers import (
+    Logged,
+    extract,
+    variables,
+    make_slave,
+    set_params,
+    init,
+    outputs,
+    read_all,
+    bank_profile,
+    beacon2,
+    run_solo,
+    apply_inputs,
+    expect_error,
+    raw_lib,
+    ROOT,
+    FMU_DIR,
+    ENTRYNAV,
+    COMBINED,
+    FILTER,
+    TRUTH,
+)
 
 # ------------------------------------------------------------------------------------------------
 # cases
@@ -242,6 +77,15 @@ def case_illegal_sequences():
     msg = expect_error(logged, slave.exitInitializationMode, match="100%%-missing.toml")
     assert "100%-missing" not in msg.replace("%%", ""), msg
     checks += 3
+    # A failed fmi2ExitInitializationMode puts the instance in the error state (FMI 2.0): only
+    # fmi2Reset, fmi2SetFMUstate, fmi2FreeInstance and the queries lead on.
+    expect_error(logged, slave.setString, [vs["scenario"].valueReference], ["four-beacon-fusion"], match="Illegal call sequence")
+    expect_error(logged, slave.exitInitializationMode, match="Illegal call sequence")
+    expect_error(logged, slave.doStep, 0.0, 1.0, match="Illegal call sequence")
+    checks += 3
+    slave.reset()
+    slave.setupExperiment(startTime=0.0, stopTime=10.0)
+    slave.enterInitializationMode()
     # Fix the parameter in initialisation mode, then initialise.
     set_params(slave, vs, {"scenario": "four-beacon-fusion", "seed": 4})
     slave.exitInitializationMode()
@@ -471,151 +315,14 @@ def case_resource_uris():
         shutil.rmtree(base, ignore_errors=True)
 
 
-def case_fmpy_simulate():
-    from fmpy import simulate_fmu
-
-    tmp = Path(tempfile.mkdtemp(prefix="entrynav-fmpy-"))
-    try:
-        t = np.arange(0.0, 301.0)
-        signals = np.array(
-            [(ti, bank_profile(ti), beacon2(ti)) for ti in t],
-            dtype=[("time", np.float64), ("bank_angle", np.float64), ("beacon_available_2", np.bool_)],
-        )
-        csv = tmp / "input.csv"
-        with open(csv, "w") as f:
-            f.write("time,bank_angle,beacon_available_2\n")
-            for ti, b, a in signals:
-                f.write(f"{float(ti)!r},{float(b)!r},{int(a)}\n")
-        params = {"scenario": "four-beacon-fusion", "filter": "dcifaif", "seed": 7, "dispersed": True}
-        t0 = time.perf_counter()
-        res = simulate_fmu(
-            str(COMBINED),
-            start_time=0.0,
-            stop_time=300.0,
-            output_interval=1.0,
-            start_values=params,
-            input=signals,
-        )
-        wall = time.perf_counter() - t0
-        ref_csv = tmp / "ref.csv"
-        cmd = [str(ENTRYNAV), "fmu", "run", "--model", "MarsEntryNav", "--stop", "300", "--step", "1",
-               "--input", str(csv), "--out", str(ref_csv)]
-        cmd += [arg for k, v in params.items() for arg in ("--set", f"{k}={str(v).lower() if isinstance(v, bool) else v}")]
-        subprocess.run(cmd, check=True, timeout=120)
-        ref = np.genfromtxt(ref_csv, delimiter=",", names=True, deletechars="", dtype=np.float64)
-        assert len(ref) == len(res) == 301, (len(ref), len(res))
-        compared = 0
-        for name in ref.dtype.names:
-            a = np.asarray(res[name], dtype=np.float64)
-            b = ref[name]
-            same = np.array_equal(a, b, equal_nan=True)
-            assert same, f"{name}: fmpy and the in-process library differ (max |d| = {np.nanmax(np.abs(a - b))})"
-            compared += len(a)
-        # The outage removed beacon 2's range from the updates.
-        n_meas = np.asarray(res["n_meas"])
-        assert n_meas[125] < n_meas[110], (n_meas[110], n_meas[125])
-        # The same run without inputs (bank 0, every beacon available), timed (reported, not
-        # asserted): the bank command changed the flown trajectory.
-        t0 = time.perf_counter()
-        plain_res = simulate_fmu(str(COMBINED), stop_time=300.0, output_interval=1.0, start_values=params)
-        plain = time.perf_counter() - t0
-        dr = abs(float(plain_res["truth_r"][-1]) - float(res["truth_r"][-1]))
-        assert dr > 100.0, f"the bank command moved the final radius by only {dr} m"
-        return {"values_compared": compared, "wall_with_input_s": round(wall, 3), "wall_300s_dcifaif_s": round(plain, 3)}
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
 
 
-def _libcosim_run(slaves, connections, params, steps, observe):
-    """Run slaves [(name, fmu)] in one libcosim execution with 1 s steps; return per-step values."""
-    from libcosimpy.CosimExecution import CosimExecution
-    from libcosimpy.CosimObserver import CosimObserver
-    from libcosimpy.CosimSlave import CosimLocalSlave
-
-    ex = CosimExecution.from_step_size(step_size=int(1e9))
-    idx = {}
-    vmaps = {}
-    for name, fmu in slaves:
-        idx[name] = ex.add_local_slave(CosimLocalSlave(fmu_path=str(fmu), instance_name=name))
-        assert idx[name] >= 0, f"cannot add {fmu}"
-        vmaps[name] = {v.name.decode(): v.reference for v in ex.slave_variables(idx[name])}
-    for name, values in params.items():
-        for k, v in values.items():
-            vr = vmaps[name][k]
-            if isinstance(v, bool):
-                assert ex.boolean_initial_value(idx[name], vr, v)
-            elif isinstance(v, int):
-                assert ex.integer_initial_value(idx[name], vr, v)
-            elif isinstance(v, float):
-                assert ex.real_initial_value(idx[name], vr, v)
-            else:
-                assert ex.string_initial_value(idx[name], vr, v)
-    for (src, dst, names) in connections:
-        md, vs = variables(dict(slaves)[src])
-        for n in names:
-            kind = vs[n].type
-            f = {"Real": ex.connect_real_variables, "Boolean": ex.connect_boolean_variables}[kind]
-            rc = f(idx[src], vmaps[src][n], idx[dst], vmaps[dst][n])
-            assert rc == 0, f"cannot connect {src}.{n} -> {dst}.{n}"
-    obs = CosimObserver.create_last_value()
-    ex.add_observer(obs)
-    series = {name: [] for name in observe}
-    for k in range(steps):
-        assert ex.step(), f"libcosim step {k} failed"
-        for name, names in observe.items():
-            refs = [vmaps[name][n] for n in names]
-            series[name].append(list(obs.last_real_values(idx[name], refs)))
-    return series
-
-
-def case_libcosim():
-    from fmpy import read_model_description
-
-    steps = 300
-    est = [f"est_x_{i}" for i in range(1, 9)] + [f"est_sigma_{i}" for i in range(1, 9)] + ["nav_time", "weight_1", "weight_2"]
-    truth_names = ["truth_r", "truth_v", "truth_density"]
-    md_t = read_model_description(str(TRUTH))
-    meas = [v.name for v in md_t.modelVariables if v.causality == "output" and v.name.startswith("meas_")]
-    common = {"seed": 4, "dispersed": True, "scenario": "four-beacon-fusion"}
-    series = _libcosim_run(
-        slaves=[("combined", COMBINED), ("truth", TRUTH), ("filter", FILTER)],
-        connections=[("truth", "filter", meas)],
-        params={
-            "combined": dict(common, filter="dcifaif"),
-            "truth": dict(common),
-            "filter": dict(common, filter="dcifaif"),
-        },
-        steps=steps,
-        observe={"combined": est + truth_names, "truth": truth_names, "filter": est},
-    )
-    comb = np.array(series["combined"])
-    filt = np.array(series["filter"])
-    tru = np.array(series["truth"])
-    # Truth FMU = combined FMU's truth, step for step.
-    assert np.array_equal(tru, comb[:, len(est):]), "truth FMU differs from the combined FMU's truth"
-    # The filter FMU gets the measurements one communication step later (they are transferred
-    # after the step), so its estimate after step k+1 is the combined estimate after step k.
-    n_est = len(est)
-    assert np.array_equal(filt[1:], comb[:-1, :n_est]), "filter FMU does not reproduce the combined estimates"
-    # And the combined FMU in libcosim equals the in-process library.
-    tmp = Path(tempfile.mkdtemp(prefix="entrynav-cosim-"))
-    try:
-        ref_csv = tmp / "ref.csv"
-        subprocess.run(
-            [str(ENTRYNAV), "fmu", "run", "--model", "MarsEntryNav", "--stop", str(steps), "--step", "1",
-             "--set", "seed=4", "--set", "dispersed=true", "--set", "filter=dcifaif", "--out", str(ref_csv)],
-            check=True,
-            timeout=120,
-        )
-        ref = np.genfromtxt(ref_csv, delimiter=",", names=True, deletechars="", dtype=np.float64)
-        for j, n in enumerate(est + truth_names):
-            assert np.array_equal(comb[:, j], ref[n][1:], equal_nan=True), f"libcosim {n} differs from the in-process run"
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
-    return {"steps": steps, "estimates_compared": int(filt[1:].size), "connected_variables": len(meas)}
-
-
-CASES = {name[5:]: f for name, f in globals().items() if name.startswith("case_")}
+CASES = {
+    name[5:]: f
+    for module in (globals(), vars(cases_tools), vars(cases_hardening))
+    for name, f in module.items()
+    if name.startswith("case_")
+}
 
 if __name__ == "__main__":
     result = CASES[sys.argv[1]]()

@@ -5,6 +5,7 @@ libcosimpy (FMI Library), and random call sequences through our own host.
 Every case that loads an FMU runs in a subprocess with a timeout."""
 
 import json
+import re
 import subprocess
 import sys
 import zipfile
@@ -117,7 +118,16 @@ def test_host_check_bitwise(fmus, model):
 
 @pytest.mark.parametrize("model", MODELS)
 def test_host_fuzz_random_call_sequences(fmus, model):
-    out = run([ENTRYNAV, "fmu", "fuzz", fmus[model], "--cases", "300", "--calls", "60", "--seed", "7"], timeout=600)
+    """100,000 random calls per FMU through our host (huge and tiny steps, every size-like
+    argument past its bound): every illegal or refused call answered with fmi2Error, nothing on
+    stderr (no Rust panic message). `entrynav fmu fuzz --calls 5000000` is the long mode."""
+    out = run([ENTRYNAV, "fmu", "fuzz", fmus[model], "--calls", "100000", "--seed", "7"], timeout=600)
     print(out.stdout)
     assert out.returncode == 0, out.stdout + out.stderr
-    assert "every one answered fmi2Error" in out.stdout
+    assert out.stderr == "", out.stderr
+    m = re.search(r"(\d+) calls in (\d+) sequences .* no crash; .* (\d+) illegal or refused calls answered fmi2Error with the instance unchanged.* (\d+) steps refused for their work, (\d+) huge and (\d+) tiny steps, (\d+) arguments over a bound", out.stdout)
+    assert m, out.stdout
+    calls, _, refused, _, huge, tiny, bounded = map(int, m.groups())
+    assert calls >= 100_000 and refused > 1000 and huge > 100 and tiny > 100 and bounded > 100, m.groups()
+    if model == "MarsEntryNavFilter":
+        assert int(m.group(4)) > 0, "no step was refused for its work"

@@ -54,28 +54,51 @@ pub(super) fn check_inputs(
 }
 
 /// The scenario's duration and its fastest sensor period (the default communication step).
-pub(super) fn scenario_timing(name: &str, resources: &Path) -> Result<(f64, f64)> {
-    let sc = load_scenario(name, resources)?;
+pub(super) fn scenario_timing(sc: &entrynav::scenario::Scenario) -> (f64, f64) {
     let step = sc
         .channels
         .iter()
         .map(|c| c.period_s)
         .fold(f64::INFINITY, f64::min);
-    Ok((
+    (
         sc.config.timing.duration_s,
         if step.is_finite() { step } else { 1.0 },
-    ))
+    )
+}
+
+/// The filter a check runs: `--filter`, else the FMU's default.
+fn filter_of(a: &CheckArgs, spec: &mars_entry_nav::ModelSpec) -> String {
+    a.filter.clone().unwrap_or_else(|| {
+        spec.specific()
+            .map(|s| s.filter.name())
+            .unwrap_or(mars_entry_nav::vars::DEFAULT_FILTER)
+            .to_string()
+    })
+}
+
+/// The scenario a check runs: the embedded one of a specific FMU, else `name` from `resources`.
+pub(super) fn check_scenario(
+    u: &Unpacked,
+    name: &str,
+    resources: &Path,
+) -> Result<Arc<entrynav::scenario::Scenario>> {
+    match u.spec.specific() {
+        Some(s) => Ok(Arc::clone(&s.scenario)),
+        None => load_scenario(name, resources),
+    }
 }
 
 pub(super) fn check(a: &CheckArgs) -> Result<()> {
     let u = unpack(&a.file)?;
     let m = u.model;
-    let vars = variables(m);
+    let spec = Arc::clone(&u.spec);
+    let vars = spec.vars().to_vec();
     let res = u.dir.join("resources");
-    let (duration, default_step) = scenario_timing(&a.scenario, &res)?;
+    let scenario = check_scenario(&u, &a.scenario, &res)?;
+    let (duration, default_step) = scenario_timing(&scenario);
     let h = a.step.unwrap_or(default_step);
     let n_steps = (duration / h).round() as usize;
-    let guid = guid_of(m);
+    let guid = spec.guid().to_string();
     // SAFETY: plain C strings from the library.
     let (platform, version) = unsafe {
         (
@@ -97,7 +120,7 @@ pub(super) fn check(a: &CheckArgs) -> Result<()> {
         .filter_map(|(i, v)| {
             let val = match v.key {
                 Key::Scenario => Value::String(a.scenario.clone()),
-                Key::Filter => Value::String(a.filter.clone()),
+                Key::Filter => Value::String(filter_of(a, &spec)),
                 Key::Seed => Value::Integer(a.seed),
                 Key::Dispersed => Value::Boolean(!a.nominal),
                 _ => return None,
@@ -111,11 +134,18 @@ pub(super) fn check(a: &CheckArgs) -> Result<()> {
     // Through the host.
     let slave = Slave::new(&u, "check", &guid, &uri)?;
     // In process: the same library's safe instance, no FFI.
-    let mut inst = Instance::new("check", &guid, Some(&uri), false, Box::new(|_, _, _| {}))
-        .map_err(|(_, e)| anyhow::anyhow!(e))?;
+    let mut inst = Instance::new(
+        Arc::clone(&spec),
+        "check",
+        &guid,
+        Some(&uri),
+        false,
+        Box::new(|_, _, _| {}),
+    )
+    .map_err(|(_, e)| anyhow::anyhow!(e))?;
     let mut feeder = if m == Model::Filter {
         Some(TruthSensors::new(
-            load_scenario(&a.scenario, &res)?,
+            Arc::clone(&scenario),
             a.seed as u64,
             !a.nominal,
         ))
@@ -212,14 +242,14 @@ pub(super) fn check(a: &CheckArgs) -> Result<()> {
     println!(
         "{}: {} ({}), {} steps of {h} s on {} / {} / seed {}: {} output values compared, all bitwise identical to the in-process library ({} warnings)",
         a.file.display(),
-        m.identifier(),
+        spec.identifier(),
         guid,
         n_steps,
-        a.scenario,
+        scenario.config.name,
         if m.has_filter() {
-            a.filter.as_str()
+            filter_of(a, &spec)
         } else {
-            "-"
+            "-".to_string()
         },
         a.seed,
         compared,
@@ -258,15 +288,15 @@ pub(super) fn bench(
         u.model == Model::Combined,
         "--bench needs the combined FMU (MarsEntryNav)"
     );
-    let vars = variables(u.model);
+    let vars = u.spec.vars();
     let bank_vr = vars
         .iter()
         .find(|v| v.key == Key::Bank)
         .map(|v| v.vr)
         .unwrap_or(0);
-    let scenario = load_scenario(&a.scenario, &u.dir.join("resources"))?;
-    let kind = entrynav::estimation::nav::FilterKind::parse(&a.filter)?;
-    let guid = guid_of(u.model);
+    let scenario = check_scenario(u, &a.scenario, &u.dir.join("resources"))?;
+    let kind = entrynav::estimation::nav::FilterKind::parse(&filter_of(a, &u.spec))?;
+    let guid = u.spec.guid().to_string();
     let (mut host, mut direct, mut wrapped) = (Vec::new(), Vec::new(), Vec::new());
     for _ in 0..a.reps.max(1) {
         // In process: the engine called directly.
@@ -284,8 +314,15 @@ pub(super) fn bench(
         }
         direct.push(clock.elapsed().as_secs_f64());
         // In process through the safe instance wrapper (same code as behind the C API).
-        let mut inst = Instance::new("bench", &guid, Some(uri), false, Box::new(|_, _, _| {}))
-            .map_err(|(_, e)| anyhow::anyhow!(e))?;
+        let mut inst = Instance::new(
+            Arc::clone(&u.spec),
+            "bench",
+            &guid,
+            Some(uri),
+            false,
+            Box::new(|_, _, _| {}),
+        )
+        .map_err(|(_, e)| anyhow::anyhow!(e))?;
         for (i, v) in params {
             inst.set("fmi2Set", &[vars[*i].vr], vec![v.clone()]);
         }
@@ -324,8 +361,8 @@ pub(super) fn bench(
     let (mh, md, mw) = (median(host), median(direct), median(wrapped));
     println!(
         "bench {} / {} / {n_steps} steps of {h} s, median of {} runs: host (fmi2SetReal + fmi2DoStep via libloading) {:.3} ms ({:.2} us/step), in-process engine (EntryCoSim::do_step) {:.3} ms ({:.2} us/step), in-process instance wrapper {:.3} ms; host/in-process = {:.3}",
-        a.scenario,
-        a.filter,
+        scenario.config.name,
+        filter_of(a, &u.spec),
         a.reps.max(1),
         mh * 1e3,
         mh * 1e6 / n_steps as f64,

@@ -1,6 +1,7 @@
-//! `entrynav fmu`: build the FMI 2.0 co-simulation FMUs (`pack`), check a `.fmu` through our own
-//! FMI host against the in-process library (`check`, with `--bench`), and drive random call
-//! sequences through the host (`fuzz`).
+//! `entrynav fmu`: build the FMI 2.0 co-simulation FMUs (`pack`, also scenario-specific ones),
+//! check a `.fmu` through our own FMI host against the in-process library (`check`, with
+//! `--bench`), drive random call sequences through the host (`fuzz`), run a model in process
+//! (`run`) and write the FMI Cross-Check files of packed FMUs (`cross-check`).
 //!
 //! The host (`mars_entry_nav::host`, in the `fmu` crate) loads
 //! `binaries/linux64/<modelIdentifier>.so` with libloading and calls the 34 fmi2 functions.
@@ -8,13 +9,15 @@
 #![allow(non_snake_case)]
 
 mod check;
+mod cross_check;
 mod fuzz;
 mod pack;
 mod run;
 
 use check::check;
-use fuzz::fuzz;
-use pack::pack;
+use cross_check::{CrossCheckArgs, cross_check};
+use fuzz::{FuzzArgs, fuzz};
+use pack::{PackArgs, pack};
 use run::run_reference;
 
 use anyhow::{Context, Result, bail, ensure};
@@ -22,12 +25,8 @@ use clap::{Args, Subcommand};
 use entrynav::scenario::{BUILTIN_NAMES, builtin_toml};
 use entrynav::sim::engine::TruthSensors;
 use mars_entry_nav::instance::{Instance, Status};
-use mars_entry_nav::vars::{Causality, Key, MAX_BEACONS, Model, Slot, Type, Value, Var, variables};
-use mars_entry_nav::xml::model_description;
-use mars_entry_nav::{guid_of, xml};
-use rand::{RngExt, SeedableRng};
-use rand_chacha::ChaCha8Rng;
-use std::ffi::{CStr, c_int, c_void};
+use mars_entry_nav::vars::{Causality, Key, MAX_BEACONS, Model, Slot, Type, Value, Var};
+use std::ffi::CStr;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -42,37 +41,23 @@ pub struct FmuArgs {
 
 #[derive(Subcommand)]
 enum FmuAction {
-    /// Build MarsEntryNav.fmu, MarsEntryNavFilter.fmu and MarsEntryTruth.fmu.
-    Pack {
-        /// Output folder.
-        #[arg(long, default_value = "target/fmu")]
-        out: PathBuf,
-        /// The FMU shared library (default: libmars_entry_nav.so next to this executable; build
-        /// it with `cargo build --release -p entrynav-fmu`).
-        #[arg(long)]
-        lib: Option<PathBuf>,
-    },
+    /// Build MarsEntryNav.fmu, MarsEntryNavFilter.fmu and MarsEntryTruth.fmu (or, with
+    /// --scenario, the combined model specific to one scenario), each with a stripped library
+    /// bound to its model.
+    Pack(PackArgs),
     /// Unzip a .fmu, run a scenario through its fmi2 API with our host and compare every output
     /// with the in-process library, bit for bit.
     Check(CheckArgs),
     /// Run a model in process (no FFI) with an input table and write every output as CSV: the
     /// reference the Python tests compare external FMI tools with.
     Run(RunArgs),
-    /// Random fmi2 call sequences and values through our host: no crash, and every illegal call
-    /// answered with fmi2Error.
-    Fuzz {
-        /// The .fmu file.
-        file: PathBuf,
-        /// Number of random call sequences.
-        #[arg(long, default_value_t = 200)]
-        cases: usize,
-        /// Calls per sequence.
-        #[arg(long, default_value_t = 60)]
-        calls: usize,
-        /// Seed of the random sequences.
-        #[arg(long, default_value_t = 1)]
-        seed: u64,
-    },
+    /// Random fmi2 call sequences and values through our host, huge and tiny intervals and every
+    /// size-like argument included: no crash, every illegal call answered with fmi2Error, every
+    /// refused request leaves the instance as it was.
+    Fuzz(FuzzArgs),
+    /// Write the FMI Cross-Check files (<Model>_ref.csv, _ref.opt, _in.csv, README.md and the
+    /// .fmu) of packed FMUs, laid out as fmus/2.0/cs/linux64/entrynav/<version>/<Model>/.
+    CrossCheck(CrossCheckArgs),
 }
 
 #[derive(Args)]
@@ -80,6 +65,10 @@ struct RunArgs {
     /// Model identifier: MarsEntryNav, MarsEntryNavFilter or MarsEntryTruth.
     #[arg(long, default_value = "MarsEntryNav")]
     model: String,
+    /// Run the model of this packed .fmu instead (its table, embedded scenario and resources;
+    /// in process, its library is not called).
+    #[arg(long, conflicts_with = "resources")]
+    fmu: Option<PathBuf>,
     /// Parameter or input start value NAME=VALUE (repeatable).
     #[arg(long = "set", value_name = "NAME=VALUE")]
     sets: Vec<String>,
@@ -108,9 +97,9 @@ struct CheckArgs {
     /// Scenario parameter (built-in name or a file in the FMU's resources).
     #[arg(long, default_value = "four-beacon-fusion")]
     scenario: String,
-    /// Filter parameter.
-    #[arg(long, default_value = "dcifaif")]
-    filter: String,
+    /// Filter parameter (default: the FMU's, dcifaif for the generic FMUs).
+    #[arg(long)]
+    filter: Option<String>,
     /// Seed parameter.
     #[arg(long, default_value_t = 1)]
     seed: i32,
@@ -131,14 +120,10 @@ struct CheckArgs {
 /// Run the command.
 pub fn run(args: &FmuArgs) -> Result<()> {
     match &args.action {
-        FmuAction::Pack { out, lib } => pack(out, lib.as_deref()),
+        FmuAction::Pack(a) => pack(a),
         FmuAction::Check(a) => check(a),
         FmuAction::Run(a) => run_reference(a),
-        FmuAction::Fuzz {
-            file,
-            cases,
-            calls,
-            seed,
-        } => fuzz(file, *cases, *calls, *seed),
+        FmuAction::Fuzz(a) => fuzz(a),
+        FmuAction::CrossCheck(a) => cross_check(a),
     }
 }

@@ -1,13 +1,14 @@
-//! `entrynav fmu run`: the in-process reference run of a model (no `.fmu` involved), printing
-//! or writing its outputs.
+//! `entrynav fmu run`: the in-process reference run of a model (no FFI), writing its outputs as
+//! CSV. The cross-check artifacts are made with the same runner.
 
 #![allow(non_snake_case)]
 
 use super::*;
+use mars_entry_nav::ModelSpec;
 use mars_entry_nav::host::*;
 
 pub(super) fn parse_value(v: &Var, text: &str) -> Result<Value> {
-    let t = text.trim();
+    let t = text.trim().trim_matches('"');
     Ok(match v.ty {
         Type::Real => Value::Real(
             t.parse()
@@ -35,42 +36,17 @@ pub(super) fn fmt_value(v: &Value) -> String {
     }
 }
 
-pub(super) fn run_reference(a: &RunArgs) -> Result<()> {
-    let m = Model::ALL
-        .into_iter()
-        .find(|m| m.identifier() == a.model)
-        .with_context(|| format!("unknown model '{}'", a.model))?;
-    let vars = variables(m);
-    let find = |name: &str| {
-        vars.iter()
-            .find(|v| v.name == name)
-            .with_context(|| format!("{} has no variable '{name}'", m.identifier()))
-    };
-    let uri = a.resources.as_deref().map(file_uri);
-    let mut inst = Instance::new(
-        "reference",
-        &guid_of(m),
-        uri.as_deref(),
-        false,
-        Box::new(|_, _, msg| eprintln!("{msg}")),
-    )
-    .map_err(|(_, e)| anyhow::anyhow!(e))?;
-    for s in &a.sets {
-        let (name, value) = s
-            .split_once('=')
-            .with_context(|| format!("--set '{s}': expected NAME=VALUE"))?;
-        let v = find(name.trim())?;
-        ensure!(
-            inst.set("fmi2Set", &[v.vr], vec![parse_value(v, value)?]) == Status::Ok,
-            "cannot set {name}"
-        );
-    }
-    // Input table.
-    let mut columns: Vec<&Var> = Vec::new();
-    let mut rows: Vec<(f64, Vec<Value>)> = Vec::new();
-    if let Some(p) = &a.input {
-        let text =
-            std::fs::read_to_string(p).with_context(|| format!("cannot read {}", p.display()))?;
+/// An input table: the variables of its columns and its rows (time, values).
+#[derive(Default)]
+pub(super) struct Table {
+    pub(super) columns: Vec<Var>,
+    pub(super) rows: Vec<(f64, Vec<Value>)>,
+}
+
+impl Table {
+    /// Parse a CSV with a `time` column and one column per variable of `vars` (names may be
+    /// quoted, as the FMI cross-check rules write them).
+    pub(super) fn parse(text: &str, vars: &[Var]) -> Result<Table> {
         let mut lines = text.lines().filter(|l| !l.trim().is_empty());
         let header = lines.next().context("empty input table")?;
         let names: Vec<&str> = header
@@ -81,9 +57,15 @@ pub(super) fn run_reference(a: &RunArgs) -> Result<()> {
             names.first() == Some(&"time"),
             "the first column of the input table must be 'time'"
         );
+        let mut columns = Vec::new();
         for n in &names[1..] {
-            columns.push(find(n)?);
+            let v = vars
+                .iter()
+                .find(|v| v.name == *n)
+                .with_context(|| format!("no variable '{n}'"))?;
+            columns.push(v.clone());
         }
+        let mut rows = Vec::new();
         for line in lines {
             let cells: Vec<&str> = line.split(',').collect();
             ensure!(
@@ -100,15 +82,52 @@ pub(super) fn run_reference(a: &RunArgs) -> Result<()> {
                 .collect::<Result<Vec<_>>>()?;
             rows.push((t, vals));
         }
+        Ok(Table { columns, rows })
     }
-    let apply = |inst: &mut Instance, t: f64| -> Result<()> {
-        let row = rows
+
+    /// The row that applies at `t`: the last at or before it (the first before any).
+    fn at(&self, t: f64) -> Option<&Vec<Value>> {
+        self.rows
             .iter()
             .rev()
             .find(|(rt, _)| *rt <= t + 1e-9)
-            .or(rows.first());
-        if let Some((_, vals)) = row {
-            for (v, val) in columns.iter().zip(vals) {
+            .or(self.rows.first())
+            .map(|(_, v)| v)
+    }
+}
+
+/// Run `spec` in process from 0 to `stop` in steps of `step` with the parameter and start values
+/// `sets` and the input `table`; returns the time and the values of `record` at every
+/// communication point, the start included.
+pub(super) fn run_in_process(
+    spec: &Arc<ModelSpec>,
+    resources: Option<&Path>,
+    sets: &[(Var, Value)],
+    table: &Table,
+    stop: f64,
+    step: f64,
+    record: &[Var],
+) -> Result<Vec<(f64, Vec<Value>)>> {
+    let uri = resources.map(file_uri);
+    let mut inst = Instance::new(
+        Arc::clone(spec),
+        "reference",
+        spec.guid(),
+        uri.as_deref(),
+        false,
+        Box::new(|_, _, msg| eprintln!("{msg}")),
+    )
+    .map_err(|(_, e)| anyhow::anyhow!(e))?;
+    for (v, val) in sets {
+        ensure!(
+            inst.set("fmi2Set", &[v.vr], vec![val.clone()]) == Status::Ok,
+            "cannot set {}",
+            v.name
+        );
+    }
+    let apply = |inst: &mut Instance, t: f64| -> Result<()> {
+        if let Some(vals) = table.at(t) {
+            for (v, val) in table.columns.iter().zip(vals) {
                 ensure!(
                     inst.set("fmi2Set", &[v.vr], vec![val.clone()]) == Status::Ok,
                     "cannot set {}",
@@ -118,46 +137,113 @@ pub(super) fn run_reference(a: &RunArgs) -> Result<()> {
         }
         Ok(())
     };
-    let outputs: Vec<&Var> = vars
-        .iter()
-        .filter(|v| v.causality == Causality::Output)
-        .collect();
-    let mut out = String::from("time");
-    for v in &outputs {
-        out.push(',');
-        out.push_str(&v.name);
-    }
-    out.push('\n');
-    let mut record = |inst: &mut Instance, t: f64| -> Result<()> {
-        out.push_str(&format!("{t:?}"));
-        for v in &outputs {
-            let val = inst
+    let read = |inst: &mut Instance, t: f64| -> Result<(f64, Vec<Value>)> {
+        let mut vals = Vec::with_capacity(record.len());
+        for v in record {
+            let got = inst
                 .get("fmi2Get", v.ty, &[v.vr])
                 .map_err(|s| anyhow::anyhow!("get {}: {s:?}", v.name))?;
-            out.push(',');
-            out.push_str(&fmt_value(&val[0]));
+            vals.extend(got);
         }
-        out.push('\n');
-        Ok(())
+        Ok((t, vals))
     };
-    ensure!(inst.setup_experiment(0.0, Some(a.stop)) == Status::Ok);
+    ensure!(inst.setup_experiment(0.0, Some(stop)) == Status::Ok);
     ensure!(inst.enter_initialization_mode() == Status::Ok);
     apply(&mut inst, 0.0)?;
     ensure!(
         inst.exit_initialization_mode() == Status::Ok,
         "initialisation failed"
     );
-    record(&mut inst, 0.0)?;
-    let n = (a.stop / a.step).round() as usize;
+    let mut rows = vec![read(&mut inst, 0.0)?];
+    let n = (stop / step).round() as usize;
     for k in 0..n {
-        let t = k as f64 * a.step;
+        let t = k as f64 * step;
         apply(&mut inst, t)?;
         ensure!(
-            inst.do_step(t, a.step) <= Status::Warning,
+            inst.do_step(t, step) <= Status::Warning,
             "doStep at {t} failed"
         );
-        record(&mut inst, (k + 1) as f64 * a.step)?;
+        rows.push(read(&mut inst, (k + 1) as f64 * step)?);
     }
-    std::fs::write(&a.out, out).with_context(|| format!("cannot write {}", a.out.display()))?;
+    Ok(rows)
+}
+
+/// The CSV text of `rows` with the `names` of their values (quoted when `quote`).
+pub(super) fn csv(names: &[&str], rows: &[(f64, Vec<Value>)], quote: bool) -> String {
+    let q = |s: &str| {
+        if quote {
+            format!("\"{s}\"")
+        } else {
+            s.to_string()
+        }
+    };
+    let mut out = q("time");
+    for n in names {
+        out.push(',');
+        out.push_str(&q(n));
+    }
+    out.push('\n');
+    for (t, vals) in rows {
+        out.push_str(&format!("{t:?}"));
+        for v in vals {
+            out.push(',');
+            out.push_str(&fmt_value(v));
+        }
+        out.push('\n');
+    }
+    out
+}
+
+pub(super) fn run_reference(a: &RunArgs) -> Result<()> {
+    let unpacked = a.fmu.as_deref().map(unpack).transpose()?;
+    let (spec, resources) = match &unpacked {
+        Some(u) => (Arc::clone(&u.spec), Some(u.dir.join("resources"))),
+        None => {
+            let m = Model::from_identifier(&a.model)
+                .with_context(|| format!("unknown model '{}'", a.model))?;
+            (
+                Arc::new(mars_entry_nav::ModelSpec::generic(m)),
+                a.resources.clone(),
+            )
+        }
+    };
+    let vars = spec.vars();
+    let find = |name: &str| {
+        vars.iter()
+            .find(|v| v.name == name)
+            .with_context(|| format!("{} has no variable '{name}'", spec.identifier()))
+    };
+    let mut sets = Vec::new();
+    for s in &a.sets {
+        let (name, value) = s
+            .split_once('=')
+            .with_context(|| format!("--set '{s}': expected NAME=VALUE"))?;
+        let v = find(name.trim())?;
+        sets.push((v.clone(), parse_value(v, value)?));
+    }
+    let table = match &a.input {
+        Some(p) => Table::parse(
+            &std::fs::read_to_string(p).with_context(|| format!("cannot read {}", p.display()))?,
+            vars,
+        )?,
+        None => Table::default(),
+    };
+    let outputs: Vec<Var> = vars
+        .iter()
+        .filter(|v| v.causality == Causality::Output)
+        .cloned()
+        .collect();
+    let rows = run_in_process(
+        &spec,
+        resources.as_deref(),
+        &sets,
+        &table,
+        a.stop,
+        a.step,
+        &outputs,
+    )?;
+    let names: Vec<&str> = outputs.iter().map(|v| v.name.as_str()).collect();
+    std::fs::write(&a.out, csv(&names, &rows, false))
+        .with_context(|| format!("cannot write {}", a.out.display()))?;
     Ok(())
 }

@@ -2,6 +2,8 @@
 //! experiment set-up, initialisation, termination and reset.
 
 use super::*;
+use crate::instance::resolve_spec;
+use crate::limits::{MAX_CATEGORIES, MAX_GUID_BYTES, MAX_LOCATION_BYTES, MAX_STRING_BYTES};
 
 /// `fmi2GetTypesPlatform`.
 #[unsafe(no_mangle)]
@@ -26,24 +28,32 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
     n: usize,
     categories: *const *const c_char,
 ) -> Fmi2Status {
-    status(c, "fmi2SetDebugLogging", |inner| {
-        // SAFETY: the master passes `n` category strings.
-        let Some(cats) = (unsafe { slice(categories, n) }) else {
-            return null_arg(inner, "fmi2SetDebugLogging", "categories");
+    const F: &str = "fmi2SetDebugLogging";
+    status(c, F, |inner| {
+        // SAFETY: the master passes `n` category strings (n is bounded first).
+        let Some(cats) = (unsafe { slice(categories, n, MAX_CATEGORIES) }) else {
+            return inner.inst.error(&format!(
+                "{F}: categories is a null pointer, or nCategories = {n} is over the limit of {MAX_CATEGORIES}"
+            ));
         };
-        let mut names = Vec::with_capacity(n);
+        let mut names = Vec::with_capacity(cats.len());
         for p in cats {
-            // SAFETY: each entry is a C string (checked for null).
-            match unsafe { text(*p) } {
-                Some(s) => names.push(s.to_string()),
-                None => return null_arg(inner, "fmi2SetDebugLogging", "a category"),
+            // SAFETY: each entry is null (refused) or a C string.
+            match unsafe { text(*p, MAX_STRING_BYTES) } {
+                Ok(s) => names.push(s.to_string()),
+                Err(e) => {
+                    return inner
+                        .inst
+                        .error(&format!("{F}: {}", e.describe("a category")));
+                }
             }
         }
         inner.inst.set_debug_logging(logging_on != 0, &names)
     })
 }
 
-/// `fmi2Instantiate`.
+/// `fmi2Instantiate`: the library's binding decides which models it serves (see
+/// [`crate::binding`]).
 ///
 /// # Safety
 /// FMI 2.0 calling conventions.
@@ -57,56 +67,74 @@ pub unsafe extern "C" fn fmi2Instantiate(
     _visible: Fmi2Boolean,
     logging_on: Fmi2Boolean,
 ) -> Fmi2Component {
-    let r = catch_unwind(AssertUnwindSafe(|| {
+    let r = panic_hook::guarded(|| {
         if functions.is_null() {
             return std::ptr::null_mut();
         }
         // SAFETY: non-null and, per FMI 2.0, a valid fmi2CallbackFunctions.
         let fns = unsafe { &*functions };
         // SAFETY: null or C strings.
-        let name = unsafe { text(instance_name) };
-        let logger = CLogger {
+        let name = unsafe { text(instance_name, MAX_STRING_BYTES) };
+        let logger = Arc::new(CLogger {
             f: fns.logger,
             env: fns.component_environment,
             name: c_text(name.unwrap_or("")),
-        };
-        let sink: LogSink = Box::new(move |s, cat, msg| logger.log(s, cat, msg));
-        let fail = |sink: LogSink, msg: &str| {
-            sink(Status::Error, "logStatusError", msg);
+        });
+        let fail = |msg: &str| {
+            logger.log(Status::Error, "logStatusError", msg);
             std::ptr::null_mut()
         };
-        let Some(name) = name else {
-            return fail(
-                sink,
-                "fmi2Instantiate: instanceName is a null pointer or not UTF-8",
-            );
+        let name = match name {
+            Ok(n) => n,
+            Err(e) => return fail(&format!("fmi2Instantiate: {}", e.describe("instanceName"))),
         };
         if fmu_type != 1 {
-            return fail(
-                sink,
-                &format!(
-                    "fmi2Instantiate: fmuType {fmu_type} requested; this FMU supports only co-simulation (fmi2CoSimulation = 1), not model exchange"
-                ),
-            );
+            return fail(&format!(
+                "fmi2Instantiate: fmuType {fmu_type} requested; this FMU supports only co-simulation (fmi2CoSimulation = 1), not model exchange"
+            ));
         }
         // SAFETY: null or C strings.
-        let Some(guid) = (unsafe { text(guid) }) else {
-            return fail(sink, "fmi2Instantiate: fmuGUID is a null pointer");
+        let guid = match unsafe { text(guid, MAX_GUID_BYTES) } {
+            Ok(g) => g,
+            Err(e) => return fail(&format!("fmi2Instantiate: {}", e.describe("fmuGUID"))),
         };
         // SAFETY: null or C strings.
-        let res = unsafe { text(resource_location) };
-        match Instance::new(name, guid, res, logging_on != 0, sink) {
+        let res = match unsafe { text(resource_location, MAX_LOCATION_BYTES) } {
+            Ok(r) => Some(r),
+            Err(TextError::Null) => None,
+            Err(e) => {
+                return fail(&format!(
+                    "fmi2Instantiate: {}",
+                    e.describe("fmuResourceLocation")
+                ));
+            }
+        };
+        let bound = match binding::current() {
+            Ok(b) => b,
+            Err(e) => return fail(&format!("fmi2Instantiate: {e}")),
+        };
+        let spec = match resolve_spec(bound.as_ref(), guid, res) {
+            Ok(s) => s,
+            Err(e) => return fail(&e.to_string()),
+        };
+        let sink_logger = Arc::clone(&logger);
+        let sink: LogSink = Box::new(move |s, cat, msg| sink_logger.log(s, cat, msg));
+        match Instance::new(spec, name, guid, res, logging_on != 0, sink) {
             Ok(inst) => Box::into_raw(Box::new(Handle {
                 magic: MAGIC,
+                log: logger,
                 inner: Mutex::new(Inner {
                     inst,
                     strings: Vec::new(),
                     snapshots: HashMap::new(),
                 }),
             })) as Fmi2Component,
-            Err((sink, msg)) => fail(sink, &msg),
+            Err((sink, e)) => {
+                sink(Status::Error, "logStatusError", &e.to_string());
+                std::ptr::null_mut()
+            }
         }
-    }));
+    });
     r.unwrap_or(std::ptr::null_mut())
 }
 
@@ -116,7 +144,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2FreeInstance(c: Fmi2Component) {
-    let _ = catch_unwind(AssertUnwindSafe(|| {
+    let _ = panic_hook::guarded(|| {
         if c.is_null() {
             return;
         }
@@ -131,12 +159,18 @@ pub unsafe extern "C" fn fmi2FreeInstance(c: Fmi2Component) {
             .try_lock()
             .is_err_and(|e| matches!(e, TryLockError::WouldBlock))
         {
-            return; // in use by another thread: leaking beats a use-after-free
+            // In use by another thread: leaking beats a use-after-free.
+            handle.log.log(
+                Status::Error,
+                "logStatusError",
+                "fmi2FreeInstance: the instance is busy in another thread; it is not freed",
+            );
+            return;
         }
         handle.magic = FREED;
         // SAFETY: created by Box::into_raw in fmi2Instantiate, freed once (magic now cleared).
         drop(unsafe { Box::from_raw(h) });
-    }));
+    });
 }
 
 /// `fmi2SetupExperiment`.

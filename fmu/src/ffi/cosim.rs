@@ -3,7 +3,7 @@
 
 use super::*;
 
-use crate::state::Phase::*;
+use crate::instance::{AFTER_INIT, GET, SET, StatusAnswer, StatusType};
 
 /// `fmi2GetDirectionalDerivative`: not supported (providesDirectionalDerivative = false).
 ///
@@ -22,7 +22,7 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
     status(c, "fmi2GetDirectionalDerivative", |i| {
         i.inst.unsupported(
             "fmi2GetDirectionalDerivative",
-            &[InitializationMode, StepComplete, Terminated, Error],
+            GET,
             "directional derivatives (providesDirectionalDerivative = false)",
         )
     })
@@ -43,7 +43,7 @@ pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
     status(c, "fmi2SetRealInputDerivatives", |i| {
         i.inst.unsupported(
             "fmi2SetRealInputDerivatives",
-            &[Instantiated, InitializationMode, StepComplete],
+            SET,
             "input derivatives (canInterpolateInputs = false)",
         )
     })
@@ -64,7 +64,7 @@ pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
     status(c, "fmi2GetRealOutputDerivatives", |i| {
         i.inst.unsupported(
             "fmi2GetRealOutputDerivatives",
-            &[StepComplete, Terminated, Error],
+            AFTER_INIT,
             "output derivatives (maxOutputDerivativeOrder = 0)",
         )
     })
@@ -93,42 +93,38 @@ pub unsafe extern "C" fn fmi2DoStep(
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2CancelStep(c: Fmi2Component) -> Fmi2Status {
-    status(c, "fmi2CancelStep", |i| {
-        i.inst.error(
-            "fmi2CancelStep: Illegal call sequence (no asynchronous step is in progress; canRunAsynchronuously = false)",
-        )
-    })
+    status(c, "fmi2CancelStep", |i| i.inst.cancel_step())
 }
 
+/// A status query: `answer` turns the instance's answer into the value written to `out`.
 fn status_query<T>(
     inner: &mut Inner,
-    func: &str,
+    ty: StatusType,
     kind: c_int,
     out: *mut T,
-    answer: impl FnOnce(&Instance, c_int) -> Option<T>,
+    answer: impl FnOnce(StatusAnswer) -> Option<T>,
 ) -> Status {
-    if let Err(s) = inner.inst.check_status_query(func) {
-        return s;
-    }
+    let func = ty.function();
+    let a = match inner.inst.query_status(func, kind, ty) {
+        Ok(a) => a,
+        Err(s) => return s,
+    };
     if out.is_null() {
         return null_arg(inner, func, "value");
     }
-    match answer(&inner.inst, kind) {
+    match answer(a) {
         Some(v) => {
             // SAFETY: non-null pointer to the master's variable.
             unsafe { *out = v };
             Status::Ok
         }
-        None => {
-            inner.inst.warn(&format!(
-                "{func}: status kind {kind} is not available (fmi2Discard)"
-            ));
-            Status::Discard
-        }
+        None => inner
+            .inst
+            .error(&format!("{func}: internal error (answer of another type)")),
     }
 }
 
-/// `fmi2GetStatus`: only meaningful for asynchronous steps; answers fmi2Discard.
+/// `fmi2GetStatus`: fmi2DoStepStatus is never available (steps are synchronous): fmi2Discard.
 ///
 /// # Safety
 /// FMI 2.0 calling conventions.
@@ -139,7 +135,7 @@ pub unsafe extern "C" fn fmi2GetStatus(
     value: *mut Fmi2Status,
 ) -> Fmi2Status {
     status(c, "fmi2GetStatus", |i| {
-        status_query(i, "fmi2GetStatus", kind, value, |_, _| None)
+        status_query(i, StatusType::Status, kind, value, |_| None)
     })
 }
 
@@ -154,13 +150,14 @@ pub unsafe extern "C" fn fmi2GetRealStatus(
     value: *mut f64,
 ) -> Fmi2Status {
     status(c, "fmi2GetRealStatus", |i| {
-        status_query(i, "fmi2GetRealStatus", kind, value, |inst, k| {
-            (k == 2).then(|| inst.last_successful_time())
+        status_query(i, StatusType::Real, kind, value, |a| match a {
+            StatusAnswer::Real(t) => Some(t),
+            StatusAnswer::Boolean(_) => None,
         })
     })
 }
 
-/// `fmi2GetIntegerStatus`: no integer status kinds exist in FMI 2.0 (fmi2Discard).
+/// `fmi2GetIntegerStatus`: FMI 2.0 defines no Integer status kind, so every kind is refused.
 ///
 /// # Safety
 /// FMI 2.0 calling conventions.
@@ -171,7 +168,7 @@ pub unsafe extern "C" fn fmi2GetIntegerStatus(
     value: *mut c_int,
 ) -> Fmi2Status {
     status(c, "fmi2GetIntegerStatus", |i| {
-        status_query(i, "fmi2GetIntegerStatus", kind, value, |_, _| None)
+        status_query(i, StatusType::Integer, kind, value, |_| None)
     })
 }
 
@@ -186,8 +183,9 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(
     value: *mut Fmi2Boolean,
 ) -> Fmi2Status {
     status(c, "fmi2GetBooleanStatus", |i| {
-        status_query(i, "fmi2GetBooleanStatus", kind, value, |_, k| {
-            (k == 3).then_some(0)
+        status_query(i, StatusType::Boolean, kind, value, |a| match a {
+            StatusAnswer::Boolean(b) => Some(b as Fmi2Boolean),
+            StatusAnswer::Real(_) => None,
         })
     })
 }
@@ -203,6 +201,6 @@ pub unsafe extern "C" fn fmi2GetStringStatus(
     value: *mut *const c_char,
 ) -> Fmi2Status {
     status(c, "fmi2GetStringStatus", |i| {
-        status_query(i, "fmi2GetStringStatus", kind, value, |_, _| None)
+        status_query(i, StatusType::String, kind, value, |_| None)
     })
 }

@@ -1,23 +1,32 @@
 //! FMU states: get, set, free, serialise and deserialise (snapshots owned by the instance).
 
 use super::*;
+use crate::limits::{MAX_SNAPSHOTS, MAX_STATE_BYTES};
 
 /// A snapshot pointer owned by this instance (null, foreign and freed pointers are rejected).
 fn known(inner: &Inner, p: Fmi2State) -> bool {
     !p.is_null() && inner.snapshots.contains_key(&(p as usize))
 }
 
-fn store_snapshot(inner: &mut Inner, slot: &mut Fmi2State, snap: Snapshot) {
+/// Store `snap` in `*slot` (a state of this instance, overwritten) or in a new state; refused
+/// when the instance already holds [`MAX_SNAPSHOTS`] states.
+fn store_snapshot(inner: &mut Inner, func: &str, slot: &mut Fmi2State, snap: Snapshot) -> Status {
     if known(inner, *slot) {
         if let Some(b) = inner.snapshots.get_mut(&(*slot as usize)) {
             **b = snap;
         }
     } else {
+        if inner.snapshots.len() >= MAX_SNAPSHOTS {
+            return inner.inst.error(&format!(
+                "{func}: this instance holds {MAX_SNAPSHOTS} FMU states, the limit; free one with fmi2FreeFMUstate or pass one to overwrite"
+            ));
+        }
         let mut b = Box::new(snap);
         let p = &mut *b as *mut Snapshot as Fmi2State;
         inner.snapshots.insert(p as usize, b);
         *slot = p;
     }
+    Status::Ok
 }
 
 /// `fmi2GetFMUstate`.
@@ -38,10 +47,7 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: Fmi2Component, state: *mut Fmi2State
                 .error("fmi2GetFMUstate: *FMUstate is neither NULL nor a state of this instance");
         }
         match i.inst.get_state() {
-            Ok(snap) => {
-                store_snapshot(i, slot, snap);
-                Status::Ok
-            }
+            Ok(snap) => store_snapshot(i, "fmi2GetFMUstate", slot, snap),
             Err(s) => s,
         }
     })
@@ -148,8 +154,8 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
                 data.len()
             ));
         }
-        // SAFETY: the master provides `size` writable bytes.
-        let Some(out) = (unsafe { slice_mut(bytes, size) }) else {
+        // SAFETY: the master provides `size` writable bytes; only the state's length is touched.
+        let Some(out) = (unsafe { slice_mut(bytes, data.len(), MAX_STATE_BYTES) }) else {
             return null_arg(i, "fmi2SerializeFMUstate", "serializedState");
         };
         out[..data.len()].copy_from_slice(&data);
@@ -172,8 +178,13 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
         if let Err(s) = i.inst.check_state_call("fmi2DeSerializeFMUstate") {
             return s;
         }
-        // SAFETY: the master passes `size` readable bytes.
-        let Some(data) = (unsafe { slice(bytes, size) }) else {
+        if size > MAX_STATE_BYTES {
+            return i.inst.error(&format!(
+                "fmi2DeSerializeFMUstate: {size} bytes; an FMU state of this FMU is at most {MAX_STATE_BYTES} bytes"
+            ));
+        }
+        // SAFETY: the master passes `size` readable bytes (bounded above).
+        let Some(data) = (unsafe { slice(bytes, size, MAX_STATE_BYTES) }) else {
             return null_arg(i, "fmi2DeSerializeFMUstate", "serializedState");
         };
         if state.is_null() {
@@ -193,7 +204,6 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
         if let Err(s) = i.inst.check_snapshot("fmi2DeSerializeFMUstate", &snap) {
             return s;
         }
-        store_snapshot(i, slot, snap);
-        Status::Ok
+        store_snapshot(i, "fmi2DeSerializeFMUstate", slot, snap)
     })
 }

@@ -1,6 +1,7 @@
 //! fmi2Get* and fmi2Set*: variable values across the C ABI.
 
 use super::*;
+use crate::limits::{MAX_STRING_BYTES, MAX_STRING_REFS, MAX_VALUE_REFS};
 
 fn get_values<T>(
     inner: &mut Inner,
@@ -11,8 +12,15 @@ fn get_values<T>(
     out: *mut T,
     mut conv: impl FnMut(Value, &mut Vec<CString>) -> T,
 ) -> Status {
-    // SAFETY: the master passes `nvr` references and room for `nvr` values.
-    let (Some(vrs), Some(out)) = (unsafe { slice(vr, nvr) }, unsafe { slice_mut(out, nvr) }) else {
+    let max = if ty == Type::String {
+        MAX_STRING_REFS
+    } else {
+        MAX_VALUE_REFS
+    };
+    // SAFETY: the master passes `nvr` references and room for `nvr` values (nvr bounded first).
+    let (Some(vrs), Some(out)) = (unsafe { slice(vr, nvr, max) }, unsafe {
+        slice_mut(out, nvr, max)
+    }) else {
         return null_arg(inner, func, "vr or value");
     };
     match inner.inst.get(func, ty, vrs) {
@@ -141,23 +149,32 @@ pub unsafe extern "C" fn fmi2GetString(
     })
 }
 
+/// `max`: the bound on `nvr` ([`MAX_STRING_REFS`] for strings, each of which is copied).
+#[allow(clippy::too_many_arguments)]
 fn set_values<T: Copy>(
     inner: &mut Inner,
     func: &str,
     vr: *const u32,
     nvr: usize,
     value: *const T,
-    mut conv: impl FnMut(T) -> Option<Value>,
+    max: usize,
+    mut conv: impl FnMut(T) -> Result<Value, TextError>,
 ) -> Status {
-    // SAFETY: the master passes `nvr` references and values.
-    let (Some(vrs), Some(vals)) = (unsafe { slice(vr, nvr) }, unsafe { slice(value, nvr) }) else {
+    // SAFETY: the master passes `nvr` references and values (nvr bounded first).
+    let (Some(vrs), Some(vals)) = (unsafe { slice(vr, nvr, max) }, unsafe {
+        slice(value, nvr, max)
+    }) else {
         return null_arg(inner, func, "vr or value");
     };
     let mut values = Vec::with_capacity(nvr);
     for v in vals {
         match conv(*v) {
-            Some(v) => values.push(v),
-            None => return null_arg(inner, func, "a string value"),
+            Ok(v) => values.push(v),
+            Err(e) => {
+                return inner
+                    .inst
+                    .error(&format!("{func}: {}", e.describe("a string value")));
+            }
         }
     }
     inner.inst.set(func, vrs, values)
@@ -175,7 +192,9 @@ pub unsafe extern "C" fn fmi2SetReal(
     value: *const f64,
 ) -> Fmi2Status {
     status(c, "fmi2SetReal", |i| {
-        set_values(i, "fmi2SetReal", vr, nvr, value, |x| Some(Value::Real(x)))
+        set_values(i, "fmi2SetReal", vr, nvr, value, MAX_VALUE_REFS, |x| {
+            Ok(Value::Real(x))
+        })
     })
 }
 
@@ -191,8 +210,8 @@ pub unsafe extern "C" fn fmi2SetInteger(
     value: *const c_int,
 ) -> Fmi2Status {
     status(c, "fmi2SetInteger", |i| {
-        set_values(i, "fmi2SetInteger", vr, nvr, value, |x| {
-            Some(Value::Integer(x))
+        set_values(i, "fmi2SetInteger", vr, nvr, value, MAX_VALUE_REFS, |x| {
+            Ok(Value::Integer(x))
         })
     })
 }
@@ -209,8 +228,8 @@ pub unsafe extern "C" fn fmi2SetBoolean(
     value: *const Fmi2Boolean,
 ) -> Fmi2Status {
     status(c, "fmi2SetBoolean", |i| {
-        set_values(i, "fmi2SetBoolean", vr, nvr, value, |x| {
-            Some(Value::Boolean(x != 0))
+        set_values(i, "fmi2SetBoolean", vr, nvr, value, MAX_VALUE_REFS, |x| {
+            Ok(Value::Boolean(x != 0))
         })
     })
 }
@@ -227,9 +246,9 @@ pub unsafe extern "C" fn fmi2SetString(
     value: *const *const c_char,
 ) -> Fmi2Status {
     status(c, "fmi2SetString", |i| {
-        set_values(i, "fmi2SetString", vr, nvr, value, |p| {
+        set_values(i, "fmi2SetString", vr, nvr, value, MAX_STRING_REFS, |p| {
             // SAFETY: each value is null (rejected) or a C string.
-            unsafe { text(p) }.map(|s| Value::String(s.to_string()))
+            unsafe { text(p, MAX_STRING_BYTES) }.map(|s| Value::String(s.to_string()))
         })
     })
 }

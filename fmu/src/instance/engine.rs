@@ -1,15 +1,16 @@
 //! The simulation behind an instance: which engine a model runs, the scenario it is built from
-//! (through the one scenario loader), and one communication step of it.
+//! (see [`super::scenario`]), the work bounds of a step, and one communication step.
 
-use super::Instance;
-use super::Status;
-use crate::uri::UriError;
+use super::scenario::{ScenarioFileError, load_parameter_scenario};
+use super::{Instance, Status};
+use crate::limits::{self, LimitError, STEP_CHUNK_TRUTH_STEPS};
 use crate::vars::{Key, MAX_BEACONS, Model, Slot, Value};
 use entrynav::estimation::nav::{FilterKind, NavError};
-use entrynav::scenario::{BUILTIN_NAMES, Scenario};
+use entrynav::scenario::Scenario;
 use entrynav::sensors::MeasurementEpoch;
-use entrynav::sim::engine::{EngineError, EntryCoSim, NavStatus, Navigator, TruthSensors};
-use entrynav_loader::{Base, LoadError};
+use entrynav::sim::engine::{
+    EngineError, EntryCoSim, NavStatus, Navigator, StepReport, TruthSensors,
+};
 use std::sync::Arc;
 use thiserror::Error;
 
@@ -18,19 +19,10 @@ use thiserror::Error;
 pub enum InstanceError {
     /// The scenario could not be loaded.
     #[error(transparent)]
-    Load(#[from] LoadError),
-    /// A scenario file name with no usable resources folder to find it in.
-    #[error(
-        "scenario '{name}' is not a built-in ({builtins}) and the resources folder is unusable: {reason}"
-    )]
-    NoResources {
-        /// The `scenario` parameter.
-        name: String,
-        /// Comma-separated built-in names.
-        builtins: String,
-        /// Why the resources folder is unusable.
-        reason: UriError,
-    },
+    Scenario(#[from] ScenarioFileError),
+    /// A request or a scenario over a bound of [`crate::limits`].
+    #[error(transparent)]
+    Limit(#[from] LimitError),
     /// The filter parameter names no filter, or the filter does not fit the scenario.
     #[error(transparent)]
     Filter(#[from] NavError),
@@ -46,6 +38,9 @@ pub enum InstanceError {
     /// An empty scenario name.
     #[error("the scenario name is empty")]
     EmptyScenario,
+    /// A string longer than the bound.
+    #[error("{0}")]
+    TooLong(LimitError),
     /// No engine where one must exist (an internal error).
     #[error("no engine")]
     NoEngine,
@@ -98,40 +93,31 @@ impl Engine {
 }
 
 impl Instance {
-    /// The scenario named by the `scenario` parameter: a built-in, or a file in the FMU's
-    /// resources folder (or an absolute path).
+    /// The scenario: the embedded one of a specific FMU, else the one the parameters name.
     fn load_scenario(&self) -> Result<Arc<Scenario>, InstanceError> {
-        let name = self.param_str(Key::Scenario);
-        let name = name.trim();
-        let base = match &self.resources {
-            Ok(dir) => Base::Folder(dir),
-            Err(reason) => {
-                let relative =
-                    !BUILTIN_NAMES.contains(&name) && !std::path::Path::new(name).is_absolute();
-                if relative {
-                    return Err(InstanceError::NoResources {
-                        name: name.to_string(),
-                        builtins: BUILTIN_NAMES.join(", "),
-                        reason: reason.clone(),
-                    });
-                }
-                Base::Nowhere
-            }
-        };
-        Ok(Arc::new(entrynav_loader::load(name, &[], base)?))
+        if let Some(s) = self.spec.specific() {
+            return Ok(Arc::clone(&s.scenario));
+        }
+        let allow = self.input_bool(Key::AllowExternalFiles, false);
+        Ok(load_parameter_scenario(
+            &self.param_str(Key::Scenario),
+            &self.resources,
+            allow,
+        )?)
     }
 
     fn build_engine(&self) -> Result<Engine, InstanceError> {
         let scenario = self.load_scenario()?;
+        limits::check_scenario(&scenario)?;
         let seed = match self.value_of(Key::Seed) {
             Some(Value::Integer(s)) => *s as u64,
             _ => 0,
         };
-        let dispersed = matches!(self.value_of(Key::Dispersed), Some(Value::Boolean(true)));
+        let dispersed = self.input_bool(Key::Dispersed, false);
         let kind = || FilterKind::parse(&self.param_str(Key::Filter));
         let n_beacons = scenario.beacons.len();
         if n_beacons > MAX_BEACONS {
-            self.warning(&format!(
+            self.warn(&format!(
                 "scenario has {n_beacons} beacons; only the first {MAX_BEACONS} have FMU variables"
             ));
         }
@@ -165,28 +151,85 @@ impl Instance {
         Ok(())
     }
 
+    /// The measurement epoch the filter FMU's inputs describe, if `meas_epoch` is set.
+    fn input_epoch(&self) -> Option<MeasurementEpoch> {
+        if self.model != Model::Filter || !self.input_bool(Key::MeasEpoch, false) {
+            return None;
+        }
+        let n = self.engine.as_ref().map(|e| e.scenario().channels.len())?;
+        let mut values = vec![None; n];
+        for (slot, &c) in &self.slot_channel {
+            if self.input_bool(Key::MeasValid(*slot), false) {
+                values[c] = Some(self.input_real(Key::Meas(*slot)));
+            }
+        }
+        Some(MeasurementEpoch {
+            t: self.input_real(Key::MeasTime),
+            values,
+        })
+    }
+
+    /// Refuse, before anything changes, a step whose work is over a bound: the filter FMU's
+    /// prediction to an input epoch it would process. (The truth's work is bounded by the
+    /// scenario, checked when the engine is built.)
+    pub(super) fn check_step_work(&self, t: f64, h: f64) -> Result<(), LimitError> {
+        let (Some(Engine::Filter(scenario, nav)), Some(epoch)) = (&self.engine, self.input_epoch())
+        else {
+            return Ok(());
+        };
+        let last = nav.estimate().t;
+        let processed = !matches!(nav.status(), NavStatus::Failed { .. })
+            && epoch.t > last
+            && epoch.t <= t + h + 1e-9;
+        if !processed {
+            return Ok(());
+        }
+        limits::check_prediction(
+            last,
+            epoch.t,
+            nav.onboard().filter_step_s,
+            scenario.config.timing.duration_s,
+        )
+    }
+
+    /// One step of the combined engine, advanced in chunks of at most
+    /// [`STEP_CHUNK_TRUTH_STEPS`] truth steps so the epochs of a long step are never collected
+    /// all at once. Chunks end on truth-step boundaries; the last ends at `t + h`.
+    fn step_combined(
+        c: &mut EntryCoSim,
+        t: f64,
+        h: f64,
+        bank: f64,
+        avail: &[bool],
+    ) -> Result<StepReport, EngineError> {
+        let dt = c.truth().scenario().config.timing.truth_step_s;
+        let chunk = STEP_CHUNK_TRUTH_STEPS as f64;
+        let end = t + h;
+        let mut report = StepReport::default();
+        let mut from = t;
+        // Once the truth has stopped a step does no work, so the rest is one call (at most
+        // MAX_RUN_TRUTH_STEPS / STEP_CHUNK_TRUTH_STEPS chunks come before that).
+        while (end - from) / dt > chunk + 1.0 && c.truth().stop().is_none() {
+            let to = ((from / dt).floor() + chunk) * dt;
+            let r = c.do_step(from, to - from, bank, avail)?;
+            report.truth_steps += r.truth_steps;
+            report.epochs += r.epochs;
+            from = to;
+        }
+        // An unchunked step is passed as asked (a step too small to move t still counts).
+        let last = if from == t { h } else { end - from };
+        let r = c.do_step(from, last, bank, avail)?;
+        report.truth_steps += r.truth_steps;
+        report.epochs += r.epochs;
+        Ok(report)
+    }
+
     pub(super) fn step_engine(&mut self, t: f64, h: f64) -> Result<Status, InstanceError> {
         let bank = self.input_real(Key::Bank);
         let avail: Vec<bool> = (0..MAX_BEACONS)
-            .map(|i| self.input_bool(Key::BeaconAvailable(i)))
+            .map(|i| self.input_bool(Key::BeaconAvailable(i), true))
             .collect();
-        let epoch = (self.model == Model::Filter && self.input_bool(Key::MeasEpoch)).then(|| {
-            let n = self
-                .engine
-                .as_ref()
-                .map(|e| e.scenario().channels.len())
-                .unwrap_or(0);
-            let mut values = vec![None; n];
-            for (slot, &c) in &self.slot_channel {
-                if self.input_bool(Key::MeasValid(*slot)) {
-                    values[c] = Some(self.input_real(Key::Meas(*slot)));
-                }
-            }
-            MeasurementEpoch {
-                t: self.input_real(Key::MeasTime),
-                values,
-            }
-        });
+        let epoch = self.input_epoch();
         let status_before = self
             .engine
             .as_ref()
@@ -194,13 +237,13 @@ impl Instance {
             .map(|n| n.status().code());
         let engine = self.engine.as_mut().ok_or(InstanceError::NoEngine)?;
         let report = match engine {
-            Engine::Combined(c) => c.do_step(t, h, bank, &avail),
+            Engine::Combined(c) => Self::step_combined(c, t, h, bank, &avail),
             Engine::Truth(ts) => ts.do_step(t, h, bank, &avail),
             Engine::Filter(_, f) => f.do_step(t, h, bank, epoch.as_ref()),
         }?;
         let mut status = Status::Ok;
         if self.model == Model::Truth && report.epochs > 1 {
-            self.warning(&format!(
+            self.warn(&format!(
                 "step from {t} by {h} spans {} measurement epochs; only the last is output (use a communication step no longer than the fastest sensor period)",
                 report.epochs
             ));
@@ -210,8 +253,8 @@ impl Instance {
             && let NavStatus::Failed { t, reason } = nav.status()
             && status_before != Some(2)
         {
-            self.warning(&format!(
-                "navigation filter failed at t = {t} s: {reason}; its estimate is frozen (nav_status = 2)"
+            self.warn(&format!(
+                "navigation filter failed at t = {t} s: {reason}; its estimate is frozen (nav_status = failed)"
             ));
             status = Status::Warning;
         }

@@ -2,7 +2,8 @@
 
 use super::Instance;
 use super::engine::{Engine, InstanceError};
-use crate::vars::{Key, MAX_STATES, MAX_WEIGHTS, Type, Value};
+use crate::limits::MAX_STRING_BYTES;
+use crate::vars::{Key, MAX_WEIGHTS, Type, Value};
 use entrynav::estimation::nav::FilterKind;
 use entrynav::frames::inertial_to_spherical;
 use entrynav::sim::StopReason;
@@ -31,7 +32,7 @@ impl Instance {
                 Key::BeaconVisible(i) => {
                     return Value::Boolean(i < nb && o.sample.visible[i]);
                 }
-                Key::TruthStop => {
+                Key::TruthStop | Key::TruthStopCode => {
                     return Value::Integer(match ts.stop() {
                         None => 0,
                         Some(StopReason::Duration) => 1,
@@ -62,7 +63,9 @@ impl Instance {
             let slot = |v: &[f64], i: usize| real(if i < n { v[i] } else { 0.0 });
             match key {
                 Key::NavTime => return real(est.t),
-                Key::NavStatus => return Value::Integer(nav.status().code()),
+                Key::NavStatus | Key::NavStatusCode => {
+                    return Value::Integer(nav.status().code());
+                }
                 Key::NStates => return Value::Integer(n as i32),
                 Key::EstX(i) => return slot(&est.x, i),
                 Key::EstSigma(i) => return slot(&est.sigma, i),
@@ -113,7 +116,6 @@ impl Instance {
                 _ => {}
             }
         }
-        let _ = MAX_STATES;
         match self.vars.iter().find(|v| v.key == key).map(|v| v.ty) {
             Some(Type::Integer) => Value::Integer(0),
             Some(Type::Boolean) => Value::Boolean(false),
@@ -136,6 +138,13 @@ fn nav_weights(nav: &Navigator) -> usize {
 pub(super) fn validate(key: Key, v: &Value) -> Result<(), InstanceError> {
     match (key, v) {
         (_, Value::Real(x)) if !x.is_finite() => Err(InstanceError::NonFinite(*x)),
+        (_, Value::String(s)) if s.len() > MAX_STRING_BYTES => {
+            Err(InstanceError::TooLong(crate::limits::LimitError::TooMany {
+                what: "the length of the string in bytes",
+                got: s.len() as u64,
+                max: MAX_STRING_BYTES as u64,
+            }))
+        }
         (Key::Seed, Value::Integer(s)) if *s < 0 => Err(InstanceError::NegativeSeed(*s)),
         (Key::Filter, Value::String(s)) => Ok(FilterKind::parse(s).map(|_| ())?),
         (Key::Scenario, Value::String(s)) if s.trim().is_empty() => {

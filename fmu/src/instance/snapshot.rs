@@ -1,17 +1,24 @@
 //! FMU states of an instance: a snapshot is a replay log, restored by rebuilding the engine and
 //! replaying the steps (see [`crate::state`]).
 
-use super::{Instance, STATE, Status};
+use super::lifecycle::ANY as STATE;
+use super::{Instance, Status};
+use crate::limits::MAX_STATE_BYTES;
 use crate::state::{Phase::*, Snapshot};
-use crate::vars::{Value, guid_of};
+use crate::vars::Value;
 
 impl Instance {
     /// fmi2GetFMUstate.
     pub fn get_state(&self) -> Result<Snapshot, Status> {
         self.check("fmi2GetFMUstate", STATE)?;
+        if let Some(t) = self.log_full_at {
+            return Err(self.error(&format!(
+                "fmi2GetFMUstate: the replay log of this run outgrew the {MAX_STATE_BYTES} bytes an FMU state may have at t = {t}; no FMU state can be taken until fmi2Reset or fmi2SetFMUstate"
+            )));
+        }
         Ok(Snapshot {
             model: self.model,
-            guid: guid_of(self.model),
+            guid: self.spec.guid().to_string(),
             phase: self.phase,
             start_time: self.start_time,
             stop_time: self.stop_time,
@@ -27,12 +34,13 @@ impl Instance {
 
     /// Check a snapshot fits this instance (model, GUID, table).
     pub fn check_snapshot(&self, func: &str, s: &Snapshot) -> Result<(), Status> {
-        if s.model != self.model || s.guid != guid_of(self.model) {
+        if s.model != self.model || s.guid != self.spec.guid() {
             return Err(self.error(&format!(
-                "{func}: the FMU state belongs to {} {}, not to this {} instance",
+                "{func}: the FMU state belongs to {} {}, not to this {} instance ({})",
                 s.model.identifier(),
                 s.guid,
-                self.model.identifier()
+                self.spec.identifier(),
+                self.spec.guid()
             )));
         }
         let types_ok = s.values.len() == self.vars.len()
@@ -67,6 +75,7 @@ impl Instance {
         }
         self.engine = None;
         self.steps.clear();
+        self.log_full_at = None;
         self.start_time = s.start_time;
         self.stop_time = s.stop_time;
         self.values = s.values.clone();
@@ -78,11 +87,15 @@ impl Instance {
                 return self.error(&format!("fmi2SetFMUstate: cannot rebuild the engine: {e}"));
             }
             let current: Vec<Option<Value>> = self.values.clone();
-            for st in &s.steps {
-                for (&i, v) in self.inputs.iter().zip(&st.inputs) {
+            for st in s.steps.iter() {
+                for (&i, v) in self.inputs.iter().zip(st.inputs.iter()) {
                     self.values[i] = Some(v.clone());
                 }
-                if let Err(e) = self.step_engine(st.t, st.h) {
+                let checked = self
+                    .check_step_work(st.t, st.h)
+                    .map_err(super::InstanceError::from)
+                    .and_then(|()| self.step_engine(st.t, st.h));
+                if let Err(e) = checked {
                     self.phase = Error;
                     self.values = current;
                     return self.error(&format!(

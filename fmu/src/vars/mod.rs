@@ -1,15 +1,24 @@
 //! The variable table: one list per FMU, used by the get/set code and by the `modelDescription.xml`
 //! generator, so the two cannot disagree. The GUID is a hash of the table.
 //!
-//! The layout is fixed whatever the scenario: filter states in slots 1..=12 (slots past the
+//! The generic layout is fixed whatever the scenario: filter states in slots 1..=12 (slots past the
 //! scenario's state dimension read 0), beacons in slots 1..=6 (past the scenario's beacon count:
 //! 0 / false), fusion weights or model probabilities in slots 1..=8. Values that exist but are not
 //! known read NaN (the truth of ρ0 when the truth atmosphere is not exponential, the NEES before it
-//! is defined, the density estimate of a filter that does not estimate density).
+//! is defined, the density estimate of a filter that does not estimate density). A
+//! scenario-specific FMU ([`ModelSpec::for_scenario`]) names its state outputs after the scenario's
+//! states instead (`est.r` in m, `est.lon` in rad, …) and has one beacon slot per beacon.
 
-use entrynav::sensors::Channel;
+mod model;
+mod slot;
+mod table;
+mod table_outputs;
 
-/// Filter state slots.
+pub use model::{Model, ModelSpec, SpecError, Specific, StateVar, specific_identifier};
+pub use slot::{Key, Slot};
+pub use table::variables;
+
+/// Filter state slots of the generic FMUs: every supported filter dimension.
 pub const MAX_STATES: usize = entrynav::state_dim::MAX_STATE_DIM;
 /// Beacon slots.
 pub const MAX_BEACONS: usize = 6;
@@ -18,64 +27,15 @@ pub const MAX_WEIGHTS: usize = 8;
 /// Version of the table layout and the meaning of its variables (part of the GUID).
 /// 2: `bank_angle` also drives the filter's onboard models (MarsEntryNav) and is an input of
 /// MarsEntryNavFilter.
-pub const TABLE_VERSION: u32 = 2;
+/// 3: `allow_external_files`; Enumeration types for `nav_status` and `truth_stop` (with Integer
+/// twins `nav_status_code`, `truth_stop_code`); estimate outputs `discrete`; dimensionless units;
+/// no input feeds through (`dependencies`).
+pub const TABLE_VERSION: u32 = 3;
+/// `generationDateAndTime` of every description of [`TABLE_VERSION`]: the description is a pure
+/// function of the table, so it carries the table's date and is reproducible byte for byte.
+pub const TABLE_DATE: &str = "2026-12-01T00:00:00Z";
 
-/// The three FMUs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Model {
-    /// Entry dynamics, sensors and navigation filter (`MarsEntryNav`).
-    Combined,
-    /// The navigation filter alone, fed with measurements (`MarsEntryNavFilter`).
-    Filter,
-    /// Truth dynamics and sensors, producing the measurements (`MarsEntryTruth`).
-    Truth,
-}
-
-impl Model {
-    /// All models.
-    pub const ALL: [Model; 3] = [Model::Combined, Model::Filter, Model::Truth];
-
-    /// FMI model identifier (the shared library's file stem inside the `.fmu`).
-    pub fn identifier(self) -> &'static str {
-        match self {
-            Model::Combined => "MarsEntryNav",
-            Model::Filter => "MarsEntryNavFilter",
-            Model::Truth => "MarsEntryTruth",
-        }
-    }
-
-    /// One-line description.
-    pub fn description(self) -> &'static str {
-        match self {
-            Model::Combined => {
-                "Mars entry dynamics, sensors and navigation filter (entrynav), driven by a bank-angle command and beacon availability"
-            }
-            Model::Filter => {
-                "Mars entry navigation filter (entrynav) alone, fed with accelerometer, air-data and radio measurements and their validity flags"
-            }
-            Model::Truth => {
-                "Mars entry truth dynamics and sensors (entrynav): true trajectory and noisy measurements with validity flags"
-            }
-        }
-    }
-
-    /// Whether this model runs the truth.
-    pub fn has_truth(self) -> bool {
-        self != Model::Filter
-    }
-
-    /// Whether this model runs a filter.
-    pub fn has_filter(self) -> bool {
-        self != Model::Truth
-    }
-
-    /// The model whose GUID is `guid`.
-    pub fn from_guid(guid: &str) -> Option<Model> {
-        Model::ALL.into_iter().find(|m| guid_of(*m) == guid)
-    }
-}
-
-/// FMI base type.
+/// FMI base type (how a value crosses the C API: Enumerations go through fmi2Get/SetInteger).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Type {
     /// fmi2Real.
@@ -127,9 +87,10 @@ impl Causality {
 pub enum Variability {
     /// Fixed after initialisation.
     Fixed,
-    /// Changes only at communication points (Integer, Boolean, sampled values).
+    /// Changes only at communication points: Integer, Boolean, and Reals of a sampled-data system
+    /// (the measurements and the estimate, which change only at measurement epochs).
     Discrete,
-    /// Real quantity of a continuous process.
+    /// Real quantity of a continuous process (the truth).
     Continuous,
 }
 
@@ -149,7 +110,7 @@ impl Variability {
 pub enum Value {
     /// Real.
     Real(f64),
-    /// Integer.
+    /// Integer (and Enumeration).
     Integer(i32),
     /// Boolean.
     Boolean(bool),
@@ -179,163 +140,48 @@ impl Value {
     }
 }
 
-/// A measurement slot (one scalar sensor reading).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Slot {
-    /// Accelerometer axis 0..3 of the IMU frame.
-    Accel(u8),
-    /// Dynamic pressure.
-    DynamicPressure,
-    /// Heating rate.
-    Heating,
-    /// Range to beacon slot i.
-    Range(usize),
-    /// Range-rate to beacon slot i.
-    RangeRate(usize),
+/// An FMI Enumeration type (`TypeDefinitions/SimpleType`): item `k` has the value `k`.
+#[derive(Debug, PartialEq, Eq, Hash)]
+pub struct EnumType {
+    /// Type name (`declaredType`).
+    pub name: &'static str,
+    /// Description.
+    pub description: &'static str,
+    /// Items (name, description), valued 0, 1, ….
+    pub items: &'static [(&'static str, &'static str)],
 }
 
-impl Slot {
-    /// Every slot, in table order.
-    pub fn all() -> Vec<Slot> {
-        let mut v = vec![
-            Slot::Accel(0),
-            Slot::Accel(1),
-            Slot::Accel(2),
-            Slot::DynamicPressure,
-            Slot::Heating,
-        ];
-        v.extend((0..MAX_BEACONS).map(Slot::Range));
-        v.extend((0..MAX_BEACONS).map(Slot::RangeRate));
-        v
-    }
+/// `nav_status`: [`entrynav::sim::engine::NavStatus::code`].
+pub static NAV_STATUS: EnumType = EnumType {
+    name: "NavStatus",
+    description: "Navigation filter health",
+    items: &[
+        (
+            "initial",
+            "No measurement epoch processed yet: the estimate is the filter start",
+        ),
+        ("running", "Processing measurement epochs"),
+        (
+            "failed",
+            "Stopped on a numerical failure (reason logged); the estimate is frozen",
+        ),
+    ],
+};
 
-    /// The slot of a scenario channel (None for beacons past the slots).
-    pub fn of(channel: Channel) -> Option<Slot> {
-        let s = match channel {
-            Channel::Accel(k) => Slot::Accel(k.min(2)),
-            Channel::DynamicPressure => Slot::DynamicPressure,
-            Channel::Heating => Slot::Heating,
-            Channel::Range(i) => Slot::Range(i),
-            Channel::RangeRate(i) => Slot::RangeRate(i),
-        };
-        match s {
-            Slot::Range(i) | Slot::RangeRate(i) if i >= MAX_BEACONS => None,
-            s => Some(s),
-        }
-    }
+/// `truth_stop`: why the truth stopped.
+pub static TRUTH_STOP: EnumType = EnumType {
+    name: "TruthStop",
+    description: "Why the truth trajectory stopped",
+    items: &[
+        ("running", "The truth is still being integrated"),
+        ("duration", "The scenario duration was reached"),
+        ("stop_speed", "The airspeed fell below the stop speed"),
+        ("ground", "The altitude reached zero"),
+    ],
+};
 
-    fn name(self) -> String {
-        match self {
-            Slot::Accel(k) => format!("meas_accel_{}", ["x", "y", "z"][k as usize]),
-            Slot::DynamicPressure => "meas_dynamic_pressure".into(),
-            Slot::Heating => "meas_heating".into(),
-            Slot::Range(i) => format!("meas_range_{}", i + 1),
-            Slot::RangeRate(i) => format!("meas_range_rate_{}", i + 1),
-        }
-    }
-
-    fn unit(self) -> &'static str {
-        match self {
-            Slot::Accel(_) => "m/s2",
-            Slot::DynamicPressure => "Pa",
-            Slot::Heating => "W/m2",
-            Slot::Range(_) => "m",
-            Slot::RangeRate(_) => "m/s",
-        }
-    }
-
-    fn what(self) -> String {
-        match self {
-            Slot::Accel(k) => format!(
-                "accelerometer specific force along IMU axis {}",
-                ["x", "y", "z"][k as usize]
-            ),
-            Slot::DynamicPressure => "dynamic pressure (air data)".into(),
-            Slot::Heating => "convective heating rate (air data)".into(),
-            Slot::Range(i) => format!("two-way range to beacon {}", i + 1),
-            Slot::RangeRate(i) => format!("range-rate to beacon {}", i + 1),
-        }
-    }
-}
-
-/// What a variable is bound to.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Key {
-    /// Scenario: built-in name or file in the FMU's resources.
-    Scenario,
-    /// Filter name.
-    Filter,
-    /// Generator seed.
-    Seed,
-    /// Draw the truth from the scenario's dispersions.
-    Dispersed,
-    /// Bank-angle command \[rad\].
-    Bank,
-    /// Beacon slot commanded available.
-    BeaconAvailable(usize),
-    /// A measurement epoch is present (filter input / truth output).
-    MeasEpoch,
-    /// Time the measurements were taken.
-    MeasTime,
-    /// Measurement value.
-    Meas(Slot),
-    /// Measurement validity flag.
-    MeasValid(Slot),
-    /// Planet-relative spherical truth component k = r, lon, lat, v, fpa, heading.
-    TruthSph(usize),
-    /// Truth altitude.
-    TruthAltitude,
-    /// True density.
-    TruthDensity,
-    /// True dynamic pressure.
-    TruthDynamicPressure,
-    /// True heating rate.
-    TruthHeating,
-    /// Magnitude of the aerodynamic acceleration.
-    TruthAeroAccel,
-    /// Noiseless accelerometer reading, IMU axis k.
-    TruthSensedAccel(usize),
-    /// Geometric range to beacon slot i.
-    BeaconRange(usize),
-    /// Beacon slot i above the horizon.
-    BeaconVisible(usize),
-    /// Why the truth stopped.
-    TruthStop,
-    /// Number of beacons.
-    NBeacons,
-    /// Epoch of the estimate.
-    NavTime,
-    /// Filter status.
-    NavStatus,
-    /// Filter state dimension.
-    NStates,
-    /// Estimate, state slot i.
-    EstX(usize),
-    /// 1σ, state slot i.
-    EstSigma(usize),
-    /// Estimate as planet-relative spherical component k.
-    EstSph(usize),
-    /// Estimated density.
-    EstDensity,
-    /// Normalised innovation squared of the last update.
-    Nis,
-    /// Scalar measurements used in the last update.
-    NMeas,
-    /// Fusion weight / model probability i.
-    Weight(usize),
-    /// Number of weights.
-    NWeights,
-    /// Truth in filter coordinates at the estimate's epoch, slot i.
-    TruthX(usize),
-    /// Estimation error, slot i.
-    Err(usize),
-    /// NEES.
-    Nees,
-    /// NEES degrees of freedom.
-    NeesDof,
-    /// True density at the estimate's epoch.
-    NavTruthDensity,
-}
+/// Every Enumeration type a table may use.
+pub static ENUM_TYPES: [&EnumType; 2] = [&NAV_STATUS, &TRUTH_STOP];
 
 /// One scalar variable.
 #[derive(Debug, Clone, PartialEq)]
@@ -344,8 +190,10 @@ pub struct Var {
     pub vr: u32,
     /// Name.
     pub name: String,
-    /// Base type.
+    /// Base type (an Enumeration is accessed as Integer).
     pub ty: Type,
+    /// The Enumeration type, for Integer variables declared as one.
+    pub declared: Option<&'static EnumType>,
     /// Causality.
     pub causality: Causality,
     /// Variability.
@@ -365,13 +213,22 @@ impl Var {
     pub fn settable(&self) -> bool {
         self.causality != Causality::Output
     }
+
+    /// Element name of its type in the XML (`Enumeration` for a declared Enumeration).
+    pub fn xml_type(&self) -> &'static str {
+        if self.declared.is_some() {
+            "Enumeration"
+        } else {
+            self.ty.xml()
+        }
+    }
 }
 
 /// A unit: name, SI base-unit exponents (kg, m, s, rad), and an optional display unit (name, factor).
 pub type UnitDef = (&'static str, [i32; 4], Option<(&'static str, f64)>);
 
-/// The units the variables use.
-pub const UNITS: [UnitDef; 8] = [
+/// The units the variables use ("1": dimensionless).
+pub const UNITS: [UnitDef; 10] = [
     ("m", [0, 1, 0, 0], None),
     ("rad", [0, 0, 0, 1], Some(("deg", 57.29577951308232))),
     ("m/s", [0, 1, -1, 0], None),
@@ -380,6 +237,8 @@ pub const UNITS: [UnitDef; 8] = [
     ("kg/m3", [1, -3, 0, 0], None),
     ("Pa", [1, -1, -2, 0], None),
     ("W/m2", [1, 0, -3, 0], None),
+    ("m2/kg", [-1, 2, 0, 0], None),
+    ("1", [0, 0, 0, 0], None),
 ];
 
 /// Default parameter values.
@@ -388,10 +247,6 @@ pub const DEFAULT_SCENARIO: &str = "four-beacon-fusion";
 pub const DEFAULT_FILTER: &str = "dcifaif";
 /// Default seed.
 pub const DEFAULT_SEED: i32 = 1;
-
-mod table;
-
-pub use table::variables;
 
 /// FNV-1a, 64 bit.
 pub fn fnv1a64(bytes: &[u8], seed: u64) -> u64 {
@@ -403,16 +258,25 @@ pub fn fnv1a64(bytes: &[u8], seed: u64) -> u64 {
     h
 }
 
-/// The GUID of `model`: a hash of its identifier, the table version and every variable's
-/// value reference, name, type, causality, variability, unit and start value.
-pub fn guid_of(model: Model) -> String {
-    let mut text = format!("{}|{}\n", model.identifier(), TABLE_VERSION);
-    for v in variables(model) {
+/// A GUID from a hash of `identifier`, the table version, `extra` (the embedded scenario of a
+/// specific FMU) and every variable's reference, name, type, Enumeration type, causality,
+/// variability, unit and start value.
+pub(crate) fn table_guid(identifier: &str, extra: &str, vars: &[Var]) -> String {
+    let mut text = format!("{identifier}|{TABLE_VERSION}|{extra}\n");
+    for v in vars {
+        let declared = v
+            .declared
+            .map(|e| {
+                let items: Vec<&str> = e.items.iter().map(|i| i.0).collect();
+                format!("{}={}", e.name, items.join(","))
+            })
+            .unwrap_or_default();
         text.push_str(&format!(
-            "{}|{}|{}|{}|{}|{}|{}\n",
+            "{}|{}|{}|{}|{}|{}|{}|{}\n",
             v.vr,
             v.name,
             v.ty.xml(),
+            declared,
             v.causality.xml(),
             v.variability.xml(),
             v.unit.unwrap_or(""),
@@ -431,6 +295,11 @@ pub fn guid_of(model: Model) -> String {
     )
 }
 
+/// The GUID of the generic `model`.
+pub fn guid_of(model: Model) -> String {
+    table_guid(model.identifier(), "", &variables(model))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -446,9 +315,14 @@ mod tests {
             for (i, v) in vars.iter().enumerate() {
                 assert_eq!(v.vr as usize, i);
                 assert_eq!(v.settable(), v.start.is_some(), "{}", v.name);
+                assert!(v.declared.is_none() || v.ty == Type::Integer, "{}", v.name);
+                if let Some(u) = v.unit {
+                    assert!(UNITS.iter().any(|d| d.0 == u), "{}: unit {u}", v.name);
+                }
             }
             assert!(guids.insert(guid_of(m)));
             assert_eq!(Model::from_guid(&guid_of(m)), Some(m));
+            assert_eq!(ModelSpec::generic(m).guid(), guid_of(m));
         }
         assert_eq!(Model::from_guid("{nope}"), None);
     }

@@ -1,9 +1,10 @@
 //! The variable list of each FMU, declared once (the get/set code and the model description are
 //! both generated from it).
 
+use super::table_outputs::{judgement_outputs, nav_outputs, truth_outputs};
 use super::*;
 
-const SPH: [(&str, &str, &str); 6] = [
+pub(super) const SPH: [(&str, &str, &str); 6] = [
     ("r", "m", "radius"),
     ("lon", "rad", "longitude"),
     ("lat", "rad", "latitude"),
@@ -12,8 +13,25 @@ const SPH: [(&str, &str, &str); 6] = [
     ("heading", "rad", "heading (north-clockwise)"),
 ];
 
-struct Builder {
-    vars: Vec<Var>,
+pub(super) struct Builder {
+    pub(super) vars: Vec<Var>,
+}
+
+/// Reals of the sampled-data part (measurements, the estimate and its judgement) change only at
+/// measurement epochs; the truth and the bank command are continuous.
+fn real_variability(key: Key) -> Variability {
+    match key {
+        Key::Bank
+        | Key::TruthSph(_)
+        | Key::TruthAltitude
+        | Key::TruthDensity
+        | Key::TruthDynamicPressure
+        | Key::TruthHeating
+        | Key::TruthAeroAccel
+        | Key::TruthSensedAccel(_)
+        | Key::BeaconRange(_) => Variability::Continuous,
+        _ => Variability::Discrete,
+    }
 }
 
 impl Builder {
@@ -30,15 +48,14 @@ impl Builder {
     ) {
         let variability = match (causality, ty) {
             (Causality::Parameter, _) => Variability::Fixed,
-            (_, Type::Real) if !matches!(key, Key::MeasTime | Key::Meas(_)) => {
-                Variability::Continuous
-            }
+            (_, Type::Real) => real_variability(key),
             _ => Variability::Discrete,
         };
         self.vars.push(Var {
             vr: self.vars.len() as u32,
             name: name.into(),
             ty,
+            declared: None,
             causality,
             variability,
             unit,
@@ -48,7 +65,7 @@ impl Builder {
         });
     }
 
-    fn out(
+    pub(super) fn out(
         &mut self,
         name: impl Into<String>,
         ty: Type,
@@ -58,32 +75,54 @@ impl Builder {
     ) {
         self.add(name, ty, Causality::Output, unit, None, description, key);
     }
+
+    /// An Integer output declared as the Enumeration `e`.
+    pub(super) fn enumeration(
+        &mut self,
+        name: &str,
+        e: &'static EnumType,
+        description: &str,
+        key: Key,
+    ) {
+        self.out(name, Type::Integer, None, description, key);
+        if let Some(v) = self.vars.last_mut() {
+            v.declared = Some(e);
+        }
+    }
 }
 
-/// The variables of `model`, in value-reference order.
+/// The variables of the generic `model`, in value-reference order.
 pub fn variables(model: Model) -> Vec<Var> {
+    build(model, None)
+}
+
+/// The variables of `model`, generic or specific to an embedded scenario.
+pub(super) fn build(model: Model, specific: Option<&Specific>) -> Vec<Var> {
     use Causality::*;
     use Type::*;
     let mut b = Builder { vars: Vec::new() };
-    b.add(
-        "scenario",
-        String,
-        Parameter,
-        None,
-        Some(Value::String(DEFAULT_SCENARIO.into())),
-        format!(
-            "Scenario: a built-in name ({}) or a TOML file in the FMU's resources folder (or an absolute path)",
-            entrynav::scenario::BUILTIN_NAMES.join(", ")
-        ),
-        Key::Scenario,
-    );
+    if specific.is_none() {
+        b.add(
+            "scenario",
+            String,
+            Parameter,
+            None,
+            Some(Value::String(DEFAULT_SCENARIO.into())),
+            format!(
+                "Scenario: a built-in name ({}) or a TOML file in the FMU's resources folder (a file elsewhere only with allow_external_files = true)",
+                entrynav::scenario::BUILTIN_NAMES.join(", ")
+            ),
+            Key::Scenario,
+        );
+    }
+    let default_filter = specific.map(|s| s.filter.name()).unwrap_or(DEFAULT_FILTER);
     if model.has_filter() {
         b.add(
             "filter",
             String,
             Parameter,
             None,
-            Some(Value::String(DEFAULT_FILTER.into())),
+            Some(Value::String(default_filter.into())),
             format!(
                 "Navigation filter, as entrynav trade: {}",
                 entrynav::estimation::nav::FilterKind::ALL
@@ -111,6 +150,20 @@ pub fn variables(model: Model) -> Vec<Var> {
         "Draw the truth from the scenario's dispersions (true) or use the nominal truth (false)",
         Key::Dispersed,
     );
+    if specific.is_none() {
+        b.add(
+            "allow_external_files",
+            Boolean,
+            Parameter,
+            None,
+            Some(Value::Boolean(false)),
+            "Let scenario name a file outside the FMU's resources folder (an absolute path or one with ..); off by default, so a parameter cannot make the FMU read host files",
+            Key::AllowExternalFiles,
+        );
+    }
+    let n_beacons = specific
+        .map(|s| s.scenario.beacons.len().min(MAX_BEACONS))
+        .unwrap_or(MAX_BEACONS);
     // Every model: the truth flies the command, the filter's onboard models use it (known onboard).
     b.add(
         "bank_angle",
@@ -130,7 +183,7 @@ pub fn variables(model: Model) -> Vec<Var> {
         Key::Bank,
     );
     if model.has_truth() {
-        for i in 0..MAX_BEACONS {
+        for i in 0..n_beacons {
             b.add(
                 format!("beacon_available_{}", i + 1),
                 Boolean,
@@ -193,229 +246,13 @@ pub fn variables(model: Model) -> Vec<Var> {
         }
     }
     if model.has_truth() {
-        for (k, (n, u, d)) in SPH.iter().enumerate() {
-            b.out(
-                format!("truth_{n}"),
-                Real,
-                Some(u),
-                format!("True {d} (planet-relative spherical)"),
-                Key::TruthSph(k),
-            );
-        }
-        b.out(
-            "truth_altitude",
-            Real,
-            Some("m"),
-            "True altitude",
-            Key::TruthAltitude,
-        );
-        b.out(
-            "truth_density",
-            Real,
-            Some("kg/m3"),
-            "True atmospheric density",
-            Key::TruthDensity,
-        );
-        b.out(
-            "truth_dynamic_pressure",
-            Real,
-            Some("Pa"),
-            "True dynamic pressure",
-            Key::TruthDynamicPressure,
-        );
-        b.out(
-            "truth_heating",
-            Real,
-            Some("W/m2"),
-            "True convective heating rate (Sutton-Graves)",
-            Key::TruthHeating,
-        );
-        b.out(
-            "truth_aero_accel",
-            Real,
-            Some("m/s2"),
-            "Magnitude of the aerodynamic acceleration",
-            Key::TruthAeroAccel,
-        );
-        for k in 0..3 {
-            b.out(
-                format!("truth_sensed_accel_{}", ["x", "y", "z"][k]),
-                Real,
-                Some("m/s2"),
-                format!(
-                    "Noiseless sensed acceleration (specific force), IMU axis {}",
-                    ["x", "y", "z"][k]
-                ),
-                Key::TruthSensedAccel(k),
-            );
-        }
-        for i in 0..MAX_BEACONS {
-            b.out(
-                format!("beacon_range_{}", i + 1),
-                Real,
-                Some("m"),
-                format!("Geometric range to beacon {}", i + 1),
-                Key::BeaconRange(i),
-            );
-            b.out(
-                format!("beacon_visible_{}", i + 1),
-                Boolean,
-                None,
-                format!("Beacon {} is above the horizon", i + 1),
-                Key::BeaconVisible(i),
-            );
-        }
-        b.out(
-            "truth_stop",
-            Integer,
-            None,
-            "0 running, 1 scenario duration reached, 2 stop speed reached, 3 ground reached",
-            Key::TruthStop,
-        );
-        b.out(
-            "n_beacons",
-            Integer,
-            None,
-            "Number of beacons of the scenario",
-            Key::NBeacons,
-        );
+        truth_outputs(&mut b, n_beacons);
     }
     if model.has_filter() {
-        b.out(
-            "nav_time",
-            Real,
-            Some("s"),
-            "Epoch of the estimate (the last measurement epoch processed; 0 before the first)",
-            Key::NavTime,
-        );
-        b.out(
-            "nav_status",
-            Integer,
-            None,
-            "Filter status: 0 not started, 1 running, 2 failed (estimate frozen, reason logged)",
-            Key::NavStatus,
-        );
-        b.out(
-            "n_states",
-            Integer,
-            None,
-            "Filter state dimension N (slots past N read 0)",
-            Key::NStates,
-        );
-        for i in 0..MAX_STATES {
-            b.out(
-                format!("est_x_{}", i + 1),
-                Real,
-                None,
-                format!("Estimate, filter state {} (filter-model coordinates: r lon lat v fpa heading or x y z vx vy vz, then augmented states)", i + 1),
-                Key::EstX(i),
-            );
-        }
-        for i in 0..MAX_STATES {
-            b.out(
-                format!("est_sigma_{}", i + 1),
-                Real,
-                None,
-                format!("1-sigma of filter state {}", i + 1),
-                Key::EstSigma(i),
-            );
-        }
-        for (k, (n, u, d)) in SPH.iter().enumerate() {
-            b.out(
-                format!("est_{n}"),
-                Real,
-                Some(u),
-                format!("Estimated {d} (planet-relative spherical)"),
-                Key::EstSph(k),
-            );
-        }
-        b.out(
-            "est_density",
-            Real,
-            Some("kg/m3"),
-            "Filter's density estimate (NaN when the filter does not estimate density)",
-            Key::EstDensity,
-        );
-        b.out(
-            "nis",
-            Real,
-            None,
-            "Normalised innovation squared of the last update (NaN when no measurement was used)",
-            Key::Nis,
-        );
-        b.out(
-            "n_meas",
-            Integer,
-            None,
-            "Scalar measurements used in the last update",
-            Key::NMeas,
-        );
-        for i in 0..MAX_WEIGHTS {
-            b.out(
-                format!("weight_{}", i + 1),
-                Real,
-                None,
-                format!(
-                    "Fusion weight (ci, dcifaif) or model probability (mmae, mmae-moe) {}",
-                    i + 1
-                ),
-                Key::Weight(i),
-            );
-        }
-        b.out(
-            "n_weights",
-            Integer,
-            None,
-            "Number of fusion weights / model probabilities (0 for ekf and ukf)",
-            Key::NWeights,
-        );
+        nav_outputs(&mut b, specific);
     }
     if model == Model::Combined {
-        for i in 0..MAX_STATES {
-            b.out(
-                format!("truth_x_{}", i + 1),
-                Real,
-                None,
-                format!(
-                    "Truth of filter state {} at the estimate's epoch (NaN without a truth counterpart)",
-                    i + 1
-                ),
-                Key::TruthX(i),
-            );
-        }
-        for i in 0..MAX_STATES {
-            b.out(
-                format!("err_{}", i + 1),
-                Real,
-                None,
-                format!(
-                    "Estimation error est_x - truth_x of filter state {} (angles wrapped)",
-                    i + 1
-                ),
-                Key::Err(i),
-            );
-        }
-        b.out(
-            "nees",
-            Real,
-            None,
-            "Normalised estimation error squared over the states with a truth value",
-            Key::Nees,
-        );
-        b.out(
-            "nees_dof",
-            Integer,
-            None,
-            "Degrees of freedom of the NEES",
-            Key::NeesDof,
-        );
-        b.out(
-            "nav_truth_density",
-            Real,
-            Some("kg/m3"),
-            "True density at the estimate's epoch",
-            Key::NavTruthDensity,
-        );
+        judgement_outputs(&mut b, specific);
     }
     b.vars
 }

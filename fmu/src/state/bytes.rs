@@ -1,128 +1,9 @@
-//! FMU state snapshots and their byte format.
-//!
-//! A snapshot is a *replay log*: the parameters and inputs, the experiment set-up, the phase, and
-//! every successful `fmi2DoStep` so far with the inputs it used. Restoring rebuilds the engine and
-//! replays the steps; because the engine is deterministic this reproduces the rest of the run bit
-//! for bit.
-//!
-//! Byte format (little-endian), version [`FORMAT_VERSION`]:
-//! `b"ENAVFMUS"`, `u32` version, `u64` total length, `u8` model, `u32`+bytes GUID, `u8` phase,
-//! `f64` start time, `u8`+`f64` stop time, `u32` count + tagged values (tag 0 none, 1 real `f64`,
-//! 2 integer `i32`, 3 boolean `u8`, 4 string `u32`+UTF-8), `u32` inputs per step, `u64` step count
-//! and per step `f64` t, `f64` h and the tagged input values, then an FNV-1a 64 checksum of
-//! everything before it. Every length is checked against the remaining bytes before use.
+//! The byte format of a [`Snapshot`] (see [`super`]).
 
+use super::{FORMAT_VERSION, MAGIC, Phase, Snapshot, StateError, StepLog, StepRecord};
+use crate::limits::MAX_STATE_BYTES;
 use crate::vars::{Model, Value, fnv1a64};
-use thiserror::Error;
-
-/// Why serialized FMU-state bytes cannot be restored.
-#[derive(Debug, Error, Clone, PartialEq, Eq)]
-pub enum StateError {
-    /// Not written by this FMU.
-    #[error("not an entrynav FMU state (bad magic bytes)")]
-    BadMagic,
-    /// Another format version.
-    #[error(
-        "FMU state format version {0} is not supported (this FMU reads version {FORMAT_VERSION})"
-    )]
-    Version(u32),
-    /// The header's length is not the buffer's.
-    #[error("FMU state length mismatch: header says {header} bytes, got {actual}")]
-    Length {
-        /// Length in the header.
-        header: u64,
-        /// Bytes given.
-        actual: usize,
-    },
-    /// The checksum does not match.
-    #[error("FMU state checksum mismatch (corrupted bytes)")]
-    Checksum,
-    /// The bytes end early.
-    #[error("FMU state is truncated")]
-    Truncated,
-    /// Bytes left after the last field.
-    #[error("FMU state has {0} trailing bytes")]
-    Trailing(usize),
-    /// An unknown value tag.
-    #[error("FMU state has an unknown value tag {0}")]
-    ValueTag(u8),
-    /// A field that cannot be valid.
-    #[error("FMU state {0}")]
-    Corrupt(&'static str),
-}
-
-/// Magic bytes.
-pub const MAGIC: &[u8; 8] = b"ENAVFMUS";
-/// Format version.
-pub const FORMAT_VERSION: u32 = 1;
-
-/// Where the instance was in the FMI state machine.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Phase {
-    /// After fmi2Instantiate / fmi2Reset.
-    Instantiated,
-    /// Between fmi2EnterInitializationMode and fmi2ExitInitializationMode.
-    InitializationMode,
-    /// Ready for fmi2DoStep.
-    StepComplete,
-    /// After fmi2Terminate.
-    Terminated,
-    /// After an error that needs fmi2Reset, fmi2SetFMUstate or fmi2FreeInstance.
-    Error,
-}
-
-impl Phase {
-    fn code(self) -> u8 {
-        match self {
-            Phase::Instantiated => 0,
-            Phase::InitializationMode => 1,
-            Phase::StepComplete => 2,
-            Phase::Terminated => 3,
-            Phase::Error => 4,
-        }
-    }
-
-    fn from_code(c: u8) -> Option<Phase> {
-        Some(match c {
-            0 => Phase::Instantiated,
-            1 => Phase::InitializationMode,
-            2 => Phase::StepComplete,
-            3 => Phase::Terminated,
-            4 => Phase::Error,
-            _ => return None,
-        })
-    }
-}
-
-/// One successful doStep.
-#[derive(Debug, Clone, PartialEq)]
-pub struct StepRecord {
-    /// Communication point.
-    pub t: f64,
-    /// Step size.
-    pub h: f64,
-    /// Values of the input variables used, in table order.
-    pub inputs: Vec<Value>,
-}
-
-/// A saved FMU state.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Snapshot {
-    /// Model.
-    pub model: Model,
-    /// GUID of the model's table when saved.
-    pub guid: String,
-    /// Phase.
-    pub phase: Phase,
-    /// Experiment start time.
-    pub start_time: f64,
-    /// Experiment stop time, if defined.
-    pub stop_time: Option<f64>,
-    /// Current value of every variable that has one stored (parameters, inputs), in table order.
-    pub values: Vec<Option<Value>>,
-    /// Steps so far.
-    pub steps: Vec<StepRecord>,
-}
+use std::sync::Arc;
 
 fn put_value(out: &mut Vec<u8>, v: Option<&Value>) {
     match v {
@@ -170,15 +51,27 @@ impl Snapshot {
         for v in &self.values {
             put_value(&mut out, v.as_ref());
         }
-        let per_step = self.steps.first().map(|s| s.inputs.len()).unwrap_or(0);
+        let per_step = self
+            .steps
+            .iter()
+            .next()
+            .map(|s| s.inputs.len())
+            .unwrap_or(0);
         out.extend_from_slice(&(per_step as u32).to_le_bytes());
         out.extend_from_slice(&(self.steps.len() as u64).to_le_bytes());
-        for s in &self.steps {
+        let mut previous: Option<&Arc<[Value]>> = None;
+        for s in self.steps.iter() {
             out.extend_from_slice(&s.t.to_le_bytes());
             out.extend_from_slice(&s.h.to_le_bytes());
-            for v in &s.inputs {
-                put_value(&mut out, Some(v));
+            if previous.is_some_and(|p| Arc::ptr_eq(p, &s.inputs)) {
+                out.push(0);
+            } else {
+                out.push(1);
+                for v in s.inputs.iter() {
+                    put_value(&mut out, Some(v));
+                }
             }
+            previous = Some(&s.inputs);
         }
         let total = (out.len() + 8) as u64;
         out[12..20].copy_from_slice(&total.to_le_bytes());
@@ -189,6 +82,9 @@ impl Snapshot {
 
     /// Parse and check a serialized state.
     pub fn from_bytes(bytes: &[u8]) -> Result<Snapshot, StateError> {
+        if bytes.len() > MAX_STATE_BYTES {
+            return Err(StateError::TooLarge(bytes.len()));
+        }
         let mut r = Reader { b: bytes, pos: 0 };
         if r.take(8)? != MAGIC {
             return Err(StateError::BadMagic);
@@ -236,22 +132,36 @@ impl Snapshot {
         }
         let per_step = r.u32()? as usize;
         let ns = r.u64()?;
-        if ns > (r.remaining() / 16) as u64 {
+        if ns > (r.remaining() / 17) as u64 {
             return Err(StateError::Corrupt(
                 "has a step count that exceeds its length",
             ));
         }
-        let mut steps = Vec::with_capacity(ns as usize);
+        let mut steps = StepLog::default();
+        let mut previous: Option<Arc<[Value]>> = None;
         for _ in 0..ns {
             let t = r.f64()?;
             let h = r.f64()?;
-            let mut inputs = Vec::with_capacity(per_step.min(r.remaining()));
-            for _ in 0..per_step {
-                inputs.push(
-                    r.value()?
-                        .ok_or(StateError::Corrupt("has a step input without a value"))?,
-                );
-            }
+            let inputs = match (r.u8()?, &previous) {
+                (0, Some(p)) => Arc::clone(p),
+                (0, None) => {
+                    return Err(StateError::Corrupt(
+                        "has a first step that refers to previous inputs",
+                    ));
+                }
+                (1, _) => {
+                    let mut inputs = Vec::with_capacity(per_step.min(r.remaining()));
+                    for _ in 0..per_step {
+                        inputs.push(
+                            r.value()?
+                                .ok_or(StateError::Corrupt("has a step input without a value"))?,
+                        );
+                    }
+                    Arc::from(inputs)
+                }
+                _ => return Err(StateError::Corrupt("has an unknown step-input flag")),
+            };
+            previous = Some(Arc::clone(&inputs));
             steps.push(StepRecord { t, h, inputs });
         }
         if r.remaining() != 0 {
@@ -345,18 +255,19 @@ mod tests {
                 Some(Value::Boolean(true)),
                 Some(Value::Real(f64::NAN)),
             ],
-            steps: vec![
-                StepRecord {
-                    t: 0.0,
-                    h: 1.0,
-                    inputs: vec![Value::Real(0.5), Value::Boolean(false)],
-                },
-                StepRecord {
-                    t: 1.0,
-                    h: 0.25,
-                    inputs: vec![Value::Real(-0.5), Value::Boolean(true)],
-                },
-            ],
+            steps: {
+                let a: Arc<[Value]> = Arc::from(vec![Value::Real(0.5), Value::Boolean(false)]);
+                let b: Arc<[Value]> = Arc::from(vec![Value::Real(-0.5), Value::Boolean(true)]);
+                let mut log = StepLog::default();
+                for (t, h, inputs) in [(0.0, 1.0, &a), (1.0, 0.25, &b), (1.25, 0.25, &b)] {
+                    log.push(StepRecord {
+                        t,
+                        h,
+                        inputs: Arc::clone(inputs),
+                    });
+                }
+                log
+            },
         }
     }
 
@@ -367,6 +278,10 @@ mod tests {
         let back = Snapshot::from_bytes(&bytes).unwrap();
         assert_eq!(back.to_bytes(), bytes);
         assert_eq!(back.steps, s.steps);
+        // The third step shares the second's inputs, in memory and in the bytes.
+        let steps: Vec<_> = back.steps.iter().collect();
+        assert!(Arc::ptr_eq(&steps[1].inputs, &steps[2].inputs));
+        assert_eq!(s.steps.bytes(), 17 * 3 + 2 * (9 + 2));
         for n in 0..bytes.len() {
             assert!(
                 Snapshot::from_bytes(&bytes[..n]).is_err(),
@@ -381,5 +296,10 @@ mod tests {
         let mut longer = bytes.clone();
         longer.push(0);
         assert!(Snapshot::from_bytes(&longer).is_err());
+        let huge = vec![0u8; MAX_STATE_BYTES + 1];
+        assert_eq!(
+            Snapshot::from_bytes(&huge),
+            Err(StateError::TooLarge(MAX_STATE_BYTES + 1))
+        );
     }
 }

@@ -1,6 +1,6 @@
 //! Our FMI 2.0 host: unpacks a `.fmu`, loads its shared library with libloading and calls the
 //! fmi2 functions through a safe [`Slave`] wrapper. `entrynav fmu check` compares it with the
-//! in-process [`Instance`] bit for bit; `entrynav fmu fuzz` drives random call sequences through
+//! in-process [`Instance`](crate::instance::Instance) bit for bit; `entrynav fmu fuzz` drives random call sequences through
 //! it.
 //!
 //! The logger is declared without the C varargs (stable Rust cannot define variadic functions);
@@ -9,13 +9,15 @@
 
 #![allow(non_snake_case)]
 
-use crate::instance::{Instance, Status};
-use crate::vars::{Causality, Model, Type, Value, Var};
-use crate::xml::model_description;
+use crate::binding::{Binding, BindingError, read_library};
+use crate::instance::{InstantiateError, Status, resolve_spec};
+use crate::vars::{Model, ModelSpec};
+use crate::xml::description_of;
 use entrynav::scenario::BUILTIN_NAMES;
-use std::ffi::{CStr, CString, NulError, c_char, c_int, c_void};
+use std::ffi::{CStr, NulError, c_char, c_int, c_void};
 use std::io::Read;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::sync::Mutex;
 use thiserror::Error;
 
@@ -42,9 +44,15 @@ pub enum HostError {
     },
     /// The archive's model description is not what this build generates.
     #[error(
-        "modelDescription.xml is not what this build's variable table generates (stale FMU or drifted table)"
+        "modelDescription.xml is not what this build's variable table generates for {0} (stale FMU or drifted table)"
     )]
-    StaleModelDescription,
+    StaleModelDescription(String),
+    /// The library's binding cannot be read.
+    #[error(transparent)]
+    Binding(#[from] BindingError),
+    /// The model the library is bound to cannot be rebuilt from the archive.
+    #[error(transparent)]
+    Model(#[from] InstantiateError),
     /// A file the FMU must contain is missing.
     #[error("the FMU has no {0}")]
     MissingFile(String),
@@ -105,7 +113,7 @@ pub struct Callbacks {
     pub env: *mut c_void,
 }
 
-extern "C" fn host_logger(
+pub(super) extern "C" fn host_logger(
     env: *mut c_void,
     _name: *const c_char,
     status: c_int,
@@ -199,8 +207,14 @@ api! {
 pub struct Unpacked {
     /// Where it was extracted.
     pub dir: PathBuf,
-    /// Which of our models it is.
+    /// Which of our models it is (the base model of a specific FMU).
     pub model: Model,
+    /// The model with its table and GUID.
+    pub spec: Arc<ModelSpec>,
+    /// The library's binding (`None`: an unbound development library).
+    pub binding: Option<Binding>,
+    /// Size of the shared library in bytes.
+    pub library_bytes: u64,
     /// Its fmi2 functions.
     pub api: Api,
 }
@@ -211,8 +225,15 @@ impl Drop for Unpacked {
     }
 }
 
+/// The `modelIdentifier` attribute of a model description.
+fn model_identifier(xml: &str) -> Option<&str> {
+    let rest = &xml[xml.find("modelIdentifier=\"")? + "modelIdentifier=\"".len()..];
+    rest.get(..rest.find('"')?)
+}
+
 /// Unpack `file` into a fresh temporary folder and load its library; the FMU must be one of ours
-/// with the model description this build generates and every built-in scenario in `resources/`.
+/// with the model description this build generates for the model its library is bound to (and,
+/// for a generic model, every built-in scenario in `resources/`).
 pub fn unpack(file: &Path) -> Result<Unpacked> {
     let io = |what, path: &Path| {
         let path = path.display().to_string();
@@ -229,199 +250,53 @@ pub fn unpack(file: &Path) -> Result<Unpacked> {
         .map_err(|e| archive(format!("no modelDescription.xml: {e}")))?
         .read_to_string(&mut xml)
         .map_err(io("cannot read modelDescription.xml of", file))?;
-    let model = Model::ALL
-        .into_iter()
-        .find(|m| model_description(*m) == xml)
-        .ok_or(HostError::StaleModelDescription)?;
+    let id = model_identifier(&xml)
+        .filter(|id| !id.is_empty() && id.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
+        .ok_or_else(|| archive("no usable modelIdentifier in modelDescription.xml".into()))?
+        .to_string();
     let dir = std::env::temp_dir().join(format!(
-        "entrynav fmu check {} {}",
+        "entrynav fmu check {} {id} {}",
         std::process::id(),
-        model.identifier()
+        file.file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default()
     ));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).map_err(io("cannot create", &dir))?;
     zip.extract(&dir)
         .map_err(|e| archive(format!("cannot extract to {}: {e}", dir.display())))?;
-    let so = dir
-        .join("binaries/linux64")
-        .join(format!("{}.so", model.identifier()));
-    if !so.exists() {
-        return Err(HostError::MissingFile(format!(
-            "binaries/linux64/{}.so",
-            model.identifier()
-        )));
+    let so = dir.join("binaries/linux64").join(format!("{id}.so"));
+    let bytes = std::fs::read(&so)
+        .map_err(|_| HostError::MissingFile(format!("binaries/linux64/{id}.so")))?;
+    let binding = read_library(&bytes)?;
+    let spec = match &binding {
+        Some(b) => resolve_spec(Some(b), &b.guid, Some(&file_uri(&dir.join("resources"))))?,
+        None => Arc::new(ModelSpec::generic(
+            Model::from_identifier(&id)
+                .ok_or_else(|| HostError::StaleModelDescription(id.clone()))?,
+        )),
+    };
+    if description_of(&spec) != xml {
+        return Err(HostError::StaleModelDescription(id));
     }
-    for name in BUILTIN_NAMES {
-        if !dir.join(format!("resources/{name}.toml")).exists() {
-            return Err(HostError::MissingFile(format!("resources/{name}.toml")));
+    if spec.specific().is_none() {
+        for name in BUILTIN_NAMES {
+            if !dir.join(format!("resources/{name}.toml")).exists() {
+                return Err(HostError::MissingFile(format!("resources/{name}.toml")));
+            }
         }
     }
     let api = Api::load(&so)?;
-    Ok(Unpacked { dir, model, api })
+    Ok(Unpacked {
+        dir,
+        model: spec.model(),
+        spec,
+        binding,
+        library_bytes: bytes.len() as u64,
+        api,
+    })
 }
 
-/// One instance through the host.
-pub struct Slave<'a> {
-    /// The library's functions.
-    pub api: &'a Api,
-    /// The instance.
-    pub c: Comp,
-    /// Messages the instance logged: (status, text).
-    pub log: Box<Mutex<Vec<(i32, String)>>>,
-    _callbacks: Box<Callbacks>,
-}
+mod slave;
 
-impl<'a> Slave<'a> {
-    /// Instantiate `u`'s model as co-simulation slave `name` with `guid` and the resource URI
-    /// `resources`, logging on.
-    pub fn new(u: &'a Unpacked, name: &str, guid: &str, resources: &str) -> Result<Slave<'a>> {
-        let log: Box<Mutex<Vec<(i32, String)>>> = Box::new(Mutex::new(Vec::new()));
-        let callbacks = Box::new(Callbacks {
-            logger: Some(host_logger),
-            allocate: None,
-            free: None,
-            step_finished: None,
-            env: &*log as *const _ as *mut c_void,
-        });
-        let (n, g, r) = (
-            CString::new(name)?,
-            CString::new(guid)?,
-            CString::new(resources)?,
-        );
-        // SAFETY: valid C strings and callbacks that outlive the instance.
-        let c = unsafe {
-            (u.api.fmi2Instantiate)(n.as_ptr(), 1, g.as_ptr(), r.as_ptr(), &*callbacks, 0, 0)
-        };
-        let s = Slave {
-            api: &u.api,
-            c,
-            log,
-            _callbacks: callbacks,
-        };
-        if c.is_null() {
-            return Err(HostError::Instantiate(s.messages()));
-        }
-        Ok(s)
-    }
-
-    /// The messages logged so far.
-    pub fn messages(&self) -> Vec<(i32, String)> {
-        self.log.lock().map(|l| l.clone()).unwrap_or_default()
-    }
-
-    /// Set one variable; returns the fmi2Status.
-    pub fn set(&self, v: &Var, val: &Value) -> i32 {
-        let vr = [v.vr];
-        // SAFETY: one reference and one value of the right type.
-        unsafe {
-            match val {
-                Value::Real(x) => (self.api.fmi2SetReal)(self.c, vr.as_ptr(), 1, x),
-                Value::Integer(x) => (self.api.fmi2SetInteger)(self.c, vr.as_ptr(), 1, x),
-                Value::Boolean(x) => {
-                    (self.api.fmi2SetBoolean)(self.c, vr.as_ptr(), 1, &(*x as c_int))
-                }
-                Value::String(s) => {
-                    let cs = CString::new(s.as_str()).unwrap_or_default();
-                    (self.api.fmi2SetString)(self.c, vr.as_ptr(), 1, &cs.as_ptr())
-                }
-            }
-        }
-    }
-
-    /// All values of `vars` (one call per type), as f64 bit patterns / integers.
-    pub fn get_all(&self, groups: &OutputGroups) -> Result<Vec<u64>> {
-        let mut out = Vec::new();
-        let mut r = vec![0.0; groups.real.len()];
-        let mut i = vec![0; groups.int.len()];
-        let mut b = vec![0; groups.bool.len()];
-        // SAFETY: buffers sized to the reference lists.
-        let st = unsafe {
-            [
-                (self.api.fmi2GetReal)(self.c, groups.real.as_ptr(), r.len(), r.as_mut_ptr()),
-                (self.api.fmi2GetInteger)(self.c, groups.int.as_ptr(), i.len(), i.as_mut_ptr()),
-                (self.api.fmi2GetBoolean)(self.c, groups.bool.as_ptr(), b.len(), b.as_mut_ptr()),
-            ]
-        };
-        if st != [0, 0, 0] {
-            return Err(HostError::Call {
-                call: "fmi2Get*",
-                status: st.to_vec(),
-                messages: self.messages(),
-            });
-        }
-        out.extend(r.iter().map(|x| x.to_bits()));
-        out.extend(i.iter().map(|x| *x as u64));
-        out.extend(b.iter().map(|x| (*x != 0) as u64));
-        Ok(out)
-    }
-}
-
-impl Drop for Slave<'_> {
-    fn drop(&mut self) {
-        // SAFETY: our instance (or null).
-        unsafe { (self.api.fmi2FreeInstance)(self.c) };
-    }
-}
-
-/// The output value references of a model, by type.
-pub struct OutputGroups {
-    /// Real outputs.
-    pub real: Vec<u32>,
-    /// Integer outputs.
-    pub int: Vec<u32>,
-    /// Boolean outputs.
-    pub bool: Vec<u32>,
-}
-
-/// The output references of `vars`, grouped by type.
-pub fn output_groups(vars: &[Var]) -> OutputGroups {
-    let pick = |t: Type| {
-        vars.iter()
-            .filter(|v| v.causality == Causality::Output && v.ty == t)
-            .map(|v| v.vr)
-            .collect()
-    };
-    OutputGroups {
-        real: pick(Type::Real),
-        int: pick(Type::Integer),
-        bool: pick(Type::Boolean),
-    }
-}
-
-/// [`Slave::get_all`] on an in-process instance.
-pub fn in_process_get_all(inst: &mut Instance, g: &OutputGroups) -> Result<Vec<u64>> {
-    let mut out = Vec::new();
-    for (t, vrs) in [
-        (Type::Real, &g.real),
-        (Type::Integer, &g.int),
-        (Type::Boolean, &g.bool),
-    ] {
-        let vals = inst
-            .get("fmi2Get", t, vrs)
-            .map_err(|status| HostError::InProcess {
-                call: "fmi2Get",
-                status,
-            })?;
-        out.extend(vals.into_iter().map(|v| match v {
-            Value::Real(x) => x.to_bits(),
-            Value::Integer(x) => x as u64,
-            Value::Boolean(x) => x as u64,
-            Value::String(_) => 0,
-        }));
-    }
-    Ok(out)
-}
-
-/// The `file://` URI of a folder, percent-encoded.
-pub fn file_uri(dir: &Path) -> String {
-    let mut s = String::from("file://");
-    for b in dir.to_string_lossy().bytes() {
-        match b {
-            b'A'..=b'Z' | b'a'..=b'z' | b'0'..=b'9' | b'/' | b'-' | b'_' | b'.' | b'~' => {
-                s.push(b as char)
-            }
-            _ => s.push_str(&format!("%{b:02X}")),
-        }
-    }
-    s
-}
+pub use slave::{OutputGroups, Slave, file_uri, in_process_get_all, output_groups};

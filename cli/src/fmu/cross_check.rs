@@ -1,0 +1,214 @@
+//! `entrynav fmu cross-check`: the FMI Cross-Check files of packed FMUs, as the cross-check rules
+//! (version 4.1) lay them out: `fmus/2.0/cs/linux64/entrynav/<version>/<Model>/` with
+//! `<Model>.fmu`, `<Model>_ref.csv` (at most 10 important outputs, from StartTime to StopTime),
+//! `<Model>_ref.opt`, `<Model>_in.csv` (every input) and `README.md`. CSV files have a quoted
+//! header, a `time` first column, numbers only (Booleans as 0/1) and stay under 1 MB.
+//!
+//! The reference is the model run in process with the FMU's own table and resources, its default
+//! parameters and the input table; `tests/python` simulates each FMU with fmpy on the same files
+//! and compares (and runs fmpy's own cross-check validator on the folder).
+
+#![allow(non_snake_case)]
+
+use super::check::{check_inputs, load_scenario};
+use super::run::{Table, csv, fmt_value, run_in_process};
+use super::*;
+use mars_entry_nav::ModelSpec;
+use mars_entry_nav::host::unpack;
+use mars_entry_nav::vars::{DEFAULT_SCENARIO, DEFAULT_SEED};
+
+/// Arguments of `entrynav fmu cross-check`.
+#[derive(Args)]
+pub(super) struct CrossCheckArgs {
+    /// Packed .fmu files.
+    #[arg(required = true)]
+    fmus: Vec<PathBuf>,
+    /// The vendor folder to write (`fmus/...` below it).
+    #[arg(long, default_value = "target/cross-check")]
+    out: PathBuf,
+}
+
+/// The cross-check rules' size limit of a CSV file.
+const MAX_CSV_BYTES: usize = 1_000_000;
+
+/// The (at most 10) outputs of a model's reference result.
+fn reference_outputs(spec: &ModelSpec) -> Vec<String> {
+    let names: Vec<String> = match (spec.model(), spec.specific()) {
+        (_, Some(s)) => {
+            let st = |k: usize| s.states[k].name;
+            vec![
+                "truth_altitude".into(),
+                "truth_v".into(),
+                format!("est.{}", st(0)),
+                format!("est.{}", st(1)),
+                format!("est.{}", st(3)),
+                format!("est_sigma.{}", st(0)),
+                format!("err.{}", st(0)),
+                format!("err.{}", st(3)),
+                "nav_time".into(),
+                "nav_status".into(),
+            ]
+        }
+        (Model::Combined, None) => [
+            "truth_altitude",
+            "truth_v",
+            "truth_fpa",
+            "est_r",
+            "est_v",
+            "est_fpa",
+            "nav_time",
+            "n_meas",
+            "nav_status",
+            "weight_1",
+        ]
+        .map(String::from)
+        .to_vec(),
+        (Model::Filter, None) => [
+            "est_r",
+            "est_lon",
+            "est_lat",
+            "est_v",
+            "est_fpa",
+            "est_heading",
+            "est_sigma_1",
+            "nav_time",
+            "n_meas",
+            "nav_status",
+        ]
+        .map(String::from)
+        .to_vec(),
+        (Model::Truth, None) => [
+            "truth_r",
+            "truth_lon",
+            "truth_lat",
+            "truth_v",
+            "truth_fpa",
+            "truth_heading",
+            "truth_altitude",
+            "truth_density",
+            "meas_epoch",
+            "truth_stop",
+        ]
+        .map(String::from)
+        .to_vec(),
+    };
+    names
+}
+
+/// The input table of a cross-check run: the `fmu check` inputs at every communication point
+/// (for the filter FMU, the measurements of a truth run with the FMU's default seed).
+fn input_table(spec: &ModelSpec, resources: &Path, stop: f64, step: f64) -> Result<Table> {
+    let vars = spec.vars();
+    let inputs: Vec<Var> = vars
+        .iter()
+        .filter(|v| v.causality == Causality::Input)
+        .cloned()
+        .collect();
+    let mut feeder = match spec.model() {
+        Model::Filter => Some(TruthSensors::new(
+            load_scenario(DEFAULT_SCENARIO, resources)?,
+            DEFAULT_SEED as u64,
+            false,
+        )),
+        _ => None,
+    };
+    let n = (stop / step).round() as usize;
+    let mut rows = Vec::with_capacity(n + 1);
+    for k in 0..=n {
+        let t = k as f64 * step;
+        let vals = check_inputs(vars, t, feeder.as_ref());
+        rows.push((t, vals.into_iter().map(|(_, v)| v).collect()));
+        if let Some(ts) = feeder.as_mut() {
+            ts.do_step(t, step, super::check::check_bank(t), &[true; MAX_BEACONS])?;
+        }
+    }
+    Ok(Table {
+        columns: inputs,
+        rows,
+    })
+}
+
+fn write_limited(path: &Path, text: &str) -> Result<()> {
+    ensure!(
+        text.len() < MAX_CSV_BYTES,
+        "{} would be {} bytes; the cross-check rules allow 1 MB",
+        path.display(),
+        text.len()
+    );
+    std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
+}
+
+pub(super) fn cross_check(a: &CrossCheckArgs) -> Result<()> {
+    for fmu in &a.fmus {
+        let u = unpack(fmu)?;
+        let spec = Arc::clone(&u.spec);
+        let id = spec.identifier();
+        let dir = a
+            .out
+            .join("fmus/2.0/cs/linux64/entrynav")
+            .join(env!("CARGO_PKG_VERSION"))
+            .join(id);
+        std::fs::create_dir_all(&dir)
+            .with_context(|| format!("cannot create {}", dir.display()))?;
+        let res = u.dir.join("resources");
+        let (start, stop, step) = spec.default_experiment();
+        let table = input_table(&spec, &res, stop, step)?;
+        let names = reference_outputs(&spec);
+        let record: Vec<Var> = names
+            .iter()
+            .map(|n| {
+                spec.vars()
+                    .iter()
+                    .find(|v| &v.name == n)
+                    .cloned()
+                    .with_context(|| format!("{id} has no output {n}"))
+            })
+            .collect::<Result<_>>()?;
+        let rows = run_in_process(&spec, Some(&res), &[], &table, stop, step, &record)?;
+        for (t, vals) in &rows {
+            for (v, x) in record.iter().zip(vals) {
+                ensure!(
+                    !matches!(x, Value::Real(r) if !r.is_finite()),
+                    "{id}: reference output {} is {} at t = {t}",
+                    v.name,
+                    fmt_value(x)
+                );
+            }
+        }
+        let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+        write_limited(&dir.join(format!("{id}_ref.csv")), &csv(&refs, &rows, true))?;
+        let in_names: Vec<&str> = table.columns.iter().map(|v| v.name.as_str()).collect();
+        write_limited(
+            &dir.join(format!("{id}_in.csv")),
+            &csv(&in_names, &table.rows, true),
+        )?;
+        std::fs::write(
+            dir.join(format!("{id}_ref.opt")),
+            format!(
+                "StartTime, {start:?}\nStopTime, {stop:?}\nStepSize, {step:?}\nRelTol, 1e-06\n"
+            ),
+        )?;
+        std::fs::copy(fmu, dir.join(format!("{id}.fmu")))
+            .with_context(|| format!("cannot copy {}", fmu.display()))?;
+        std::fs::write(
+            dir.join("README.md"),
+            format!(
+                "# {id}\n\n{}\n\nExported by entrynav {} (`entrynav fmu pack`), FMI 2.0 co-simulation, linux64.\n\n\
+                 The reference result `{id}_ref.csv` is the model run with its default parameters from {start} s to {stop} s \
+                 in communication steps of {step} s, with the inputs of `{id}_in.csv` held over each step (the row at each \
+                 communication point applies). The model is deterministic: an importer that applies the same inputs at the \
+                 same communication points reproduces the reference exactly.\n",
+                spec.description(),
+                env!("CARGO_PKG_VERSION")
+            ),
+        )?;
+        println!(
+            "{}: {} reference rows x {} outputs, {} input columns",
+            dir.display(),
+            rows.len(),
+            record.len(),
+            table.columns.len()
+        );
+    }
+    Ok(())
+}

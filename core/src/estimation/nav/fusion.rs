@@ -19,7 +19,7 @@ use std::sync::Arc;
 ///   are fused with determinant-optimal weights (the paper's "slowest" variant).
 /// * `dcifaif`: fast ∞-norm weights (eq. 21) and information feedback. With
 ///   `fusion_covariance = "exact"` (the default) the fused covariance is the exact covariance of
-///   the CI-weighted estimate and every local filter is reset to it ([`super::fusion_exact`]);
+///   the CI-weighted estimate and every local filter is reset to it (`nav/fusion_exact.rs`);
 ///   with `"paper"` the fused covariance is the CI bound and every local filter is reset to
 ///   (x̂_CI, P_CI/ω_i) (eq. 22), starting from (x̂0, n·P0), the equal-weight feedback of (x̂0, P0).
 ///

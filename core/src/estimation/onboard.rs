@@ -52,6 +52,9 @@ pub struct FilterTuning {
     /// Number of Schmidt consider parameters: the last `n_consider` states, carried in the
     /// covariance but never updated (`filter.consider`).
     pub n_consider: usize,
+    /// Measurement-update iterations of the EKF-based filters (1: the standard EKF; more: the
+    /// iterated EKF, [`crate::estimation::nav::EkfNav`]).
+    pub update_iterations: usize,
     /// UKF constants α, β, κ.
     pub ukf: UkfParams,
     /// Density biases Δ of a multiple-model bank (seed 003 Table 4).

@@ -219,6 +219,10 @@ pub struct FilterConfig {
     /// using `initial` as a fixed offset (seed 000 Table 1).
     #[serde(default)]
     pub sample_initial_from_p0: bool,
+    /// Measurement-update iterations of the EKF-based filters (1: the standard EKF; more:
+    /// the iterated EKF, Gauss–Newton on the measurement model, for large prior errors).
+    #[serde(default = "one_iteration", skip_serializing_if = "is_one_iteration")]
+    pub update_iterations: usize,
     /// UKF constants.
     #[serde(default)]
     pub ukf: UkfConfig,
@@ -298,6 +302,14 @@ fn is_default_fusion(f: &FusionCovariance) -> bool {
 
 fn one() -> f64 {
     1.0
+}
+
+fn one_iteration() -> usize {
+    1
+}
+
+fn is_one_iteration(n: &usize) -> bool {
+    *n == 1
 }
 
 /// Factors on the 1σ measurement noise the filter assumes, per channel kind

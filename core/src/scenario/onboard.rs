@@ -55,6 +55,7 @@ pub(super) fn onboard_view(p: OnboardParts<'_>) -> Onboard {
             p0_diag: f.p0_diag.clone(),
             q_diag: f.q_diag.clone(),
             n_consider: f.consider.len(),
+            update_iterations: f.update_iterations,
             ukf: UkfParams::new(f.ukf.alpha, f.ukf.beta, f.ukf.kappa),
             model_bank_density_bias: f.model_bank_density_bias.clone(),
             fusion_covariance: f.fusion_covariance,

@@ -7,6 +7,9 @@ use crate::planet::Planet;
 
 pub(super) type R = Result<(), ScenarioError>;
 
+/// Largest `filter.update_iterations` (each iteration is one more linearisation per update).
+pub const MAX_UPDATE_ITERATIONS: usize = 20;
+
 pub(super) fn within(field: &str, v: f64, lo: f64, hi: f64, allowed: &str) -> R {
     if v.is_finite() && v > lo && v < hi {
         Ok(())
@@ -447,6 +450,15 @@ impl ScenarioConfig {
             return Err(ScenarioError::invalid(
                 "filter.augment",
                 "accelerometer-bias states need an accelerometer ([sensors.imu])",
+            ));
+        }
+        if !(1..=MAX_UPDATE_ITERATIONS).contains(&f.update_iterations) {
+            return Err(ScenarioError::invalid(
+                "filter.update_iterations",
+                format!(
+                    "is {}; must be 1 (the standard EKF) to {MAX_UPDATE_ITERATIONS} (iterated EKF)",
+                    f.update_iterations
+                ),
             ));
         }
         if let Some(n) = &f.noise_inflation {

@@ -1,12 +1,13 @@
 //! Distributed fusion: one local EKF per beacon (IMU + that beacon), fused by covariance
 //! intersection, with or without information feedback (seed 000 §2.3.3, §3.3–3.4).
 
-use super::ekf_nav::EkfNav;
+use super::ekf_nav::{EkfNav, RELINEARIZATION_TOLERANCE, linearization_error};
 use super::fusion_exact::{fuse_exact, local_update};
 use super::start::FilterStart;
 use super::{NavFilter, StepInfo};
 use crate::estimation::EstimationError;
 use crate::estimation::ci::{CiWeighting, covariance_intersection, feedback};
+use crate::estimation::ekf::LinearizedMeasurement;
 use crate::estimation::{FusionCovariance, Onboard};
 use crate::math::V3;
 use crate::sensors::MeasurementEpoch;
@@ -111,41 +112,67 @@ impl<const N: usize> FusionNav<N> {
             });
         };
         let (x, p) = first.estimate();
-        let items = first.all_measurement_items(epoch, beacons);
-        let mut updates = Vec::new();
-        let mut slots = Vec::new();
-        for (i, slot) in self.locals.iter_mut().enumerate() {
-            let Some(f) = slot else { continue };
-            match local_update(&x, &p, &items, f.channel_mask(), self.n_consider) {
-                Ok(Some(u)) => {
-                    updates.push(u);
-                    slots.push(i);
-                }
-                Ok(None) => {}
-                Err(_) => *slot = None,
+        let iterations = first.update_iterations();
+        let mut items = first.all_measurement_items(epoch, beacons);
+        let all_slots: Vec<usize> = items.iter().map(|(c, _)| *c).collect();
+        let masks: Vec<(usize, &[usize])> = self
+            .locals
+            .iter()
+            .enumerate()
+            .filter_map(|(i, f)| f.as_ref().map(|f| (i, f.channel_mask())))
+            .collect();
+        // Iterated EKF (EkfNav::update_iterated) for the fusion: every local updates the common
+        // prior with its channels linearised at the *fused* iterate, which the fusion centre feeds
+        // back within the epoch; a local's own iterate would stay as far off as its one range
+        // leaves it.
+        let mut lin = x;
+        let mut pass = fusion_pass(
+            &x,
+            &p,
+            &lin,
+            &items,
+            &masks,
+            self.locals.len(),
+            self.n_consider,
+        )?;
+        for _ in 1..iterations {
+            if pass.x.iter().any(|v| !v.is_finite()) {
+                break;
             }
+            let next: Vec<_> = all_slots
+                .iter()
+                .copied()
+                .zip(first.items_at(&pass.x, epoch, beacons, &all_slots))
+                .collect();
+            let old: Vec<_> = items.iter().map(|(_, it)| *it).collect();
+            let new: Vec<_> = next.iter().map(|(_, it)| *it).collect();
+            if linearization_error(&lin, &old, &pass.x, &new) <= RELINEARIZATION_TOLERANCE {
+                break;
+            }
+            lin = pass.x;
+            items = next;
+            pass = fusion_pass(
+                &x,
+                &p,
+                &lin,
+                &items,
+                &masks,
+                self.locals.len(),
+                self.n_consider,
+            )?;
         }
-        let mut weights = vec![0.0; self.locals.len()];
-        let (mut nis, mut n_meas, mut nis_terms) = (0.0, 0, Vec::new());
-        for u in &updates {
-            nis += u.nis;
-            n_meas += u.nis_terms.len();
-            nis_terms.extend(u.nis_terms.iter().copied());
+        for &i in &pass.failed {
+            self.locals[i] = None;
         }
-        let (xf, pf) = match updates.len() {
-            0 => (x, p),
-            1 => {
-                weights[slots[0]] = 1.0;
-                (updates[0].x, updates[0].p)
-            }
-            _ => {
-                let (xf, pf, w) = fuse_exact(&p, &updates)?;
-                for (&i, wi) in slots.iter().zip(w) {
-                    weights[i] = wi;
-                }
-                (xf, pf)
-            }
-        };
+        let FusionPass {
+            x: xf,
+            p: pf,
+            weights,
+            nis,
+            n_meas,
+            nis_terms,
+            ..
+        } = pass;
         for f in self.locals.iter_mut().flatten() {
             f.set_estimate(xf, pf);
         }
@@ -158,6 +185,72 @@ impl<const N: usize> FusionNav<N> {
             nis_terms,
         })
     }
+}
+
+/// One fusion of the locals' updates of the common prior (`x`, `p`), linearised at `lin`.
+struct FusionPass<const N: usize> {
+    x: SVector<f64, N>,
+    p: SMatrix<f64, N, N>,
+    weights: Vec<f64>,
+    nis: f64,
+    n_meas: usize,
+    nis_terms: Vec<(usize, f64)>,
+    /// Locals whose update failed numerically (dropped from the fusion).
+    failed: Vec<usize>,
+}
+
+fn fusion_pass<const N: usize>(
+    x: &SVector<f64, N>,
+    p: &SMatrix<f64, N, N>,
+    lin: &SVector<f64, N>,
+    items: &[(usize, LinearizedMeasurement<N>)],
+    masks: &[(usize, &[usize])],
+    n_locals: usize,
+    n_consider: usize,
+) -> Result<FusionPass<N>, EstimationError> {
+    let mut updates = Vec::new();
+    let mut slots = Vec::new();
+    let mut failed = Vec::new();
+    for &(i, mask) in masks {
+        match local_update(x, p, lin, items, mask, n_consider) {
+            Ok(Some(u)) => {
+                updates.push(u);
+                slots.push(i);
+            }
+            Ok(None) => {}
+            Err(_) => failed.push(i),
+        }
+    }
+    let mut weights = vec![0.0; n_locals];
+    let (mut nis, mut n_meas, mut nis_terms) = (0.0, 0, Vec::new());
+    for u in &updates {
+        nis += u.nis;
+        n_meas += u.nis_terms.len();
+        nis_terms.extend(u.nis_terms.iter().copied());
+    }
+    let (xf, pf) = match updates.len() {
+        0 => (*x, *p),
+        1 => {
+            weights[slots[0]] = 1.0;
+            (updates[0].x, updates[0].p)
+        }
+        _ => {
+            let (xf, pf, w) = fuse_exact(p, &updates)?;
+            for (&i, wi) in slots.iter().zip(w) {
+                weights[i] = wi;
+            }
+            (xf, pf)
+        }
+    };
+    Ok(FusionPass {
+        x: xf,
+        p: pf,
+        weights,
+        nis,
+        n_meas,
+        nis_terms,
+        failed,
+    })
 }
 
 impl<const N: usize> NavFilter<N> for FusionNav<N> {
@@ -232,7 +325,7 @@ impl<const N: usize> NavFilter<N> for FusionNav<N> {
         for slot in self.locals.iter_mut() {
             if let Some(f) = slot {
                 let result = match &shared {
-                    Some(items) => f.update_with_items(items),
+                    Some(items) => f.update_iterated(items, epoch, beacons),
                     None => f.update(epoch, beacons),
                 };
                 match result {

@@ -49,12 +49,14 @@ pub(super) struct LocalUpdate<const N: usize> {
     pub nis: f64,
 }
 
-/// Batch EKF update of the common prior (`x`, `p`) with the `items` whose slots are in `mask`;
-/// the last `n_consider` states get zero gain (Schmidt). `None` when the local has nothing to
-/// measure this epoch.
+/// Batch EKF update of the common prior (`x`, `p`) with the `items` whose slots are in `mask`,
+/// linearised at `x_lin` (the prior itself, or an iterated-EKF iterate: ν = z − h(x_lin) −
+/// H (x − x_lin)); the last `n_consider` states get zero gain (Schmidt). `None` when the local has
+/// nothing to measure this epoch.
 pub(super) fn local_update<const N: usize>(
     x: &SVector<f64, N>,
     p: &SMatrix<f64, N, N>,
+    x_lin: &SVector<f64, N>,
     items: &[(usize, LinearizedMeasurement<N>)],
     mask: &[usize],
     n_consider: usize,
@@ -67,7 +69,10 @@ pub(super) fn local_update<const N: usize>(
     }
     let h = DMatrix::from_fn(m, N, |a, j| mine[a].1.1[j]);
     let r: Vec<f64> = mine.iter().map(|it| it.1.3).collect();
-    let nu = DVector::from_fn(m, |a, _| mine[a].1.2 - mine[a].1.0);
+    let offset = x - x_lin;
+    let nu = DVector::from_fn(m, |a, _| {
+        mine[a].1.2 - mine[a].1.0 - mine[a].1.1.dot(&offset)
+    });
     let pd = DMatrix::from_fn(N, N, |i, j| p[(i, j)]);
     let mut s = &h * &pd * h.transpose();
     for (a, ra) in r.iter().enumerate() {
@@ -212,7 +217,7 @@ mod tests {
                 .collect();
             let locals: Vec<_> = masks
                 .iter()
-                .map(|m| local_update(&x, &p, &items, m, 0).unwrap().unwrap())
+                .map(|m| local_update(&x, &p, &x, &items, m, 0).unwrap().unwrap())
                 .collect();
             let (xf, pf, _) = fuse_exact(&p, &locals).unwrap();
             let ci = covariance_intersection(

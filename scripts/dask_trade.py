@@ -72,7 +72,6 @@ import tempfile
 from contextlib import contextmanager
 from pathlib import Path
 
-MAX_STATES = 10  # state slots est_x_1..10 of the FMU (slots past n_states read 0)
 SPHERICAL = ["r", "lon", "lat", "v", "fpa", "heading"]  # est_<name> outputs, in filter-state order
 # State names as in `entrynav trade` reports (SI units); augmented states are aug1, aug2, ...
 SPHERICAL_STATES = ["r_m", "lon_rad", "lat_rad", "v_mps", "fpa_rad", "heading_rad"]
@@ -132,10 +131,21 @@ def fmu_seed(seed, run):
     return (z ^ (z >> 31)) >> 33
 
 
-def output_names():
-    """The FMU outputs a run records."""
+def state_slots(md):
+    """How many state slots (est_x_1..est_x_K) the FMU's modelDescription declares (slots past n_states read 0)."""
+    names = {v.name for v in md.modelVariables}
+    k = 0
+    while f"est_x_{k + 1}" in names:
+        k += 1
+    if k == 0:
+        raise ValueError("the FMU declares no est_x_1 output: not an entrynav navigation FMU")
+    return k
+
+
+def output_names(slots):
+    """The FMU outputs a run records, for an FMU with `slots` state slots."""
     names = ["nav_time", "nav_status", "n_states", "truth_stop", "nees", "nees_dof", "truth_r", "truth_v"]
-    for i in range(1, MAX_STATES + 1):
+    for i in range(1, slots + 1):
         names += [f"est_x_{i}", f"est_sigma_{i}", f"truth_x_{i}", f"err_{i}"]
     return names + [f"est_{s}" for s in SPHERICAL]
 
@@ -224,6 +234,7 @@ def simulate_batch(fmu_path, scenario, filter_name, seed, runs, stop_time, step,
     unzipdir = extract(fmu_path)
     try:
         md = read_model_description(unzipdir)
+        slots = state_slots(md)
         fmu = instantiate_fmu(unzipdir, md, "CoSimulation", logger=logger)
         rows = []
         try:
@@ -234,7 +245,7 @@ def simulate_batch(fmu_path, scenario, filter_name, seed, runs, stop_time, step,
                 try:
                     res = simulate_fmu(unzipdir, model_description=md, fmu_instance=fmu, start_values=start,
                                        start_time=0.0, stop_time=stop_time, output_interval=step,
-                                       output=output_names())
+                                       output=output_names(slots))
                 except Exception as e:
                     raise RuntimeError(f"{filter_name} run {k} (FMU seed {s}) failed: {e}"
                                        + "".join(f"\n  {m}" for m in log)) from None

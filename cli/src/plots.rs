@@ -132,6 +132,17 @@ pub fn line_plot(
 }
 
 /// The plots of a trade study.
+/// The scenario's PCRLB 1σ of `name` vs time, dashed, when the trade has one.
+fn pcrlb_curve(report: &TradeReport, name: &str) -> Option<Curve> {
+    let b = report.pcrlb.as_ref().filter(|b| b.available)?;
+    let v = b.series.get(name)?;
+    Some(Curve {
+        name: "PCRLB".into(),
+        points: b.times_s.iter().copied().zip(v.iter().copied()).collect(),
+        dashed: true,
+    })
+}
+
 pub fn trade_plots(dir: &Path, report: &TradeReport) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let sc = &report.scenario;
@@ -144,9 +155,9 @@ pub fn trade_plots(dir: &Path, report: &TradeReport) -> Result<()> {
                 .filter_map(|(k, t)| get(k).map(|v| (*t, v)))
                 .collect()
         };
-    // RMSE vs time per state, all filters.
+    // RMSE vs time per state, all filters, and the scenario's PCRLB (dashed).
     for (i, st) in report.states.iter().enumerate() {
-        let curves: Vec<Curve> = report
+        let mut curves: Vec<Curve> = report
             .filters
             .iter()
             .map(|f| Curve {
@@ -155,6 +166,7 @@ pub fn trade_plots(dir: &Path, report: &TradeReport) -> Result<()> {
                 dashed: false,
             })
             .collect();
+        curves.extend(pcrlb_curve(report, st));
         line_plot(
             &dir.join(format!("{sc}_rmse_{st}.svg")),
             &format!("{sc}: RMSE of {st}"),
@@ -165,7 +177,7 @@ pub fn trade_plots(dir: &Path, report: &TradeReport) -> Result<()> {
         )?;
     }
     for (name, get) in [("pos_m", 0usize), ("vel_mps", 1usize)] {
-        let curves: Vec<Curve> = report
+        let mut curves: Vec<Curve> = report
             .filters
             .iter()
             .map(|f| Curve {
@@ -180,6 +192,7 @@ pub fn trade_plots(dir: &Path, report: &TradeReport) -> Result<()> {
                 dashed: false,
             })
             .collect();
+        curves.extend(pcrlb_curve(report, name));
         line_plot(
             &dir.join(format!("{sc}_rmse_{name}.svg")),
             &format!("{sc}: RMS {name} error"),

@@ -73,6 +73,11 @@ pub struct TradeArgs {
     /// NIS per channel, weights. Use it on a run listed under `failures`.
     #[arg(long, value_name = "K", requires = "csv_dir", conflicts_with_all = ["shard", "grid"])]
     pub replay_run: Option<usize>,
+    /// Skip the posterior Cramér–Rao lower bound (on by default: the `pcrlb` block of the
+    /// summary, each filter's RMSE/PCRLB efficiency, the dashed PCRLB curve in the RMSE plots;
+    /// it costs about one EKF's worth of work per run).
+    #[arg(long)]
+    pub no_pcrlb: bool,
 }
 
 /// `entrynav trade merge`.
@@ -127,7 +132,10 @@ pub fn run(args: &TradeArgs) -> Result<()> {
     if let (Some(k), Some(dir)) = (args.replay_run, &args.csv_dir) {
         return crate::replay::write_replay(&scenario, &filters, args.seed, k, dir);
     }
-    let opts = McOptions::new(runs, args.seed);
+    let opts = McOptions {
+        pcrlb: !args.no_pcrlb,
+        ..McOptions::new(runs, args.seed)
+    };
     if let Some(spec) = &args.shard {
         let shard = Shard::parse(spec)?;
         let path = args
@@ -276,6 +284,40 @@ fn print_tables(report: &TradeReport, elapsed: f64) {
         }
         print_consistency(f);
     }
+    print_pcrlb(report);
+}
+
+/// The scenario's PCRLB and each filter's efficiency RMSE / PCRLB (1 = the best any estimator
+/// could do with the scenario's information).
+fn print_pcrlb(report: &TradeReport) {
+    let Some(b) = &report.pcrlb else { return };
+    println!();
+    if !b.available {
+        println!(
+            "PCRLB: not available ({})",
+            b.reason.as_deref().unwrap_or("unknown reason")
+        );
+        return;
+    }
+    let get =
+        |m: &std::collections::BTreeMap<String, Option<f64>>, k: &str| m.get(k).copied().flatten();
+    println!(
+        "PCRLB (lower bound on any estimator's RMSE): pos {} m time-avg, {} m final; vel {} m/s time-avg, {} m/s final",
+        fmt(get(&b.time_avg, "pos_m")),
+        fmt(get(&b.final_, "pos_m")),
+        fmt(get(&b.time_avg, "vel_mps")),
+        fmt(get(&b.final_, "vel_mps"))
+    );
+    for f in &report.filters {
+        println!(
+            "  {:<10} efficiency RMSE/PCRLB: pos {} time-avg, {} final; vel {} time-avg, {} final",
+            f.name,
+            fmt(get(&f.efficiency_time_avg, "pos_m")),
+            fmt(get(&f.efficiency_final, "pos_m")),
+            fmt(get(&f.efficiency_time_avg, "vel_mps")),
+            fmt(get(&f.efficiency_final, "vel_mps"))
+        );
+    }
 }
 
 fn print_consistency(f: &FilterReport) {
@@ -365,6 +407,19 @@ fn print_consistency(f: &FilterReport) {
 
 fn write_csv_dir(dir: &Path, report: &TradeReport) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    if let Some(b) = report.pcrlb.as_ref().filter(|b| b.available) {
+        let path = dir.join(format!("{}_pcrlb.csv", report.scenario));
+        write_file(&path, |w| {
+            let names: Vec<&String> = b.series.keys().collect();
+            let header: Vec<String> = names.iter().map(|n| format!("pcrlb_{n}")).collect();
+            writeln!(w, "t_s,{}", header.join(","))?;
+            for (k, t) in b.times_s.iter().enumerate() {
+                let row: Vec<String> = names.iter().map(|n| b.series[*n][k].to_string()).collect();
+                writeln!(w, "{t},{}", row.join(","))?;
+            }
+            Ok(())
+        })?;
+    }
     for f in &report.filters {
         let path = dir.join(format!("{}_{}.csv", report.scenario, f.name));
         write_file(&path, |w| {

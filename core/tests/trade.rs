@@ -25,7 +25,12 @@ fn trade(
         .num_threads(threads)
         .build()
         .unwrap();
-    let opts = McOptions { runs, seed, chunk };
+    let opts = McOptions {
+        runs,
+        seed,
+        chunk,
+        pcrlb: true,
+    };
     let mut r = pool
         .install(|| run_trade(s, filters, &opts, &|_| {}))
         .unwrap();
@@ -261,6 +266,7 @@ fn shards_merge_to_exactly_the_single_process_result() {
         runs: 600,
         seed: 9,
         chunk: 50,
+        pcrlb: true,
     };
     let mut whole = run_trade(&s, &filters, &opts, &|_| {}).unwrap();
     let mut shards3: Vec<_> = (0..3)
@@ -304,6 +310,7 @@ fn shards_merge_to_exactly_the_single_process_result() {
             runs: 600,
             seed: 10,
             chunk: 50,
+            pcrlb: true,
         },
         Shard { index: 0, count: 3 },
         &|_| {},

@@ -9,6 +9,8 @@
 //! * [`start`] — a run's initial estimate (nominal, or drawn around the truth);
 //! * [`monte_carlo`], [`shard`], [`metrics`], [`report`] — trade studies: runs in parallel,
 //!   folded in run order, shardable, summarised;
+//! * [`pcrlb`], [`pcrlb_sums`] — the posterior Cramér–Rao lower bound of the scenario, from the
+//!   same truth runs, in every trade summary;
 //! * [`density_eval`] — seed 001's density RMSPE (eq. 70) over a Monte Carlo;
 //! * [`training`] — seed 001 Algorithm 1's training trajectories and the whole offline training.
 
@@ -18,6 +20,8 @@ pub mod engine;
 pub mod judge;
 pub mod metrics;
 pub mod monte_carlo;
+pub mod pcrlb;
+pub mod pcrlb_sums;
 pub mod record;
 pub mod replay;
 pub mod report;
@@ -29,6 +33,8 @@ pub mod tuning;
 pub use engine::{SimError, StopReason, TruthSample};
 pub use metrics::nees_bounds_95;
 pub use monte_carlo::{McOptions, TradeError, TradeReport, run_shard, run_trade, state_names};
+pub use pcrlb::NoBound;
+pub use pcrlb_sums::PcrlbReport;
 pub use record::{TruthRun, channel_names, is_radio, simulate_truth};
 pub use report::{Ellipse, FilterReport, Series};
 pub use shard::{Shard, ShardResult, merge_shards};

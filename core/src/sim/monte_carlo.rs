@@ -9,6 +9,8 @@
 
 use super::engine::{NavStatus, Navigator, SimError};
 use super::metrics::{EpochRecord, FilterAccumulator, FinalRecord, RunRecord};
+use super::pcrlb::{BoundRun, bound_run};
+use super::pcrlb_sums::{BoundSums, PcrlbReport};
 use super::report::FilterReport;
 use super::shard::{
     ACCUMULATION_BLOCK, BlockSums, SHARD_FORMAT, Shard, ShardResult, merge_shards,
@@ -55,6 +57,9 @@ pub struct McOptions {
     pub seed: u64,
     /// Runs per parallel chunk (memory bound; does not change results).
     pub chunk: usize,
+    /// Form the scenario's PCRLB from the same truth runs ([`super::pcrlb`]; costs about one
+    /// EKF's worth of work per run).
+    pub pcrlb: bool,
 }
 
 impl McOptions {
@@ -64,6 +69,7 @@ impl McOptions {
             runs,
             seed,
             chunk: 64,
+            pcrlb: true,
         }
     }
 }
@@ -83,6 +89,9 @@ pub struct TradeReport {
     pub channels: Vec<String>,
     /// One report per filter, in the order asked.
     pub filters: Vec<FilterReport>,
+    /// The scenario's posterior Cramér–Rao lower bound ([`super::pcrlb`]); `None` for a study
+    /// merged from shards written before the bound existed.
+    pub pcrlb: Option<PcrlbReport>,
 }
 
 /// State names of a scenario's filter model.
@@ -173,15 +182,20 @@ fn run_blocks(
         let first = block * ACCUMULATION_BLOCK;
         let last = ((block + 1) * ACCUMULATION_BLOCK).min(opts.runs);
         let mut accs = vec![FilterAccumulator::default(); filters.len()];
+        let mut bounds = BoundSums::new(scenario);
         for start in (first..last).step_by(chunk) {
             let end = (start + chunk).min(last);
-            let records: Vec<Result<Vec<RunRecord>, TradeError>> = (start..end)
+            let records: Vec<Result<RunWithBound, TradeError>> = (start..end)
                 .into_par_iter()
-                .map(|run| one_run(scenario, filters, opts.seed, run))
+                .map(|run| one_run_with_bound(scenario, filters, opts.seed, run, opts.pcrlb))
                 .collect();
             for (i, rec) in records.into_iter().enumerate() {
-                for (acc, r) in accs.iter_mut().zip(rec?.iter()) {
+                let (runs, bound) = rec?;
+                for (acc, r) in accs.iter_mut().zip(runs.iter()) {
                     acc.add(start + i, r);
+                }
+                if let Some(b) = &bound {
+                    bounds.add(b);
                 }
                 done += 1;
             }
@@ -190,6 +204,7 @@ fn run_blocks(
         out.push(BlockSums {
             index: block,
             filters: accs,
+            bounds: opts.pcrlb.then_some(bounds),
         });
     }
     Ok(out)
@@ -241,6 +256,27 @@ pub fn one_run(
         .iter()
         .map(|&kind| filter_run(scenario, &scenario.onboard, &rec, kind))
         .collect())
+}
+
+/// One run's records (one per filter) and, when asked, its PCRLB contribution.
+pub type RunWithBound = (Vec<RunRecord>, Option<BoundRun>);
+
+/// [`one_run`] and, with `pcrlb`, the run's contribution to the scenario's PCRLB
+/// ([`super::pcrlb`]).
+pub fn one_run_with_bound(
+    scenario: &Arc<Scenario>,
+    filters: &[FilterKind],
+    seed: u64,
+    run: usize,
+    pcrlb: bool,
+) -> Result<RunWithBound, TradeError> {
+    let rec = record_run(scenario, seed, run)?;
+    let bound = pcrlb.then(|| bound_run(scenario, &rec));
+    let records = filters
+        .iter()
+        .map(|&kind| filter_run(scenario, &scenario.onboard, &rec, kind))
+        .collect();
+    Ok((records, bound))
 }
 
 /// Filter `kind` built from `onboard` (the scenario's, or a re-tuned copy) over the recorded run

@@ -113,9 +113,33 @@ pub struct FilterReport {
     pub density_at_estimate_rmspe_pct: Option<f64>,
     /// 3σ deployment-point ellipse.
     pub ellipse_km: Option<Ellipse>,
+    /// RMSE / PCRLB per state and for `pos_m`/`vel_mps`, time-averaged (1 is the best any
+    /// estimator could do; empty when the scenario has no bound).
+    pub efficiency_time_avg: BTreeMap<String, Option<f64>>,
+    /// RMSE / PCRLB at the final epoch.
+    pub efficiency_final: BTreeMap<String, Option<f64>>,
     /// Time series (CSV, plots).
     #[serde(skip)]
     pub series: Series,
+}
+
+impl FilterReport {
+    /// Fill the efficiencies RMSE / PCRLB from the scenario's `bound`.
+    pub fn set_efficiency(&mut self, bound: &crate::sim::PcrlbReport) {
+        let ratio = |rmse: &BTreeMap<String, Option<f64>>, b: &BTreeMap<String, Option<f64>>| {
+            rmse.iter()
+                .map(|(k, r)| {
+                    let e = match (r, b.get(k).copied().flatten()) {
+                        (Some(r), Some(b)) if b > 0.0 => Some(r / b),
+                        _ => None,
+                    };
+                    (k.clone(), e)
+                })
+                .collect()
+        };
+        self.efficiency_time_avg = ratio(&self.rmse_time_avg, &bound.time_avg);
+        self.efficiency_final = ratio(&self.rmse_final, &bound.final_);
+    }
 }
 
 impl FilterAccumulator {
@@ -250,6 +274,8 @@ impl FilterAccumulator {
             density_rmspe_pct,
             density_at_estimate_rmspe_pct,
             ellipse_km: Ellipse::from_sums(&self.dr_cr, self.final_n),
+            efficiency_time_avg: BTreeMap::new(),
+            efficiency_final: BTreeMap::new(),
             series: Series {
                 times_s: self.times.clone(),
                 rmse: rmse_series,

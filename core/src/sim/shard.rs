@@ -3,6 +3,7 @@
 
 use super::metrics::FilterAccumulator;
 use super::monte_carlo::{TradeError, TradeReport};
+use super::pcrlb_sums::BoundSums;
 use crate::scenario::Scenario;
 use serde::Serialize;
 
@@ -53,6 +54,9 @@ pub struct BlockSums {
     pub index: usize,
     /// One accumulator per filter, in the study's filter order.
     pub filters: Vec<FilterAccumulator>,
+    /// The block's PCRLB sums.
+    #[serde(default)]
+    pub bounds: Option<BoundSums>,
 }
 
 /// The output of `trade --shard i/n`: everything `trade merge` needs to rebuild the study.
@@ -146,6 +150,7 @@ pub fn merge_shards(mut shards: Vec<ShardResult>) -> Result<TradeReport, TradeEr
     }
     let n_blocks = first.runs.div_ceil(ACCUMULATION_BLOCK);
     let mut totals = vec![FilterAccumulator::default(); first.filters.len()];
+    let mut bounds: Option<BoundSums> = Some(BoundSums::default());
     let mut next = 0;
     for s in &shards {
         for b in &s.blocks {
@@ -158,6 +163,13 @@ pub fn merge_shards(mut shards: Vec<ShardResult>) -> Result<TradeReport, TradeEr
             for (t, a) in totals.iter_mut().zip(&b.filters) {
                 t.merge(a);
             }
+            bounds = match (bounds, &b.bounds) {
+                (Some(mut total), Some(block)) => {
+                    total.merge(block);
+                    Some(total)
+                }
+                _ => None,
+            };
             next += 1;
         }
     }
@@ -166,17 +178,25 @@ pub fn merge_shards(mut shards: Vec<ShardResult>) -> Result<TradeReport, TradeEr
             "the shards hold {next} of {n_blocks} blocks"
         )));
     }
+    let pcrlb = bounds.map(|b| b.report(&first.states));
+    let mut filters: Vec<_> = first
+        .filters
+        .iter()
+        .zip(&totals)
+        .map(|(k, a)| a.report(k, &first.states, &first.channels))
+        .collect();
+    if let Some(bound) = pcrlb.as_ref().filter(|b| b.available) {
+        for f in &mut filters {
+            f.set_efficiency(bound);
+        }
+    }
     Ok(TradeReport {
         scenario: first.scenario.clone(),
         runs: first.runs,
         seed: first.seed,
-        filters: first
-            .filters
-            .iter()
-            .zip(&totals)
-            .map(|(k, a)| a.report(k, &first.states, &first.channels))
-            .collect(),
+        filters,
         states: first.states,
         channels: first.channels,
+        pcrlb,
     })
 }

@@ -3,6 +3,7 @@
 mod fmu;
 mod grid;
 mod observe;
+mod observe_pcrlb;
 mod optimize;
 mod plots;
 mod replay;

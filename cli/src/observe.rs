@@ -39,6 +39,16 @@ pub struct ObserveArgs {
     /// geometry of N free beacons (seed 002 Table 1, (N/3)^3).
     #[arg(long, value_name = "N")]
     pub beacons: Option<usize>,
+    /// Also compute the posterior Cramér–Rao lower bound (the best RMSE any estimator can reach
+    /// on the scenario's truth) over `--runs` truth runs, without a filter.
+    #[arg(long)]
+    pub pcrlb: bool,
+    /// With --pcrlb: number of Monte Carlo truth runs the bound averages over.
+    #[arg(long, default_value_t = 100)]
+    pub runs: usize,
+    /// With --pcrlb: master seed of the truth runs (the runs a `trade` with this seed flies).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
     /// Write the results as JSON to this file.
     #[arg(long)]
     pub json: Option<PathBuf>,
@@ -96,8 +106,13 @@ pub fn run(args: &ObserveArgs) -> Result<()> {
     if let Some(f) = &fim {
         print_fim(f, args.beacons);
     }
+    let pcrlb = if args.pcrlb {
+        Some(crate::observe_pcrlb::run(&scenario, args.runs, args.seed)?)
+    } else {
+        None
+    };
     if let Some(path) = &args.json {
-        let v = to_json(
+        let mut v = to_json(
             &scenario,
             &scaling,
             &central,
@@ -105,6 +120,11 @@ pub fn run(args: &ObserveArgs) -> Result<()> {
             &subsystems,
             fim.as_deref(),
         );
+        if let Some(b) = &pcrlb {
+            v["pcrlb"] = serde_json::to_value(b)?;
+            v["pcrlb_runs"] = json!(args.runs);
+            v["pcrlb_seed"] = json!(args.seed);
+        }
         create_parent(path)?;
         std::fs::write(path, serde_json::to_string_pretty(&v)? + "\n")
             .with_context(|| format!("cannot write {}", path.display()))?;

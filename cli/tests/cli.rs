@@ -354,6 +354,47 @@ fn observe_reports_raw_and_scaled_degree_and_json() {
 }
 
 #[test]
+fn observe_pcrlb_bounds_the_scenario_without_a_filter() {
+    let dir = tmpdir("observe-pcrlb");
+    let json = dir.join("o.json");
+    let args = |runs: &str| {
+        vec![
+            "observe".to_string(),
+            "--scenario".into(),
+            "ground-beacons-3".into(),
+            "--step".into(),
+            "20".into(),
+            "--pcrlb".into(),
+            "--runs".into(),
+            runs.into(),
+            "--json".into(),
+            json.to_str().unwrap().into(),
+        ]
+    };
+    let a = args("20");
+    let (code, out, err) = entrynav(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("PCRLB over 20 truth runs"), "{out}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let b = &v["pcrlb"];
+    assert_eq!(b["available"], true, "{b}");
+    let (avg, fin) = (
+        b["time_avg"]["pos_m"].as_f64().unwrap(),
+        b["final"]["pos_m"].as_f64().unwrap(),
+    );
+    // Table 4's 1 km-scale initial errors shrink under three ranging beacons to tens of metres.
+    assert!(
+        fin > 1.0 && fin < avg && avg < 1000.0,
+        "avg {avg} m, final {fin} m"
+    );
+    let a = args("0");
+    let (code, _, err) = entrynav(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_ne!(code, 0);
+    assert!(err.contains("--runs 0"), "{err}");
+}
+
+#[test]
 fn grid_runs_every_cell_and_refuses_unfit_filters() {
     let dir = tmpdir("grid");
     let grid = dir.join("g.toml");

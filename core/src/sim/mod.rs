@@ -34,7 +34,7 @@ pub use engine::{SimError, StopReason, TruthSample};
 pub use metrics::nees_bounds_95;
 pub use monte_carlo::{McOptions, TradeError, TradeReport, run_shard, run_trade, state_names};
 pub use pcrlb::NoBound;
-pub use pcrlb_sums::PcrlbReport;
+pub use pcrlb_sums::{PcrlbReport, pcrlb_study};
 pub use record::{TruthRun, channel_names, is_radio, simulate_truth};
 pub use report::{Ellipse, FilterReport, Series};
 pub use shard::{Shard, ShardResult, merge_shards};

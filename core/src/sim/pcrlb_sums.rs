@@ -1,9 +1,11 @@
 //! Run sums of the PCRLB inputs and the bound they give (see [`super::pcrlb`]).
 
-use super::pcrlb::{BoundEpoch, BoundRun};
+use super::monte_carlo::{TradeError, record_run, state_names};
+use super::pcrlb::{BoundEpoch, BoundRun, bound_run};
 use crate::observability::{BoundStep, pcrlb_recursion};
 use crate::scenario::Scenario;
 use nalgebra::DMatrix;
+use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -202,4 +204,26 @@ impl BoundSums {
             series,
         }
     }
+}
+
+/// Runs folded per parallel chunk by [`pcrlb_study`] (bounds the memory of the per-epoch
+/// matrices held at once).
+const STUDY_CHUNK: usize = 64;
+
+/// The scenario's PCRLB without any filter: `runs` truth runs of master seed `seed`, drawn as a
+/// trade with that seed draws them (`entrynav observe --pcrlb`). Runs are recorded in parallel
+/// and folded in run order, so the result does not depend on the thread count.
+pub fn pcrlb_study(scenario: &Scenario, seed: u64, runs: usize) -> Result<PcrlbReport, TradeError> {
+    let mut sums = BoundSums::new(scenario);
+    for start in (0..runs).step_by(STUDY_CHUNK) {
+        let end = (start + STUDY_CHUNK).min(runs);
+        let chunk: Vec<Result<BoundRun, TradeError>> = (start..end)
+            .into_par_iter()
+            .map(|run| record_run(scenario, seed, run).map(|rec| bound_run(scenario, &rec)))
+            .collect();
+        for r in chunk {
+            sums.add(&r?);
+        }
+    }
+    Ok(sums.report(&state_names(scenario)))
 }

@@ -51,7 +51,7 @@ pub fn run(scenario: &Scenario, runs: usize, seed: u64) -> Result<PcrlbReport> {
 fn num(v: Option<f64>) -> String {
     match v {
         None => "-".into(),
-        Some(v) if v == 0.0 => "0".into(),
+        Some(0.0) => "0".into(),
         Some(v) if (1e-3..1e6).contains(&v.abs()) => {
             let decimals = (3 - v.abs().log10().floor() as i32).max(0) as usize;
             format!("{v:.decimals$}")

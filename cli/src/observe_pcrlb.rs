@@ -31,6 +31,7 @@ pub fn run(scenario: &Scenario, runs: usize, seed: u64) -> Result<PcrlbReport> {
         "PCRLB over {runs} truth runs (seed {seed}, {elapsed:.2} s): the lowest RMSE any unbiased \
          estimator can reach on this scenario, in the units of `trade`'s RMSE tables"
     );
+    println!("  prior: {}", report.prior);
     println!("  {:<14} {:>14} {:>14}", "state", "time-avg", "final");
     let mut names = state_names(scenario);
     names.extend(["pos_m".to_string(), "vel_mps".to_string()]);

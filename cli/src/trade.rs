@@ -308,6 +308,7 @@ fn print_pcrlb(report: &TradeReport) {
         fmt(get(&b.time_avg, "vel_mps")),
         fmt(get(&b.final_, "vel_mps"))
     );
+    println!("  prior: {}", b.prior);
     for f in &report.filters {
         println!(
             "  {:<10} efficiency RMSE/PCRLB: pos {} time-avg, {} final; vel {} time-avg, {} final",

@@ -23,6 +23,9 @@ pub struct BoundSums {
     pub(super) pos: Vec<Vec<f64>>,
     pub(super) vel: Vec<Vec<f64>>,
     pub(super) unavailable: Option<String>,
+    /// Whether the runs' filter start errors are drawn from P0 (`filter.sample_initial_from_p0`).
+    #[serde(default)]
+    pub(super) start_from_p0: bool,
 }
 
 /// The bound in a trade summary (`pcrlb`): per state and for `pos_m`/`vel_mps`, in the units of
@@ -34,6 +37,8 @@ pub struct PcrlbReport {
     /// Why not, when it could not.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reason: Option<String>,
+    /// The prior the bound assumes, and whether the runs' start errors follow it.
+    pub prior: String,
     /// Time average over epochs of the bound's 1σ (compare `rmse_time_avg`).
     pub time_avg: BTreeMap<String, Option<f64>>,
     /// At each run's last epoch, root-mean-square over runs (compare `rmse_final`).
@@ -73,6 +78,7 @@ impl BoundSums {
         BoundSums {
             dim: n,
             p0_diag: (0..n).map(|i| p0.get(i).copied().unwrap_or(1.0)).collect(),
+            start_from_p0: scenario.config.filter.sample_initial_from_p0,
             ..Default::default()
         }
     }
@@ -115,6 +121,7 @@ impl BoundSums {
         if self.dim == 0 {
             self.dim = o.dim;
             self.p0_diag = o.p0_diag.clone();
+            self.start_from_p0 = o.start_from_p0;
         }
         if self.unavailable.is_none() {
             self.unavailable = o.unavailable.clone();
@@ -143,9 +150,18 @@ impl BoundSums {
 
     /// The bound, with names `states` for the filter's states.
     pub fn report(&self, states: &[String]) -> PcrlbReport {
+        let prior = if self.start_from_p0 {
+            "filter P0; every run's start error is drawn from it".to_string()
+        } else {
+            "filter P0; the runs' start errors come from the scenario's dispersions, so the bound \
+             holds where they match P0 (an efficiency below 1 means the runs started better than \
+             P0 says)"
+                .to_string()
+        };
         let unavailable = |reason: String| PcrlbReport {
             available: false,
             reason: Some(reason),
+            prior: prior.clone(),
             time_avg: BTreeMap::new(),
             final_: BTreeMap::new(),
             times_s: Vec::new(),
@@ -198,6 +214,7 @@ impl BoundSums {
         PcrlbReport {
             available: true,
             reason: None,
+            prior,
             time_avg,
             final_,
             times_s: self.times[..k].to_vec(),

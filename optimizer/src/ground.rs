@@ -16,7 +16,12 @@
 //!   [`entrynav::observability::degree()`]); the search maximises `log10 min_t δ`;
 //! * `LogDet` — `∫ log det F(t) dt`, F the range FIM of the vehicle position
 //!   `Σ σ⁻² n nᵀ` [m⁻²] (eq. 36); the search maximises the time average;
-//! * `MinEig` — `min_t λ_min(F(t))` [m⁻²]; the search maximises its log10.
+//! * `MinEig` — `min_t λ_min(F(t))` [m⁻²]; the search maximises its log10;
+//! * `Pcrlb` — the final position PCRLB \[m\] of the scenario with these beacons
+//!   ([`entrynav::sim::pcrlb_study`]: IMU, dynamics, prior and beacons together, with the truth's
+//!   sensors and the epochs of run 0 of seed 1); the search *minimises* its log10. Unlike the
+//!   proxies above it is what navigation accuracy at deployment is bounded by. The scenario must
+//!   not read external files (it is rebuilt for every candidate).
 //!
 //! Infeasible sites cost `10⁴ + 10⁴ · Σ_j max(0, min_elevation − elevation_j)` \[rad\]: finite,
 //! graded towards the feasible set and worse than every feasible cost.
@@ -41,6 +46,11 @@ use std::time::Instant;
 pub const INFEASIBLE_COST: f64 = 1e4;
 /// Cost per radian of elevation below the required minimum.
 pub const PENALTY_PER_RAD: f64 = 1e4;
+/// Master seed of the truth run behind [`GroundObjective::Pcrlb`].
+pub const PCRLB_SEED: u64 = 1;
+/// Truth runs the [`GroundObjective::Pcrlb`] bound averages over (one: common random numbers for
+/// every candidate, so the objective is a smooth function of the sites).
+pub const PCRLB_RUNS: usize = 1;
 
 /// A ground site (radians, metres).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -100,6 +110,8 @@ pub enum GroundObjective {
     LogDet,
     /// `min_t λ_min(F(t))` [m⁻²].
     MinEig,
+    /// Final position PCRLB \[m\] (minimised).
+    Pcrlb,
 }
 
 impl GroundObjective {
@@ -109,6 +121,7 @@ impl GroundObjective {
             GroundObjective::MinDelta { .. } => "min-delta",
             GroundObjective::LogDet => "logdet",
             GroundObjective::MinEig => "min-eig",
+            GroundObjective::Pcrlb => "pcrlb",
         }
     }
 
@@ -132,6 +145,11 @@ impl GroundObjective {
             }
             GroundObjective::MinEig => {
                 "min over the trajectory of lambda_min(F), F the range FIM [m^-2]".into()
+            }
+            GroundObjective::Pcrlb => {
+                "final position PCRLB of the scenario with these beacons (IMU, dynamics, prior \
+                 and ranges; truth run 0 of seed 1) [m], minimised"
+                    .into()
             }
         }
     }
@@ -499,13 +517,32 @@ impl GroundProblem {
                 .iter()
                 .map(|m| m.symmetric_eigenvalues().min().max(0.0))
                 .fold(f64::INFINITY, f64::min),
+            GroundObjective::Pcrlb => self.final_position_bound(sites)?,
         })
+    }
+
+    /// Final position PCRLB \[m\] of the working scenario with beacons at `sites` (one truth
+    /// run: seed 1, run 0, the first run of a `trade --seed 1`).
+    pub fn final_position_bound(&self, sites: &[Site]) -> Result<f64, OptimizerError> {
+        let mut cfg = self.scenario.config.clone();
+        cfg.beacons = surface_beacons(sites, &self.noise);
+        let scenario = Scenario::build(cfg, &entrynav::files::no_files)?;
+        let bound = entrynav::sim::pcrlb_study(&scenario, PCRLB_SEED, PCRLB_RUNS)?;
+        match bound.final_.get("pos_m").copied().flatten() {
+            Some(v) if bound.available && v.is_finite() => Ok(v),
+            _ => Err(OptimizerError::InvalidInput(format!(
+                "no PCRLB for scenario '{}': {}",
+                self.scenario.config.name,
+                bound.reason.as_deref().unwrap_or("non-finite bound")
+            ))),
+        }
     }
 
     fn cost_of_value(&self, v: f64) -> f64 {
         match self.objective {
             GroundObjective::MinDelta { .. } | GroundObjective::MinEig => -v.max(1e-300).log10(),
             GroundObjective::LogDet => -v / self.trajectory.duration(),
+            GroundObjective::Pcrlb => v.max(1e-300).log10(),
         }
     }
 

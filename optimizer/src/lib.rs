@@ -80,6 +80,9 @@ pub enum OptimizerError {
     /// A numerical solver (argmin, clarabel) failed.
     #[error("solver failure: {0}")]
     Solver(String),
+    /// The truth run behind the PCRLB objective failed.
+    #[error(transparent)]
+    Trade(#[from] entrynav::sim::TradeError),
 }
 
 /// A progress callback: `(evaluations done, evaluations budgeted)`. Called from worker threads.

@@ -145,3 +145,32 @@ fn optimized_geometry_makes_a_valid_scenario_file() {
     assert_eq!(s.beacons.len(), 4);
     assert_eq!(s.channels.len(), 4);
 }
+
+#[test]
+fn pcrlb_objective_lowers_the_final_position_bound_and_matches_a_trade() {
+    let p = GroundProblem::new(&config(), &no_files, 3, GroundObjective::Pcrlb, 5.0, 0.0).unwrap();
+    let own = p.evaluate(&hand_placed()).unwrap();
+    let own_bound = own.value.unwrap();
+    // The objective is the bound a trade reports: run 0 of seed 1 with these beacons.
+    let scenario = Scenario::build(config(), &no_files).unwrap();
+    let trade_bound = entrynav::sim::pcrlb_study(&scenario, 1, 1).unwrap().final_["pos_m"].unwrap();
+    assert!(
+        (own_bound - trade_bound).abs() <= 1e-9 * trade_bound,
+        "objective {own_bound} m vs trade bound {trade_bound} m"
+    );
+    let opts = SearchOptions {
+        seed: 3,
+        starts: 1,
+        particles: 8,
+        iterations: 6,
+        polish_iterations: 30,
+        polish_step: 0.05,
+    };
+    let sol = p.optimize(&opts, &no_progress).unwrap();
+    let best = sol.evaluation.value.unwrap();
+    assert!(sol.evaluation.feasible);
+    assert!(
+        best < 0.95 * own_bound,
+        "optimized final position PCRLB {best} m is not below the hand-placed {own_bound} m"
+    );
+}

@@ -100,6 +100,7 @@ pub(super) fn run_ground(a: &GroundArgs) -> Result<()> {
         },
         GroundObjectiveArg::Logdet => GroundObjective::LogDet,
         GroundObjectiveArg::MinEig => GroundObjective::MinEig,
+        GroundObjectiveArg::Pcrlb => GroundObjective::Pcrlb,
     };
     let load = loader(&dir);
     let min_el = a.min_elevation_deg.to_radians();

@@ -38,6 +38,9 @@ pub(super) enum GroundObjectiveArg {
     /// min over time of lambda_min(FIM).
     #[value(name = "min-eig")]
     MinEig,
+    /// The final position PCRLB (minimised).
+    #[value(name = "pcrlb")]
+    Pcrlb,
 }
 
 /// `--method` (names of [`Method::name`]).

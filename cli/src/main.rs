@@ -1,5 +1,7 @@
 //! `entrynav`: Mars entry navigation from the command line.
 
+mod atmosphere_file;
+mod atmosphere_inspect;
 mod fmu;
 mod grid;
 mod observe;
@@ -35,6 +37,11 @@ enum Command {
     Scenario {
         #[command(subcommand)]
         action: ScenarioAction,
+    },
+    /// Density tables (CSV, Mars-GRAM output, Mars-GRAM Monte Carlo sets): inspect.
+    Atmosphere {
+        #[command(subcommand)]
+        action: atmosphere_inspect::AtmosphereAction,
     },
     /// Simulate the truth trajectory and the sensor measurements of a scenario.
     Simulate(simulate::SimulateArgs),
@@ -96,6 +103,7 @@ fn run(cli: Cli) -> Result<()> {
             print!("{}", cfg.to_toml_string());
             Ok(())
         }
+        Command::Atmosphere { action } => atmosphere_inspect::run(&action),
         Command::Simulate(args) => simulate::run(&args),
         Command::Trade(args) => trade::run(&args),
         Command::Tune(args) => tune::run(&args),

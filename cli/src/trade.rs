@@ -1,5 +1,6 @@
 //! `entrynav trade`: Monte Carlo comparison of navigation filters on a scenario.
 
+use crate::atmosphere_file::{check_profile_covers, report_truth_table, truth_atmosphere};
 use anyhow::{Context, Result};
 use clap::Args;
 use entrynav::estimation::nav::FilterKind;
@@ -49,11 +50,9 @@ pub struct TradeArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
-    /// Use this density table (CSV, or Mars-GRAM-style whitespace columns) as the truth mean
-    /// atmosphere of every run; a malformed, non-monotonic or non-positive profile, or one that
-    /// does not cover the trajectory's altitudes, is refused.
-    #[arg(long, value_name = "FILE")]
-    pub atmosphere_file: Option<PathBuf>,
+    /// The truth atmosphere file and how to read it.
+    #[command(flatten)]
+    pub atmosphere: crate::atmosphere_file::AtmosphereFileArgs,
     /// Fly every run in the unperturbed truth mean atmosphere (no per-run perturbation).
     #[arg(long)]
     pub no_perturbation: bool,
@@ -122,9 +121,10 @@ pub fn run(args: &TradeArgs) -> Result<()> {
     let scenario_name = args.scenario.as_deref().context("--scenario is required")?;
     let (cfg, dir) = load::resolve(scenario_name, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &args.sets)?;
-    let cfg = truth_atmosphere(cfg, args.atmosphere_file.as_deref(), args.no_perturbation)?;
+    let cfg = truth_atmosphere(cfg, &args.atmosphere, args.no_perturbation)?;
     let scenario = load::build(cfg, &dir)?;
-    if let Some(file) = &args.atmosphere_file {
+    report_truth_table(&scenario);
+    if let Some(file) = &args.atmosphere.atmosphere_file {
         check_profile_covers(&scenario, file)?;
     }
     let filters = FilterKind::parse_list(&args.filters, &scenario.onboard)?;
@@ -475,105 +475,4 @@ fn write_csv_dir(dir: &Path, report: &TradeReport) -> Result<()> {
         })?;
     }
     Ok(())
-}
-
-/// `--atmosphere-file FILE` / `--no-perturbation`: make FILE (CSV when its header line has
-/// commas, Mars-GRAM-style whitespace columns otherwise; height unit from the header) the truth
-/// mean atmosphere, and drop the per-run perturbation if asked. Parse errors (malformed number,
-/// non-monotonic altitudes, density ≤ 0, too few rows, missing column) name the file and line.
-pub(crate) fn truth_atmosphere(
-    mut cfg: entrynav::scenario::ScenarioConfig,
-    file: Option<&Path>,
-    no_perturbation: bool,
-) -> Result<entrynav::scenario::ScenarioConfig> {
-    use entrynav::atmosphere::{
-        AtmosphereConfig, AtmosphereError, TableColumns, TableFormat, parse_csv, parse_mars_gram,
-    };
-    if let Some(path) = file {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read atmosphere file {}", path.display()))?;
-        let header = text
-            .lines()
-            .map(str::trim)
-            .find(|l| !l.is_empty() && !l.starts_with('#'))
-            .unwrap_or("");
-        let format = if header.contains(',') {
-            TableFormat::Csv
-        } else {
-            TableFormat::MarsGram
-        };
-        let abs = std::fs::canonicalize(path)
-            .with_context(|| format!("cannot resolve atmosphere file {}", path.display()))?;
-        let name = abs.display().to_string();
-        let parse = |columns: &TableColumns| match format {
-            TableFormat::Csv => parse_csv(&text, &name, columns),
-            TableFormat::MarsGram => parse_mars_gram(&text, &name, columns),
-        };
-        // A header that declares its height unit (e.g. `Height(m)`) sets it.
-        let mut columns = TableColumns::default();
-        if let Err(AtmosphereError::HeightUnitMismatch { declared, .. }) = parse(&columns) {
-            columns.height_unit = declared;
-        }
-        parse(&columns)?;
-        cfg.truth.atmosphere = AtmosphereConfig::Table {
-            file: name,
-            format,
-            height_column: None,
-            density_column: None,
-            height_unit: Some(columns.height_unit),
-        };
-    }
-    if no_perturbation {
-        cfg.truth.perturbation = None;
-    }
-    cfg.validate()?;
-    Ok(cfg)
-}
-
-/// Refuse a truth profile file that does not cover the altitudes of the scenario's nominal
-/// trajectory (flown in that profile), naming the file, its data lines and both altitude ranges.
-pub(crate) fn check_profile_covers(
-    scenario: &entrynav::scenario::Scenario,
-    file: &Path,
-) -> Result<()> {
-    use rand::SeedableRng;
-    let Some((lo, hi)) = scenario.truth_model.atmosphere.valid_altitude_range() else {
-        return Ok(());
-    };
-    let draw = entrynav::scenario::TruthDraw {
-        initial: scenario.truth_initial,
-        model: scenario.truth_model.clone(),
-    };
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(0);
-    let run = entrynav::sim::simulate_truth(scenario, &draw, &mut rng)?;
-    let (h_min, h_max) = run
-        .samples
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| {
-            (a.min(s.altitude), b.max(s.altitude))
-        });
-    if h_min >= lo && h_max <= hi {
-        return Ok(());
-    }
-    let text = std::fs::read_to_string(file).unwrap_or_default();
-    let data: Vec<usize> = text
-        .lines()
-        .enumerate()
-        .filter(|(_, l)| !l.trim().is_empty() && !l.trim().starts_with('#'))
-        .map(|(i, _)| i + 1)
-        .skip(1)
-        .collect();
-    let (first, last) = (
-        data.first().copied().unwrap_or(0),
-        data.last().copied().unwrap_or(0),
-    );
-    anyhow::bail!(
-        "{}: lines {first}-{last}: the profile covers {:.3}-{:.3} km but the {} trajectory flies between {:.3} and {:.3} km; give a profile spanning at least those altitudes",
-        file.display(),
-        lo / 1e3,
-        hi / 1e3,
-        scenario.config.name,
-        h_min / 1e3,
-        h_max / 1e3
-    )
 }

@@ -63,9 +63,9 @@ pub struct TrainArgs {
     /// RMS) into this directory (with `--evaluate`).
     #[arg(long)]
     pub plots: Option<PathBuf>,
-    /// As `trade --atmosphere-file`: truth mean profile from this table (for `--evaluate`).
-    #[arg(long, value_name = "FILE")]
-    pub atmosphere_file: Option<PathBuf>,
+    /// As `trade --atmosphere-file` and its companions (for `--evaluate`).
+    #[command(flatten)]
+    pub atmosphere: crate::atmosphere_file::AtmosphereFileArgs,
     /// As `trade --no-perturbation` (for `--evaluate`).
     #[arg(long)]
     pub no_perturbation: bool,
@@ -91,10 +91,11 @@ pub fn run(args: &TrainArgs) -> Result<()> {
     let (cfg, dir) = load::resolve(&args.scenario, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &args.sets)?;
     let cfg =
-        crate::trade::truth_atmosphere(cfg, args.atmosphere_file.as_deref(), args.no_perturbation)?;
+        crate::atmosphere_file::truth_atmosphere(cfg, &args.atmosphere, args.no_perturbation)?;
     let scenario = load::build(cfg, &dir)?;
-    if let Some(file) = &args.atmosphere_file {
-        crate::trade::check_profile_covers(&scenario, file)?;
+    crate::atmosphere_file::report_truth_table(&scenario);
+    if let Some(file) = &args.atmosphere.atmosphere_file {
+        crate::atmosphere_file::check_profile_covers(&scenario, file)?;
     }
     let trained = match &args.out {
         Some(out) => {
@@ -363,8 +364,8 @@ fn report(file: &NetworkFile) {
 
 #[cfg(test)]
 mod tests {
-    //! `--atmosphere-file` / `--no-perturbation` (the helpers live in `trade.rs`).
-    use crate::trade::{check_profile_covers, truth_atmosphere};
+    //! `--atmosphere-file` / `--no-perturbation` (the helpers live in `atmosphere_file.rs`).
+    use crate::atmosphere_file::{AtmosphereFileArgs, check_profile_covers};
     use entrynav::atmosphere::{Atmosphere, AtmosphereConfig, mars_mean_profile};
     use entrynav::scenario::{Scenario, ScenarioConfig};
     use std::path::PathBuf;
@@ -393,6 +394,15 @@ mod tests {
             }
         }
         s
+    }
+
+    fn truth_atmosphere(
+        cfg: ScenarioConfig,
+        file: Option<&PathBuf>,
+        no_perturbation: bool,
+    ) -> anyhow::Result<ScenarioConfig> {
+        let args = file.map(AtmosphereFileArgs::file).unwrap_or_default();
+        crate::atmosphere_file::truth_atmosphere(cfg, &args, no_perturbation)
     }
 
     fn build(cfg: ScenarioConfig) -> anyhow::Result<Scenario> {

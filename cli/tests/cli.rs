@@ -510,3 +510,182 @@ fn optimize_orbiters_beats_the_paper_and_writes_a_usable_scenario() {
     assert_eq!(code, 2);
     assert!(err.contains("altitude"), "{err}");
 }
+
+fn gram(name: &str) -> String {
+    format!("{}/../tests/data/gram/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn files_of(dir: &std::path::Path) -> Vec<(String, String)> {
+    let mut out: Vec<(String, String)> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| {
+            let p = e.unwrap().path();
+            let name = p.file_name().unwrap().to_string_lossy().into_owned();
+            (name, std::fs::read_to_string(&p).unwrap())
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+#[test]
+fn trade_over_a_gram_profile_set_flies_profile_k_mod_n() {
+    let dir = tmpdir("gram-set");
+    let set = gram("montecarlo-2.txt");
+    let trade = |extra: &[&str], json: &std::path::Path| {
+        let mut args = vec![
+            "trade",
+            "--scenario",
+            "msl-airdata",
+            "--filters",
+            "ekf",
+            "--runs",
+            "4",
+            "--seed",
+            "7",
+            "--quiet",
+            "--no-pcrlb",
+            "--atmosphere-file",
+            &set,
+            "--json",
+        ];
+        let json = json.to_str().unwrap().to_string();
+        args.push(&json);
+        args.extend_from_slice(extra);
+        let (code, _, err) = entrynav(&args);
+        assert_eq!(code, 0, "{err}");
+        let v: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        (v, err)
+    };
+    let (all, err) = trade(&[], &dir.join("set.json"));
+    assert!(
+        err.contains("holds 2 profiles: run k flies profile k mod 2"),
+        "{err}"
+    );
+    let atm = &all["atmosphere"];
+    assert_eq!(atm["profiles"], 2);
+    assert!(atm["profile"].is_null());
+    assert_eq!(atm["rule"], "run k flies profile k mod 2");
+    assert!(atm["file"].as_str().unwrap().ends_with("montecarlo-2.txt"));
+    assert!(atm["heights"].as_str().unwrap().contains("Radius"));
+    let (one, _) = trade(&["--atmosphere-profile", "1"], &dir.join("one.json"));
+    assert_eq!(one["atmosphere"]["profile"], 1);
+    assert_eq!(one["atmosphere"]["rule"], "every run flies profile 1 of 2");
+    assert_ne!(
+        all["filters"][0]["rmse_time_avg"], one["filters"][0]["rmse_time_avg"],
+        "cycling and profile-1-only studies should differ"
+    );
+    // Run 1 of the set is run 1 flown in profile 1, not in profile 0; run 0 is profile 0's.
+    let replay = |run: &str, extra: &[&str], name: &str| {
+        let out = dir.join(name);
+        let mut args = vec![
+            "trade",
+            "--scenario",
+            "msl-airdata",
+            "--filters",
+            "ekf",
+            "--runs",
+            "4",
+            "--seed",
+            "7",
+            "--quiet",
+            "--atmosphere-file",
+            &set,
+            "--replay-run",
+            run,
+            "--csv-dir",
+        ];
+        let out_s = out.to_str().unwrap().to_string();
+        args.push(&out_s);
+        args.extend_from_slice(extra);
+        let (code, _, err) = entrynav(&args);
+        assert_eq!(code, 0, "{err}");
+        files_of(&out)
+    };
+    let set_run1 = replay("1", &[], "r1-set");
+    assert!(!set_run1.is_empty());
+    assert_eq!(
+        set_run1,
+        replay("1", &["--atmosphere-profile", "1"], "r1-p1")
+    );
+    assert_ne!(
+        set_run1,
+        replay("1", &["--atmosphere-profile", "0"], "r1-p0")
+    );
+    assert_eq!(
+        replay("0", &[], "r0-set"),
+        replay("0", &["--atmosphere-profile", "0"], "r0-p0")
+    );
+    // Out of range.
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "msl-airdata",
+        "--runs",
+        "1",
+        "--quiet",
+        "--atmosphere-file",
+        &set,
+        "--atmosphere-profile",
+        "2",
+    ]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("montecarlo-2.txt: profile 2 does not exist")
+            && err.contains("allowed 0 to 1"),
+        "{err}"
+    );
+}
+
+#[test]
+fn atmosphere_inspect_reports_profiles_datum_coverage_and_plots() {
+    let dir = tmpdir("inspect");
+    let svg = dir.join("p.svg");
+    let (code, out, err) = entrynav(&[
+        "atmosphere",
+        "inspect",
+        &gram("montecarlo-3.txt"),
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("profiles  3") && out.contains("Var_X") && out.contains("DENSTOT"),
+        "{out}"
+    );
+    assert!(out.contains("radius column Radius"), "{out}");
+    assert!(out.contains("covered by 3 of 3 profile(s)"), "{out}");
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.contains("<svg") && text.contains("profile 2") && text.contains("onboard model"));
+    // No radius column, no datum: a warning; with the datum, none.
+    let (code, out, err) = entrynav(&["atmosphere", "inspect", &gram("hgtmola.txt")]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("warning") && err.contains("no radius column and no datum"),
+        "{err}"
+    );
+    assert!(out.contains("assumed"), "{out}");
+    let (code, out, err) = entrynav(&[
+        "atmosphere",
+        "inspect",
+        &gram("hgtmola.txt"),
+        "--atmosphere-datum",
+        "areoid",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        !err.contains("warning") && out.contains("above the areoid"),
+        "{err}\n{out}"
+    );
+    // A bad file names file, line and problem.
+    let bad = dir.join("bad.txt");
+    let text = std::fs::read_to_string(gram("averaged.txt")).unwrap();
+    std::fs::write(&bad, text.replacen("3390.419", "3390.4x9", 1)).unwrap();
+    let (code, _, err) = entrynav(&["atmosphere", "inspect", bad.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("bad.txt: line 2") && err.contains("is not a number"),
+        "{err}"
+    );
+}

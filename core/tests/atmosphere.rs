@@ -482,6 +482,18 @@ proptest! {
         let text: String = rows.iter().map(|r| r.join(sep)).collect::<Vec<_>>().join("\n");
         let _ = parse_csv(&text, "fuzz", &TableColumns::default());
         let _ = parse_mars_gram(&text, "fuzz", &TableColumns::default());
+        let gram = format!("#  Var_X DENSTOT Radius\n{text}");
+        for datum in [None, Some(entrynav::atmosphere::Datum::Areoid)] {
+            let placement = entrynav::atmosphere::Placement {
+                datum,
+                sphere_radius_m: R_MARS,
+                latitude_rad: 0.5,
+            };
+            for format in [entrynav::atmosphere::TableFormat::Csv, entrynav::atmosphere::TableFormat::MarsGram] {
+                let _ = entrynav::atmosphere::parse_profiles(&gram, "fuzz", format, &TableColumns::default(), &placement);
+                let _ = entrynav::atmosphere::parse_profiles(&text, "fuzz", format, &TableColumns::default(), &placement);
+            }
+        }
     }
 }
 

@@ -9,20 +9,11 @@ use super::error::{AtmosphereError, check_closed, check_open, field_path};
 use super::exponential::Exponential;
 use super::mars_mean::mars_mean_profile;
 use super::model::AtmosphereModel;
-use super::parse::{HeightUnit, TableColumns, parse_csv, parse_mars_gram};
+use super::parse::{HeightUnit, TableColumns, TableFormat};
 use super::perturbed::{Envelope, PerturbationSpec, Perturbed};
+use super::profiles::{Datum, Placement, ProfileChoice, parse_profiles};
 use crate::files::FileLoader;
 use crate::planet::Planet;
-
-/// Text format of a density table file.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum TableFormat {
-    /// Comma-separated values with a header line ([`parse_csv`]).
-    Csv,
-    /// Whitespace-separated Mars-GRAM-style columns with a header line ([`parse_mars_gram`]).
-    MarsGram,
-}
 
 /// An atmosphere as written in a scenario file, selected by the `model` key.
 ///
@@ -76,6 +67,14 @@ pub enum AtmosphereConfig {
         /// `km` (default) or `m`.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         height_unit: Option<HeightUnit>,
+        /// `sphere` or `areoid`: what heights are measured from when the file has no `Radius`
+        /// column (see [`super::profiles`]); unset: the radius column, else `sphere` (assumed).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        datum: Option<Datum>,
+        /// Fly only this 0-based profile of a file of stacked profiles; unset: run k flies
+        /// profile k mod n ([`ProfileChoice`]).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        profile: Option<usize>,
     },
     /// The built-in non-exponential mean profile ([`mars_mean_profile`]).
     ///
@@ -155,13 +154,26 @@ impl AtmosphereConfig {
     /// does no I/O); its `Err` becomes [`AtmosphereError::LoadFailed`] naming the file, and parse
     /// errors name the file as their source. The configuration is validated first (field prefix
     /// `atmosphere`); an exponential reference radius must lie within R − 100 km … R + 1000 km.
+    /// A table of stacked profiles gives its selected profile, or profile 0; an areoid datum is
+    /// taken at the equator (use [`AtmosphereConfig::build_at`] to give the entry latitude).
     pub fn build(
         &self,
         planet: &Planet,
         load: &FileLoader<'_>,
     ) -> Result<AtmosphereModel, AtmosphereError> {
+        self.build_at(planet, 0.0, load).map(|(model, _)| model)
+    }
+
+    /// As [`AtmosphereConfig::build`], with the entry latitude (rad) for an areoid datum, and
+    /// for a table also its profiles and which run flies which ([`ProfileChoice`]).
+    pub fn build_at(
+        &self,
+        planet: &Planet,
+        latitude_rad: f64,
+        load: &FileLoader<'_>,
+    ) -> Result<(AtmosphereModel, Option<ProfileChoice>), AtmosphereError> {
         self.validate("atmosphere")?;
-        Ok(match self {
+        let model = match self {
             AtmosphereConfig::Exponential {
                 rho_ref_kgm3,
                 ref_radius_km,
@@ -212,25 +224,30 @@ impl AtmosphereConfig {
                 height_column,
                 density_column,
                 height_unit,
+                datum,
+                profile,
             } => {
                 let text = load(file).map_err(|source| AtmosphereError::LoadFailed {
                     file: file.clone(),
                     source,
                 })?;
-                let defaults = TableColumns::default();
-                let columns = TableColumns {
-                    height: height_column.clone().unwrap_or(defaults.height),
-                    density: density_column.clone().unwrap_or(defaults.density),
-                    height_unit: height_unit.unwrap_or(defaults.height_unit),
+                let columns = TableColumns::named(
+                    height_column.as_deref(),
+                    density_column.as_deref(),
+                    *height_unit,
+                );
+                let placement = Placement {
+                    datum: *datum,
+                    sphere_radius_m: planet.radius,
+                    latitude_rad,
                 };
-                let table = match format {
-                    TableFormat::Csv => parse_csv(&text, file, &columns)?,
-                    TableFormat::MarsGram => parse_mars_gram(&text, file, &columns)?,
-                };
-                AtmosphereModel::Tabulated(table)
+                let set = parse_profiles(&text, file, *format, &columns, &placement)?;
+                let choice = ProfileChoice::new(set, *profile)?;
+                return Ok((choice.model_for_run(0), Some(choice)));
             }
             AtmosphereConfig::MarsMean {} => AtmosphereModel::Tabulated(mars_mean_profile()),
-        })
+        };
+        Ok((model, None))
     }
 }
 

@@ -2,7 +2,7 @@
 
 use thiserror::Error;
 
-use super::parse::HeightUnit;
+use super::columns::HeightUnit;
 
 /// Everything that can go wrong when building, fitting, parsing or configuring an atmosphere.
 ///
@@ -165,6 +165,54 @@ pub enum AtmosphereError {
         found: usize,
         /// Minimum number of rows.
         required: usize,
+    },
+    /// More data rows than [`super::parse::MAX_TABLE_ROWS`].
+    #[error("{source_name}: line {line}: more than {limit} data rows; the table is refused")]
+    TooManyRows {
+        /// Source (file) name.
+        source_name: String,
+        /// Line of the first row over the limit.
+        line: usize,
+        /// The limit.
+        limit: usize,
+    },
+    /// More stacked profiles than [`super::profiles::MAX_PROFILES`].
+    #[error("{source_name}: line {line}: more than {limit} stacked profiles; the set is refused")]
+    TooManyProfiles {
+        /// Source (file) name.
+        source_name: String,
+        /// Line where the first profile over the limit starts.
+        line: usize,
+        /// The limit.
+        limit: usize,
+    },
+    /// One profile of a set has too few rows or cannot be splined.
+    #[error("{source_name}: lines {first_line}-{last_line}: profile {profile}: {problem}")]
+    BadProfile {
+        /// Source (file) name.
+        source_name: String,
+        /// 0-based profile index.
+        profile: usize,
+        /// First data line of the profile.
+        first_line: usize,
+        /// Last data line of the profile.
+        last_line: usize,
+        /// What is wrong.
+        problem: String,
+    },
+    /// A requested profile index is not in the set.
+    #[error(
+        "{source_name}: profile {profile} does not exist: the file holds {count} profile(s), allowed 0 to {max}"
+    )]
+    ProfileOutOfRange {
+        /// Source (file) name.
+        source_name: String,
+        /// The requested 0-based index.
+        profile: usize,
+        /// Number of profiles in the file.
+        count: usize,
+        /// Largest allowed index (`count − 1`).
+        max: usize,
     },
 }
 

@@ -9,6 +9,7 @@
 //! | exponential | seed 000 eq. 3, seed 001 eq. 16 | [`Exponential`] |
 //! | simplified COSPAR | seed 001 eq. 17 | [`Cospar`] |
 //! | ln ρ cubic-spline table (Mars-GRAM / CSV files) | seed 001 §V | [`Tabulated`], [`parse_csv`], [`parse_mars_gram`] |
+//! | stacked Mars-GRAM Monte Carlo profiles, height datum | ours (issue 15) | [`ProfileSet`], [`parse_profiles`], [`ProfileChoice`] |
 //! | built-in non-exponential mean profile | ours (SPEC.md "msl-airdata") | [`mars_mean_profile`] |
 //! | perturbed profile generator | ours (SPEC.md "msl-airdata") | [`Perturbed`] |
 //!
@@ -17,6 +18,7 @@
 
 use crate::math::Real;
 
+pub mod columns;
 pub mod config;
 pub mod cospar;
 pub mod error;
@@ -25,9 +27,10 @@ pub mod mars_mean;
 pub mod model;
 pub mod parse;
 pub mod perturbed;
+pub mod profiles;
 pub mod tabulated;
 
-pub use config::{AtmosphereConfig, PerturbationConfig, TableFormat};
+pub use config::{AtmosphereConfig, PerturbationConfig};
 pub use cospar::Cospar;
 pub use error::AtmosphereError;
 pub use exponential::{Exponential, exponential_density};
@@ -37,9 +40,14 @@ pub use mars_mean::{
 };
 pub use model::AtmosphereModel;
 pub use parse::{
-    DENSITY_ALIASES, HEIGHT_ALIASES, HeightUnit, TableColumns, parse_csv, parse_mars_gram,
+    DENSITY_ALIASES, HEIGHT_ALIASES, HeightUnit, MAX_TABLE_ROWS, RADIUS_ALIASES, TableColumns,
+    TableFormat, parse_csv, parse_mars_gram,
 };
 pub use perturbed::{Envelope, PerturbationSpec, Perturbed};
+pub use profiles::{
+    Datum, HeightReference, MAX_PROFILES, Placement, Profile, ProfileChoice, ProfileProvenance,
+    ProfileSet, areoid_radius_m, parse_profiles,
+};
 pub use tabulated::{MIN_TABLE_POINTS, Tabulated};
 
 /// A density model ρ(h).

@@ -1,189 +1,141 @@
-//! Parsers for density tables: CSV and Mars-GRAM-style whitespace columns.
+//! Readers for density tables: CSV and Mars-GRAM-style whitespace columns.
 //!
 //! Both take the file *text* and a `source_name` used in error messages (the crate does no I/O).
-//! Lines that are blank or start with `#` are skipped anywhere; the first other line is the header
-//! of column names; every following line is a data row with exactly as many fields as the header.
-//! Line numbers in errors are 1-based and count every line of the text.
+//!
+//! **Header.** The header of column names is the first line that is either
+//! * not blank and not `#`-prefixed (an averaged Mars-GRAM file, a hand-made CSV), or
+//! * a `#`-prefixed line whose fields are all non-numeric names and that is directly followed (blank
+//!   lines aside) by a row of numbers — the first line of Mars-GRAM Monte Carlo output,
+//!   `#    Var_X        DENSLO     DENSAV     DENSHI    DENSTOT  DustOD  Radius ...`.
+//!
+//! Other blank and `#` lines are skipped anywhere; a later line equal to the header (a header
+//! repeated between stacked profiles) is skipped too. Every other line is a data row with exactly
+//! as many fields as the header. Line numbers in errors are 1-based and count every line.
+//! At most [`MAX_TABLE_ROWS`] data rows are read. [`parse_csv`] / [`parse_mars_gram`] return one
+//! profile; [`super::profiles::parse_profiles`] reads stacked profiles (a Monte Carlo set): a
+//! row whose height falls back past the middle of the current profile's height span starts a new
+//! profile, a smaller step back is a non-monotonic error.
 
 use serde::{Deserialize, Serialize};
 
 use super::error::AtmosphereError;
 use super::tabulated::{MIN_TABLE_POINTS, Tabulated};
 
-/// Unit of the height column of a table.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum HeightUnit {
-    /// Kilometres (Mars-GRAM's `Height(km)` / `Hgtkm`).
-    #[default]
-    Km,
-    /// Metres.
-    M,
+pub use super::columns::{
+    DENSITY_ALIASES, HEIGHT_ALIASES, HeightUnit, RADIUS_ALIASES, TableColumns,
+};
+use super::columns::{declared_unit, find_column};
+
+/// Most data rows read from one table text (all profiles together); more is an error.
+pub const MAX_TABLE_ROWS: usize = 1_000_000;
+
+/// Text format of a density table file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum TableFormat {
+    /// Comma-separated values with a header line ([`parse_csv`]).
+    Csv,
+    /// Whitespace-separated Mars-GRAM-style columns with a header line ([`parse_mars_gram`]).
+    MarsGram,
 }
 
-impl HeightUnit {
-    /// Metres per unit.
-    pub fn to_metres(self) -> f64 {
+impl TableFormat {
+    /// Split one line into fields.
+    pub(crate) fn split(self, line: &str) -> Vec<&str> {
         match self {
-            HeightUnit::Km => 1_000.0,
-            HeightUnit::M => 1.0,
+            TableFormat::Csv => line
+                .split(',')
+                .map(|f| {
+                    let f = f.trim();
+                    f.strip_prefix('"')
+                        .and_then(|g| g.strip_suffix('"'))
+                        .unwrap_or(f)
+                })
+                .collect(),
+            TableFormat::MarsGram => line.split_whitespace().collect(),
         }
     }
 
-    /// `km` or `m`.
-    pub fn symbol(self) -> &'static str {
-        match self {
-            HeightUnit::Km => "km",
-            HeightUnit::M => "m",
-        }
-    }
-}
-
-impl std::fmt::Display for HeightUnit {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.symbol())
-    }
-}
-
-/// Names of the height aliases tried when the default height name `height` is not in the header.
-pub const HEIGHT_ALIASES: [&str; 6] = [
-    "height",
-    "hgtkm",
-    "height_km",
-    "altitude_km",
-    "alt_km",
-    "altitude",
-];
-
-/// Names of the density aliases tried when the default density name `denstot` is not in the
-/// header. Densities must be in kg/m³ (as Mars-GRAM's `DENSTOT`/`Denavg` are).
-pub const DENSITY_ALIASES: [&str; 5] = ["denstot", "density", "rho", "denavg", "density_kgm3"];
-
-/// Which columns of a table hold altitude and density, and the altitude unit.
-///
-/// Column names match header names case-insensitively, either exactly or after removing a
-/// parenthesised or bracketed unit suffix: `height` matches `Height(km)` and `HEIGHT (km)`.
-/// When a name is left at its default (`height`, `denstot`) and is not found, the aliases
-/// [`HEIGHT_ALIASES`] / [`DENSITY_ALIASES`] are tried in order. If the chosen height header
-/// declares a unit (`(km)`, `(m)`, `..._km`, `Hgtkm`) that differs from `height_unit`, parsing
-/// fails instead of silently scaling by 1000.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct TableColumns {
-    /// Header name of the altitude column (altitude above the reference sphere).
-    pub height: String,
-    /// Header name of the density column (kg/m³).
-    pub density: String,
-    /// Unit of the altitude column.
-    pub height_unit: HeightUnit,
-}
-
-impl Default for TableColumns {
-    fn default() -> Self {
-        TableColumns {
-            height: "height".to_string(),
-            density: "denstot".to_string(),
-            height_unit: HeightUnit::Km,
+    /// CSV when the header line (found as described in [this module](self)) holds a comma,
+    /// Mars-GRAM-style whitespace columns otherwise.
+    pub fn detect(text: &str) -> TableFormat {
+        match find_header(text) {
+            Some((_, h)) if h.contains(',') => TableFormat::Csv,
+            _ => TableFormat::MarsGram,
         }
     }
 }
 
-/// Parse a comma-separated table (fields trimmed, surrounding double quotes removed).
-pub fn parse_csv(
-    text: &str,
-    source_name: &str,
-    columns: &TableColumns,
-) -> Result<Tabulated, AtmosphereError> {
-    parse_table(text, source_name, columns, |line| {
-        line.split(',')
-            .map(|f| {
-                let f = f.trim();
-                f.strip_prefix('"')
-                    .and_then(|g| g.strip_suffix('"'))
-                    .unwrap_or(f)
-            })
-            .collect()
-    })
+/// One data row as read: the line, height (m, as given, before any datum shift), density and
+/// planet-centred radius (m) when the table has a radius column.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RawRow {
+    /// 1-based line number.
+    pub line: usize,
+    /// Height column value converted to metres (the file's own datum).
+    pub height_m: f64,
+    /// Density (kg/m³), > 0.
+    pub density: f64,
+    /// Radius column value converted to metres (column in km), if present.
+    pub radius_m: Option<f64>,
 }
 
-/// Parse a Mars-GRAM-style table: whitespace-separated columns under a header line of names,
-/// e.g. `Time(sec) Height(km) Lat(deg) ... DENSTOT ...` or `Time Hgtkm ... Denavg ...`.
-/// Fortran `D` exponents (`1.5D-03`) are accepted.
-pub fn parse_mars_gram(
-    text: &str,
-    source_name: &str,
-    columns: &TableColumns,
-) -> Result<Tabulated, AtmosphereError> {
-    parse_table(text, source_name, columns, |line| {
-        line.split_whitespace().collect()
-    })
+/// A table as read: which columns were used and the rows in file order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RawTable {
+    /// 1-based line of the header.
+    pub header_line: usize,
+    /// Header name of the height column used.
+    pub height_column: String,
+    /// Header name of the density column used.
+    pub density_column: String,
+    /// Header name of the radius column used, if any.
+    pub radius_column: Option<String>,
+    /// Data rows, in file order.
+    pub rows: Vec<RawRow>,
 }
 
-/// Split a header name into (base name, unit text) at a trailing `(...)` or `[...]`.
-fn split_unit(name: &str) -> (&str, Option<&str>) {
-    let name = name.trim();
-    for (open, close) in [('(', ')'), ('[', ']')] {
-        if let Some(body) = name.strip_suffix(close) {
-            if let Some(pos) = body.rfind(open) {
-                return (
-                    body[..pos].trim(),
-                    Some(body[pos + open.len_utf8()..].trim()),
-                );
+fn is_numeric_row(line: &str) -> bool {
+    let mut fields = line
+        .split(|c: char| c == ',' || c.is_whitespace())
+        .filter(|f| !f.is_empty())
+        .peekable();
+    fields.peek().is_some() && fields.all(|f| parse_number(f.trim_matches('"')).is_some())
+}
+
+fn is_name_row(line: &str) -> bool {
+    let mut fields = line
+        .split(|c: char| c == ',' || c.is_whitespace())
+        .filter(|f| !f.is_empty())
+        .peekable();
+    fields.peek().is_some() && fields.all(|f| parse_number(f.trim_matches('"')).is_none())
+}
+
+/// The header line: its 1-based number and its text without a leading `#`.
+pub(crate) fn find_header(text: &str) -> Option<(usize, &str)> {
+    let lines: Vec<(usize, &str)> = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.trim()))
+        .filter(|(_, l)| !l.is_empty())
+        .collect();
+    for (k, &(n, l)) in lines.iter().enumerate() {
+        match l.strip_prefix('#') {
+            None => return Some((n, l.strip_prefix('\u{feff}').unwrap_or(l))),
+            Some(body) => {
+                let next_is_data = lines
+                    .get(k + 1)
+                    .is_some_and(|(_, next)| !next.starts_with('#') && is_numeric_row(next));
+                if is_name_row(body) && next_is_data {
+                    return Some((n, body.trim()));
+                }
             }
         }
     }
-    (name, None)
+    None
 }
 
-fn header_matches(header: &str, want: &str) -> bool {
-    let want = want.trim();
-    header.trim().eq_ignore_ascii_case(want) || split_unit(header).0.eq_ignore_ascii_case(want)
-}
-
-/// Unit declared by a height header, if recognisable.
-fn declared_unit(header: &str) -> Option<HeightUnit> {
-    let (base, unit) = split_unit(header);
-    if let Some(u) = unit {
-        return match u.to_ascii_lowercase().as_str() {
-            "km" => Some(HeightUnit::Km),
-            "m" => Some(HeightUnit::M),
-            _ => None,
-        };
-    }
-    let b = base.to_ascii_lowercase();
-    if b.ends_with("km") {
-        Some(HeightUnit::Km)
-    } else if b.ends_with("_m") {
-        Some(HeightUnit::M)
-    } else {
-        None
-    }
-}
-
-/// Find a column: the requested name, then (only if it is the default) the aliases.
-fn find_column(
-    header: &[&str],
-    requested: &str,
-    default: &str,
-    aliases: &[&str],
-) -> Result<usize, Vec<String>> {
-    let mut tried = vec![requested.to_string()];
-    if let Some(i) = header.iter().position(|h| header_matches(h, requested)) {
-        return Ok(i);
-    }
-    if requested.trim().eq_ignore_ascii_case(default) {
-        for alias in aliases {
-            if !tried.iter().any(|t| t.eq_ignore_ascii_case(alias)) {
-                tried.push((*alias).to_string());
-            }
-            if let Some(i) = header.iter().position(|h| header_matches(h, alias)) {
-                return Ok(i);
-            }
-        }
-    }
-    Err(tried)
-}
-
-fn parse_number(text: &str) -> Option<f64> {
+pub(crate) fn parse_number(text: &str) -> Option<f64> {
     text.parse::<f64>().ok().or_else(|| {
         if text.contains(['D', 'd']) && !text.contains(['E', 'e']) {
             text.replace(['D', 'd'], "E").parse::<f64>().ok()
@@ -193,26 +145,19 @@ fn parse_number(text: &str) -> Option<f64> {
     })
 }
 
-fn parse_table<'t>(
-    text: &'t str,
+/// Read every data row of a table (no profile splitting, no datum): header detection, column
+/// choice ([`TableColumns`]), numbers, positive densities, the [`MAX_TABLE_ROWS`] cap.
+pub fn read_table(
+    text: &str,
     source_name: &str,
+    format: TableFormat,
     columns: &TableColumns,
-    split: impl Fn(&'t str) -> Vec<&'t str>,
-) -> Result<Tabulated, AtmosphereError> {
+) -> Result<RawTable, AtmosphereError> {
     let src = || source_name.to_string();
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l))
-        .filter(|(_, l)| {
-            let t = l.trim();
-            !t.is_empty() && !t.starts_with('#')
-        });
-    let (header_line, header_text) = lines
-        .next()
-        .ok_or_else(|| AtmosphereError::NoHeader { source_name: src() })?;
-    let header = split(header_text);
+    let (header_line, header_text) =
+        find_header(text).ok_or_else(|| AtmosphereError::NoHeader { source_name: src() })?;
+    let header = format.split(header_text);
     let missing =
         |role: &'static str, requested: &str, tried: Vec<String>| AtmosphereError::MissingColumn {
             source_name: src(),
@@ -226,7 +171,14 @@ fn parse_table<'t>(
         .map_err(|t| missing("height", &columns.height, t))?;
     let di = find_column(&header, &columns.density, "denstot", &DENSITY_ALIASES)
         .map_err(|t| missing("density", &columns.density, t))?;
+    let ri = match &columns.radius {
+        Some(name) => {
+            Some(find_column(&header, name, "", &[]).map_err(|t| missing("radius", name, t))?)
+        }
+        None => find_column(&header, "radius", "radius", &RADIUS_ALIASES).ok(),
+    };
     let (h_name, d_name) = (header[hi].to_string(), header[di].to_string());
+    let r_name = ri.map(|i| header[i].to_string());
     let declared = declared_unit(&h_name).filter(|d| *d != columns.height_unit);
     if let Some(declared) = declared {
         return Err(AtmosphereError::HeightUnitMismatch {
@@ -237,7 +189,6 @@ fn parse_table<'t>(
             requested: columns.height_unit,
         });
     }
-
     let number = |line: usize, column: &str, text: &str| -> Result<f64, AtmosphereError> {
         match parse_number(text) {
             None => Err(AtmosphereError::MalformedNumber {
@@ -255,13 +206,16 @@ fn parse_table<'t>(
             Some(v) => Ok(v),
         }
     };
-
-    let mut alt = Vec::new();
-    let mut rho = Vec::new();
-    let mut prev: Option<(usize, f64)> = None;
-    let mut increasing: Option<bool> = None;
-    for (line, row_text) in lines {
-        let row = split(row_text);
+    let mut rows = Vec::new();
+    for (i, raw) in text.lines().enumerate().skip(header_line) {
+        let (line, t) = (i + 1, raw.trim());
+        if t.is_empty() || t.starts_with('#') {
+            continue;
+        }
+        let row = format.split(t);
+        if row == header {
+            continue;
+        }
         if row.len() != header.len() {
             return Err(AtmosphereError::FieldCount {
                 source_name: src(),
@@ -270,52 +224,150 @@ fn parse_table<'t>(
                 found: row.len(),
             });
         }
+        if rows.len() == MAX_TABLE_ROWS {
+            return Err(AtmosphereError::TooManyRows {
+                source_name: src(),
+                line,
+                limit: MAX_TABLE_ROWS,
+            });
+        }
         let h = number(line, &h_name, row[hi])?;
-        let r = number(line, &d_name, row[di])?;
-        if r <= 0.0 {
+        let density = number(line, &d_name, row[di])?;
+        if density <= 0.0 {
             return Err(AtmosphereError::NonPositiveDensity {
                 source_name: src(),
                 line,
                 column: d_name.clone(),
-                value: r,
+                value: density,
             });
         }
-        if let Some((pl, ph)) = prev {
-            let up = h > ph;
-            let problem = if h == ph {
-                Some("repeats the altitude".to_string())
-            } else {
-                match increasing {
-                    Some(dir) if dir != up => Some(format!(
+        let radius_m = match (ri, &r_name) {
+            (Some(i), Some(name)) => Some(number(line, name, row[i])? * 1e3),
+            _ => None,
+        };
+        rows.push(RawRow {
+            line,
+            height_m: h * columns.height_unit.to_metres(),
+            density,
+            radius_m,
+        });
+    }
+    Ok(RawTable {
+        header_line,
+        height_column: h_name,
+        density_column: d_name,
+        radius_column: r_name,
+        rows,
+    })
+}
+
+/// Split rows into profiles. A row that breaks the height order of the current profile starts a
+/// new profile when it falls back past the middle of that profile's height span (a restart, as
+/// between Mars-GRAM Monte Carlo profiles); a smaller step back, or a repeated height, is an
+/// error naming both lines. Returns index ranges into `rows`.
+pub(crate) fn split_profiles(
+    rows: &[RawRow],
+    source_name: &str,
+    unit: HeightUnit,
+) -> Result<Vec<std::ops::Range<usize>>, AtmosphereError> {
+    let mut out = Vec::new();
+    let mut start = 0;
+    let mut increasing: Option<bool> = None;
+    for i in 1..rows.len() {
+        let (a, b) = (rows[i - 1], rows[i]);
+        let error = |problem: String| AtmosphereError::NonMonotonic {
+            source_name: source_name.to_string(),
+            first_line: a.line,
+            second_line: b.line,
+            first_value: a.height_m / unit.to_metres(),
+            second_value: b.height_m / unit.to_metres(),
+            problem,
+        };
+        if a.height_m == b.height_m {
+            return Err(error("repeats the altitude".to_string()));
+        }
+        let up = b.height_m > a.height_m;
+        match increasing {
+            Some(dir) if dir != up => {
+                let middle = 0.5 * (rows[start].height_m + a.height_m);
+                let restart = if dir {
+                    b.height_m < middle
+                } else {
+                    b.height_m > middle
+                };
+                if !restart {
+                    return Err(error(format!(
                         "breaks the {} order",
                         if dir { "increasing" } else { "decreasing" }
-                    )),
-                    _ => None,
+                    )));
                 }
-            };
-            if let Some(problem) = problem {
-                return Err(AtmosphereError::NonMonotonic {
-                    source_name: src(),
-                    first_line: pl,
-                    second_line: line,
-                    first_value: ph,
-                    second_value: h,
-                    problem,
-                });
+                out.push(start..i);
+                start = i;
+                increasing = None;
             }
-            increasing = Some(up);
+            _ => increasing = Some(up),
         }
-        prev = Some((line, h));
-        alt.push(h * columns.height_unit.to_metres());
-        rho.push(r);
     }
-    if alt.len() < MIN_TABLE_POINTS {
+    if !rows.is_empty() {
+        out.push(start..rows.len());
+    }
+    Ok(out)
+}
+
+/// Parse a comma-separated table holding one profile (fields trimmed, surrounding double
+/// quotes removed). Heights are taken as given (above the reference sphere).
+pub fn parse_csv(
+    text: &str,
+    source_name: &str,
+    columns: &TableColumns,
+) -> Result<Tabulated, AtmosphereError> {
+    parse_single(text, source_name, TableFormat::Csv, columns)
+}
+
+/// Parse a Mars-GRAM-style table holding one profile: whitespace-separated columns under a
+/// header line of names, e.g. `Time(sec) Height(km) Lat(deg) ... DENSTOT ...` or
+/// `#  Var_X  DENSLO  DENSAV  DENSHI  DENSTOT ...`. Fortran `D` exponents (`1.5D-03`) are
+/// accepted. Heights are taken as given (above the reference sphere).
+pub fn parse_mars_gram(
+    text: &str,
+    source_name: &str,
+    columns: &TableColumns,
+) -> Result<Tabulated, AtmosphereError> {
+    parse_single(text, source_name, TableFormat::MarsGram, columns)
+}
+
+fn parse_single(
+    text: &str,
+    source_name: &str,
+    format: TableFormat,
+    columns: &TableColumns,
+) -> Result<Tabulated, AtmosphereError> {
+    let table = read_table(text, source_name, format, columns)?;
+    let parts = split_profiles(&table.rows, source_name, columns.height_unit)?;
+    if let [first, second, ..] = parts.as_slice() {
+        let (a, b) = (table.rows[first.end - 1], table.rows[second.start]);
+        let up = table.rows[first.start + 1].height_m > table.rows[first.start].height_m;
+        return Err(AtmosphereError::NonMonotonic {
+            source_name: source_name.to_string(),
+            first_line: a.line,
+            second_line: b.line,
+            first_value: a.height_m / columns.height_unit.to_metres(),
+            second_value: b.height_m / columns.height_unit.to_metres(),
+            problem: format!(
+                "restarts the {} order: the text holds {} stacked profiles (a Monte Carlo set); read it as a profile set",
+                if up { "increasing" } else { "decreasing" },
+                parts.len()
+            ),
+        });
+    }
+    if table.rows.len() < MIN_TABLE_POINTS {
         return Err(AtmosphereError::TooFewRows {
-            source_name: src(),
-            found: alt.len(),
+            source_name: source_name.to_string(),
+            found: table.rows.len(),
             required: MIN_TABLE_POINTS,
         });
     }
+    let (alt, rho) = table.rows.iter().map(|r| (r.height_m, r.density)).unzip();
     Tabulated::new(alt, rho).map_err(|e| match e {
         AtmosphereError::InvalidTable { problem } => AtmosphereError::InvalidTable {
             problem: format!("{source_name}: {problem}"),
@@ -329,25 +381,26 @@ mod tests {
     use super::*;
 
     #[test]
-    fn unit_suffixes_are_split() {
-        assert_eq!(split_unit("Height(km)"), ("Height", Some("km")));
-        assert_eq!(split_unit(" HEIGHT [m] "), ("HEIGHT", Some("m")));
-        assert_eq!(split_unit("DENSTOT"), ("DENSTOT", None));
-        assert_eq!(split_unit(")"), (")", None));
-        assert!(header_matches("Height(km)", "height"));
-        assert!(header_matches("Height(km)", "HEIGHT(KM)"));
-        assert!(!header_matches("Heights", "height"));
-        assert_eq!(declared_unit("Hgtkm"), Some(HeightUnit::Km));
-        assert_eq!(declared_unit("alt_m"), Some(HeightUnit::M));
-        assert_eq!(declared_unit("Height(m)"), Some(HeightUnit::M));
-        assert_eq!(declared_unit("altitude"), None);
-    }
-
-    #[test]
     fn fortran_exponents() {
         assert_eq!(parse_number("1.5D-03"), Some(1.5e-3));
         assert_eq!(parse_number("2.0e1"), Some(20.0));
         assert_eq!(parse_number("abc"), None);
         assert_eq!(parse_number("dd"), None);
+    }
+
+    #[test]
+    fn hash_header_only_when_names_precede_numbers() {
+        let gram = "#  Var_X  DENSTOT  Radius\n -5.0 2.0E-02 3390.5\n";
+        assert_eq!(find_header(gram), Some((1, "Var_X  DENSTOT  Radius")));
+        let commented = "# made by hand\nheight denstot\n0 1e-2\n";
+        assert_eq!(find_header(commented), Some((2, "height denstot")));
+        let dated = "# Mars-GRAM 2010 output\n1 2\n";
+        assert_eq!(find_header(dated), Some((2, "1 2")));
+        assert_eq!(find_header("# a b\n# c d\n"), None);
+        assert_eq!(
+            TableFormat::detect("# height,denstot\n0,1\n"),
+            TableFormat::Csv
+        );
+        assert_eq!(TableFormat::detect(gram), TableFormat::MarsGram);
     }
 }

@@ -3,7 +3,7 @@
 use super::config::*;
 use super::error::ScenarioError;
 use super::validate::StateForm;
-use crate::atmosphere::{AtmosphereModel, Perturbed};
+use crate::atmosphere::{AtmosphereModel, Perturbed, ProfileChoice};
 use crate::beacons::{Beacon, BeaconMotion};
 use crate::dynamics::{DynamicsKind, EntryModel, Vehicle};
 use crate::estimation::Onboard;
@@ -26,8 +26,12 @@ pub struct Scenario {
     pub config: ScenarioConfig,
     /// Planet constants.
     pub planet: Planet,
-    /// Truth dynamics with the nominal vehicle and the *mean* atmosphere.
+    /// Truth dynamics with the nominal vehicle and the *mean* atmosphere (for a truth table of
+    /// stacked profiles: the profile run 0 flies).
     pub truth_model: EntryModel<AtmosphereModel>,
+    /// The truth table's profiles and the run → profile rule, when the truth atmosphere is a
+    /// table file ([`ProfileChoice`]: run k flies profile k mod n, or one selected profile).
+    pub truth_profiles: Option<ProfileChoice>,
     /// Nominal truth initial state in the truth model's coordinates.
     pub truth_initial: SVector<f64, 6>,
     /// Truth bank angle \[rad\] (the commanded bank; the onboard view starts with it too).
@@ -106,7 +110,9 @@ impl Scenario {
         let planet = config.planet.resolve();
         let conv = config.heading_convention;
 
-        let truth_atm = config.truth.atmosphere.build(&planet, load)?;
+        let entry_lat = entry_latitude(&config, conv, &planet)?;
+        let (truth_atm, truth_profiles) =
+            config.truth.atmosphere.build_at(&planet, entry_lat, load)?;
         let truth_model = EntryModel {
             kind: config.truth.dynamics,
             planet,
@@ -132,7 +138,7 @@ impl Scenario {
         let filter_model = EntryModel {
             kind: f.dynamics,
             planet,
-            atmosphere: f.atmosphere.build(&planet, load)?,
+            atmosphere: f.atmosphere.build_at(&planet, entry_lat, load)?.0,
             vehicle: Vehicle {
                 cd_s_over_m: f.vehicle.cd_s_over_m(),
                 lift_to_drag: f.vehicle.lift_to_drag,
@@ -180,6 +186,7 @@ impl Scenario {
             config,
             planet,
             truth_model,
+            truth_profiles,
             truth_initial,
             truth_bank,
             onboard,
@@ -208,11 +215,20 @@ impl Scenario {
         }
     }
 
-    /// Draw one truth realisation from `rng`: initial state, vehicle, density bias, atmosphere.
+    /// [`Scenario::draw_truth_run`] for run 0 (callers that know no run index: `simulate`, the
+    /// FMUs; they fly profile 0 of a truth profile set, or its selected profile).
+    pub fn draw_truth(&self, rng: &mut impl Rng) -> TruthDraw {
+        self.draw_truth_run(0, rng)
+    }
+
+    /// Draw the truth realisation of Monte Carlo run `run` from `rng`: initial state, vehicle,
+    /// density bias, atmosphere.
     ///
     /// The draws happen in a fixed order (initial state, C_D S/m, L/D, Δ, atmosphere) so that a
-    /// seed reproduces a run exactly.
-    pub fn draw_truth(&self, rng: &mut impl Rng) -> TruthDraw {
+    /// seed reproduces a run exactly. With a truth table of stacked profiles the run's mean
+    /// atmosphere is profile [`ProfileChoice::profile_for_run`] (k mod n: it depends only on the
+    /// run index, so shards and threads agree); a configured perturbation is applied on it.
+    pub fn draw_truth_run(&self, run: usize, rng: &mut impl Rng) -> TruthDraw {
         let d = &self.config.dispersions;
         let mut z = || -> f64 { StandardNormal.sample(rng) };
         let mut initial = self.truth_initial;
@@ -228,10 +244,13 @@ impl Scenario {
             delta = delta.clamp(-d.density_bias_clip, d.density_bias_clip);
         }
         model.density_factor = 1.0 + delta;
+        if let Some(choice) = self.truth_profiles.as_ref().filter(|c| c.is_cycling()) {
+            model.atmosphere = choice.model_for_run(run);
+        }
         if let Some(p) = &self.config.truth.perturbation {
             let spec = p.to_spec();
             model.atmosphere = AtmosphereModel::Perturbed(Box::new(Perturbed::sample(
-                self.truth_model.atmosphere.clone(),
+                model.atmosphere,
                 &spec,
                 rng,
             )));
@@ -300,6 +319,22 @@ impl Scenario {
             Err(_) => nominal,
         }
     }
+}
+
+/// Geocentric latitude (rad) of the truth entry interface (the areoid datum of table files).
+fn entry_latitude(
+    config: &ScenarioConfig,
+    conv: HeadingConvention,
+    planet: &Planet,
+) -> Result<f64, ScenarioError> {
+    let s = state_to_model(
+        &config.truth.initial,
+        "truth.initial",
+        conv,
+        DynamicsKind::Spherical,
+        planet,
+    )?;
+    Ok(s[2])
 }
 
 fn channel_specs(config: &ScenarioConfig, beacon_names: &[String]) -> Vec<ChannelSpec> {

@@ -124,7 +124,7 @@ fn one_run(
     run: usize,
 ) -> Result<Vec<RunSeries>, DensityEvalError> {
     let mut rng = ChaCha8Rng::seed_from_u64(run_seed(seed, run as u64));
-    let draw = scenario.draw_truth(&mut rng);
+    let draw = scenario.draw_truth_run(run, &mut rng);
     let truth = simulate_truth(scenario, &draw, &mut rng)
         .map_err(|source| DensityEvalError::Truth { run, source })?;
     let x0 = initial_estimate(scenario, &draw, &truth.samples[0], &mut rng);

@@ -92,6 +92,9 @@ pub struct TradeReport {
     /// The scenario's posterior Cramér–Rao lower bound ([`super::pcrlb`]); `None` for a study
     /// merged from shards written before the bound existed.
     pub pcrlb: Option<PcrlbReport>,
+    /// The truth atmosphere file, its profile count and the run → profile rule, when the truth
+    /// atmosphere is a table file (`--atmosphere-file`, a scenario `model = "table"`).
+    pub atmosphere: Option<crate::atmosphere::ProfileProvenance>,
 }
 
 /// State names of a scenario's filter model.
@@ -163,6 +166,7 @@ pub fn run_shard(
         filters: filters.iter().map(|k| k.name().to_string()).collect(),
         states: state_names(scenario),
         channels: super::channel_names(scenario),
+        atmosphere: scenario.truth_profiles.as_ref().map(|c| c.provenance()),
         shard,
         blocks,
     })
@@ -231,7 +235,7 @@ pub struct RecordedRun {
 /// order: the truth dispersions, the measurement noise of the whole run, the initial estimate.
 pub fn record_run(scenario: &Scenario, seed: u64, run: usize) -> Result<RecordedRun, TradeError> {
     let mut rng = ChaCha8Rng::seed_from_u64(run_seed(seed, run as u64));
-    let draw = scenario.draw_truth(&mut rng);
+    let draw = scenario.draw_truth_run(run, &mut rng);
     let truth = simulate_truth(scenario, &draw, &mut rng)
         .map_err(|source| TradeError::Truth { run, source })?;
     let x0 = initial_estimate(scenario, &draw, &truth.samples[0], &mut rng);

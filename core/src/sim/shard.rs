@@ -78,6 +78,9 @@ pub struct ShardResult {
     pub states: Vec<String>,
     /// Channel names.
     pub channels: Vec<String>,
+    /// The truth atmosphere file and its run → profile rule ([`super::TradeReport::atmosphere`]).
+    #[serde(default)]
+    pub atmosphere: Option<crate::atmosphere::ProfileProvenance>,
     /// Which shard this is.
     pub shard: Shard,
     /// The shard's blocks, in block order.
@@ -198,5 +201,6 @@ pub fn merge_shards(mut shards: Vec<ShardResult>) -> Result<TradeReport, TradeEr
         states: first.states,
         channels: first.channels,
         pcrlb,
+        atmosphere: first.atmosphere,
     })
 }

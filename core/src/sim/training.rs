@@ -34,7 +34,7 @@ pub fn generate_data(
             let mut rng = ChaCha8Rng::seed_from_u64(
                 cfg.seed ^ (0x9E37_79B9_7F4A_7C15_u64.wrapping_mul(j as u64 + 1)),
             );
-            let draw = scenario.draw_truth(&mut rng);
+            let draw = scenario.draw_truth_run(j, &mut rng);
             let model = EntryModel {
                 kind: draw.model.kind,
                 planet: draw.model.planet,

@@ -5,6 +5,7 @@ mod grid;
 mod observe;
 mod optimize;
 mod plots;
+mod provenance;
 mod replay;
 mod simulate;
 mod trade;

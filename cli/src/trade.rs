@@ -1,5 +1,6 @@
 //! `entrynav trade`: Monte Carlo comparison of navigation filters on a scenario.
 
+use crate::provenance::{Provenance, Summary, Timing};
 use anyhow::{Context, Result};
 use clap::Args;
 use entrynav::estimation::nav::FilterKind;
@@ -183,9 +184,9 @@ pub fn run(args: &TradeArgs) -> Result<()> {
     let elapsed = clock.elapsed().as_secs_f64();
     print_tables(&report, elapsed);
     if let Some(path) = &args.json {
-        write_file(path, |w| {
-            Ok(serde_json::to_writer_pretty(&mut *w, &report)?)
-        })?;
+        let provenance =
+            Provenance::new(&args.sets).with_scenario(&scenario, args.atmosphere_file.as_deref());
+        write_summary(path, &provenance, &report, elapsed)?;
         println!("wrote {}", path.display());
     }
     if let Some(dir) = &args.csv_dir {
@@ -213,12 +214,18 @@ fn merge(
             .with_context(|| format!("{} is not a shard file", p.display()))?;
         parts.push(part);
     }
+    let fingerprint = parts
+        .first()
+        .map(|p| p.scenario_fingerprint.clone())
+        .unwrap_or_default();
     let report = merge_shards(parts)?;
     print_tables(&report, 0.0);
     if let Some(path) = json {
-        write_file(path, |w| {
-            Ok(serde_json::to_writer_pretty(&mut *w, &report)?)
-        })?;
+        let provenance = Provenance {
+            scenario_fingerprint: Some(fingerprint),
+            ..Provenance::new(&[])
+        };
+        write_summary(path, &provenance, &report, 0.0)?;
         println!("wrote {}", path.display());
     }
     if let Some(dir) = csv_dir {
@@ -228,6 +235,25 @@ fn merge(
         crate::plots::trade_plots(dir, &report)?;
     }
     Ok(())
+}
+
+/// Write a trade summary: provenance, the statistics, then the wall-clock `timing`.
+fn write_summary(
+    path: &Path,
+    provenance: &Provenance,
+    report: &TradeReport,
+    wall_s: f64,
+) -> Result<()> {
+    let summary = Summary {
+        provenance,
+        report,
+        timing: Timing::of(report, wall_s),
+    };
+    write_file(path, |w| {
+        serde_json::to_writer_pretty(&mut *w, &summary)?;
+        writeln!(w)?;
+        Ok(())
+    })
 }
 
 fn write_file(path: &Path, body: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {

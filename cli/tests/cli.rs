@@ -215,12 +215,21 @@ fn trade_writes_the_documented_json_csv_and_plots() {
             "anees",
             "nees_in_bounds_frac",
             "diverged",
-            "us_per_step",
             "density_rmspe_pct",
             "ellipse_km",
         ] {
             assert!(f.get(key).is_some(), "JSON filter entry lacks {key}: {f}");
         }
+        assert!(
+            f.get("us_per_step").is_none(),
+            "timing outside `timing`: {f}"
+        );
+        let name = f["name"].as_str().unwrap();
+        assert!(
+            v["timing"]["us_per_step"][name].as_f64().unwrap() > 0.0,
+            "{}",
+            v["timing"]
+        );
         for state in [
             "r_m",
             "lon_rad",
@@ -468,4 +477,101 @@ fn optimize_orbiters_beats_the_paper_and_writes_a_usable_scenario() {
     ]);
     assert_eq!(code, 2);
     assert!(err.contains("altitude"), "{err}");
+}
+
+/// A trade JSON without its `timing` block (and, when asked, without the command line).
+fn reproducible_part(path: &std::path::Path, drop_command_line: bool) -> serde_json::Value {
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let obj = v.as_object_mut().unwrap();
+    assert!(obj.remove("timing").is_some(), "no timing block");
+    if drop_command_line {
+        obj["provenance"]
+            .as_object_mut()
+            .unwrap()
+            .remove("command_line");
+    }
+    v
+}
+
+#[test]
+fn trade_json_has_provenance_and_is_identical_across_threads_and_repeats() {
+    let dir = tmpdir("provenance");
+    let run = |threads: &str, name: &str| {
+        let path = dir.join(name);
+        let (code, _, err) = entrynav(&[
+            "trade",
+            "--scenario",
+            "orbiters-3",
+            "--filters",
+            "ekf,ukf",
+            "--runs",
+            "5",
+            "--seed",
+            "4",
+            "--set",
+            "truth.density_bias=0.05",
+            "--threads",
+            threads,
+            "--quiet",
+            "--json",
+            path.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{err}");
+        path
+    };
+    let text = |p: &std::path::Path| std::fs::read_to_string(p).unwrap();
+    let strip_timing = |t: String| t[..t.find("\"timing\"").expect("timing block")].to_string();
+    // The same command twice: everything but `timing` byte-identical.
+    let a = run("1", "a.json");
+    let first = text(&a);
+    run("1", "a.json");
+    let second = text(&a);
+    assert!(strip_timing(first.clone()) == strip_timing(second.clone()));
+    assert!(first != second, "timing should be measured, not constant");
+    // One thread against two: identical but for the command line.
+    let c = run("2", "c.json");
+    assert!(reproducible_part(&a, true) == reproducible_part(&c, true));
+
+    let v: serde_json::Value = serde_json::from_str(&text(&a)).unwrap();
+    let p = &v["provenance"];
+    assert_eq!(p["version"], env!("CARGO_PKG_VERSION"));
+    assert!(p["git_commit"].is_null() || p["git_commit"].as_str().unwrap().len() == 40);
+    assert_eq!(
+        p["overrides"],
+        serde_json::json!(["truth.density_bias=0.05"])
+    );
+    let cmd: Vec<&str> = p["command_line"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s.as_str().unwrap())
+        .collect();
+    assert!(cmd.windows(2).any(|w| w == ["--threads", "1"]), "{cmd:?}");
+    let fp = p["scenario_fingerprint"].as_str().unwrap();
+    assert_eq!(fp.len(), 16);
+    assert!(p["atmosphere"]["truth"].is_object(), "{p}");
+    // The override changes the fingerprint.
+    let d = dir.join("d.json");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--runs",
+        "2",
+        "--quiet",
+        "--json",
+        d.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let vd: serde_json::Value = serde_json::from_str(&text(&d)).unwrap();
+    assert_ne!(
+        vd["provenance"]["scenario_fingerprint"].as_str().unwrap(),
+        fp
+    );
+    // Timing lives only in `timing`.
+    for f in v["filters"].as_array().unwrap() {
+        assert!(f.get("us_per_step").is_none(), "{f}");
+    }
+    assert!(v["timing"]["us_per_step"]["ekf"].as_f64().unwrap() > 0.0);
 }

@@ -104,7 +104,9 @@ pub struct FilterReport {
     pub diverged: u64,
     /// The first runs of each kind (run index, time, kind, reason).
     pub failures: Vec<RunProblem>,
-    /// Mean CPU time per filter step \[µs\] (wall clock; not reproducible bit for bit).
+    /// Mean CPU time per filter step \[µs\] (wall clock; not reproducible bit for bit, so not
+    /// serialised with the statistics: the CLI writes it to the summary's `timing` block).
+    #[serde(skip)]
     pub us_per_step: f64,
     /// Density RMSPE (seed 001 eq. 70, Table 6) [%] for filters that estimate density: the
     /// filter's density profile at the true altitude against the true density.

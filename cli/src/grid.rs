@@ -251,7 +251,16 @@ pub fn run(grid_path: &Path, out_dir: &Path, quiet: bool) -> Result<()> {
         .with_context(|| format!("cannot create {}", out_dir.display()))?;
     let mut rows = Vec::new();
     let mut reports: Vec<(String, String, TradeReport)> = Vec::new();
+    let cancel = crate::interrupt::install();
     for (i, cell) in cells.iter().enumerate() {
+        if cancel.load(std::sync::atomic::Ordering::Relaxed) {
+            return Err(crate::interrupt::Interrupted(format!(
+                "{i} of {} cells in {}",
+                cells.len(),
+                out_dir.display()
+            ))
+            .into());
+        }
         let scenario = load::build(cell.config.clone(), &cell.dir)?;
         let mut fit = Vec::new();
         for name in &grid.filters {
@@ -304,12 +313,23 @@ pub fn run(grid_path: &Path, out_dir: &Path, quiet: bool) -> Result<()> {
         if fit.is_empty() {
             continue;
         }
-        let report = run_trade(
-            &scenario,
-            &fit,
-            &McOptions::new(grid.runs, grid.seed),
-            &|_| {},
-        )?;
+        let opts = McOptions {
+            cancel: Some(cancel),
+            ..McOptions::new(grid.runs, grid.seed)
+        };
+        let report = run_trade(&scenario, &fit, &opts, &|_| {})?;
+        if !report.complete {
+            // The cell was cut short: the report keeps the cells finished before it.
+            return Err(crate::interrupt::Interrupted(format!(
+                "{i} of {} cells in {} (cell {} dropped after {} of {} runs)",
+                cells.len(),
+                out_dir.display(),
+                cell.label,
+                report.runs_completed,
+                report.runs
+            ))
+            .into());
+        }
         for f in &report.filters {
             rows.push(CellRow {
                 cell: cell.label.clone(),
@@ -337,6 +357,8 @@ pub fn run(grid_path: &Path, out_dir: &Path, quiet: bool) -> Result<()> {
             entrynav::sim::shard::scenario_fingerprint(&scenario),
             report,
         ));
+        // Each finished cell is in the report at once, so an interrupted grid keeps them.
+        write_outputs(&grid, out_dir, &rows, &reports)?;
     }
     write_outputs(&grid, out_dir, &rows, &reports)?;
     println!(

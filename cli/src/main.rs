@@ -2,6 +2,7 @@
 
 mod fmu;
 mod grid;
+mod interrupt;
 mod observe;
 mod optimize;
 mod plots;
@@ -75,6 +76,10 @@ enum ScenarioAction {
 fn main() {
     let cli = Cli::parse();
     if let Err(e) = run(cli) {
+        if let Some(i) = e.downcast_ref::<interrupt::Interrupted>() {
+            eprintln!("{i}");
+            std::process::exit(interrupt::EXIT_INTERRUPTED);
+        }
         eprintln!("error: {e:#}");
         std::process::exit(2);
     }

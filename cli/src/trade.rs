@@ -135,6 +135,7 @@ pub fn run(args: &TradeArgs) -> Result<()> {
     }
     let opts = McOptions {
         pcrlb: !args.no_pcrlb,
+        cancel: Some(crate::interrupt::install()),
         ..McOptions::new(runs, args.seed)
     };
     if let Some(spec) = &args.shard {
@@ -144,6 +145,13 @@ pub fn run(args: &TradeArgs) -> Result<()> {
             .as_ref()
             .context("--shard needs --json FILE to write the shard to")?;
         let result = run_shard(&scenario, &filters, &opts, shard, &|_| {})?;
+        if !result.complete {
+            return Err(crate::interrupt::Interrupted(format!(
+                "shard {}/{} not written (a shard must be complete to merge)",
+                shard.index, shard.count
+            ))
+            .into());
+        }
         write_file(path, |w| Ok(serde_json::to_writer(&mut *w, &result)?))?;
         let n: usize = result.blocks.len();
         println!(
@@ -182,6 +190,12 @@ pub fn run(args: &TradeArgs) -> Result<()> {
     };
     bar.finish_and_clear();
     let elapsed = clock.elapsed().as_secs_f64();
+    if !report.complete {
+        eprintln!(
+            "interrupted: {} of {} runs completed; writing the partial results",
+            report.runs_completed, report.runs
+        );
+    }
     print_tables(&report, elapsed);
     if let Some(path) = &args.json {
         let provenance =
@@ -196,6 +210,13 @@ pub fn run(args: &TradeArgs) -> Result<()> {
     if let Some(dir) = &args.plots {
         crate::plots::trade_plots(dir, &report)?;
         println!("wrote plots to {}", dir.display());
+    }
+    if !report.complete {
+        return Err(crate::interrupt::Interrupted(format!(
+            "{} of {} runs completed (complete: false in the summary)",
+            report.runs_completed, report.runs
+        ))
+        .into());
     }
     Ok(())
 }
@@ -278,9 +299,14 @@ fn fmt(v: Option<f64>) -> String {
 }
 
 fn print_tables(report: &TradeReport, elapsed: f64) {
+    let partial = if report.complete {
+        String::new()
+    } else {
+        format!(" of {} asked (interrupted)", report.runs)
+    };
     println!(
-        "scenario {}  runs {}  seed {}  ({elapsed:.2} s wall)",
-        report.scenario, report.runs, report.seed
+        "scenario {}  runs {}{partial}  seed {}  ({elapsed:.2} s wall)",
+        report.scenario, report.runs_completed, report.seed
     );
     for f in &report.filters {
         println!();

@@ -575,3 +575,77 @@ fn trade_json_has_provenance_and_is_identical_across_threads_and_repeats() {
     }
     assert!(v["timing"]["us_per_step"]["ekf"].as_f64().unwrap() > 0.0);
 }
+
+#[test]
+fn sigint_writes_the_partial_summary_of_the_completed_runs_and_exits_130() {
+    let dir = tmpdir("sigint");
+    let json = dir.join("partial.json");
+    let common = [
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--filters",
+        "ekf",
+        "--seed",
+        "8",
+        "--threads",
+        "1",
+        "--quiet",
+    ];
+    let mut child = Command::new(env!("CARGO_BIN_EXE_entrynav"))
+        .args(common)
+        .args(["--runs", "1000000", "--json", json.to_str().unwrap()])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(2500));
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let sent = std::time::Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        assert!(
+            sent.elapsed().as_secs() < 20,
+            "still running 20 s after SIGINT"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    };
+    let mut err = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut err).unwrap();
+    assert_eq!(status.code(), Some(130), "{err}");
+    assert!(err.contains("interrupted"), "{err}");
+    let partial: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(partial["complete"], false);
+    assert_eq!(partial["runs"], 1000000);
+    let done = partial["runs_completed"].as_u64().unwrap();
+    assert!(done > 0 && done < 1000000, "{done}");
+    assert_eq!(partial["filters"][0]["runs"], done);
+
+    // The partial statistics are exactly those of a study of `done` runs.
+    let full_json = dir.join("full.json");
+    let (code, _, err) = entrynav(
+        &[
+            &common[..],
+            &[
+                "--runs",
+                &done.to_string(),
+                "--json",
+                full_json.to_str().unwrap(),
+            ],
+        ]
+        .concat(),
+    );
+    assert_eq!(code, 0, "{err}");
+    let full: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&full_json).unwrap()).unwrap();
+    assert_eq!(full["complete"], true);
+    assert!(partial["filters"] == full["filters"], "partial != full");
+    assert!(partial["pcrlb"] == full["pcrlb"], "partial PCRLB != full");
+}

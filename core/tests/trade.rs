@@ -30,6 +30,7 @@ fn trade(
         seed,
         chunk,
         pcrlb: true,
+        cancel: None,
     };
     let mut r = pool
         .install(|| run_trade(s, filters, &opts, &|_| {}))
@@ -267,6 +268,7 @@ fn shards_merge_to_exactly_the_single_process_result() {
         seed: 9,
         chunk: 50,
         pcrlb: true,
+        cancel: None,
     };
     let mut whole = run_trade(&s, &filters, &opts, &|_| {}).unwrap();
     let mut shards3: Vec<_> = (0..3)
@@ -311,6 +313,7 @@ fn shards_merge_to_exactly_the_single_process_result() {
             seed: 10,
             chunk: 50,
             pcrlb: true,
+            cancel: None,
         },
         Shard { index: 0, count: 3 },
         &|_| {},
@@ -354,4 +357,39 @@ fn density_rmspe_reads_the_onboard_profile_at_the_true_altitude() {
             .flatten()
             .all(|v| v.is_finite())
     );
+}
+
+#[test]
+fn a_cancelled_trade_is_exactly_the_study_of_its_completed_runs() {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    static CANCEL: AtomicBool = AtomicBool::new(false);
+    let s = scenario("orbiters-3");
+    let filters = [FilterKind::Ekf, FilterKind::Ukf];
+    let opts = McOptions {
+        runs: 400,
+        seed: 5,
+        chunk: 7,
+        pcrlb: true,
+        cancel: Some(&CANCEL),
+    };
+    // Cancel once 20 runs are done: the chunk in flight finishes, no further run starts.
+    let progress = |done: usize| {
+        if done >= 20 {
+            CANCEL.store(true, Ordering::Relaxed);
+        }
+    };
+    let mut partial = run_trade(&s, &filters, &opts, &progress).unwrap();
+    assert!(!partial.complete);
+    assert_eq!(partial.runs, 400);
+    assert_eq!(partial.runs_completed, 21, "three chunks of 7");
+    let mut full = run_trade(&s, &filters, &McOptions::new(21, 5), &|_| {}).unwrap();
+    assert!(full.complete && full.runs_completed == 21);
+    for r in [&mut partial, &mut full] {
+        for f in &mut r.filters {
+            f.us_per_step = 0.0;
+        }
+    }
+    assert!(partial.filters == full.filters, "partial statistics differ");
+    assert!(partial.pcrlb == full.pcrlb, "partial PCRLB differs");
+    assert_eq!(partial.filters[0].runs, 21);
 }

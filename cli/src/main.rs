@@ -1,5 +1,6 @@
 //! `entrynav`: Mars entry navigation from the command line.
 
+mod exit;
 mod fmu;
 mod grid;
 mod interrupt;
@@ -74,14 +75,21 @@ enum ScenarioAction {
 }
 
 fn main() {
+    // Rust ignores SIGPIPE, so printing into a closed pipe (`entrynav simulate … | head -1`)
+    // would panic; restore the default so the process ends quietly, as other Unix tools do.
+    // SAFETY: called once at start-up, before any thread exists.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = Cli::parse();
     if let Err(e) = run(cli) {
-        if let Some(i) = e.downcast_ref::<interrupt::Interrupted>() {
-            eprintln!("{i}");
-            std::process::exit(interrupt::EXIT_INTERRUPTED);
+        let code = exit::code(&e);
+        if code == interrupt::EXIT_INTERRUPTED {
+            eprintln!("{e}");
+        } else {
+            eprintln!("error: {e:#}");
         }
-        eprintln!("error: {e:#}");
-        std::process::exit(2);
+        std::process::exit(code);
     }
 }
 

@@ -1,5 +1,6 @@
 //! `entrynav trade`: Monte Carlo comparison of navigation filters on a scenario.
 
+use crate::exit::{check_output_dir, check_output_file, is_stdout};
 use crate::provenance::{Provenance, Summary, Timing};
 use anyhow::{Context, Result};
 use clap::Args;
@@ -36,9 +37,10 @@ pub struct TradeArgs {
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(long, value_parser = crate::exit::parse_threads)]
     pub threads: Option<usize>,
-    /// Write the summary as JSON.
+    /// Write the summary as JSON (`-`: to standard output, and no tables). Every output path is
+    /// checked before the first run.
     #[arg(long)]
     pub json: Option<PathBuf>,
     /// Write per-filter time series (RMSE, mean σ, NEES, …) as CSV files into this directory.
@@ -47,7 +49,7 @@ pub struct TradeArgs {
     /// Write SVG plots (RMSE vs time, errors with 3σ envelopes, NEES) into this directory.
     #[arg(long)]
     pub plots: Option<PathBuf>,
-    /// No progress bar.
+    /// No progress output (bars, per-cell and per-epoch logs); results and tables still print.
     #[arg(long)]
     pub quiet: bool,
     /// Use this density table (CSV, or Mars-GRAM-style whitespace columns) as the truth mean
@@ -118,8 +120,15 @@ pub fn run(args: &TradeArgs) -> Result<()> {
         );
     }
     if let Some(grid) = &args.grid {
+        check_output_dir(&args.out_dir, "--out-dir")?;
         return crate::grid::run(grid, &args.out_dir, args.quiet);
     }
+    check_outputs(
+        args.json.as_deref(),
+        args.csv_dir.as_deref(),
+        args.plots.as_deref(),
+    )?;
+    let to_stdout = args.json.as_deref().is_some_and(is_stdout);
     let scenario_name = args.scenario.as_deref().context("--scenario is required")?;
     let (cfg, dir) = load::resolve(scenario_name, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &args.sets)?;
@@ -154,7 +163,7 @@ pub fn run(args: &TradeArgs) -> Result<()> {
         }
         write_file(path, |w| Ok(serde_json::to_writer(&mut *w, &result)?))?;
         let n: usize = result.blocks.len();
-        println!(
+        eprintln!(
             "wrote shard {}/{} ({n} blocks) of {} runs to {}",
             shard.index,
             shard.count,
@@ -196,20 +205,32 @@ pub fn run(args: &TradeArgs) -> Result<()> {
             report.runs_completed, report.runs
         );
     }
-    print_tables(&report, elapsed);
+    // With `--json -` the JSON is standard output: no tables, notes to stderr.
+    let note = |msg: String| {
+        if to_stdout {
+            eprintln!("{msg}");
+        } else {
+            println!("{msg}");
+        }
+    };
+    if !to_stdout {
+        print_tables(&report, elapsed);
+    }
     if let Some(path) = &args.json {
         let provenance =
             Provenance::new(&args.sets).with_scenario(&scenario, args.atmosphere_file.as_deref());
         write_summary(path, &provenance, &report, elapsed)?;
-        println!("wrote {}", path.display());
+        if !to_stdout {
+            note(format!("wrote {}", path.display()));
+        }
     }
     if let Some(dir) = &args.csv_dir {
         write_csv_dir(dir, &report)?;
-        println!("wrote CSV series to {}", dir.display());
+        note(format!("wrote CSV series to {}", dir.display()));
     }
     if let Some(dir) = &args.plots {
         crate::plots::trade_plots(dir, &report)?;
-        println!("wrote plots to {}", dir.display());
+        note(format!("wrote plots to {}", dir.display()));
     }
     if !report.complete {
         return Err(crate::interrupt::Interrupted(format!(
@@ -227,6 +248,7 @@ fn merge(
     csv_dir: Option<&Path>,
     plots: Option<&Path>,
 ) -> Result<()> {
+    check_outputs(json, csv_dir, plots)?;
     let mut parts = Vec::new();
     for p in shards {
         let text = std::fs::read_to_string(p)
@@ -240,7 +262,9 @@ fn merge(
         .map(|p| p.scenario_fingerprint.clone())
         .unwrap_or_default();
     let report = merge_shards(parts)?;
-    print_tables(&report, 0.0);
+    if !json.is_some_and(is_stdout) {
+        print_tables(&report, 0.0);
+    }
     if let Some(path) = json {
         let provenance = Provenance {
             scenario_fingerprint: Some(fingerprint),
@@ -277,7 +301,28 @@ fn write_summary(
     })
 }
 
+/// Check every output path of a study before its first run (exit code 2 naming the path).
+fn check_outputs(json: Option<&Path>, csv_dir: Option<&Path>, plots: Option<&Path>) -> Result<()> {
+    if let Some(p) = json {
+        check_output_file(p, "--json")?;
+    }
+    if let Some(d) = csv_dir {
+        check_output_dir(d, "--csv-dir")?;
+    }
+    if let Some(d) = plots {
+        check_output_dir(d, "--plots")?;
+    }
+    Ok(())
+}
+
+/// Write `path` (`-`: standard output), creating its directory.
 fn write_file(path: &Path, body: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
+    if is_stdout(path) {
+        let mut w = std::io::BufWriter::new(std::io::stdout().lock());
+        body(&mut w).context("writing standard output")?;
+        w.flush()?;
+        return Ok(());
+    }
     if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
         std::fs::create_dir_all(parent)
             .with_context(|| format!("cannot create {}", parent.display()))?;
@@ -285,8 +330,9 @@ fn write_file(path: &Path, body: impl FnOnce(&mut dyn Write) -> Result<()>) -> R
     let f =
         std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
     let mut w = std::io::BufWriter::new(f);
-    body(&mut w).with_context(|| format!("writing {}", path.display()))?;
-    w.flush()?;
+    body(&mut w)
+        .and_then(|()| Ok(w.flush()?))
+        .map_err(|e| crate::exit::Runtime(format!("writing {}: {e:#}", path.display())))?;
     Ok(())
 }
 

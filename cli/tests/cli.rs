@@ -649,3 +649,96 @@ fn sigint_writes_the_partial_summary_of_the_completed_runs_and_exits_130() {
     assert!(partial["filters"] == full["filters"], "partial != full");
     assert!(partial["pcrlb"] == full["pcrlb"], "partial PCRLB != full");
 }
+
+#[test]
+fn output_paths_are_checked_before_the_first_run() {
+    let dir = tmpdir("outputs");
+    let file = dir.join("a-file");
+    std::fs::write(&file, "x").unwrap();
+    let bad = file.join("sub").join("t.json");
+    let clock = std::time::Instant::now();
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--runs",
+        "1000000",
+        "--quiet",
+        "--json",
+        bad.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains(bad.to_str().unwrap()), "{err}");
+    assert!(clock.elapsed().as_secs() < 20, "ran the study first");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--runs",
+        "1000000",
+        "--csv-dir",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--csv-dir") && err.contains("a-file"), "{err}");
+}
+
+#[test]
+fn json_dash_writes_the_summary_to_stdout_only() {
+    let (code, out, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--runs",
+        "2",
+        "--quiet",
+        "--json",
+        "-",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("stdout is one JSON document");
+    assert_eq!(v["runs"], 2);
+    assert!(v["provenance"]["scenario_fingerprint"].is_string());
+    assert!(!std::path::Path::new("-").exists());
+}
+
+#[test]
+fn usage_errors_exit_2_with_a_clear_message() {
+    let (code, _, err) = entrynav(&["trade", "--scenario", "orbiters-3", "--threads", "0"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("1 to 1024"), "{err}");
+    let (code, _, err) = entrynav(&["trade", "--scenario", "no-such-scenario"]);
+    assert_eq!(code, 2, "{err}");
+    let (code, _, err) = entrynav(&["trade", "--scenario", "orbiters-3", "--filters", "nope"]);
+    assert_eq!(code, 2, "{err}");
+}
+
+#[test]
+fn simulate_into_a_closed_pipe_ends_quietly_and_names_the_stop_reason() {
+    use std::io::BufRead;
+    // Far more CSV than a pipe buffers (64 KiB), so the writer meets the closed pipe.
+    let (code, csv, err) = entrynav(&["simulate", "--scenario", "msl-airdata", "--out", "-"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(csv.len() > 1 << 18, "only {} bytes", csv.len());
+    assert!(csv.starts_with("t_s,"), "{}", &csv[..80]);
+    let mut child = Command::new(env!("CARGO_BIN_EXE_entrynav"))
+        .args(["simulate", "--scenario", "msl-airdata", "--out", "-"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    std::io::BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut first)
+        .unwrap(); // the reader is dropped here: the pipe closes after one line
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.trim().is_empty(), "not quiet on a closed pipe: {err}");
+    assert_ne!(out.status.code(), Some(101), "{err}");
+    let (code, out, err) = entrynav(&["simulate", "--scenario", "orbiters-3"]);
+    assert_eq!(code, 0, "{err}");
+    let stop = out.lines().find(|l| l.starts_with("stopped")).unwrap();
+    for debug in ["(Duration)", "(StopSpeed)", "(Ground)"] {
+        assert!(!stop.contains(debug), "{stop}");
+    }
+}

@@ -518,6 +518,23 @@ fn write_csv_dir(dir: &Path, report: &TradeReport) -> Result<()> {
             Ok(())
         })?;
     }
+    let path = dir.join(format!("{}_final_errors.csv", report.scenario));
+    write_file(&path, |w| {
+        let mut header = vec!["run".to_string(), "filter".into(), "status".into()];
+        header.extend(report.states.iter().map(|s| format!("err_{s}")));
+        header.extend(["pos_m", "vel_mps", "nees"].map(String::from));
+        writeln!(w, "{}", header.join(","))?;
+        let o = |v: Option<f64>| v.map(|x| x.to_string()).unwrap_or_default();
+        for f in &report.filters {
+            for r in &f.final_errors {
+                let mut row = vec![r.run.to_string(), f.name.clone(), r.status.clone()];
+                row.extend((0..report.states.len()).map(|i| o(r.err.get(i).copied().flatten())));
+                row.extend([o(r.pos_m), o(r.vel_mps), o(r.nees)]);
+                writeln!(w, "{}", row.join(","))?;
+            }
+        }
+        Ok(())
+    })?;
     for f in &report.filters {
         let path = dir.join(format!("{}_{}.csv", report.scenario, f.name));
         write_file(&path, |w| {

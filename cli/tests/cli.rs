@@ -742,3 +742,55 @@ fn simulate_into_a_closed_pipe_ends_quietly_and_names_the_stop_reason() {
         assert!(!stop.contains(debug), "{stop}");
     }
 }
+
+#[test]
+fn final_errors_csv_has_one_row_per_run_and_filter_matching_the_summary() {
+    let dir = tmpdir("finals");
+    let json = dir.join("t.json");
+    let csv = dir.join("csv");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "four-beacon-fusion-fault",
+        "--filters",
+        "ekf,dcifaif",
+        "--runs",
+        "7",
+        "--seed",
+        "2",
+        "--quiet",
+        "--json",
+        json.to_str().unwrap(),
+        "--csv-dir",
+        csv.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let text =
+        std::fs::read_to_string(csv.join("four-beacon-fusion-fault_final_errors.csv")).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(&header[..4], ["run", "filter", "status", "err_r_m"]);
+    assert_eq!(&header[header.len() - 3..], ["pos_m", "vel_mps", "nees"]);
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 14, "7 runs x 2 filters");
+    for f in v["filters"].as_array().unwrap() {
+        let name = f["name"].as_str().unwrap();
+        let mine: Vec<&Vec<&str>> = rows.iter().filter(|r| r[1] == name).collect();
+        let runs: Vec<usize> = mine.iter().map(|r| r[0].parse().unwrap()).collect();
+        assert_eq!(runs, (0..7).collect::<Vec<_>>());
+        let count = |s: &str| mine.iter().filter(|r| r[2] == s).count() as u64;
+        assert_eq!(count("failed"), f["failed"].as_u64().unwrap());
+        assert_eq!(count("diverged"), f["diverged"].as_u64().unwrap());
+        // The RMS of the completed runs' final position errors is the summary's rmse_final.
+        let pos: Vec<f64> = mine
+            .iter()
+            .filter(|r| r[2] != "failed")
+            .map(|r| r[header.len() - 3].parse().unwrap())
+            .collect();
+        let rms = (pos.iter().map(|x| x * x).sum::<f64>() / pos.len() as f64).sqrt();
+        let want = f["rmse_final"]["pos_m"].as_f64().unwrap();
+        assert!((rms - want).abs() <= 1e-9 * want, "{name}: {rms} vs {want}");
+    }
+}

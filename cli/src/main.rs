@@ -67,10 +67,15 @@ enum Command {
 
 #[derive(Subcommand)]
 enum ScenarioAction {
-    /// Print a scenario (built-in name or TOML file), validated, as TOML.
+    /// Print a scenario (built-in name or TOML file) as written, comments included, after
+    /// validating it; the output is a file to copy and edit.
     Show {
         /// Built-in name or path to a scenario TOML file.
         name: String,
+        /// Print the validated configuration in canonical TOML instead (every field, defaults
+        /// filled in, no comments).
+        #[arg(long)]
+        resolved: bool,
     },
 }
 
@@ -103,10 +108,16 @@ fn run(cli: Cli) -> Result<()> {
             Ok(())
         }
         Command::Scenario {
-            action: ScenarioAction::Show { name },
+            action: ScenarioAction::Show { name, resolved },
         } => {
             let (cfg, _) = load::resolve(&name, load::Base::CurrentDir)?.into_parts();
-            print!("{}", cfg.to_toml_string());
+            if resolved {
+                print!("{}", cfg.to_toml_string());
+            } else if let Some(text) = entrynav::scenario::builtin_toml(name.trim()) {
+                print!("{text}");
+            } else {
+                print!("{}", std::fs::read_to_string(name.trim())?);
+            }
             Ok(())
         }
         Command::Simulate(args) => simulate::run(&args),

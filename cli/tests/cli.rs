@@ -76,6 +76,25 @@ fn scenario_show_prints_toml_that_simulates_the_same() {
 }
 
 #[test]
+fn scenario_show_prints_the_builtin_file_as_written_and_resolved_on_request() {
+    let (code, text, err) = entrynav(&["scenario", "show", "four-beacon-fusion"]);
+    assert_eq!(code, 0, "{err}");
+    // Comments and one-line arrays survive, so a tutorial's `sed` finds the beacon.
+    assert!(text.contains("# Table 2"), "comments lost");
+    assert_eq!(
+        text.lines()
+            .filter(|l| l.trim() == "position_km = [3300.0, 420.0, 1350.0]")
+            .count(),
+        1,
+        "{text}"
+    );
+    let (code, resolved, err) = entrynav(&["scenario", "show", "four-beacon-fusion", "--resolved"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!resolved.contains('#') && resolved.contains("four-beacon-fusion"));
+    assert_ne!(text, resolved);
+}
+
+#[test]
 fn simulate_writes_the_documented_columns_and_summary() {
     let dir = tmpdir("sim");
     let csv = dir.join("out/msl.csv");

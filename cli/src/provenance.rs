@@ -88,6 +88,10 @@ pub struct Summary<'a> {
     /// The statistics.
     #[serde(flatten)]
     pub report: &'a TradeReport,
+    /// Only in a partial summary: the finished blocks' sums (a single-process shard file, CPU
+    /// timings included), from which `trade --resume FILE` continues.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub resume: Option<&'a entrynav::sim::ShardResult>,
     /// Wall-clock timing.
     pub timing: Timing,
 }

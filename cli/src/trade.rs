@@ -5,8 +5,9 @@ use crate::provenance::{Provenance, Summary, Timing};
 use anyhow::{Context, Result};
 use clap::Args;
 use entrynav::estimation::nav::FilterKind;
+use entrynav::sim::shard::fold_partial;
 use entrynav::sim::{
-    FilterReport, McOptions, Shard, ShardResult, TradeReport, merge_shards, run_shard, run_trade,
+    FilterReport, McOptions, Shard, ShardResult, TradeReport, merge_shards, resume_shard, run_shard,
 };
 use entrynav_loader as load;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -76,6 +77,11 @@ pub struct TradeArgs {
     /// NIS per channel, weights. Use it on a run listed under `failures`.
     #[arg(long, value_name = "K", requires = "csv_dir", conflicts_with_all = ["shard", "grid"])]
     pub replay_run: Option<usize>,
+    /// Continue the interrupted study whose partial summary (`complete: false`) is FILE: give
+    /// the same scenario, overrides, filters, runs and seed; the result is exactly that of an
+    /// uninterrupted run.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["shard", "grid", "replay_run"])]
+    pub resume: Option<PathBuf>,
     /// Skip the posterior Cramér–Rao lower bound (on by default: the `pcrlb` block of the
     /// summary, each filter's RMSE/PCRLB efficiency, the dashed PCRLB curve in the RMSE plots;
     /// it costs about one EKF's worth of work per run).
@@ -142,6 +148,7 @@ pub fn run(args: &TradeArgs) -> Result<()> {
     if let (Some(k), Some(dir)) = (args.replay_run, &args.csv_dir) {
         return crate::replay::write_replay(&scenario, &filters, args.seed, k, dir);
     }
+    let previous = args.resume.as_deref().map(read_resume).transpose()?;
     let opts = McOptions {
         pcrlb: !args.no_pcrlb,
         cancel: Some(crate::interrupt::install()),
@@ -186,9 +193,18 @@ pub fn run(args: &TradeArgs) -> Result<()> {
     );
     bar.set_message(format!("{} × {}", scenario.config.name, args.filters));
     let clock = std::time::Instant::now();
-    let report = {
+    let study = {
         let progress = |done: usize| bar.set_position(done as u64);
-        let run = || run_trade(&scenario, &filters, &opts, &progress);
+        let run = || match previous {
+            Some(prev) => resume_shard(&scenario, &filters, &opts, prev, &progress),
+            None => run_shard(
+                &scenario,
+                &filters,
+                &opts,
+                Shard { index: 0, count: 1 },
+                &progress,
+            ),
+        };
         match args.threads {
             Some(t) => rayon::ThreadPoolBuilder::new()
                 .num_threads(t.max(1))
@@ -196,6 +212,12 @@ pub fn run(args: &TradeArgs) -> Result<()> {
                 .install(run)?,
             None => run()?,
         }
+    };
+    // A partial study keeps its block sums in the summary, for --resume.
+    let (report, resume) = if study.complete {
+        (merge_shards(vec![study])?, None)
+    } else {
+        (fold_partial(study.clone())?, Some(study))
     };
     bar.finish_and_clear();
     let elapsed = clock.elapsed().as_secs_f64();
@@ -219,7 +241,7 @@ pub fn run(args: &TradeArgs) -> Result<()> {
     if let Some(path) = &args.json {
         let provenance =
             Provenance::new(&args.sets).with_scenario(&scenario, args.atmosphere_file.as_deref());
-        write_summary(path, &provenance, &report, elapsed)?;
+        write_summary(path, &provenance, &report, resume.as_ref(), elapsed)?;
         if !to_stdout {
             note(format!("wrote {}", path.display()));
         }
@@ -270,7 +292,7 @@ fn merge(
             scenario_fingerprint: Some(fingerprint),
             ..Provenance::new(&[])
         };
-        write_summary(path, &provenance, &report, 0.0)?;
+        write_summary(path, &provenance, &report, None, 0.0)?;
         println!("wrote {}", path.display());
     }
     if let Some(dir) = csv_dir {
@@ -287,11 +309,13 @@ fn write_summary(
     path: &Path,
     provenance: &Provenance,
     report: &TradeReport,
+    resume: Option<&ShardResult>,
     wall_s: f64,
 ) -> Result<()> {
     let summary = Summary {
         provenance,
         report,
+        resume,
         timing: Timing::of(report, wall_s),
     };
     write_file(path, |w| {
@@ -299,6 +323,21 @@ fn write_summary(
         writeln!(w)?;
         Ok(())
     })
+}
+
+/// The block sums stored in the partial summary `path` (`--resume`).
+fn read_resume(path: &Path) -> Result<ShardResult> {
+    let usage = |m: String| crate::exit::Usage(format!("--resume {}: {m}", path.display()));
+    let text = std::fs::read_to_string(path).map_err(|e| usage(e.to_string()))?;
+    let mut v: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| usage(format!("not JSON: {e}")))?;
+    let block = v
+        .get_mut("resume")
+        .map(serde_json::Value::take)
+        .ok_or_else(|| {
+            usage("no `resume` block: not the summary of an interrupted trade".into())
+        })?;
+    Ok(serde_json::from_value(block).map_err(|e| usage(format!("corrupt `resume` block: {e}")))?)
 }
 
 /// Check every output path of a study before its first run (exit code 2 naming the path).

@@ -813,3 +813,73 @@ fn final_errors_csv_has_one_row_per_run_and_filter_matching_the_summary() {
         assert!((rms - want).abs() <= 1e-9 * want, "{name}: {rms} vs {want}");
     }
 }
+
+#[test]
+fn resume_continues_an_interrupted_study_to_exactly_the_uninterrupted_result() {
+    let dir = tmpdir("resume");
+    let partial = dir.join("partial.json");
+    let common = [
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--filters",
+        "ekf",
+        "--seed",
+        "11",
+        "--runs",
+        "1500",
+        "--threads",
+        "1",
+        "--quiet",
+    ];
+    let mut child = Command::new(env!("CARGO_BIN_EXE_entrynav"))
+        .args(common)
+        .args(["--json", partial.to_str().unwrap()])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert_eq!(child.wait().unwrap().code(), Some(130));
+    let p: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&partial).unwrap()).unwrap();
+    assert_eq!(p["complete"], false);
+    let done = p["runs_completed"].as_u64().unwrap();
+    assert!(done > 0 && done < 1500, "{done}");
+    assert!(p["resume"].is_object());
+
+    let resumed = dir.join("resumed.json");
+    let full = dir.join("full.json");
+    for (out, extra) in [
+        (&resumed, vec!["--resume", partial.to_str().unwrap()]),
+        (&full, vec![]),
+    ] {
+        let args: Vec<&str> = common
+            .iter()
+            .copied()
+            .chain(extra)
+            .chain(["--json", out.to_str().unwrap()])
+            .collect();
+        let (code, _, err) = entrynav(&args);
+        assert_eq!(code, 0, "{err}");
+    }
+    let read = |p: &std::path::Path| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
+    };
+    let (r, f) = (read(&resumed), read(&full));
+    assert_eq!(r["complete"], true);
+    assert!(r.get("resume").is_none());
+    assert!(r["filters"] == f["filters"], "resumed != uninterrupted");
+    assert!(r["pcrlb"] == f["pcrlb"], "resumed PCRLB != uninterrupted");
+    // Resuming with another seed is refused.
+    let mut other: Vec<&str> = common.to_vec();
+    other[6] = "12";
+    other.extend(["--resume", partial.to_str().unwrap()]);
+    let (code, _, err) = entrynav(&other);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("seed"), "{err}");
+}

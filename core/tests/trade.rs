@@ -393,3 +393,49 @@ fn a_cancelled_trade_is_exactly_the_study_of_its_completed_runs() {
     assert!(partial.pcrlb == full.pcrlb, "partial PCRLB differs");
     assert_eq!(partial.filters[0].runs, 21);
 }
+
+#[test]
+fn a_resumed_trade_is_exactly_the_uninterrupted_one() {
+    use entrynav::sim::{Shard, merge_shards, resume_shard, run_shard};
+    use std::sync::atomic::{AtomicBool, Ordering};
+    static CANCEL: AtomicBool = AtomicBool::new(false);
+    let s = scenario("orbiters-3");
+    let filters = [FilterKind::Ekf];
+    let opts = McOptions {
+        chunk: 50,
+        cancel: Some(&CANCEL),
+        ..McOptions::new(600, 3)
+    };
+    // Cancelled after 306 runs: block 0 finished, block 1 holds 50 runs.
+    let progress = |done: usize| {
+        if done >= 300 {
+            CANCEL.store(true, Ordering::Relaxed);
+        }
+    };
+    let whole = Shard { index: 0, count: 1 };
+    let partial = run_shard(&s, &filters, &opts, whole, &progress).unwrap();
+    assert!(!partial.complete);
+    let held: Vec<usize> = partial.blocks.iter().map(|b| b.index).collect();
+    assert_eq!(held, [0, 1]);
+    let folded = entrynav::sim::shard::fold_partial(partial.clone()).unwrap();
+    assert_eq!(folded.runs_completed, 306);
+    // Through JSON, as the CLI stores it.
+    let partial: entrynav::sim::ShardResult =
+        serde_json::from_str(&serde_json::to_string(&partial).unwrap()).unwrap();
+    CANCEL.store(false, Ordering::Relaxed);
+    let other_seed = McOptions { seed: 4, ..opts };
+    assert!(resume_shard(&s, &filters, &other_seed, partial.clone(), &|_| {}).is_err());
+    let resumed = resume_shard(&s, &filters, &opts, partial, &|_| {}).unwrap();
+    assert!(resumed.complete);
+    let mut resumed = merge_shards(vec![resumed]).unwrap();
+    let mut full = run_trade(&s, &filters, &McOptions::new(600, 3), &|_| {}).unwrap();
+    for r in [&mut resumed, &mut full] {
+        for f in &mut r.filters {
+            f.us_per_step = 0.0;
+        }
+    }
+    assert!(
+        resumed == full,
+        "resumed study differs from the uninterrupted one"
+    );
+}

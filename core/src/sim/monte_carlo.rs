@@ -164,6 +164,64 @@ pub fn run_shard(
     shard: Shard,
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<ShardResult, TradeError> {
+    run_shard_from(scenario, filters, opts, shard, Vec::new(), progress)
+}
+
+/// Continue the cancelled single-process study `previous` (a [`ShardResult`] with
+/// `complete: false`, as the CLI stores it in a partial summary): its finished blocks are kept,
+/// a partial last block goes on from its next run, and the result is exactly that of an
+/// uninterrupted study (accumulation is sequential in run order). Refuses a `previous` of another
+/// scenario, seed, run count or filter list.
+pub fn resume_shard(
+    scenario: &Scenario,
+    filters: &[FilterKind],
+    opts: &McOptions,
+    previous: ShardResult,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<ShardResult, TradeError> {
+    let names: Vec<String> = filters.iter().map(|k| k.name().to_string()).collect();
+    let what = if previous.scenario_fingerprint != scenario_fingerprint(scenario) {
+        Some(format!(
+            "scenario {} ({}) vs {} ({})",
+            previous.scenario,
+            previous.scenario_fingerprint,
+            scenario.config.name,
+            scenario_fingerprint(scenario)
+        ))
+    } else if previous.seed != opts.seed {
+        Some(format!("seed {} vs {}", previous.seed, opts.seed))
+    } else if previous.runs != opts.runs {
+        Some(format!("runs {} vs {}", previous.runs, opts.runs))
+    } else if previous.filters != names {
+        Some(format!("filters {:?} vs {:?}", previous.filters, names))
+    } else if previous.shard != (Shard { index: 0, count: 1 }) || previous.format != SHARD_FORMAT {
+        Some("not a single-process study of this version".to_string())
+    } else {
+        None
+    };
+    if let Some(w) = what {
+        return Err(TradeError::Options(format!(
+            "cannot resume a different study: {w}"
+        )));
+    }
+    run_shard_from(
+        scenario,
+        filters,
+        opts,
+        previous.shard,
+        previous.blocks,
+        progress,
+    )
+}
+
+fn run_shard_from(
+    scenario: &Scenario,
+    filters: &[FilterKind],
+    opts: &McOptions,
+    shard: Shard,
+    previous: Vec<BlockSums>,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<ShardResult, TradeError> {
     if opts.runs == 0 {
         return Err(TradeError::Options("--runs must be at least 1".into()));
     }
@@ -177,7 +235,7 @@ pub fn run_shard(
         f.check_fits(&scenario.onboard)?;
     }
     let shared = Arc::new(scenario.clone());
-    let (blocks, complete) = run_blocks(&shared, filters, opts, shard, progress)?;
+    let (blocks, complete) = run_blocks(&shared, filters, opts, shard, previous, progress)?;
     Ok(ShardResult {
         format: SHARD_FORMAT,
         scenario: scenario.config.name.clone(),
@@ -198,19 +256,40 @@ fn run_blocks(
     filters: &[FilterKind],
     opts: &McOptions,
     shard: Shard,
+    previous: Vec<BlockSums>,
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<(Vec<BlockSums>, bool), TradeError> {
     let chunk = opts.chunk.max(1);
     let mut out = Vec::new();
     let mut done = 0;
+    let mut previous = previous.into_iter().peekable();
     for block in shard.blocks(opts.runs) {
         if opts.cancelled() {
             return Ok((out, false));
         }
-        let first = block * ACCUMULATION_BLOCK;
+        let mut first = block * ACCUMULATION_BLOCK;
         let last = ((block + 1) * ACCUMULATION_BLOCK).min(opts.runs);
         let mut accs = vec![FilterAccumulator::default(); filters.len()];
         let mut bounds = BoundSums::new(scenario);
+        // A resumed study: a finished block is kept, a partial one continues from its next run.
+        if let Some(prev) = previous.next_if(|b| b.index == block) {
+            let had = prev.filters.first().map_or(0, |a| a.runs as usize);
+            if prev.filters.len() != filters.len() || (opts.pcrlb != prev.bounds.is_some()) {
+                return Err(TradeError::Options(format!(
+                    "cannot resume: block {block} was run with other filters or PCRLB setting"
+                )));
+            }
+            done += had;
+            if first + had >= last {
+                out.push(prev);
+                continue;
+            }
+            first += had;
+            accs = prev.filters;
+            if let Some(b) = prev.bounds {
+                bounds = b;
+            }
+        }
         let mut cut = false;
         for start in (first..last).step_by(chunk) {
             let end = (start + chunk).min(last);

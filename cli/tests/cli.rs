@@ -883,3 +883,44 @@ fn resume_continues_an_interrupted_study_to_exactly_the_uninterrupted_result() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("seed"), "{err}");
 }
+
+#[test]
+fn an_interrupted_grid_keeps_the_cells_it_finished() {
+    let dir = tmpdir("grid-sigint");
+    let grid = dir.join("g.toml");
+    std::fs::write(
+        &grid,
+        "name = \"g\"\nruns = 300\nfilters = [\"ekf\"]\nscenarios = [\"orbiters-3\"]\n[variations]\nnoise_scale = [1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0, 5.5]\n",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let report = out.join("g.json");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_entrynav"))
+        .args(["trade", "--grid", grid.to_str().unwrap(), "--out-dir"])
+        .arg(&out)
+        .args(["--quiet"])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    // Wait for the first cell's report, then interrupt.
+    let clock = std::time::Instant::now();
+    while std::fs::read_to_string(&report)
+        .ok()
+        .is_none_or(|t| serde_json::from_str::<serde_json::Value>(&t).is_err())
+    {
+        assert!(clock.elapsed().as_secs() < 300, "no cell finished");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert_eq!(child.wait().unwrap().code(), Some(130));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let cells = v["reports"].as_array().unwrap().len();
+    assert!((1..10).contains(&cells), "{cells} cells");
+    assert_eq!(v["cells"].as_array().unwrap().len(), cells);
+    assert!(v["provenance"]["version"].is_string());
+}

@@ -2,12 +2,15 @@
 
 mod atmosphere_file;
 mod atmosphere_inspect;
+mod exit;
 mod fmu;
 mod grid;
+mod interrupt;
 mod observe;
 mod observe_pcrlb;
 mod optimize;
 mod plots;
+mod provenance;
 mod replay;
 mod simulate;
 mod trade;
@@ -72,18 +75,34 @@ enum Command {
 
 #[derive(Subcommand)]
 enum ScenarioAction {
-    /// Print a scenario (built-in name or TOML file), validated, as TOML.
+    /// Print a scenario (built-in name or TOML file) as written, comments included, after
+    /// validating it; the output is a file to copy and edit.
     Show {
         /// Built-in name or path to a scenario TOML file.
         name: String,
+        /// Print the validated configuration in canonical TOML instead (every field, defaults
+        /// filled in, no comments).
+        #[arg(long)]
+        resolved: bool,
     },
 }
 
 fn main() {
+    // Rust ignores SIGPIPE, so printing into a closed pipe (`entrynav simulate … | head -1`)
+    // would panic; restore the default so the process ends quietly, as other Unix tools do.
+    // SAFETY: called once at start-up, before any thread exists.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = Cli::parse();
     if let Err(e) = run(cli) {
-        eprintln!("error: {e:#}");
-        std::process::exit(2);
+        let code = exit::code(&e);
+        if code == interrupt::EXIT_INTERRUPTED {
+            eprintln!("{e}");
+        } else {
+            eprintln!("error: {e:#}");
+        }
+        std::process::exit(code);
     }
 }
 
@@ -97,10 +116,16 @@ fn run(cli: Cli) -> Result<()> {
             Ok(())
         }
         Command::Scenario {
-            action: ScenarioAction::Show { name },
+            action: ScenarioAction::Show { name, resolved },
         } => {
             let (cfg, _) = load::resolve(&name, load::Base::CurrentDir)?.into_parts();
-            print!("{}", cfg.to_toml_string());
+            if resolved {
+                print!("{}", cfg.to_toml_string());
+            } else if let Some(text) = entrynav::scenario::builtin_toml(name.trim()) {
+                print!("{text}");
+            } else {
+                print!("{}", std::fs::read_to_string(name.trim())?);
+            }
             Ok(())
         }
         Command::Atmosphere { action } => atmosphere_inspect::run(&action),

@@ -27,7 +27,8 @@ pub struct SimulateArgs {
     /// atmosphere perturbation) instead of using the nominal truth.
     #[arg(long)]
     dispersed: bool,
-    /// Write the trajectory and measurements as CSV to this file.
+    /// Write the trajectory and measurements as CSV to this file (`-`: to standard output,
+    /// without the summary).
     #[arg(long)]
     out: Option<PathBuf>,
 }
@@ -47,6 +48,13 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         }
     };
     let run = simulate_truth(&scenario, &draw, &mut rng)?;
+    if let Some(path) = args.out.as_deref().filter(|p| crate::exit::is_stdout(p)) {
+        let mut w = std::io::BufWriter::new(std::io::stdout().lock());
+        write_csv(&mut w, &scenario, &run)
+            .and_then(|()| w.flush())
+            .with_context(|| format!("writing {}", path.display()))?;
+        return Ok(());
+    }
     if let Some(path) = &args.out {
         if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
             std::fs::create_dir_all(parent)
@@ -155,7 +163,12 @@ fn print_summary(scenario: &Scenario, run: &TruthRun, args: &SimulateArgs) {
         }
     );
     println!("seed            {}", args.seed);
-    println!("stopped         at t = {:.2} s ({:?})", last.t, run.stop);
+    let why = match run.stop {
+        entrynav::sim::StopReason::Duration => "timing.duration_s reached",
+        entrynav::sim::StopReason::StopSpeed => "below timing.stop_speed_mps: parachute deployment",
+        entrynav::sim::StopReason::Ground => "ground reached",
+    };
+    println!("stopped         at t = {:.2} s ({why})", last.t);
     println!("final altitude  {:.3} km", last.altitude / 1e3);
     println!("final speed     {:.2} m/s", last.spherical[3]);
     println!(

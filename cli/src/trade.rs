@@ -1,11 +1,14 @@
 //! `entrynav trade`: Monte Carlo comparison of navigation filters on a scenario.
 
 use crate::atmosphere_file::{check_profile_covers, report_truth_table, truth_atmosphere};
+use crate::exit::{check_output_dir, check_output_file, is_stdout};
+use crate::provenance::{Provenance, Summary, Timing};
 use anyhow::{Context, Result};
 use clap::Args;
 use entrynav::estimation::nav::FilterKind;
+use entrynav::sim::shard::fold_partial;
 use entrynav::sim::{
-    FilterReport, McOptions, Shard, ShardResult, TradeReport, merge_shards, run_shard, run_trade,
+    FilterReport, McOptions, Shard, ShardResult, TradeReport, merge_shards, resume_shard, run_shard,
 };
 use entrynav_loader as load;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -36,9 +39,10 @@ pub struct TradeArgs {
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(long, value_parser = crate::exit::parse_threads)]
     pub threads: Option<usize>,
-    /// Write the summary as JSON.
+    /// Write the summary as JSON (`-`: to standard output, and no tables). Every output path is
+    /// checked before the first run.
     #[arg(long)]
     pub json: Option<PathBuf>,
     /// Write per-filter time series (RMSE, mean σ, NEES, …) as CSV files into this directory.
@@ -47,7 +51,7 @@ pub struct TradeArgs {
     /// Write SVG plots (RMSE vs time, errors with 3σ envelopes, NEES) into this directory.
     #[arg(long)]
     pub plots: Option<PathBuf>,
-    /// No progress bar.
+    /// No progress output (bars, per-cell and per-epoch logs); results and tables still print.
     #[arg(long)]
     pub quiet: bool,
     /// The truth atmosphere file and how to read it.
@@ -72,6 +76,11 @@ pub struct TradeArgs {
     /// NIS per channel, weights. Use it on a run listed under `failures`.
     #[arg(long, value_name = "K", requires = "csv_dir", conflicts_with_all = ["shard", "grid"])]
     pub replay_run: Option<usize>,
+    /// Continue the interrupted study whose partial summary (`complete: false`) is FILE: give
+    /// the same scenario, overrides, filters, runs and seed; the result is exactly that of an
+    /// uninterrupted run.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["shard", "grid", "replay_run"])]
+    pub resume: Option<PathBuf>,
     /// Skip the posterior Cramér–Rao lower bound (on by default: the `pcrlb` block of the
     /// summary, each filter's RMSE/PCRLB efficiency, the dashed PCRLB curve in the RMSE plots;
     /// it costs about one EKF's worth of work per run).
@@ -116,8 +125,15 @@ pub fn run(args: &TradeArgs) -> Result<()> {
         );
     }
     if let Some(grid) = &args.grid {
+        check_output_dir(&args.out_dir, "--out-dir")?;
         return crate::grid::run(grid, &args.out_dir, args.quiet);
     }
+    check_outputs(
+        args.json.as_deref(),
+        args.csv_dir.as_deref(),
+        args.plots.as_deref(),
+    )?;
+    let to_stdout = args.json.as_deref().is_some_and(is_stdout);
     let scenario_name = args.scenario.as_deref().context("--scenario is required")?;
     let (cfg, dir) = load::resolve(scenario_name, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &args.sets)?;
@@ -132,8 +148,10 @@ pub fn run(args: &TradeArgs) -> Result<()> {
     if let (Some(k), Some(dir)) = (args.replay_run, &args.csv_dir) {
         return crate::replay::write_replay(&scenario, &filters, args.seed, k, dir);
     }
+    let previous = args.resume.as_deref().map(read_resume).transpose()?;
     let opts = McOptions {
         pcrlb: !args.no_pcrlb,
+        cancel: Some(crate::interrupt::install()),
         ..McOptions::new(runs, args.seed)
     };
     if let Some(spec) = &args.shard {
@@ -143,9 +161,16 @@ pub fn run(args: &TradeArgs) -> Result<()> {
             .as_ref()
             .context("--shard needs --json FILE to write the shard to")?;
         let result = run_shard(&scenario, &filters, &opts, shard, &|_| {})?;
+        if !result.complete {
+            return Err(crate::interrupt::Interrupted(format!(
+                "shard {}/{} not written (a shard must be complete to merge)",
+                shard.index, shard.count
+            ))
+            .into());
+        }
         write_file(path, |w| Ok(serde_json::to_writer(&mut *w, &result)?))?;
         let n: usize = result.blocks.len();
-        println!(
+        eprintln!(
             "wrote shard {}/{} ({n} blocks) of {} runs to {}",
             shard.index,
             shard.count,
@@ -168,9 +193,18 @@ pub fn run(args: &TradeArgs) -> Result<()> {
     );
     bar.set_message(format!("{} × {}", scenario.config.name, args.filters));
     let clock = std::time::Instant::now();
-    let report = {
+    let study = {
         let progress = |done: usize| bar.set_position(done as u64);
-        let run = || run_trade(&scenario, &filters, &opts, &progress);
+        let run = || match previous {
+            Some(prev) => resume_shard(&scenario, &filters, &opts, prev, &progress),
+            None => run_shard(
+                &scenario,
+                &filters,
+                &opts,
+                Shard { index: 0, count: 1 },
+                &progress,
+            ),
+        };
         match args.threads {
             Some(t) => rayon::ThreadPoolBuilder::new()
                 .num_threads(t.max(1))
@@ -179,22 +213,53 @@ pub fn run(args: &TradeArgs) -> Result<()> {
             None => run()?,
         }
     };
+    // A partial study keeps its block sums in the summary, for --resume.
+    let (report, resume) = if study.complete {
+        (merge_shards(vec![study])?, None)
+    } else {
+        (fold_partial(study.clone())?, Some(study))
+    };
     bar.finish_and_clear();
     let elapsed = clock.elapsed().as_secs_f64();
-    print_tables(&report, elapsed);
+    if !report.complete {
+        eprintln!(
+            "interrupted: {} of {} runs completed; writing the partial results",
+            report.runs_completed, report.runs
+        );
+    }
+    // With `--json -` the JSON is standard output: no tables, notes to stderr.
+    let note = |msg: String| {
+        if to_stdout {
+            eprintln!("{msg}");
+        } else {
+            println!("{msg}");
+        }
+    };
+    if !to_stdout {
+        print_tables(&report, elapsed);
+    }
     if let Some(path) = &args.json {
-        write_file(path, |w| {
-            Ok(serde_json::to_writer_pretty(&mut *w, &report)?)
-        })?;
-        println!("wrote {}", path.display());
+        let provenance = Provenance::new(&args.sets)
+            .with_scenario(&scenario, args.atmosphere.atmosphere_file.as_deref());
+        write_summary(path, &provenance, &report, resume.as_ref(), elapsed)?;
+        if !to_stdout {
+            note(format!("wrote {}", path.display()));
+        }
     }
     if let Some(dir) = &args.csv_dir {
         write_csv_dir(dir, &report)?;
-        println!("wrote CSV series to {}", dir.display());
+        note(format!("wrote CSV series to {}", dir.display()));
     }
     if let Some(dir) = &args.plots {
         crate::plots::trade_plots(dir, &report)?;
-        println!("wrote plots to {}", dir.display());
+        note(format!("wrote plots to {}", dir.display()));
+    }
+    if !report.complete {
+        return Err(crate::interrupt::Interrupted(format!(
+            "{} of {} runs completed (complete: false in the summary)",
+            report.runs_completed, report.runs
+        ))
+        .into());
     }
     Ok(())
 }
@@ -205,6 +270,7 @@ fn merge(
     csv_dir: Option<&Path>,
     plots: Option<&Path>,
 ) -> Result<()> {
+    check_outputs(json, csv_dir, plots)?;
     let mut parts = Vec::new();
     for p in shards {
         let text = std::fs::read_to_string(p)
@@ -213,12 +279,20 @@ fn merge(
             .with_context(|| format!("{} is not a shard file", p.display()))?;
         parts.push(part);
     }
+    let fingerprint = parts
+        .first()
+        .map(|p| p.scenario_fingerprint.clone())
+        .unwrap_or_default();
     let report = merge_shards(parts)?;
-    print_tables(&report, 0.0);
+    if !json.is_some_and(is_stdout) {
+        print_tables(&report, 0.0);
+    }
     if let Some(path) = json {
-        write_file(path, |w| {
-            Ok(serde_json::to_writer_pretty(&mut *w, &report)?)
-        })?;
+        let provenance = Provenance {
+            scenario_fingerprint: Some(fingerprint),
+            ..Provenance::new(&[])
+        };
+        write_summary(path, &provenance, &report, None, 0.0)?;
         println!("wrote {}", path.display());
     }
     if let Some(dir) = csv_dir {
@@ -230,7 +304,64 @@ fn merge(
     Ok(())
 }
 
+/// Write a trade summary: provenance, the statistics, then the wall-clock `timing`.
+fn write_summary(
+    path: &Path,
+    provenance: &Provenance,
+    report: &TradeReport,
+    resume: Option<&ShardResult>,
+    wall_s: f64,
+) -> Result<()> {
+    let summary = Summary {
+        provenance,
+        report,
+        resume,
+        timing: Timing::of(report, wall_s),
+    };
+    write_file(path, |w| {
+        serde_json::to_writer_pretty(&mut *w, &summary)?;
+        writeln!(w)?;
+        Ok(())
+    })
+}
+
+/// The block sums stored in the partial summary `path` (`--resume`).
+fn read_resume(path: &Path) -> Result<ShardResult> {
+    let usage = |m: String| crate::exit::Usage(format!("--resume {}: {m}", path.display()));
+    let text = std::fs::read_to_string(path).map_err(|e| usage(e.to_string()))?;
+    let mut v: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| usage(format!("not JSON: {e}")))?;
+    let block = v
+        .get_mut("resume")
+        .map(serde_json::Value::take)
+        .ok_or_else(|| {
+            usage("no `resume` block: not the summary of an interrupted trade".into())
+        })?;
+    Ok(serde_json::from_value(block).map_err(|e| usage(format!("corrupt `resume` block: {e}")))?)
+}
+
+/// Check every output path of a study before its first run (exit code 2 naming the path).
+fn check_outputs(json: Option<&Path>, csv_dir: Option<&Path>, plots: Option<&Path>) -> Result<()> {
+    if let Some(p) = json {
+        check_output_file(p, "--json")?;
+    }
+    if let Some(d) = csv_dir {
+        check_output_dir(d, "--csv-dir")?;
+    }
+    if let Some(d) = plots {
+        check_output_dir(d, "--plots")?;
+    }
+    Ok(())
+}
+
+/// Write `path` (`-`: standard output), creating its directory.
 fn write_file(path: &Path, body: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
+    if is_stdout(path) {
+        let mut w = std::io::BufWriter::new(std::io::stdout().lock());
+        body(&mut w).context("writing standard output")?;
+        w.flush()?;
+        return Ok(());
+    }
     if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
         std::fs::create_dir_all(parent)
             .with_context(|| format!("cannot create {}", parent.display()))?;
@@ -238,8 +369,9 @@ fn write_file(path: &Path, body: impl FnOnce(&mut dyn Write) -> Result<()>) -> R
     let f =
         std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
     let mut w = std::io::BufWriter::new(f);
-    body(&mut w).with_context(|| format!("writing {}", path.display()))?;
-    w.flush()?;
+    body(&mut w)
+        .and_then(|()| Ok(w.flush()?))
+        .map_err(|e| crate::exit::Runtime(format!("writing {}: {e:#}", path.display())))?;
     Ok(())
 }
 
@@ -252,9 +384,14 @@ fn fmt(v: Option<f64>) -> String {
 }
 
 fn print_tables(report: &TradeReport, elapsed: f64) {
+    let partial = if report.complete {
+        String::new()
+    } else {
+        format!(" of {} asked (interrupted)", report.runs)
+    };
     println!(
-        "scenario {}  runs {}  seed {}  ({elapsed:.2} s wall)",
-        report.scenario, report.runs, report.seed
+        "scenario {}  runs {}{partial}  seed {}  ({elapsed:.2} s wall)",
+        report.scenario, report.runs_completed, report.seed
     );
     for f in &report.filters {
         println!();
@@ -421,6 +558,23 @@ fn write_csv_dir(dir: &Path, report: &TradeReport) -> Result<()> {
             Ok(())
         })?;
     }
+    let path = dir.join(format!("{}_final_errors.csv", report.scenario));
+    write_file(&path, |w| {
+        let mut header = vec!["run".to_string(), "filter".into(), "status".into()];
+        header.extend(report.states.iter().map(|s| format!("err_{s}")));
+        header.extend(["pos_m", "vel_mps", "nees"].map(String::from));
+        writeln!(w, "{}", header.join(","))?;
+        let o = |v: Option<f64>| v.map(|x| x.to_string()).unwrap_or_default();
+        for f in &report.filters {
+            for r in &f.final_errors {
+                let mut row = vec![r.run.to_string(), f.name.clone(), r.status.clone()];
+                row.extend((0..report.states.len()).map(|i| o(r.err.get(i).copied().flatten())));
+                row.extend([o(r.pos_m), o(r.vel_mps), o(r.nees)]);
+                writeln!(w, "{}", row.join(","))?;
+            }
+        }
+        Ok(())
+    })?;
     for f in &report.filters {
         let path = dir.join(format!("{}_{}.csv", report.scenario, f.name));
         write_file(&path, |w| {

@@ -43,9 +43,9 @@ pub struct TrainArgs {
     #[arg(long)]
     pub bands_km: Option<String>,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(long, value_parser = crate::exit::parse_threads)]
     pub threads: Option<usize>,
-    /// Print only the summary.
+    /// No progress output (bars, per-cell and per-epoch logs); results and tables still print.
     #[arg(long)]
     pub quiet: bool,
     /// Evaluate the density estimates of `--filters` over this many Monte Carlo runs (the runs of

@@ -48,9 +48,9 @@ pub struct TuneArgs {
     #[arg(long, default_value_t = 150)]
     max_evaluations: usize,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(long, value_parser = crate::exit::parse_threads)]
     threads: Option<usize>,
-    /// No progress bar.
+    /// No progress output (bars, per-cell and per-epoch logs); results and tables still print.
     #[arg(long)]
     quiet: bool,
 }

@@ -76,6 +76,25 @@ fn scenario_show_prints_toml_that_simulates_the_same() {
 }
 
 #[test]
+fn scenario_show_prints_the_builtin_file_as_written_and_resolved_on_request() {
+    let (code, text, err) = entrynav(&["scenario", "show", "four-beacon-fusion"]);
+    assert_eq!(code, 0, "{err}");
+    // Comments and one-line arrays survive, so a tutorial's `sed` finds the beacon.
+    assert!(text.contains("# Table 2"), "comments lost");
+    assert_eq!(
+        text.lines()
+            .filter(|l| l.trim() == "position_km = [3300.0, 420.0, 1350.0]")
+            .count(),
+        1,
+        "{text}"
+    );
+    let (code, resolved, err) = entrynav(&["scenario", "show", "four-beacon-fusion", "--resolved"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!resolved.contains('#') && resolved.contains("four-beacon-fusion"));
+    assert_ne!(text, resolved);
+}
+
+#[test]
 fn simulate_writes_the_documented_columns_and_summary() {
     let dir = tmpdir("sim");
     let csv = dir.join("out/msl.csv");
@@ -215,12 +234,21 @@ fn trade_writes_the_documented_json_csv_and_plots() {
             "anees",
             "nees_in_bounds_frac",
             "diverged",
-            "us_per_step",
             "density_rmspe_pct",
             "ellipse_km",
         ] {
             assert!(f.get(key).is_some(), "JSON filter entry lacks {key}: {f}");
         }
+        assert!(
+            f.get("us_per_step").is_none(),
+            "timing outside `timing`: {f}"
+        );
+        let name = f["name"].as_str().unwrap();
+        assert!(
+            v["timing"]["us_per_step"][name].as_f64().unwrap() > 0.0,
+            "{}",
+            v["timing"]
+        );
         for state in [
             "r_m",
             "lon_rad",
@@ -688,4 +716,431 @@ fn atmosphere_inspect_reports_profiles_datum_coverage_and_plots() {
         err.contains("bad.txt: line 2") && err.contains("is not a number"),
         "{err}"
     );
+}
+
+/// A trade JSON without its `timing` block (and, when asked, without the command line).
+fn reproducible_part(path: &std::path::Path, drop_command_line: bool) -> serde_json::Value {
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let obj = v.as_object_mut().unwrap();
+    assert!(obj.remove("timing").is_some(), "no timing block");
+    if drop_command_line {
+        obj["provenance"]
+            .as_object_mut()
+            .unwrap()
+            .remove("command_line");
+    }
+    v
+}
+
+#[test]
+fn trade_json_has_provenance_and_is_identical_across_threads_and_repeats() {
+    let dir = tmpdir("provenance");
+    let run = |threads: &str, name: &str| {
+        let path = dir.join(name);
+        let (code, _, err) = entrynav(&[
+            "trade",
+            "--scenario",
+            "orbiters-3",
+            "--filters",
+            "ekf,ukf",
+            "--runs",
+            "5",
+            "--seed",
+            "4",
+            "--set",
+            "truth.density_bias=0.05",
+            "--threads",
+            threads,
+            "--quiet",
+            "--json",
+            path.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{err}");
+        path
+    };
+    let text = |p: &std::path::Path| std::fs::read_to_string(p).unwrap();
+    let strip_timing = |t: String| t[..t.find("\"timing\"").expect("timing block")].to_string();
+    // The same command twice: everything but `timing` byte-identical.
+    let a = run("1", "a.json");
+    let first = text(&a);
+    run("1", "a.json");
+    let second = text(&a);
+    assert!(strip_timing(first.clone()) == strip_timing(second.clone()));
+    assert!(first != second, "timing should be measured, not constant");
+    // One thread against two: identical but for the command line.
+    let c = run("2", "c.json");
+    assert!(reproducible_part(&a, true) == reproducible_part(&c, true));
+
+    let v: serde_json::Value = serde_json::from_str(&text(&a)).unwrap();
+    let p = &v["provenance"];
+    assert_eq!(p["version"], env!("CARGO_PKG_VERSION"));
+    assert!(p["git_commit"].is_null() || p["git_commit"].as_str().unwrap().len() == 40);
+    assert_eq!(
+        p["overrides"],
+        serde_json::json!(["truth.density_bias=0.05"])
+    );
+    let cmd: Vec<&str> = p["command_line"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s.as_str().unwrap())
+        .collect();
+    assert!(cmd.windows(2).any(|w| w == ["--threads", "1"]), "{cmd:?}");
+    let fp = p["scenario_fingerprint"].as_str().unwrap();
+    assert_eq!(fp.len(), 16);
+    assert!(p["atmosphere"]["truth"].is_object(), "{p}");
+    // The override changes the fingerprint.
+    let d = dir.join("d.json");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--runs",
+        "2",
+        "--quiet",
+        "--json",
+        d.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let vd: serde_json::Value = serde_json::from_str(&text(&d)).unwrap();
+    assert_ne!(
+        vd["provenance"]["scenario_fingerprint"].as_str().unwrap(),
+        fp
+    );
+    // Timing lives only in `timing`.
+    for f in v["filters"].as_array().unwrap() {
+        assert!(f.get("us_per_step").is_none(), "{f}");
+    }
+    assert!(v["timing"]["us_per_step"]["ekf"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
+fn sigint_writes_the_partial_summary_of_the_completed_runs_and_exits_130() {
+    let dir = tmpdir("sigint");
+    let json = dir.join("partial.json");
+    let common = [
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--filters",
+        "ekf",
+        "--seed",
+        "8",
+        "--threads",
+        "1",
+        "--quiet",
+    ];
+    let mut child = Command::new(env!("CARGO_BIN_EXE_entrynav"))
+        .args(common)
+        .args(["--runs", "1000000", "--json", json.to_str().unwrap()])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(2500));
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let sent = std::time::Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        assert!(
+            sent.elapsed().as_secs() < 20,
+            "still running 20 s after SIGINT"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    };
+    let mut err = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut err).unwrap();
+    assert_eq!(status.code(), Some(130), "{err}");
+    assert!(err.contains("interrupted"), "{err}");
+    let partial: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(partial["complete"], false);
+    assert_eq!(partial["runs"], 1000000);
+    let done = partial["runs_completed"].as_u64().unwrap();
+    assert!(done > 0 && done < 1000000, "{done}");
+    assert_eq!(partial["filters"][0]["runs"], done);
+
+    // The partial statistics are exactly those of a study of `done` runs.
+    let full_json = dir.join("full.json");
+    let (code, _, err) = entrynav(
+        &[
+            &common[..],
+            &[
+                "--runs",
+                &done.to_string(),
+                "--json",
+                full_json.to_str().unwrap(),
+            ],
+        ]
+        .concat(),
+    );
+    assert_eq!(code, 0, "{err}");
+    let full: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&full_json).unwrap()).unwrap();
+    assert_eq!(full["complete"], true);
+    assert!(partial["filters"] == full["filters"], "partial != full");
+    assert!(partial["pcrlb"] == full["pcrlb"], "partial PCRLB != full");
+}
+
+#[test]
+fn output_paths_are_checked_before_the_first_run() {
+    let dir = tmpdir("outputs");
+    let file = dir.join("a-file");
+    std::fs::write(&file, "x").unwrap();
+    let bad = file.join("sub").join("t.json");
+    let clock = std::time::Instant::now();
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--runs",
+        "1000000",
+        "--quiet",
+        "--json",
+        bad.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains(bad.to_str().unwrap()), "{err}");
+    assert!(clock.elapsed().as_secs() < 20, "ran the study first");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--runs",
+        "1000000",
+        "--csv-dir",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--csv-dir") && err.contains("a-file"), "{err}");
+}
+
+#[test]
+fn json_dash_writes_the_summary_to_stdout_only() {
+    let (code, out, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--runs",
+        "2",
+        "--quiet",
+        "--json",
+        "-",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("stdout is one JSON document");
+    assert_eq!(v["runs"], 2);
+    assert!(v["provenance"]["scenario_fingerprint"].is_string());
+    assert!(!std::path::Path::new("-").exists());
+}
+
+#[test]
+fn usage_errors_exit_2_with_a_clear_message() {
+    let (code, _, err) = entrynav(&["trade", "--scenario", "orbiters-3", "--threads", "0"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("1 to 1024"), "{err}");
+    let (code, _, err) = entrynav(&["trade", "--scenario", "no-such-scenario"]);
+    assert_eq!(code, 2, "{err}");
+    let (code, _, err) = entrynav(&["trade", "--scenario", "orbiters-3", "--filters", "nope"]);
+    assert_eq!(code, 2, "{err}");
+}
+
+#[test]
+fn simulate_into_a_closed_pipe_ends_quietly_and_names_the_stop_reason() {
+    use std::io::BufRead;
+    // Far more CSV than a pipe buffers (64 KiB), so the writer meets the closed pipe.
+    let (code, csv, err) = entrynav(&["simulate", "--scenario", "msl-airdata", "--out", "-"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(csv.len() > 1 << 18, "only {} bytes", csv.len());
+    assert!(csv.starts_with("t_s,"), "{}", &csv[..80]);
+    let mut child = Command::new(env!("CARGO_BIN_EXE_entrynav"))
+        .args(["simulate", "--scenario", "msl-airdata", "--out", "-"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    std::io::BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut first)
+        .unwrap(); // the reader is dropped here: the pipe closes after one line
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.trim().is_empty(), "not quiet on a closed pipe: {err}");
+    assert_ne!(out.status.code(), Some(101), "{err}");
+    let (code, out, err) = entrynav(&["simulate", "--scenario", "orbiters-3"]);
+    assert_eq!(code, 0, "{err}");
+    let stop = out.lines().find(|l| l.starts_with("stopped")).unwrap();
+    for debug in ["(Duration)", "(StopSpeed)", "(Ground)"] {
+        assert!(!stop.contains(debug), "{stop}");
+    }
+}
+
+#[test]
+fn final_errors_csv_has_one_row_per_run_and_filter_matching_the_summary() {
+    let dir = tmpdir("finals");
+    let json = dir.join("t.json");
+    let csv = dir.join("csv");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "four-beacon-fusion-fault",
+        "--filters",
+        "ekf,dcifaif",
+        "--runs",
+        "7",
+        "--seed",
+        "2",
+        "--quiet",
+        "--json",
+        json.to_str().unwrap(),
+        "--csv-dir",
+        csv.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let text =
+        std::fs::read_to_string(csv.join("four-beacon-fusion-fault_final_errors.csv")).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(&header[..4], ["run", "filter", "status", "err_r_m"]);
+    assert_eq!(&header[header.len() - 3..], ["pos_m", "vel_mps", "nees"]);
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 14, "7 runs x 2 filters");
+    for f in v["filters"].as_array().unwrap() {
+        let name = f["name"].as_str().unwrap();
+        let mine: Vec<&Vec<&str>> = rows.iter().filter(|r| r[1] == name).collect();
+        let runs: Vec<usize> = mine.iter().map(|r| r[0].parse().unwrap()).collect();
+        assert_eq!(runs, (0..7).collect::<Vec<_>>());
+        let count = |s: &str| mine.iter().filter(|r| r[2] == s).count() as u64;
+        assert_eq!(count("failed"), f["failed"].as_u64().unwrap());
+        assert_eq!(count("diverged"), f["diverged"].as_u64().unwrap());
+        // The RMS of the completed runs' final position errors is the summary's rmse_final.
+        let pos: Vec<f64> = mine
+            .iter()
+            .filter(|r| r[2] != "failed")
+            .map(|r| r[header.len() - 3].parse().unwrap())
+            .collect();
+        let rms = (pos.iter().map(|x| x * x).sum::<f64>() / pos.len() as f64).sqrt();
+        let want = f["rmse_final"]["pos_m"].as_f64().unwrap();
+        assert!((rms - want).abs() <= 1e-9 * want, "{name}: {rms} vs {want}");
+    }
+}
+
+#[test]
+fn resume_continues_an_interrupted_study_to_exactly_the_uninterrupted_result() {
+    let dir = tmpdir("resume");
+    let partial = dir.join("partial.json");
+    let common = [
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--filters",
+        "ekf",
+        "--seed",
+        "11",
+        "--runs",
+        "1500",
+        "--threads",
+        "1",
+        "--quiet",
+    ];
+    let mut child = Command::new(env!("CARGO_BIN_EXE_entrynav"))
+        .args(common)
+        .args(["--json", partial.to_str().unwrap()])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert_eq!(child.wait().unwrap().code(), Some(130));
+    let p: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&partial).unwrap()).unwrap();
+    assert_eq!(p["complete"], false);
+    let done = p["runs_completed"].as_u64().unwrap();
+    assert!(done > 0 && done < 1500, "{done}");
+    assert!(p["resume"].is_object());
+
+    let resumed = dir.join("resumed.json");
+    let full = dir.join("full.json");
+    for (out, extra) in [
+        (&resumed, vec!["--resume", partial.to_str().unwrap()]),
+        (&full, vec![]),
+    ] {
+        let args: Vec<&str> = common
+            .iter()
+            .copied()
+            .chain(extra)
+            .chain(["--json", out.to_str().unwrap()])
+            .collect();
+        let (code, _, err) = entrynav(&args);
+        assert_eq!(code, 0, "{err}");
+    }
+    let read = |p: &std::path::Path| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
+    };
+    let (r, f) = (read(&resumed), read(&full));
+    assert_eq!(r["complete"], true);
+    assert!(r.get("resume").is_none());
+    assert!(r["filters"] == f["filters"], "resumed != uninterrupted");
+    assert!(r["pcrlb"] == f["pcrlb"], "resumed PCRLB != uninterrupted");
+    // Resuming with another seed is refused.
+    let mut other: Vec<&str> = common.to_vec();
+    other[6] = "12";
+    other.extend(["--resume", partial.to_str().unwrap()]);
+    let (code, _, err) = entrynav(&other);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("seed"), "{err}");
+}
+
+#[test]
+fn an_interrupted_grid_keeps_the_cells_it_finished() {
+    let dir = tmpdir("grid-sigint");
+    let grid = dir.join("g.toml");
+    std::fs::write(
+        &grid,
+        "name = \"g\"\nruns = 300\nfilters = [\"ekf\"]\nscenarios = [\"orbiters-3\"]\n[variations]\nnoise_scale = [1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0, 5.5]\n",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let report = out.join("g.json");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_entrynav"))
+        .args(["trade", "--grid", grid.to_str().unwrap(), "--out-dir"])
+        .arg(&out)
+        .args(["--quiet"])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    // Wait for the first cell's report, then interrupt.
+    let clock = std::time::Instant::now();
+    while std::fs::read_to_string(&report)
+        .ok()
+        .is_none_or(|t| serde_json::from_str::<serde_json::Value>(&t).is_err())
+    {
+        assert!(clock.elapsed().as_secs() < 300, "no cell finished");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert_eq!(child.wait().unwrap().code(), Some(130));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let cells = v["reports"].as_array().unwrap().len();
+    assert!((1..10).contains(&cells), "{cells} cells");
+    assert_eq!(v["cells"].as_array().unwrap().len(), cells);
+    assert!(v["provenance"]["version"].is_string());
 }

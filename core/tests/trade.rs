@@ -30,6 +30,7 @@ fn trade(
         seed,
         chunk,
         pcrlb: true,
+        cancel: None,
     };
     let mut r = pool
         .install(|| run_trade(s, filters, &opts, &|_| {}))
@@ -267,6 +268,7 @@ fn shards_merge_to_exactly_the_single_process_result() {
         seed: 9,
         chunk: 50,
         pcrlb: true,
+        cancel: None,
     };
     let mut whole = run_trade(&s, &filters, &opts, &|_| {}).unwrap();
     let mut shards3: Vec<_> = (0..3)
@@ -311,6 +313,7 @@ fn shards_merge_to_exactly_the_single_process_result() {
             seed: 10,
             chunk: 50,
             pcrlb: true,
+            cancel: None,
         },
         Shard { index: 0, count: 3 },
         &|_| {},
@@ -353,5 +356,86 @@ fn density_rmspe_reads_the_onboard_profile_at_the_true_altitude() {
             .iter()
             .flatten()
             .all(|v| v.is_finite())
+    );
+}
+
+#[test]
+fn a_cancelled_trade_is_exactly_the_study_of_its_completed_runs() {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    static CANCEL: AtomicBool = AtomicBool::new(false);
+    let s = scenario("orbiters-3");
+    let filters = [FilterKind::Ekf, FilterKind::Ukf];
+    let opts = McOptions {
+        runs: 400,
+        seed: 5,
+        chunk: 7,
+        pcrlb: true,
+        cancel: Some(&CANCEL),
+    };
+    // Cancel once 20 runs are done: the chunk in flight finishes, no further run starts.
+    let progress = |done: usize| {
+        if done >= 20 {
+            CANCEL.store(true, Ordering::Relaxed);
+        }
+    };
+    let mut partial = run_trade(&s, &filters, &opts, &progress).unwrap();
+    assert!(!partial.complete);
+    assert_eq!(partial.runs, 400);
+    assert_eq!(partial.runs_completed, 21, "three chunks of 7");
+    let mut full = run_trade(&s, &filters, &McOptions::new(21, 5), &|_| {}).unwrap();
+    assert!(full.complete && full.runs_completed == 21);
+    for r in [&mut partial, &mut full] {
+        for f in &mut r.filters {
+            f.us_per_step = 0.0;
+        }
+    }
+    assert!(partial.filters == full.filters, "partial statistics differ");
+    assert!(partial.pcrlb == full.pcrlb, "partial PCRLB differs");
+    assert_eq!(partial.filters[0].runs, 21);
+}
+
+#[test]
+fn a_resumed_trade_is_exactly_the_uninterrupted_one() {
+    use entrynav::sim::{Shard, merge_shards, resume_shard, run_shard};
+    use std::sync::atomic::{AtomicBool, Ordering};
+    static CANCEL: AtomicBool = AtomicBool::new(false);
+    let s = scenario("orbiters-3");
+    let filters = [FilterKind::Ekf];
+    let opts = McOptions {
+        chunk: 50,
+        cancel: Some(&CANCEL),
+        ..McOptions::new(600, 3)
+    };
+    // Cancelled after 306 runs: block 0 finished, block 1 holds 50 runs.
+    let progress = |done: usize| {
+        if done >= 300 {
+            CANCEL.store(true, Ordering::Relaxed);
+        }
+    };
+    let whole = Shard { index: 0, count: 1 };
+    let partial = run_shard(&s, &filters, &opts, whole, &progress).unwrap();
+    assert!(!partial.complete);
+    let held: Vec<usize> = partial.blocks.iter().map(|b| b.index).collect();
+    assert_eq!(held, [0, 1]);
+    let folded = entrynav::sim::shard::fold_partial(partial.clone()).unwrap();
+    assert_eq!(folded.runs_completed, 306);
+    // Through JSON, as the CLI stores it.
+    let partial: entrynav::sim::ShardResult =
+        serde_json::from_str(&serde_json::to_string(&partial).unwrap()).unwrap();
+    CANCEL.store(false, Ordering::Relaxed);
+    let other_seed = McOptions { seed: 4, ..opts };
+    assert!(resume_shard(&s, &filters, &other_seed, partial.clone(), &|_| {}).is_err());
+    let resumed = resume_shard(&s, &filters, &opts, partial, &|_| {}).unwrap();
+    assert!(resumed.complete);
+    let mut resumed = merge_shards(vec![resumed]).unwrap();
+    let mut full = run_trade(&s, &filters, &McOptions::new(600, 3), &|_| {}).unwrap();
+    for r in [&mut resumed, &mut full] {
+        for f in &mut r.filters {
+            f.us_per_step = 0.0;
+        }
+    }
+    assert!(
+        resumed == full,
+        "resumed study differs from the uninterrupted one"
     );
 }

@@ -12,8 +12,8 @@ ENTRYNAV = os.environ.get("ENTRYNAV", str(ROOT / "target" / "release" / "entryna
 
 def summary(path):
     report = json.loads(Path(path).read_text())
-    for f in report["filters"]:
-        f.pop("us_per_step")  # wall-clock timing: the one non-reproducible field
+    report.pop("timing")  # wall-clock timing: the one non-reproducible block
+    report.pop("provenance")  # the command lines differ (trade vs trade merge)
     return report
 
 

@@ -80,7 +80,7 @@ pub struct CommonArgs {
     #[arg(long)]
     pub polish_iterations: Option<usize>,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(long, value_parser = crate::exit::parse_threads)]
     pub threads: Option<usize>,
     /// Write the result as JSON to this file.
     #[arg(long)]
@@ -88,7 +88,7 @@ pub struct CommonArgs {
     /// Write the optimized geometry as a scenario file (accepted by `entrynav trade`).
     #[arg(long)]
     pub write_scenario: Option<PathBuf>,
-    /// No progress bar.
+    /// No progress output (bars, per-cell and per-epoch logs); results and tables still print.
     #[arg(long)]
     pub quiet: bool,
 }
@@ -244,9 +244,9 @@ pub struct SelectArgs {
     #[arg(long, default_value_t = 8, requires = "exact")]
     batch: usize,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(long, value_parser = crate::exit::parse_threads)]
     threads: Option<usize>,
-    /// No progress bar.
+    /// No progress output (bars, per-cell and per-epoch logs); results and tables still print.
     #[arg(long)]
     quiet: bool,
 }

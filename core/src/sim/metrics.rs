@@ -74,6 +74,24 @@ pub struct EpochRecord {
     pub weights: Option<Vec<f64>>,
 }
 
+/// One run's outcome for one filter at its last epoch: a row of the `_final_errors.csv` file.
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
+pub struct FinalRow {
+    /// Run index.
+    pub run: usize,
+    /// `ok`, `diverged` (final NEES above the threshold) or `failed` (numerical failure; the
+    /// values are those of the last epoch before it, empty if there was none).
+    pub status: String,
+    /// Error per state at the last epoch (`None` where the state has no truth).
+    pub err: Vec<Option<f64>>,
+    /// Position error norm \[m\].
+    pub pos_m: Option<f64>,
+    /// Velocity error norm \[m/s\].
+    pub vel_mps: Option<f64>,
+    /// NEES at the last epoch.
+    pub nees: Option<f64>,
+}
+
 /// Final-epoch quantities of one run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FinalRecord {
@@ -151,6 +169,9 @@ pub struct FilterAccumulator {
     pub(super) filter_ns: u128,
     pub(super) steps: u64,
     pub(super) runs: u64,
+    /// One row per run, in run order (the per-run final-error CSV).
+    #[serde(default)]
+    pub(super) finals: Vec<FinalRow>,
 }
 
 fn grow<T: Clone + Default>(v: &mut Vec<T>, n: usize) {
@@ -222,6 +243,7 @@ impl FilterAccumulator {
         self.filter_ns += o.filter_ns;
         self.steps += o.steps;
         self.runs += o.runs;
+        self.finals.extend(o.finals.iter().cloned());
     }
 
     /// Fold one run in (call in run-index order).
@@ -309,6 +331,24 @@ impl FilterAccumulator {
             e.nees
                 .is_some_and(|(v, dof)| v > DIVERGENCE_NEES_PER_DOF * dof as f64)
         };
+        let last = rec.epochs.last();
+        let status = if rec.failure.is_some() {
+            "failed"
+        } else if last.is_some_and(exceeds) {
+            "diverged"
+        } else {
+            "ok"
+        };
+        self.finals.push(FinalRow {
+            run: run_index,
+            status: status.into(),
+            err: last.map_or_else(Vec::new, |e| {
+                e.err.iter().map(|v| v.is_finite().then_some(*v)).collect()
+            }),
+            pos_m: last.map(|e| e.pos_vel_err.0),
+            vel_mps: last.map(|e| e.pos_vel_err.1),
+            nees: last.and_then(|e| e.nees).map(|(v, _)| v),
+        });
         if let Some((t, reason)) = &rec.failure {
             self.failed += 1;
             self.keep(RunProblem {

@@ -32,7 +32,9 @@ pub mod tuning;
 
 pub use engine::{SimError, StopReason, TruthSample};
 pub use metrics::nees_bounds_95;
-pub use monte_carlo::{McOptions, TradeError, TradeReport, run_shard, run_trade, state_names};
+pub use monte_carlo::{
+    McOptions, TradeError, TradeReport, resume_shard, run_shard, run_trade, state_names,
+};
 pub use pcrlb::NoBound;
 pub use pcrlb_sums::{PcrlbReport, pcrlb_study};
 pub use record::{TruthRun, channel_names, is_radio, simulate_truth};

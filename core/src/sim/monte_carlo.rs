@@ -13,7 +13,7 @@ use super::pcrlb::{BoundRun, bound_run};
 use super::pcrlb_sums::{BoundSums, PcrlbReport};
 use super::report::FilterReport;
 use super::shard::{
-    ACCUMULATION_BLOCK, BlockSums, SHARD_FORMAT, Shard, ShardResult, merge_shards,
+    ACCUMULATION_BLOCK, BlockSums, SHARD_FORMAT, Shard, ShardResult, fold_partial, merge_shards,
     scenario_fingerprint,
 };
 use super::start::initial_estimate;
@@ -26,6 +26,7 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 use thiserror::Error;
 
@@ -49,7 +50,7 @@ pub enum TradeError {
 }
 
 /// Monte Carlo options.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy)]
 pub struct McOptions {
     /// Number of runs.
     pub runs: usize,
@@ -60,6 +61,16 @@ pub struct McOptions {
     /// Form the scenario's PCRLB from the same truth runs ([`super::pcrlb`]; costs about one
     /// EKF's worth of work per run).
     pub pcrlb: bool,
+    /// Cancellation: once this flag is set, no new run starts; the runs finished so far (the
+    /// longest prefix in run order) are folded and the report says `complete: false`. The core
+    /// only reads the flag; the caller sets it (the CLI from its SIGINT handler).
+    pub cancel: Option<&'static AtomicBool>,
+}
+
+impl McOptions {
+    fn cancelled(&self) -> bool {
+        self.cancel.is_some_and(|c| c.load(Ordering::Relaxed))
+    }
 }
 
 impl McOptions {
@@ -70,6 +81,7 @@ impl McOptions {
             seed,
             chunk: 64,
             pcrlb: true,
+            cancel: None,
         }
     }
 }
@@ -79,8 +91,13 @@ impl McOptions {
 pub struct TradeReport {
     /// Scenario name.
     pub scenario: String,
-    /// Runs.
+    /// Runs asked for.
     pub runs: usize,
+    /// Whether every run asked for is in the statistics (`false` after a cancellation).
+    pub complete: bool,
+    /// Runs in the statistics: runs 0..runs_completed, folded exactly as a study of
+    /// `runs_completed` runs would fold them.
+    pub runs_completed: usize,
     /// Master seed.
     pub seed: u64,
     /// State names of the filter model, in state order (SI units in the suffix).
@@ -118,7 +135,9 @@ pub fn state_names(scenario: &Scenario) -> Vec<String> {
         .collect()
 }
 
-/// Run a trade: `filters` on `scenario`, `opts.runs` runs; `progress(done)` is called as runs finish.
+/// Run a trade: `filters` on `scenario`, `opts.runs` runs; `progress(done)` is called as runs
+/// finish. When `opts.cancel` is set during the study, the report holds the runs completed so far
+/// (`complete: false`).
 pub fn run_trade(
     scenario: &Scenario,
     filters: &[FilterKind],
@@ -132,15 +151,78 @@ pub fn run_trade(
         Shard { index: 0, count: 1 },
         progress,
     )?;
-    merge_shards(vec![shard])
+    if shard.complete {
+        merge_shards(vec![shard])
+    } else {
+        fold_partial(shard)
+    }
 }
 
-/// Run one shard of a trade (a contiguous range of accumulation blocks).
+/// Run one shard of a trade (a contiguous range of accumulation blocks). A cancelled shard has
+/// `complete: false` and ends with the runs finished before the cancellation.
 pub fn run_shard(
     scenario: &Scenario,
     filters: &[FilterKind],
     opts: &McOptions,
     shard: Shard,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<ShardResult, TradeError> {
+    run_shard_from(scenario, filters, opts, shard, Vec::new(), progress)
+}
+
+/// Continue the cancelled single-process study `previous` (a [`ShardResult`] with
+/// `complete: false`, as the CLI stores it in a partial summary): its finished blocks are kept,
+/// a partial last block goes on from its next run, and the result is exactly that of an
+/// uninterrupted study (accumulation is sequential in run order). Refuses a `previous` of another
+/// scenario, seed, run count or filter list.
+pub fn resume_shard(
+    scenario: &Scenario,
+    filters: &[FilterKind],
+    opts: &McOptions,
+    previous: ShardResult,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<ShardResult, TradeError> {
+    let names: Vec<String> = filters.iter().map(|k| k.name().to_string()).collect();
+    let what = if previous.scenario_fingerprint != scenario_fingerprint(scenario) {
+        Some(format!(
+            "scenario {} ({}) vs {} ({})",
+            previous.scenario,
+            previous.scenario_fingerprint,
+            scenario.config.name,
+            scenario_fingerprint(scenario)
+        ))
+    } else if previous.seed != opts.seed {
+        Some(format!("seed {} vs {}", previous.seed, opts.seed))
+    } else if previous.runs != opts.runs {
+        Some(format!("runs {} vs {}", previous.runs, opts.runs))
+    } else if previous.filters != names {
+        Some(format!("filters {:?} vs {:?}", previous.filters, names))
+    } else if previous.shard != (Shard { index: 0, count: 1 }) || previous.format != SHARD_FORMAT {
+        Some("not a single-process study of this version".to_string())
+    } else {
+        None
+    };
+    if let Some(w) = what {
+        return Err(TradeError::Options(format!(
+            "cannot resume a different study: {w}"
+        )));
+    }
+    run_shard_from(
+        scenario,
+        filters,
+        opts,
+        previous.shard,
+        previous.blocks,
+        progress,
+    )
+}
+
+fn run_shard_from(
+    scenario: &Scenario,
+    filters: &[FilterKind],
+    opts: &McOptions,
+    shard: Shard,
+    previous: Vec<BlockSums>,
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<ShardResult, TradeError> {
     if opts.runs == 0 {
@@ -156,7 +238,7 @@ pub fn run_shard(
         f.check_fits(&scenario.onboard)?;
     }
     let shared = Arc::new(scenario.clone());
-    let blocks = run_blocks(&shared, filters, opts, shard, progress)?;
+    let (blocks, complete) = run_blocks(&shared, filters, opts, shard, previous, progress)?;
     Ok(ShardResult {
         format: SHARD_FORMAT,
         scenario: scenario.config.name.clone(),
@@ -169,6 +251,7 @@ pub fn run_shard(
         atmosphere: scenario.truth_profiles.as_ref().map(|c| c.provenance()),
         shard,
         blocks,
+        complete,
     })
 }
 
@@ -177,23 +260,57 @@ fn run_blocks(
     filters: &[FilterKind],
     opts: &McOptions,
     shard: Shard,
+    previous: Vec<BlockSums>,
     progress: &(dyn Fn(usize) + Sync),
-) -> Result<Vec<BlockSums>, TradeError> {
+) -> Result<(Vec<BlockSums>, bool), TradeError> {
     let chunk = opts.chunk.max(1);
     let mut out = Vec::new();
     let mut done = 0;
+    let mut previous = previous.into_iter().peekable();
     for block in shard.blocks(opts.runs) {
-        let first = block * ACCUMULATION_BLOCK;
+        if opts.cancelled() {
+            return Ok((out, false));
+        }
+        let mut first = block * ACCUMULATION_BLOCK;
         let last = ((block + 1) * ACCUMULATION_BLOCK).min(opts.runs);
         let mut accs = vec![FilterAccumulator::default(); filters.len()];
         let mut bounds = BoundSums::new(scenario);
+        // A resumed study: a finished block is kept, a partial one continues from its next run.
+        if let Some(prev) = previous.next_if(|b| b.index == block) {
+            let had = prev.filters.first().map_or(0, |a| a.runs as usize);
+            if prev.filters.len() != filters.len() || (opts.pcrlb != prev.bounds.is_some()) {
+                return Err(TradeError::Options(format!(
+                    "cannot resume: block {block} was run with other filters or PCRLB setting"
+                )));
+            }
+            done += had;
+            if first + had >= last {
+                out.push(prev);
+                continue;
+            }
+            first += had;
+            accs = prev.filters;
+            if let Some(b) = prev.bounds {
+                bounds = b;
+            }
+        }
+        let mut cut = false;
         for start in (first..last).step_by(chunk) {
             let end = (start + chunk).min(last);
-            let records: Vec<Result<RunWithBound, TradeError>> = (start..end)
+            // A run not started because of a cancellation is `None`; the chunk is folded up to
+            // the first of them, so the statistics are those of runs 0..done in run order.
+            let records: Vec<Option<Result<RunWithBound, TradeError>>> = (start..end)
                 .into_par_iter()
-                .map(|run| one_run_with_bound(scenario, filters, opts.seed, run, opts.pcrlb))
+                .map(|run| {
+                    (!opts.cancelled())
+                        .then(|| one_run_with_bound(scenario, filters, opts.seed, run, opts.pcrlb))
+                })
                 .collect();
             for (i, rec) in records.into_iter().enumerate() {
+                let Some(rec) = rec else {
+                    cut = true;
+                    break;
+                };
                 let (runs, bound) = rec?;
                 for (acc, r) in accs.iter_mut().zip(runs.iter()) {
                     acc.add(start + i, r);
@@ -204,14 +321,24 @@ fn run_blocks(
                 done += 1;
             }
             progress(done);
+            if cut || opts.cancelled() {
+                cut = true;
+                break;
+            }
         }
-        out.push(BlockSums {
-            index: block,
-            filters: accs,
-            bounds: opts.pcrlb.then_some(bounds),
-        });
+        let runs_in_block = accs.first().map_or(0, |a| a.runs);
+        if !cut || runs_in_block > 0 {
+            out.push(BlockSums {
+                index: block,
+                filters: accs,
+                bounds: opts.pcrlb.then_some(bounds),
+            });
+        }
+        if cut {
+            return Ok((out, false));
+        }
     }
-    Ok(out)
+    Ok((out, true))
 }
 
 /// One Monte Carlo run's truth, recorded: the realisation, the truth run with its measurement

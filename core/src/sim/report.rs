@@ -3,7 +3,7 @@
 //! [`FilterAccumulator::report`](super::metrics::FilterAccumulator::report).
 
 use super::consistency::Consistency;
-use super::metrics::{FilterAccumulator, RunProblem};
+use super::metrics::{FilterAccumulator, FinalRow, RunProblem};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -102,9 +102,14 @@ pub struct FilterReport {
     pub failed: u64,
     /// Runs that completed with their final NEES above 100 × dof.
     pub diverged: u64,
-    /// The first runs of each kind (run index, time, kind, reason).
+    /// The bad runs of this filter, failed (`kind: numerical`) and diverged (`kind: nees`): the
+    /// first 20 of each kind in run order (run index, time, kind, reason); `failed` and
+    /// `diverged` count all of them. Every run's final state is in `--csv-dir`'s
+    /// `{scenario}_final_errors.csv`.
     pub failures: Vec<RunProblem>,
-    /// Mean CPU time per filter step \[µs\] (wall clock; not reproducible bit for bit).
+    /// Mean CPU time per filter step \[µs\] (wall clock; not reproducible bit for bit, so not
+    /// serialised with the statistics: the CLI writes it to the summary's `timing` block).
+    #[serde(skip)]
     pub us_per_step: f64,
     /// Density RMSPE (seed 001 eq. 70, Table 6) [%] for filters that estimate density: the
     /// filter's density profile at the true altitude against the true density.
@@ -121,6 +126,9 @@ pub struct FilterReport {
     /// Time series (CSV, plots).
     #[serde(skip)]
     pub series: Series,
+    /// Every run's final errors and status, in run order (CSV only).
+    #[serde(skip)]
+    pub final_errors: Vec<FinalRow>,
 }
 
 impl FilterReport {
@@ -291,6 +299,7 @@ impl FilterAccumulator {
                 density_at_estimate_rms_pct: density_at_estimate_series,
                 weights_mean: weights_series,
             },
+            final_errors: self.finals.clone(),
         }
     }
 }

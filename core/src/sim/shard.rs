@@ -85,6 +85,14 @@ pub struct ShardResult {
     pub shard: Shard,
     /// The shard's blocks, in block order.
     pub blocks: Vec<BlockSums>,
+    /// `false` when the shard was cancelled: its last block may hold only a prefix of its runs,
+    /// and `trade merge` refuses it.
+    #[serde(default = "complete_default")]
+    pub complete: bool,
+}
+
+fn complete_default() -> bool {
+    true
 }
 
 /// Shard file format version.
@@ -140,6 +148,12 @@ pub fn merge_shards(mut shards: Vec<ShardResult>) -> Result<TradeReport, TradeEr
                 "cannot merge shards of different studies: {w}"
             )));
         }
+        if !s.complete {
+            return Err(TradeError::Options(format!(
+                "shard {}/{} was interrupted; run it again",
+                s.shard.index, s.shard.count
+            )));
+        }
     }
     shards.sort_by_key(|s| s.shard.index);
     let want: Vec<usize> = (0..first.shard.count).collect();
@@ -152,55 +166,103 @@ pub fn merge_shards(mut shards: Vec<ShardResult>) -> Result<TradeReport, TradeEr
         )));
     }
     let n_blocks = first.runs.div_ceil(ACCUMULATION_BLOCK);
-    let mut totals = vec![FilterAccumulator::default(); first.filters.len()];
-    let mut bounds: Option<BoundSums> = Some(BoundSums::default());
-    let mut next = 0;
+    let mut fold = Fold::new(first.filters.len());
     for s in &shards {
+        fold.add(s)?;
+    }
+    if fold.next != n_blocks {
+        return Err(TradeError::Options(format!(
+            "the shards hold {} of {n_blocks} blocks",
+            fold.next
+        )));
+    }
+    Ok(fold.report(first, true))
+}
+
+/// The report of the one shard `0/1` of a cancelled study: its completed runs (a prefix in run
+/// order, the last block possibly partial), folded in block order. The statistics equal those of
+/// a study of `runs_completed` runs.
+pub fn fold_partial(shard: ShardResult) -> Result<TradeReport, TradeError> {
+    if shard.shard.index != 0 {
+        return Err(TradeError::Options(format!(
+            "a partial study must start at shard 0, not {}/{}",
+            shard.shard.index, shard.shard.count
+        )));
+    }
+    let mut fold = Fold::new(shard.filters.len());
+    fold.add(&shard)?;
+    Ok(fold.report(shard, false))
+}
+
+/// Blocks folded in block order.
+struct Fold {
+    totals: Vec<FilterAccumulator>,
+    bounds: Option<BoundSums>,
+    next: usize,
+}
+
+impl Fold {
+    fn new(filters: usize) -> Fold {
+        Fold {
+            totals: vec![FilterAccumulator::default(); filters],
+            bounds: Some(BoundSums::default()),
+            next: 0,
+        }
+    }
+
+    fn add(&mut self, s: &ShardResult) -> Result<(), TradeError> {
         for b in &s.blocks {
-            if b.index != next || b.filters.len() != totals.len() {
+            if b.index != self.next || b.filters.len() != self.totals.len() {
                 return Err(TradeError::Options(format!(
-                    "shard {} is incomplete or corrupt at block {next}",
-                    s.shard.index
+                    "shard {} is incomplete or corrupt at block {}",
+                    s.shard.index, self.next
                 )));
             }
-            for (t, a) in totals.iter_mut().zip(&b.filters) {
+            for (t, a) in self.totals.iter_mut().zip(&b.filters) {
                 t.merge(a);
             }
-            bounds = match (bounds, &b.bounds) {
+            self.bounds = match (self.bounds.take(), &b.bounds) {
                 (Some(mut total), Some(block)) => {
                     total.merge(block);
                     Some(total)
                 }
                 _ => None,
             };
-            next += 1;
+            self.next += 1;
+        }
+        Ok(())
+    }
+
+    fn report(self, first: ShardResult, complete: bool) -> TradeReport {
+        let Fold { totals, bounds, .. } = self;
+        let runs_completed = if complete {
+            first.runs
+        } else {
+            totals.first().map_or(0, |a| a.runs as usize)
+        };
+        let pcrlb = bounds.map(|b| b.report(&first.states));
+        let mut filters: Vec<_> = first
+            .filters
+            .iter()
+            .zip(&totals)
+            .map(|(k, a)| a.report(k, &first.states, &first.channels))
+            .collect();
+        if let Some(bound) = pcrlb.as_ref().filter(|b| b.available) {
+            for f in &mut filters {
+                f.set_efficiency(bound);
+            }
+        }
+        TradeReport {
+            scenario: first.scenario.clone(),
+            runs: first.runs,
+            complete,
+            runs_completed,
+            seed: first.seed,
+            filters,
+            states: first.states,
+            channels: first.channels,
+            pcrlb,
+            atmosphere: first.atmosphere,
         }
     }
-    if next != n_blocks {
-        return Err(TradeError::Options(format!(
-            "the shards hold {next} of {n_blocks} blocks"
-        )));
-    }
-    let pcrlb = bounds.map(|b| b.report(&first.states));
-    let mut filters: Vec<_> = first
-        .filters
-        .iter()
-        .zip(&totals)
-        .map(|(k, a)| a.report(k, &first.states, &first.channels))
-        .collect();
-    if let Some(bound) = pcrlb.as_ref().filter(|b| b.available) {
-        for f in &mut filters {
-            f.set_efficiency(bound);
-        }
-    }
-    Ok(TradeReport {
-        scenario: first.scenario.clone(),
-        runs: first.runs,
-        seed: first.seed,
-        filters,
-        states: first.states,
-        channels: first.channels,
-        pcrlb,
-        atmosphere: first.atmosphere,
-    })
 }

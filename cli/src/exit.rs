@@ -1,0 +1,119 @@
+//! Exit codes and the checks that run before any work, so a study never fails at its end on
+//! something it could have refused at its start.
+//!
+//! | code | meaning |
+//! |---|---|
+//! | 0 | success |
+//! | 1 | a runtime failure: a truth simulation that fails during a study, an error while writing results |
+//! | 2 | a usage or configuration error: bad arguments (clap), a scenario, override, grid or filter list that does not load or validate, an output path that cannot be written — anything refused before the work starts |
+//! | 130 | interrupted by SIGINT (partial results written where the command supports it) |
+
+use crate::interrupt::{EXIT_INTERRUPTED, Interrupted};
+use std::path::Path;
+
+/// A usage or configuration error found by the CLI itself (exit code 2).
+#[derive(Debug)]
+pub struct Usage(pub String);
+
+impl std::fmt::Display for Usage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for Usage {}
+
+/// A failure while doing the work (exit code 1), as opposed to refusing it.
+#[derive(Debug)]
+pub struct Runtime(pub String);
+
+impl std::fmt::Display for Runtime {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for Runtime {}
+
+/// The exit code of a command that failed with `e`: 130 interrupted, 1 for a runtime failure
+/// (a [`Runtime`] error, a truth simulation failing inside a study), 2 for everything refused up
+/// front.
+pub fn code(e: &anyhow::Error) -> i32 {
+    if e.downcast_ref::<Interrupted>().is_some() {
+        return EXIT_INTERRUPTED;
+    }
+    let runtime = e.chain().any(|c| {
+        c.is::<Runtime>()
+            || c.is::<entrynav::sim::SimError>()
+            || matches!(
+                c.downcast_ref::<entrynav::sim::TradeError>(),
+                Some(entrynav::sim::TradeError::Truth { .. })
+            )
+    });
+    if runtime { 1 } else { 2 }
+}
+
+/// `--threads N`: a worker count of at least 1.
+pub fn parse_threads(text: &str) -> Result<usize, String> {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    match text.parse::<usize>() {
+        Ok(n) if (1..=MAX_THREADS).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "'{text}' is not a thread count: give 1 to {MAX_THREADS} (this machine has {cores} cores; omit --threads to use them all)"
+        )),
+    }
+}
+
+/// Largest `--threads`.
+pub const MAX_THREADS: usize = 1024;
+
+/// Whether `path` is `-` (standard output).
+pub fn is_stdout(path: &Path) -> bool {
+    path.as_os_str() == "-"
+}
+
+/// Refuse, before any run, an output file that cannot be written: create its directory and open
+/// it for appending (which leaves an existing file's content alone); a file this check created is
+/// removed again. `-` (standard output) is always fine.
+pub fn check_output_file(path: &Path, flag: &str) -> anyhow::Result<()> {
+    if is_stdout(path) {
+        return Ok(());
+    }
+    let fail = |e: std::io::Error| {
+        Usage(format!(
+            "{flag} {}: cannot write there: {e}",
+            path.display()
+        ))
+    };
+    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(parent).map_err(fail)?;
+    }
+    let existed = path.exists();
+    if path.is_dir() {
+        return Err(Usage(format!(
+            "{flag} {}: is a directory, not a file",
+            path.display()
+        ))
+        .into());
+    }
+    std::fs::OpenOptions::new()
+        .append(true)
+        .create(true)
+        .open(path)
+        .map_err(fail)?;
+    if !existed {
+        let _ = std::fs::remove_file(path);
+    }
+    Ok(())
+}
+
+/// Refuse, before any run, an output directory that cannot be created or written into.
+pub fn check_output_dir(dir: &Path, flag: &str) -> anyhow::Result<()> {
+    let fail =
+        |e: std::io::Error| Usage(format!("{flag} {}: cannot write there: {e}", dir.display()));
+    std::fs::create_dir_all(dir).map_err(fail)?;
+    let probe = dir.join(format!(".entrynav-write-check-{}", std::process::id()));
+    std::fs::File::create(&probe).map_err(fail)?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}

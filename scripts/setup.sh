@@ -4,8 +4,12 @@
 # Python virtual environment in .venv with the FMI tools the tests drive (fmpy, fmutool, libcosimpy)
 # and Dask (distributed) for sharded trade studies.
 # Idempotent: skips what is already present.
+# Usage: scripts/setup.sh [--build-only]   (--build-only: the apt packages the Rust build needs, no
+# Python tools; what the README's first command runs before `cargo run`).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+build_only=false
+[ "${1:-}" = "--build-only" ] && build_only=true
 
 need_apt=()
 command -v gcc >/dev/null 2>&1 || need_apt+=(build-essential)
@@ -18,9 +22,17 @@ if [ ${#need_apt[@]} -gt 0 ]; then
   if [ "$(id -u)" -eq 0 ]; then
     apt-get update -qq
     DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${need_apt[@]}" >/dev/null
+  elif command -v sudo >/dev/null 2>&1; then
+    sudo apt-get update -qq
+    sudo DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${need_apt[@]}" >/dev/null
   else
-    echo "setup: missing ${need_apt[*]}; install them (sudo apt-get install ${need_apt[*]})" >&2
+    echo "setup: missing ${need_apt[*]}; install them (apt-get install ${need_apt[*]} as root)" >&2
     exit 1
+  fi
+  # openblas-src caches a failed library probe from a build before the packages existed: forget it.
+  if [ -d target ] && command -v cargo >/dev/null 2>&1; then
+    cargo clean --release -p openblas-src -p openblas-build >/dev/null 2>&1 || true
+    cargo clean -p openblas-src -p openblas-build >/dev/null 2>&1 || true
   fi
 fi
 
@@ -33,6 +45,11 @@ for comp in rustfmt clippy; do
     rustup component add "$comp"
   fi
 done
+
+if $build_only; then
+  echo "setup: build prerequisites ready ($(cargo --version))"
+  exit 0
+fi
 
 # Python tools for the FMU and benchmark tests, pinned.
 if [ ! -x .venv/bin/python ]; then

@@ -26,6 +26,11 @@ thread_local! {
 
 static INSTALL: Once = Once::new();
 
+/// A panic caught inside a guarded FMI call: its message and source location.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{0}")]
+pub struct CaughtPanic(pub String);
+
 fn describe(info: &PanicHookInfo<'_>) -> String {
     let payload = info.payload();
     let what = payload
@@ -56,7 +61,7 @@ fn install() {
 }
 
 /// Run `f` with panics caught: `Err` holds the panic's message and location.
-pub fn guarded<T>(f: impl FnOnce() -> T) -> Result<T, String> {
+pub fn guarded<T>(f: impl FnOnce() -> T) -> Result<T, CaughtPanic> {
     install();
     DEPTH.with(|d| d.set(d.get() + 1));
     let r = catch_unwind(AssertUnwindSafe(f));
@@ -66,7 +71,10 @@ pub fn guarded<T>(f: impl FnOnce() -> T) -> Result<T, String> {
             .with(|c| c.borrow_mut().take())
             .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
             .or_else(|| payload.downcast_ref::<String>().cloned())
-            .unwrap_or_else(|| "a panic without a message".to_string())
+            .map_or_else(
+                || CaughtPanic("a panic without a message".into()),
+                CaughtPanic,
+            )
     })
 }
 
@@ -76,12 +84,12 @@ mod tests {
 
     #[test]
     fn a_guarded_panic_is_caught_with_its_location() {
-        let r: Result<(), String> = guarded(|| {
+        let r: Result<(), CaughtPanic> = guarded(|| {
             let v: Vec<u8> = Vec::new();
             let i = v.len() + 3;
             let _ = v[i];
         });
-        let msg = r.unwrap_err();
+        let msg = r.unwrap_err().to_string();
         assert!(msg.contains("index out of bounds"), "{msg}");
         assert!(msg.contains("panic_hook.rs"), "{msg}");
         assert_eq!(guarded(|| 5), Ok(5));

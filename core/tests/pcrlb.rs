@@ -75,3 +75,26 @@ fn observe_bound_without_filters_equals_the_trade_bound() {
         "a different seed flies different truths"
     );
 }
+
+#[test]
+fn mixture_of_experts_is_consistent_on_msl_pressure_orbiter() {
+    // Seed 003 scenario 2 (Δ estimated): the gate's weights are not posterior probabilities, so
+    // each member must be consistent on its own (full density-bias prior around its Δ_i). With
+    // cell-sized member priors the ANEES/dof was 1.67 at 1000 runs and the final position
+    // 3.6× the bound; now ≈ 0.80 and 3.16×, as close to the bound as the EKF.
+    let s = scenario("msl-pressure-orbiter");
+    let r = trade(&s, &[FilterKind::Ekf, FilterKind::MmaeMoe], 1000, 1);
+    let (ekf, moe) = (&r.filters[0], &r.filters[1]);
+    let c = &moe.consistency;
+    let per_dof = c.anees.unwrap_or(f64::NAN) / c.nees_dof as f64;
+    assert!(per_dof <= 1.5, "mmae-moe ANEES/dof {per_dof} > 1.5");
+    assert!(per_dof >= 0.5, "mmae-moe ANEES/dof {per_dof}: far too conservative");
+    let (e_moe, e_ekf) = (
+        get(&moe.efficiency_final, "pos_m"),
+        get(&ekf.efficiency_final, "pos_m"),
+    );
+    assert!(
+        e_moe <= 1.05 * e_ekf,
+        "mmae-moe final position {e_moe}× the bound, EKF {e_ekf}×"
+    );
+}

@@ -78,12 +78,22 @@ impl<const N: usize> BankNav<N> {
             .map(|k| 6 + k)
             .filter(|&k| k < N);
         let cells = cell_sigmas(&deltas);
+        let consider = |k: usize| k + onboard.tuning.n_consider >= N;
         let members = deltas
             .iter()
             .zip(&cells)
-            .map(|(d, sigma)| {
+            .map(|(d, cell_sigma)| {
                 let mut s = start.clone();
                 if let Some(k) = density_state {
+                    // Bayesian weights (classical bank): member i stands for its cell of the
+                    // grid. Gated weights (MoE) are not posteriors, so a member that estimates
+                    // δ must be consistent on its own: it keeps the full prior, centred on Δ_i.
+                    // A consider δ is never corrected, so there the member keeps its cell.
+                    let sigma = if moe && !consider(k) {
+                        start.p0[(k, k)].sqrt() / (1.0 + d)
+                    } else {
+                        *cell_sigma
+                    };
                     s.x0[k] = 0.0;
                     s.p0.row_mut(k).fill(0.0);
                     s.p0.column_mut(k).fill(0.0);

@@ -42,6 +42,9 @@ enum Gate {
 /// ((Δ_{i+1} − Δ_{i−1})/2)²/12 instead of the scenario's prior (the bank spans the prior; each
 /// member stands for its cell), and the member reports the total (1 + Δ_i)(1 + δ_i) − 1 to the
 /// mixture, so the bank's density-bias estimate is the probability-weighted Δ with its spread.
+/// The cell prior presumes Bayesian weights; the MoE gate's are not posteriors, so under the MoE
+/// a member that *estimates* δ keeps the full prior (σ_Δ / (1 + Δ_i)) and is consistent on its
+/// own (docs/results.md, "MoE consistency"); a consider δ keeps its cell.
 #[derive(Debug, Clone)]
 pub struct BankNav<const N: usize> {
     members: Vec<Option<EkfNav<N>>>,

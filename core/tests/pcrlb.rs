@@ -88,7 +88,10 @@ fn mixture_of_experts_is_consistent_on_msl_pressure_orbiter() {
     let c = &moe.consistency;
     let per_dof = c.anees.unwrap_or(f64::NAN) / c.nees_dof as f64;
     assert!(per_dof <= 1.5, "mmae-moe ANEES/dof {per_dof} > 1.5");
-    assert!(per_dof >= 0.5, "mmae-moe ANEES/dof {per_dof}: far too conservative");
+    assert!(
+        per_dof >= 0.5,
+        "mmae-moe ANEES/dof {per_dof}: far too conservative"
+    );
     let (e_moe, e_ekf) = (
         get(&moe.efficiency_final, "pos_m"),
         get(&ekf.efficiency_final, "pos_m"),

@@ -38,6 +38,7 @@ use openblas_src as _;
 pub mod free;
 pub mod ground;
 pub mod orbiters;
+pub mod orbiters_bound;
 pub mod output;
 pub mod search;
 pub mod select;
@@ -46,7 +47,8 @@ pub mod tune;
 
 pub use ground::{GroundObjective, GroundProblem, GroundSolution, Site};
 pub use orbiters::{OrbitElements, OrbiterObjective, OrbiterProblem, OrbiterSolution};
-pub use search::{SearchOptions, SearchResult, minimize};
+pub use orbiters_bound::{OrbiterBoundProblem, OrbiterBoundSolution};
+pub use search::{SearchOptions, SearchResult, minimize, polish_from};
 pub use select::{
     AtMost, BranchBoundOptions, BranchBoundReport, ProofStatus, Selection, SelectionCriterion,
     SelectionProblem, SelectionReport,

@@ -193,27 +193,14 @@ where
             let best = state
                 .get_best_param()
                 .ok_or_else(|| OptimizerError::Solver("particle swarm found no point".into()))?;
-            let mut x = best.position.clone();
-            let mut c = state.get_best_cost();
-            // Restarted polish: a fresh simplex lets Nelder–Mead leave the ridges where it
-            // stalls; the simplex shrinks once a round no longer improves.
-            let mut scale = opts.polish_step;
-            for _ in 0..POLISH_ROUNDS {
-                if opts.polish_iterations == 0 {
-                    break;
-                }
-                let (xp, cp) = polish(problem(), &x, lower, upper, scale, opts)?;
-                let gain = c - cp;
-                if cp < c {
-                    (x, c) = (xp, cp);
-                }
-                if gain <= 1e-10 * c.abs().max(1.0) {
-                    if scale < opts.polish_step / 5.0 {
-                        break;
-                    }
-                    scale /= 3.0;
-                }
-            }
+            let (x, c) = restarted_polish(
+                &problem,
+                best.position.clone(),
+                state.get_best_cost(),
+                lower,
+                upper,
+                opts,
+            )?;
             Ok((x, c, swarm_evals))
         })
         .collect();
@@ -238,6 +225,85 @@ where
         swarm_evaluations,
         start_costs,
         best_start,
+    })
+}
+
+/// Restarted Nelder–Mead from `(x, c)`: a fresh simplex lets it leave the ridges where it stalls;
+/// the simplex shrinks once a round no longer improves (at most [`POLISH_ROUNDS`] rounds).
+fn restarted_polish<'a, F: Fn(&[f64]) -> f64 + 'a>(
+    problem: &dyn Fn() -> Counted<'a, F>,
+    mut x: Vec<f64>,
+    mut c: f64,
+    lower: &[f64],
+    upper: &[f64],
+    opts: &SearchOptions,
+) -> Result<(Vec<f64>, f64), OptimizerError> {
+    let mut scale = opts.polish_step;
+    for _ in 0..POLISH_ROUNDS {
+        if opts.polish_iterations == 0 {
+            break;
+        }
+        let (xp, cp) = polish(problem(), &x, lower, upper, scale, opts)?;
+        let gain = c - cp;
+        if cp < c {
+            (x, c) = (xp, cp);
+        }
+        if gain <= 1e-10 * c.abs().max(1.0) {
+            if scale < opts.polish_step / 5.0 {
+                break;
+            }
+            scale /= 3.0;
+        }
+    }
+    Ok((x, c))
+}
+
+/// Only the restarted Nelder–Mead polish of [`minimize`], from `x0` (no swarm): for a cost too
+/// expensive for a global search, started from the optimum of a cheap proxy. `lower`/`upper` set
+/// the simplex size (`polish_step` × the box width); the search itself is unbounded.
+pub fn polish_from<F>(
+    cost: &F,
+    x0: &[f64],
+    lower: &[f64],
+    upper: &[f64],
+    opts: &SearchOptions,
+    progress: Progress<'_>,
+) -> Result<SearchResult, OptimizerError>
+where
+    F: Fn(&[f64]) -> f64 + Sync,
+{
+    check_box(lower, upper)?;
+    if x0.len() != lower.len() {
+        return Err(OptimizerError::InvalidInput(format!(
+            "start point has {} coordinates for a {}-dimensional box",
+            x0.len(),
+            lower.len()
+        )));
+    }
+    let total = 3 * (x0.len() + 1 + 2 * opts.polish_iterations) * POLISH_ROUNDS;
+    let count = AtomicUsize::new(0);
+    let problem = || Counted {
+        cost,
+        count: &count,
+        local: AtomicUsize::new(0),
+        total,
+        progress,
+    };
+    let c0 = {
+        let c = cost(x0);
+        if c.is_finite() { c } else { NON_FINITE_COST }
+    };
+    count.fetch_add(1, Ordering::Relaxed);
+    let (x, c) = restarted_polish(&problem, x0.to_vec(), c0, lower, upper, opts)?;
+    let evaluations = count.load(Ordering::Relaxed);
+    progress(evaluations, evaluations);
+    Ok(SearchResult {
+        x,
+        cost: c,
+        evaluations,
+        swarm_evaluations: 0,
+        start_costs: vec![c],
+        best_start: 0,
     })
 }
 
@@ -297,6 +363,41 @@ mod tests {
         assert!(r.evaluations >= 2 * 20 * 41);
         let again = minimize(&f, &[-2.0, -2.0], &[2.0, 2.0], &opts, &crate::no_progress).unwrap();
         assert_eq!(r, again);
+    }
+
+    #[test]
+    fn polish_from_a_start_reaches_the_nearby_minimum() {
+        let f = |x: &[f64]| (x[0] - 0.3).powi(2) + 2.0 * (x[1] + 0.7).powi(2);
+        let opts = SearchOptions {
+            polish_iterations: 100,
+            polish_step: 0.05,
+            ..Default::default()
+        };
+        let r = polish_from(
+            &f,
+            &[0.0, 0.0],
+            &[-2.0, -2.0],
+            &[2.0, 2.0],
+            &opts,
+            &crate::no_progress,
+        )
+        .unwrap();
+        assert!(
+            (r.x[0] - 0.3).abs() < 1e-5 && (r.x[1] + 0.7).abs() < 1e-5,
+            "{r:?}"
+        );
+        assert_eq!(r.swarm_evaluations, 0);
+        assert!(
+            polish_from(
+                &f,
+                &[0.0],
+                &[-2.0, -2.0],
+                &[2.0, 2.0],
+                &opts,
+                &crate::no_progress
+            )
+            .is_err()
+        );
     }
 
     #[test]

@@ -138,3 +138,50 @@ fn four_orbiters_use_the_integrated_log_det() {
         .collect();
     assert!(sol.evaluation.value > p.evaluate(&flat).unwrap().value);
 }
+
+#[test]
+fn pcrlb_objective_lowers_the_final_position_bound_below_the_geometric_optimum() {
+    use entrynav_optimizer::OrbiterBoundProblem;
+    use entrynav_optimizer::output::template_noise;
+    let cfg = ScenarioConfig::builtin("orbiters-3").unwrap();
+    let noise = template_noise(&cfg, true).unwrap();
+    let proxy = OrbiterProblem::new(trajectory(), 3, 725e3, None).unwrap();
+    let p = OrbiterBoundProblem::new(proxy, cfg.clone(), noise);
+    // The objective is the bound a trade reports on the scenario as shipped (Table 6 orbiters).
+    let own = p.final_position_bound(&table6()).unwrap();
+    let s = Scenario::build(cfg, &entrynav::files::no_files).unwrap();
+    let trade_bound = entrynav::sim::pcrlb_study(&s, 1, 1).unwrap().final_["pos_m"].unwrap();
+    assert!(
+        (own - trade_bound).abs() <= 1e-6 * trade_bound,
+        "objective {own} m vs trade bound {trade_bound} m"
+    );
+    let proxy_opts = SearchOptions {
+        seed: 2,
+        starts: 2,
+        particles: 20,
+        iterations: 40,
+        polish_iterations: 200,
+        polish_step: 0.02,
+    };
+    let polish = SearchOptions {
+        polish_iterations: 30,
+        ..entrynav_optimizer::orbiters_bound::default_bound_polish(2)
+    };
+    let sol = p.optimize(&proxy_opts, &polish, &no_progress).unwrap();
+    assert!(
+        sol.bound_m <= sol.proxy_bound_m,
+        "the polish never ends above its start: {} vs {} m",
+        sol.bound_m,
+        sol.proxy_bound_m
+    );
+    assert!(
+        sol.bound_m < 0.95 * own,
+        "bound-optimal orbiters {} m not below Table 6's {own} m",
+        sol.bound_m
+    );
+    let again = p.final_position_bound(&sol.elements).unwrap();
+    assert_eq!(
+        again, sol.bound_m,
+        "reported bound is the bound of the reported elements"
+    );
+}

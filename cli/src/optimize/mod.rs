@@ -13,6 +13,7 @@ use entrynav::scenario::ScenarioConfig;
 use entrynav_loader as load;
 use entrynav_optimizer::ground::{self, GroundEvaluation};
 use entrynav_optimizer::orbiters::{self, OrbiterEvaluation};
+use entrynav_optimizer::orbiters_bound::{self, OrbiterBoundProblem};
 use entrynav_optimizer::output::{self, template_noise};
 use entrynav_optimizer::select::{
     BranchBoundReport, ProofStatus, Selection, separation_constraints, site_information,

@@ -15,13 +15,18 @@ pub(super) enum OrbiterObjectiveArg {
     /// The integral of ln det of the FIM.
     #[value(name = "logdet")]
     Logdet,
+    /// The final position PCRLB (minimised; polished from the geometric optimum).
+    #[value(name = "pcrlb")]
+    Pcrlb,
 }
 
-impl From<OrbiterObjectiveArg> for OrbiterObjective {
-    fn from(a: OrbiterObjectiveArg) -> OrbiterObjective {
-        match a {
-            OrbiterObjectiveArg::DetN3 => OrbiterObjective::DetN3,
-            OrbiterObjectiveArg::Logdet => OrbiterObjective::LogDet,
+impl OrbiterObjectiveArg {
+    /// The geometric objective this names (`None` for `pcrlb`, which polishes the default one).
+    pub(super) fn geometric(self) -> Option<OrbiterObjective> {
+        match self {
+            OrbiterObjectiveArg::DetN3 => Some(OrbiterObjective::DetN3),
+            OrbiterObjectiveArg::Logdet => Some(OrbiterObjective::LogDet),
+            OrbiterObjectiveArg::Pcrlb => None,
         }
     }
 }

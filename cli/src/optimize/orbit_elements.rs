@@ -61,7 +61,8 @@ pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
             cfg.name
         ),
     };
-    let objective = a.objective.map(OrbiterObjective::from);
+    let on_bound = a.objective == Some(OrbiterObjectiveArg::Pcrlb);
+    let objective = a.objective.and_then(OrbiterObjectiveArg::geometric);
     let scenario = load::build(cfg.clone(), &dir)?;
     let trajectory = Trajectory::from_scenario(&scenario, a.step)?;
     let problem = OrbiterProblem::new(trajectory, count, altitude_m, objective)?;
@@ -73,7 +74,20 @@ pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
         bar.set_length(total as u64);
         bar.set_position(done as u64);
     };
-    let sol = problem.optimize(&opts, &progress)?;
+    let noise = template_noise(&cfg, true)?;
+    let bound_problem =
+        on_bound.then(|| OrbiterBoundProblem::new(problem.clone(), cfg.clone(), noise));
+    let bound = bound_problem
+        .as_ref()
+        .map(|b| {
+            let polish = orbiters_bound::default_bound_polish(c.seed);
+            b.optimize(&opts, &polish, &progress)
+        })
+        .transpose()?;
+    let sol = match &bound {
+        Some(b) => b.proxy.clone(),
+        None => problem.optimize(&opts, &progress)?,
+    };
     bar.finish_and_clear();
 
     // The scenario's own orbiters (the paper's Table 6 for orbiters-3), when comparable.
@@ -132,8 +146,33 @@ pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
     }
     println!();
     print_search(&sol.search, sol.elapsed_s, wall, &opts);
-
-    let noise = template_noise(&cfg, true)?;
+    let own_bound = match (&bound_problem, &reference) {
+        (Some(bp), Some((el, _))) => Some(bp.final_position_bound(el)?),
+        _ => None,
+    };
+    if let Some(b) = &bound {
+        println!();
+        println!(
+            "pcrlb       final position PCRLB of the scenario with these orbiters (IMU, dynamics, \
+             prior and ranges; run 0 of seed 1), polished from the {} optimum",
+            problem.objective().name()
+        );
+        println!(
+            "optimum     {:.3} m  (at the {} optimum {:.3} m{})",
+            b.bound_m,
+            problem.objective().name(),
+            b.proxy_bound_m,
+            own_bound.map_or(String::new(), |v| format!(
+                "; scenario's own orbiters {v:.3} m"
+            ))
+        );
+        print_elements(&b.elements);
+        println!(
+            "  polish: {} bound evaluations, {:.1} s (proxy search and polish)",
+            b.search.evaluations, b.elapsed_s
+        );
+    }
+    let best_elements = bound.as_ref().map_or(&sol.elements, |b| &b.elements);
     if let Some(path) = &a.export_trajectory {
         let header = [
             ("objective", problem.objective().name().to_string()),
@@ -154,14 +193,24 @@ pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
         let name = file_stem(path);
         let (_, text) = output::with_beacons(
             &cfg,
-            output::orbiter_beacons(&sol.elements, altitude_m, &noise),
+            output::orbiter_beacons(best_elements, altitude_m, &noise),
             &name,
-            &format!(
-                "Orbiter geometry optimized by `entrynav optimize orbiters` (seed {}): {} = {:.3}.",
-                opts.seed,
-                problem.objective().name(),
-                ev.value
-            ),
+            &match &bound {
+                Some(b) => format!(
+                    "Orbiter geometry optimized by `entrynav optimize orbiters --objective pcrlb` \
+                     (seed {}): final position PCRLB {:.3} m ({} optimum: {:.3} m).",
+                    opts.seed,
+                    b.bound_m,
+                    problem.objective().name(),
+                    b.proxy_bound_m
+                ),
+                None => format!(
+                    "Orbiter geometry optimized by `entrynav optimize orbiters` (seed {}): {} = {:.3}.",
+                    opts.seed,
+                    problem.objective().name(),
+                    ev.value
+                ),
+            },
         )?;
         write_text(path, &text)?;
         println!("wrote {}", path.display());
@@ -211,7 +260,7 @@ pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
                 "violation_rad_s": e.violation_rad_s,
             })
         };
-        let v = json!({
+        let mut v = json!({
             "problem": "orbiters",
             "scenario": cfg.name,
             "objective": problem.objective().name(),
@@ -243,6 +292,17 @@ pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
                 o
             }),
         });
+        if let Some(b) = &bound {
+            v["pcrlb"] = json!({
+                "objective": "final position PCRLB [m] (run 0 of seed 1), minimised by a Nelder-Mead polish from the geometric optimum",
+                "final_pos_m": b.bound_m,
+                "at_geometric_optimum_m": b.proxy_bound_m,
+                "scenario_orbiters_m": own_bound,
+                "elements": elements_json(&b.elements),
+                "evaluations": b.search.evaluations,
+                "elapsed_s": b.elapsed_s,
+            });
+        }
         write_json(path, &v)?;
     }
     Ok(())

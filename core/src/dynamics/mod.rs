@@ -260,14 +260,21 @@ impl<A: Atmosphere> EntryModel<A> {
         let k3 = self.rhs(&(x + k2 * (0.5 * h)), bank);
         let k4 = self.rhs(&(x + k3 * h), bank);
         let x_next = x + (k1 + k2 * 2.0 + k3 * 2.0 + k4) * (h / 6.0);
-        // Horner form of the degree-4 Taylor polynomial: I + M(I + M/2(I + M/3(I + M/4))).
-        let m = a * h;
-        let id = SMatrix::<f64, N, N>::identity();
-        let mut phi = id + m * 0.25;
-        phi = id + (m * phi) * (1.0 / 3.0);
-        phi = id + (m * phi) * 0.5;
-        phi = id + m * phi;
-        (x_next, phi)
+        (x_next, taylor_stm(&a, h))
+    }
+
+    /// The transition matrix of [`EntryModel::step_with_linear_stm`] alone (bit for bit the
+    /// same), without the RK4 stages it does not depend on: for a caller that takes the next
+    /// state from elsewhere (the PCRLB, which has the recorded truth).
+    pub fn linear_stm<const N: usize>(
+        &self,
+        x: &SVector<f64, N>,
+        bank: f64,
+        h: f64,
+    ) -> SMatrix<f64, N, N> {
+        let k1 = self.rhs(x, bank);
+        let (_, a) = self.jacobian(&(x + k1 * (0.5 * h)), bank);
+        taylor_stm(&a, h)
     }
 
     /// Altitude above the reference sphere of a state \[m\].
@@ -302,4 +309,14 @@ impl<A: Atmosphere> EntryModel<A> {
             .contains(&AugmentedParam::Rho0)
             .then(|| self.density_profile(x, altitude_m))
     }
+}
+
+/// Horner form of the degree-4 Taylor polynomial of exp(A h): I + M(I + M/2(I + M/3(I + M/4))).
+fn taylor_stm<const N: usize>(a: &SMatrix<f64, N, N>, h: f64) -> SMatrix<f64, N, N> {
+    let m = a * h;
+    let id = SMatrix::<f64, N, N>::identity();
+    let mut phi = id + m * 0.25;
+    phi = id + (m * phi) * (1.0 / 3.0);
+    phi = id + (m * phi) * 0.5;
+    id + m * phi
 }

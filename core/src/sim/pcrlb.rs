@@ -37,14 +37,20 @@ use crate::state_dim::{DimVisitor, UnsupportedDimension, with_state_dim};
 use nalgebra::{SMatrix, SVector};
 use thiserror::Error;
 
-/// One epoch of one run: F (row-major N×N), I (N×N), and the 3×N position and velocity maps.
+/// One epoch of one run: F, I, JₚᵀJₚ and JᵥᵀJᵥ (each row-major N×N, in that order, in one
+/// buffer: one allocation per epoch), with Jₚ, Jᵥ the 3×N position and velocity maps.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BoundEpoch {
     pub(super) t: f64,
-    pub(super) phi: Vec<f64>,
-    pub(super) info: Vec<f64>,
-    pub(super) pos_map: Vec<f64>,
-    pub(super) vel_map: Vec<f64>,
+    pub(super) data: Vec<f64>,
+}
+
+impl BoundEpoch {
+    /// The `k`-th N×N block (0 F, 1 I, 2 JₚᵀJₚ, 3 JᵥᵀJᵥ).
+    pub(super) fn block(&self, k: usize) -> &[f64] {
+        let n2 = self.data.len() / 4;
+        &self.data[k * n2..(k + 1) * n2]
+    }
 }
 
 /// Why a scenario has no PCRLB (a status of the study, reported beside the tables, not a failure).
@@ -156,7 +162,7 @@ impl DimVisitor for RunVisitor<'_> {
         let bank = scenario.truth_bank;
         let first = rec.truth.samples.first().ok_or(NoBound::EmptyRun)?;
         let (mut t_prev, mut x_prev) = (first.t, truth_at(first)?);
-        let mut out = Vec::new();
+        let mut out = Vec::with_capacity(rec.truth.epochs.len());
         for (epoch, sample) in rec.truth.epochs_with_truth() {
             let dt = epoch.t - t_prev;
             let mut phi = SMatrix::<f64, N, N>::identity();
@@ -164,22 +170,26 @@ impl DimVisitor for RunVisitor<'_> {
                 let subs = ((dt / step) - 1e-9).ceil().max(1.0) as usize;
                 let h = dt / subs as f64;
                 let mut x = x_prev;
-                for _ in 0..subs {
-                    let (x_next, f) = model.step_with_linear_stm(&x, bank, h);
-                    phi = f * phi;
-                    x = x_next;
+                for k in 0..subs {
+                    if k + 1 == subs {
+                        // The last sub-step's state is not needed: the next epoch starts from
+                        // the recorded truth.
+                        phi = model.linear_stm(&x, bank, h) * phi;
+                    } else {
+                        let (x_next, f) = model.step_with_linear_stm(&x, bank, h);
+                        phi = f * phi;
+                        x = x_next;
+                    }
                 }
             }
             let x = truth_at(sample)?;
             let info = information(scenario, &model, &x, epoch, bank)?;
-            let (pos_map, vel_map) = position_velocity_maps(&x, model.kind.is_cartesian());
-            out.push(BoundEpoch {
-                t: epoch.t,
-                phi: row_major(&phi),
-                info: row_major(&info),
-                pos_map,
-                vel_map,
-            });
+            let (jp, jv) = position_velocity_maps(&x, model.kind.is_cartesian());
+            let mut data = Vec::with_capacity(4 * N * N);
+            for m in [phi, info, jp.transpose() * jp, jv.transpose() * jv] {
+                push_row_major(&mut data, &m);
+            }
+            out.push(BoundEpoch { t: epoch.t, data });
             (t_prev, x_prev) = (epoch.t, x);
         }
         Ok(out)
@@ -196,11 +206,23 @@ fn information<const N: usize>(
 ) -> Result<SMatrix<f64, N, N>, NoBound> {
     let xd = seed_duals(x);
     let kin = kinematics(model, &xd, epoch.t);
-    let beacons: Vec<_> = scenario
-        .beacons
-        .iter()
-        .map(|b| b.state_at(epoch.t))
-        .collect();
+    // Beacon ephemerides only when a beacon channel is measured at this epoch.
+    let ranged = epoch.values.iter().enumerate().any(|(c, v)| {
+        v.is_some()
+            && matches!(
+                scenario.channels[c].channel,
+                crate::sensors::Channel::Range(_) | crate::sensors::Channel::RangeRate(_)
+            )
+    });
+    let beacons: Vec<_> = if ranged {
+        scenario
+            .beacons
+            .iter()
+            .map(|b| b.state_at(epoch.t))
+            .collect()
+    } else {
+        Vec::new()
+    };
     let mut info = SMatrix::<f64, N, N>::zeros();
     for (c, value) in epoch.values.iter().enumerate() {
         if value.is_none() {
@@ -228,17 +250,17 @@ fn information<const N: usize>(
     Ok(info)
 }
 
-/// Row-major 3×N Jacobians of the position and velocity the RMSE tables compare.
+/// The 3×N Jacobians of the position and velocity the RMSE tables compare.
 fn position_velocity_maps<const N: usize>(
     x: &SVector<f64, N>,
     cartesian: bool,
-) -> (Vec<f64>, Vec<f64>) {
-    let mut pos = vec![0.0; 3 * N];
-    let mut vel = vec![0.0; 3 * N];
+) -> (SMatrix<f64, 3, N>, SMatrix<f64, 3, N>) {
+    let mut pos = SMatrix::<f64, 3, N>::zeros();
+    let mut vel = SMatrix::<f64, 3, N>::zeros();
     if cartesian {
         for i in 0..3 {
-            pos[i * N + i] = 1.0;
-            vel[i * N + 3 + i] = 1.0;
+            pos[(i, i)] = 1.0;
+            vel[(i, 3 + i)] = 1.0;
         }
         return (pos, vel);
     }
@@ -248,15 +270,13 @@ fn position_velocity_maps<const N: usize>(
     for i in 0..3 {
         let (gp, gv) = (dual_gradient(&p[i]), dual_gradient(&v[i]));
         for j in 0..6 {
-            pos[i * N + j] = gp[j];
-            vel[i * N + j] = gv[j];
+            pos[(i, j)] = gp[j];
+            vel[(i, j)] = gv[j];
         }
     }
     (pos, vel)
 }
 
-fn row_major<const N: usize>(m: &SMatrix<f64, N, N>) -> Vec<f64> {
-    (0..N)
-        .flat_map(|i| (0..N).map(move |j| m[(i, j)]))
-        .collect()
+fn push_row_major<const N: usize>(out: &mut Vec<f64>, m: &SMatrix<f64, N, N>) {
+    out.extend((0..N).flat_map(|i| (0..N).map(move |j| m[(i, j)])));
 }

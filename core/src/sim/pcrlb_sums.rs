@@ -59,17 +59,6 @@ fn add_into(a: &mut Vec<f64>, b: &[f64]) {
     }
 }
 
-/// Row-major MᵀM of a row-major 3×N map.
-fn gram(map: &[f64], n: usize) -> Vec<f64> {
-    let mut g = vec![0.0; n * n];
-    for i in 0..n {
-        for j in 0..n {
-            g[i * n + j] = (0..3).map(|r| map[r * n + i] * map[r * n + j]).sum();
-        }
-    }
-    g
-}
-
 impl BoundSums {
     /// Empty sums for `scenario` (its state size and filter start covariance, the prior).
     pub fn new(scenario: &Scenario) -> Self {
@@ -106,10 +95,10 @@ impl BoundSums {
         }
         for (i, e) in epochs.iter().enumerate() {
             self.count[i] += 1;
-            add_into(&mut self.phi[i], &e.phi);
-            add_into(&mut self.info[i], &e.info);
-            add_into(&mut self.pos[i], &gram(&e.pos_map, n));
-            add_into(&mut self.vel[i], &gram(&e.vel_map, n));
+            add_into(&mut self.phi[i], e.block(0));
+            add_into(&mut self.info[i], e.block(1));
+            add_into(&mut self.pos[i], e.block(2));
+            add_into(&mut self.vel[i], e.block(3));
         }
         if k > 0 {
             self.ends[k - 1] += 1;

@@ -2,6 +2,9 @@
 
 mod atmosphere_file;
 mod atmosphere_inspect;
+mod compare;
+mod compare_stats;
+mod compare_table;
 mod exit;
 mod fmu;
 mod grid;

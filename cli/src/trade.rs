@@ -51,8 +51,7 @@ pub struct TradeArgs {
     /// Write SVG plots (RMSE vs time, errors with 3σ envelopes, NEES) into this directory.
     #[arg(long)]
     pub plots: Option<PathBuf>,
-    /// No progress output (bars, per-cell and per-epoch logs); results and tables still print.
-    #[arg(long)]
+    #[arg(long, help = crate::QUIET_HELP)]
     pub quiet: bool,
     /// The truth atmosphere file and how to read it.
     #[command(flatten)]

@@ -4,6 +4,7 @@
 //! zero. The standard errors and their assumptions are in [`crate::compare_stats`]; the table and
 //! the JSON say which were used.
 
+use crate::compare_paired::{self, FinalErrors};
 use crate::compare_stats::{
     Difference, Estimate, se_anees, se_fraction, se_rmse_bound, se_rmse_with_mean,
 };
@@ -27,6 +28,11 @@ pub struct CompareArgs {
     /// e.g. two `--set` tunings of one scenario) instead of refusing.
     #[arg(long)]
     pub allow_different_scenarios: bool,
+    /// The per-run final errors of A and B (`{scenario}_final_errors.csv` from the same
+    /// studies' `--csv-dir`): adds `rmse_final_paired` rows, paired by run index, with sample
+    /// variances and covariance instead of the Gaussian approximation.
+    #[arg(long, num_args = 2, value_names = ["A.csv", "B.csv"])]
+    pub final_errors: Vec<PathBuf>,
 }
 
 type Stats = BTreeMap<String, Option<f64>>;
@@ -41,6 +47,7 @@ struct SummaryIn {
     provenance: Option<ProvenanceIn>,
     scenario: String,
     seed: u64,
+    runs_completed: u64,
     #[serde(default = "yes")]
     complete: bool,
     filters: Vec<FilterIn>,
@@ -105,6 +112,9 @@ pub struct Row {
     /// B − A with its 95 % interval.
     #[serde(flatten)]
     pub difference: Difference,
+    /// For `rmse_final_paired`: the runs valid in both final-errors files.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub paired_runs: Option<u64>,
     /// For ANEES: the per-epoch 95 % χ² band of A and B and whether each ANEES lies inside.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub band: Option<Band>,
@@ -164,7 +174,14 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     }
     let a = read(&args.a)?;
     let b = read(&args.b)?;
-    let cmp = compare(&args.a, &a, &args.b, &b, args.allow_different_scenarios)?;
+    let finals = match args.final_errors.as_slice() {
+        [fa, fb] => Some((FinalErrors::read(fa)?, FinalErrors::read(fb)?)),
+        _ => None,
+    };
+    let mut cmp = compare(&args.a, &a, &args.b, &b, args.allow_different_scenarios)?;
+    if let Some((fa, fb)) = &finals {
+        add_paired(&mut cmp, fa, fb, &args.final_errors);
+    }
     let to_stdout = args.json.as_deref().is_some_and(is_stdout);
     if !to_stdout {
         crate::compare_table::print(&cmp);
@@ -180,6 +197,37 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Append the paired final-RMSE rows of every compared filter.
+fn add_paired(cmp: &mut Comparison, fa: &FinalErrors, fb: &FinalErrors, files: &[PathBuf]) {
+    let mut any = false;
+    for f in &mut cmp.filters {
+        for p in compare_paired::compare_filter(fa, fb, &f.name) {
+            any = true;
+            f.rows.push(Row {
+                metric: "rmse_final_paired",
+                state: p.state,
+                a: p.a,
+                b: p.b,
+                difference: p.difference,
+                paired_runs: Some(p.runs),
+                band: None,
+            });
+        }
+    }
+    let names: Vec<String> = files.iter().map(|p| p.display().to_string()).collect();
+    cmp.notes.push(if any {
+        format!(
+            "rmse_final_paired: from the per-run final errors in {}, paired by run index (failed runs left out): sample variances and covariance, no Gaussian assumption; valid for any seeds, and narrow where A and B fly the same runs",
+            names.join(" and ")
+        )
+    } else {
+        format!(
+            "{} share no filter with the compared ones: no paired rows",
+            names.join(" and ")
+        )
+    });
 }
 
 fn read(path: &Path) -> Result<SummaryIn> {
@@ -252,9 +300,18 @@ fn compare(
             describe(&sb)
         ));
     }
+    let shared = a.runs_completed.min(b.runs_completed);
+    let same_runs = if a.runs_completed == b.runs_completed {
+        "both summaries fly the same runs (paired)".to_string()
+    } else {
+        format!(
+            "the first {shared} runs are the same in both (A has {}, B {})",
+            a.runs_completed, b.runs_completed
+        )
+    };
     notes.push(if sa.seed == sb.seed && same_scenario {
         format!(
-            "same scenario and seed {}: both summaries fly the same runs (paired); the intervals treat A and B as independent, so they are conservative (a difference called significant is; one not called significant may still be)",
+            "same scenario and seed {}: {same_runs}; the intervals treat A and B as independent, so they are conservative (a difference called significant is; one not called significant may still be)",
             sa.seed
         )
     } else if sa.seed == sb.seed {
@@ -410,6 +467,7 @@ fn row(metric: &'static str, state: String, a: Estimate, b: Estimate, band: Opti
         a,
         b,
         difference: Difference::of(a, b),
+        paired_runs: None,
         band,
     }
 }

@@ -38,7 +38,7 @@ pub fn print(c: &Comparison) {
             100.0 * c.confidence
         );
         println!(
-            "  {:<16} {:<20} {:>12} {:>12} {:>12} {:>9} {:>27}  sig",
+            "  {:<18} {:<20} {:>12} {:>12} {:>12} {:>9} {:>27}  sig",
             "metric", "state", "A", "B", "B - A", "rel", "interval"
         );
         if f.diverged.iter().any(|&d| d > 0) {
@@ -70,7 +70,7 @@ fn print_row(r: &Row) {
         .unwrap_or_else(|| "-".into());
     let interval = format!("[{}, {}]", num(d.ci_low), num(d.ci_high));
     println!(
-        "  {:<16} {:<20} {:>12} {:>12} {:>12} {:>9} {:>27}  {}",
+        "  {:<18} {:<20} {:>12} {:>12} {:>12} {:>9} {:>27}  {}",
         r.metric,
         r.state,
         num(r.a.value),
@@ -83,7 +83,7 @@ fn print_row(r: &Row) {
     if let Some(b) = &r.band {
         let inside = |x: bool| if x { "inside" } else { "OUTSIDE" };
         println!(
-            "  {:<16} dof {}: A/dof {:.3} {} its 95% band [{:.3}, {:.3}], B/dof {:.3} {} [{:.3}, {:.3}]",
+            "  {:<18} dof {}: A/dof {:.3} {} its 95% band [{:.3}, {:.3}], B/dof {:.3} {} [{:.3}, {:.3}]",
             "",
             b.dof,
             r.a.value / b.dof as f64,

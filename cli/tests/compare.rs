@@ -172,3 +172,80 @@ fn unreadable_or_foreign_files_are_usage_errors() {
     assert_eq!(code, 2);
     assert!(err.contains("not a trade summary"), "{err}");
 }
+
+#[test]
+fn paired_final_errors_reproduce_the_summary_rmse_and_narrow_the_interval() {
+    let dir = tmpdir("paired");
+    let run = |name: &str, sets: &[&str]| {
+        let json = dir.join(format!("{name}.json"));
+        let csv = dir.join(name);
+        let mut args = vec![
+            "trade",
+            "--scenario",
+            "four-beacon-fusion",
+            "--filters",
+            "ekf",
+            "--runs",
+            "20",
+            "--seed",
+            "4",
+            "--no-pcrlb",
+            "--quiet",
+            "--json",
+            json.to_str().unwrap(),
+            "--csv-dir",
+            csv.to_str().unwrap(),
+        ];
+        args.extend_from_slice(sets);
+        let (code, _, err) = entrynav(&args);
+        assert_eq!(code, 0, "{err}");
+        let csv = csv.join("four-beacon-fusion_final_errors.csv");
+        (
+            json.to_str().unwrap().to_string(),
+            csv.to_str().unwrap().to_string(),
+        )
+    };
+    let (a, ca) = run("a", &[]);
+    let (b, cb) = run("b", &["--set", "filter.update_iterations=1"]);
+    let v = compare_json(
+        &a,
+        &b,
+        &["--allow-different-scenarios", "--final-errors", &ca, &cb],
+    );
+    let ekf = rows(&v, "ekf");
+    for state in ["pos_m", "vel_mps", "r_m"] {
+        let find = |m: &str| {
+            ekf.iter()
+                .find(|r| r["metric"] == m && r["state"] == state)
+                .unwrap_or_else(|| panic!("{m} {state} missing"))
+        };
+        let (summary, paired) = (find("rmse_final"), find("rmse_final_paired"));
+        assert_eq!(paired["paired_runs"], 20);
+        for side in ["a", "b"] {
+            let (s, p) = (
+                summary[side]["value"].as_f64().unwrap(),
+                paired[side]["value"].as_f64().unwrap(),
+            );
+            assert!(
+                (s - p).abs() <= 1e-9 * s,
+                "{state} {side}: summary {s} vs per-run {p}"
+            );
+        }
+        // The same seed flies the same runs: pairing removes their common spread.
+        assert!(
+            paired["se"].as_f64().unwrap() < summary["se"].as_f64().unwrap(),
+            "{state}"
+        );
+    }
+    let same = compare_json(&a, &a, &["--final-errors", &ca, &ca]);
+    for r in rows(&same, "ekf")
+        .iter()
+        .filter(|r| r["metric"] == "rmse_final_paired")
+    {
+        assert_eq!(r["diff"], 0.0);
+        assert_eq!(r["significant"], false);
+    }
+    let (code, _, err) = entrynav(&["trade", "compare", &a, &b, "--final-errors", &a, &cb]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("not a final-errors CSV"), "{err}");
+}

@@ -4,14 +4,14 @@
 //! zero. The standard errors and their assumptions are in [`crate::compare_stats`]; the table and
 //! the JSON say which were used.
 
+use crate::compare_input::{FilterIn, Stats, SummaryIn, read};
 use crate::compare_paired::{self, FinalErrors};
 use crate::compare_stats::{
     Difference, Estimate, se_anees, se_fraction, se_rmse_bound, se_rmse_with_mean,
 };
 use crate::exit::{Usage, check_output_file, is_stdout};
 use anyhow::Result;
-use serde::{Deserialize, Serialize};
-use std::collections::BTreeMap;
+use serde::Serialize;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `entrynav trade compare`.
@@ -35,51 +35,8 @@ pub struct CompareArgs {
     pub final_errors: Vec<PathBuf>,
 }
 
-type Stats = BTreeMap<String, Option<f64>>;
-
 /// A named RMSE map of a filter.
 type Metric = (&'static str, fn(&FilterIn) -> &Stats);
-
-/// The part of a trade summary a comparison reads.
-#[derive(Deserialize)]
-struct SummaryIn {
-    #[serde(default)]
-    provenance: Option<ProvenanceIn>,
-    scenario: String,
-    seed: u64,
-    runs_completed: u64,
-    #[serde(default = "yes")]
-    complete: bool,
-    filters: Vec<FilterIn>,
-}
-
-fn yes() -> bool {
-    true
-}
-
-#[derive(Deserialize)]
-struct ProvenanceIn {
-    scenario_fingerprint: Option<String>,
-    #[serde(default)]
-    overrides: Vec<String>,
-}
-
-#[derive(Deserialize)]
-struct FilterIn {
-    name: String,
-    runs: u64,
-    failed: u64,
-    diverged: u64,
-    rmse_time_avg: Stats,
-    rmse_final: Stats,
-    #[serde(default)]
-    final_error_mean: Stats,
-    anees: Option<f64>,
-    nees_dof: usize,
-    nees_bounds_95: [f64; 2],
-    anees_kinematic: Option<f64>,
-    nees_kinematic_bounds_95: [f64; 2],
-}
 
 /// One input file as the comparison saw it.
 #[derive(Serialize)]
@@ -228,17 +185,6 @@ fn add_paired(cmp: &mut Comparison, fa: &FinalErrors, fb: &FinalErrors, files: &
             names.join(" and ")
         )
     });
-}
-
-fn read(path: &Path) -> Result<SummaryIn> {
-    let usage = |m: String| Usage(format!("{}: {m}", path.display()));
-    let text = std::fs::read_to_string(path).map_err(|e| usage(format!("cannot read: {e}")))?;
-    let summary = serde_json::from_str(&text).map_err(|e| {
-        usage(format!(
-            "not a trade summary written by `trade --json` ({e})"
-        ))
-    })?;
-    Ok(summary)
 }
 
 fn source(path: &Path, s: &SummaryIn) -> Source {

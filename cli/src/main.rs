@@ -3,6 +3,7 @@
 mod atmosphere_file;
 mod atmosphere_inspect;
 mod compare;
+mod compare_input;
 mod compare_paired;
 mod compare_stats;
 mod compare_table;

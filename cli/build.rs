@@ -1,5 +1,5 @@
 //! Records the git commit of the build (`git rev-parse HEAD`) for the `provenance` block of the
-//! trade JSON. Outside a git checkout, or without git, the commit is simply unknown: the build
+//! trade JSON, and the build's target folder, where `fmu pack` looks for the FMU library. Outside a git checkout, or without git, the commit is simply unknown: the build
 //! never fails because of it.
 
 use std::process::Command;
@@ -15,6 +15,17 @@ fn git(args: &[&str]) -> Option<String> {
 
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
+    // The target profile folder of this build (`<target>/release`), where the FMU library of the
+    // same build lands: OUT_DIR is `<target>/<profile>/build/<package>-<hash>/out`.
+    if let Some(dir) = std::env::var_os("OUT_DIR")
+        .map(std::path::PathBuf::from)
+        .and_then(|p| p.ancestors().nth(3).map(std::path::Path::to_path_buf))
+    {
+        println!(
+            "cargo:rustc-env=ENTRYNAV_BUILD_PROFILE_DIR={}",
+            dir.display()
+        );
+    }
     if let Some(commit) = git(&["rev-parse", "HEAD"]) {
         println!("cargo:rustc-env=ENTRYNAV_GIT_COMMIT={commit}");
         // Rebuild when HEAD moves (a commit, a checkout); `--git-path` also works in linked

@@ -2,6 +2,11 @@
 
 mod atmosphere_file;
 mod atmosphere_inspect;
+mod compare;
+mod compare_input;
+mod compare_paired;
+mod compare_stats;
+mod compare_table;
 mod exit;
 mod fmu;
 mod grid;
@@ -20,6 +25,12 @@ mod tune;
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 use entrynav_loader as load;
+
+/// What `--quiet` means in every command that has it: standard output is the same with or
+/// without it; standard error loses the progress and keeps warnings, notes and errors.
+const QUIET_HELP: &str = "Print no progress (bars, per-run, per-epoch and per-cell logs); results \
+(tables, `wrote FILE` lines) still print on standard output, unchanged, and warnings, notes and \
+errors on standard error";
 
 /// Mars atmospheric-entry navigation: scenarios, truth simulation, navigation filters and
 /// Monte Carlo trade studies, observability and Fisher information.

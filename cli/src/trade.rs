@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 #[derive(Args)]
 #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct TradeArgs {
-    /// Merge shard files instead of running.
+    /// Merge shard files or compare summaries instead of running.
     #[command(subcommand)]
     pub action: Option<TradeAction>,
     /// Built-in scenario name or path to a scenario TOML file.
@@ -51,8 +51,7 @@ pub struct TradeArgs {
     /// Write SVG plots (RMSE vs time, errors with 3σ envelopes, NEES) into this directory.
     #[arg(long)]
     pub plots: Option<PathBuf>,
-    /// No progress output (bars, per-cell and per-epoch logs); results and tables still print.
-    #[arg(long)]
+    #[arg(long, help = crate::QUIET_HELP)]
     pub quiet: bool,
     /// The truth atmosphere file and how to read it.
     #[command(flatten)]
@@ -88,9 +87,12 @@ pub struct TradeArgs {
     pub no_pcrlb: bool,
 }
 
-/// `entrynav trade merge`.
+/// `entrynav trade merge`, `entrynav trade compare`.
 #[derive(clap::Subcommand)]
 pub enum TradeAction {
+    /// Compare two trade summaries (`trade --json`): per filter in both, B − A of every RMSE and
+    /// ANEES with a 95 % Monte Carlo interval; refuses different scenarios.
+    Compare(crate::compare::CompareArgs),
     /// Combine shard files written by `trade --shard I/N --json FILE` into the study's report.
     Merge {
         /// Shard files (all N shards of one study).
@@ -110,6 +112,9 @@ pub enum TradeAction {
 
 /// Run the command.
 pub fn run(args: &TradeArgs) -> Result<()> {
+    if let Some(TradeAction::Compare(c)) = &args.action {
+        return crate::compare::run(c);
+    }
     if let Some(TradeAction::Merge {
         shards,
         json,

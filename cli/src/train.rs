@@ -45,8 +45,7 @@ pub struct TrainArgs {
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = crate::exit::parse_threads)]
     pub threads: Option<usize>,
-    /// No progress output (bars, per-cell and per-epoch logs); results and tables still print.
-    #[arg(long)]
+    #[arg(long, help = crate::QUIET_HELP)]
     pub quiet: bool,
     /// Evaluate the density estimates of `--filters` over this many Monte Carlo runs (the runs of
     /// `entrynav trade --seed MC_SEED`): eq. 70 RMSPE with the filter's density model at the true
@@ -185,7 +184,7 @@ fn train(args: &TrainArgs, scenario: &entrynav::scenario::Scenario) -> Result<Ne
     let quiet = args.quiet;
     let progress = move |band: usize, epoch: usize, mse: f64| {
         if !quiet && (epoch % every == 0 || epoch == 1) {
-            println!("  band {band} epoch {epoch:>6}  train MSE {mse:.3e}");
+            eprintln!("  band {band} epoch {epoch:>6}  train MSE {mse:.3e}");
         }
     };
     let clock = std::time::Instant::now();

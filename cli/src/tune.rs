@@ -50,8 +50,7 @@ pub struct TuneArgs {
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = crate::exit::parse_threads)]
     threads: Option<usize>,
-    /// No progress output (bars, per-cell and per-epoch logs); results and tables still print.
-    #[arg(long)]
+    #[arg(long, help = crate::QUIET_HELP)]
     quiet: bool,
 }
 

@@ -11,6 +11,7 @@
 mod check;
 mod cross_check;
 mod fuzz;
+mod library;
 mod pack;
 mod run;
 

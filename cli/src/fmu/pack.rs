@@ -19,9 +19,10 @@ pub(super) struct PackArgs {
     /// Output folder.
     #[arg(long, default_value = "target/fmu")]
     out: PathBuf,
-    /// The FMU shared library (default: libmars_entry_nav.so next to this executable; build
-    /// it with `cargo build --release -p entrynav-fmu`).
-    #[arg(long)]
+    /// The FMU shared library (build it with `cargo build --release -p entrynav-fmu`). Default:
+    /// $ENTRYNAV_FMU_LIB, else libmars_entry_nav.so next to this executable, in ../lib, or in
+    /// the target folder it was built in.
+    #[arg(long, visible_alias = "library")]
     lib: Option<PathBuf>,
     /// Pack the combined model specific to this scenario (a built-in name or a TOML file) instead
     /// of the three generic FMUs.
@@ -37,17 +38,11 @@ pub(super) struct PackArgs {
     keep_symbols: bool,
 }
 
-pub(super) fn default_lib() -> Result<PathBuf> {
-    let exe = std::env::current_exe()?;
-    let dir = exe.parent().context("executable has no folder")?;
-    Ok(dir.join("libmars_entry_nav.so"))
-}
-
 /// The library's bytes, stripped unless `keep`.
 fn library(lib: &Path, keep: bool, out: &Path) -> Result<Vec<u8>> {
     let so = std::fs::read(lib).with_context(|| {
         format!(
-            "cannot read the FMU library {} (build it with `cargo build --release -p entrynav-fmu`, or pass --lib)",
+            "cannot read the FMU library {} (build it with `cargo build --release -p entrynav-fmu`)",
             lib.display()
         )
     })?;
@@ -183,10 +178,7 @@ fn write_fmu(out: &Path, spec: &ModelSpec, so: &[u8], resources: &Resources) -> 
 }
 
 pub(super) fn pack(a: &PackArgs) -> Result<()> {
-    let lib = match &a.lib {
-        Some(l) => l.clone(),
-        None => default_lib()?,
-    };
+    let lib = super::library::Search::of_process(a.lib.as_deref()).find()?;
     std::fs::create_dir_all(&a.out)
         .with_context(|| format!("cannot create {}", a.out.display()))?;
     let so = library(&lib, a.keep_symbols, &a.out)?;

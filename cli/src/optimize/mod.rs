@@ -89,8 +89,7 @@ pub struct CommonArgs {
     /// Write the optimized geometry as a scenario file (accepted by `entrynav trade`).
     #[arg(long)]
     pub write_scenario: Option<PathBuf>,
-    /// No progress output (bars, per-cell and per-epoch logs); results and tables still print.
-    #[arg(long)]
+    #[arg(long, help = crate::QUIET_HELP)]
     pub quiet: bool,
 }
 
@@ -247,8 +246,7 @@ pub struct SelectArgs {
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = crate::exit::parse_threads)]
     threads: Option<usize>,
-    /// No progress output (bars, per-cell and per-epoch logs); results and tables still print.
-    #[arg(long)]
+    #[arg(long, help = crate::QUIET_HELP)]
     quiet: bool,
 }
 

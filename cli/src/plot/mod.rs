@@ -10,6 +10,8 @@ pub mod legend;
 pub mod scatter;
 #[cfg(test)]
 pub mod svg_text;
+#[cfg(test)]
+mod tests;
 pub mod ticks;
 
 pub use chart::{Curve, Frame, line_chart};

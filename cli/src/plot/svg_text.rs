@@ -10,6 +10,8 @@ pub struct SvgText {
     pub y: f64,
     /// Rotated (the y axis label).
     pub rotated: bool,
+    /// `text-anchor`: `start` (legend), `middle` (caption, x ticks, axis labels), `end` (y ticks).
+    pub anchor: String,
     /// Content, entities decoded.
     pub text: String,
 }
@@ -37,7 +39,9 @@ pub fn texts(svg: &str) -> Vec<SvgText> {
             .replace("&gt;", ">")
             .replace("&quot;", "\"")
             .replace("&#39;", "'")
-            .replace("&amp;", "&");
+            .replace("&amp;", "&")
+            .trim()
+            .to_string();
         out.push(SvgText {
             x: attr(tag, "x")
                 .and_then(|v| v.parse().ok())
@@ -46,6 +50,7 @@ pub fn texts(svg: &str) -> Vec<SvgText> {
                 .and_then(|v| v.parse().ok())
                 .unwrap_or(f64::NAN),
             rotated: tag.contains("rotate("),
+            anchor: attr(tag, "text-anchor").unwrap_or_default(),
             text,
         });
         rest = &rest[end..];

@@ -135,7 +135,7 @@ pub fn format_axis(values: &[f64], step: f64) -> Vec<String> {
         eng_exponent(big)
     };
     let step_m = step / 10f64.powi(exp);
-    let decimals = (-(step_m.log10() - 1e-9).floor()).max(0.0) as usize;
+    let decimals = (-step_m.log10() - 1e-9).ceil().max(0.0) as usize;
     values.iter().map(|v| render(*v, exp, decimals)).collect()
 }
 

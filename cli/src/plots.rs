@@ -272,6 +272,9 @@ fn weight_figures(report: &TradeReport, names: &WeightNames, out: &mut Out) -> R
     Ok(())
 }
 
+/// Most runs drawn per filter in the dispersion scatter (the ellipse is over all runs).
+const MAX_DOTS: usize = 2000;
+
 /// Every run's final downrange/crossrange error per filter, with the 3σ ellipse.
 fn dispersion_figure(report: &TradeReport) -> Result<Option<String>> {
     let clouds: Vec<Cloud> = report
@@ -283,6 +286,7 @@ fn dispersion_figure(report: &TradeReport) -> Result<Option<String>> {
                 .final_errors
                 .iter()
                 .filter_map(|r| r.downrange_crossrange_m)
+                .take(MAX_DOTS)
                 .collect(),
             outline: f.ellipse_km.as_ref().map_or_else(Vec::new, |e| {
                 ellipse(
@@ -294,8 +298,17 @@ fn dispersion_figure(report: &TradeReport) -> Result<Option<String>> {
             }),
         })
         .collect();
+    let capped = report
+        .filters
+        .iter()
+        .any(|f| f.final_errors.len() > MAX_DOTS);
+    let title = if capped {
+        format!("final position error, first {MAX_DOTS} runs; 3σ ellipse (all runs) dashed")
+    } else {
+        "final position error per run, 3σ ellipse dashed".to_string()
+    };
     let frame = Frame {
-        title: "final position error per run, 3σ ellipse dashed",
+        title: &title,
         x_label: "downrange error (m)",
         y_label: "crossrange error (m)",
         log_y: false,

@@ -20,7 +20,7 @@ pub struct TradePage<'a> {
     pub wall_s: f64,
 }
 
-fn svgs<'a>(figs: &'a [Figure], keep: impl Fn(&Kind) -> bool) -> Vec<&'a str> {
+fn svgs(figs: &[Figure], keep: impl Fn(&Kind) -> bool) -> Vec<&str> {
     figs.iter()
         .filter(|f| keep(&f.kind))
         .map(|f| f.svg.as_str())

@@ -152,11 +152,7 @@ pub fn trade_figures(report: &TradeReport, names: &WeightNames) -> Result<Vec<Fi
     consistency_figures(report, &mut out)?;
     density_figures(report, &mut out)?;
     weight_figures(report, names, &mut out)?;
-    out.push(
-        "dispersion".into(),
-        Kind::Dispersion,
-        dispersion_figure(report)?,
-    );
+    dispersion_figures(report, &mut out)?;
     Ok(out.figures)
 }
 
@@ -275,12 +271,11 @@ fn weight_figures(report: &TradeReport, names: &WeightNames, out: &mut Out) -> R
 /// Most runs drawn per filter in the dispersion scatter (the ellipse is over all runs).
 const MAX_DOTS: usize = 2000;
 
-/// Every run's final downrange/crossrange error per filter, with the 3σ ellipse.
-fn dispersion_figure(report: &TradeReport) -> Result<Option<String>> {
-    let clouds: Vec<Cloud> = report
-        .filters
-        .iter()
-        .map(|f| Cloud {
+/// Per filter (each on its own scale: a diverging filter would squash the others): every run's
+/// final downrange/crossrange error with the 3σ ellipse.
+fn dispersion_figures(report: &TradeReport, out: &mut Out) -> Result<()> {
+    for f in &report.filters {
+        let cloud = Cloud {
             name: f.name.clone(),
             points: f
                 .final_errors
@@ -296,25 +291,27 @@ fn dispersion_figure(report: &TradeReport) -> Result<Option<String>> {
                     e.orientation_deg.to_radians(),
                 )
             }),
-        })
-        .collect();
-    let capped = report
-        .filters
-        .iter()
-        .any(|f| f.final_errors.len() > MAX_DOTS);
-    let title = if capped {
-        format!("final position error, first {MAX_DOTS} runs; 3σ ellipse (all runs) dashed")
-    } else {
-        "final position error per run, 3σ ellipse dashed".to_string()
-    };
-    let frame = Frame {
-        title: &title,
-        x_label: "downrange error (m)",
-        y_label: "crossrange error (m)",
-        log_y: false,
-        size: (700, 560),
-    };
-    scatter_chart(&frame, &clouds)
+        };
+        let shown = if f.final_errors.len() > MAX_DOTS {
+            format!("first {MAX_DOTS} runs")
+        } else {
+            "every run".to_string()
+        };
+        let title = format!(
+            "{}: final position error, {shown}; 3σ ellipse dashed",
+            f.name
+        );
+        let frame = Frame {
+            title: &title,
+            x_label: "downrange error (m)",
+            y_label: "crossrange error (m)",
+            log_y: false,
+            size: (640, 520),
+        };
+        let svg = scatter_chart(&frame, &[cloud])?;
+        out.push(format!("{}_dispersion", f.name), Kind::Dispersion, svg);
+    }
+    Ok(())
 }
 
 /// Write every figure of `report` into `dir`.

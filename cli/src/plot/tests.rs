@@ -185,11 +185,13 @@ fn every_trade_figure_is_readable_and_weights_name_the_beacons() {
         ["surface-1", "surface-2", "orbiter-1", "orbiter-2"],
         "beacon names of four-beacon-fusion"
     );
-    let d = figs
-        .iter()
-        .find(|f| f.file.ends_with("_dispersion.svg"))
-        .expect("a dispersion figure");
-    assert!(d.svg.contains("downrange error (m)") && d.svg.contains("crossrange error (m)"));
-    // 3 runs × 2 filters dots + 2 legend dots.
-    assert_eq!(d.svg.matches("<circle").count(), 3 * 2 + 2);
+    for filter in ["ekf", "dcifaif"] {
+        let d = figs
+            .iter()
+            .find(|f| f.file.ends_with(&format!("{filter}_dispersion.svg")))
+            .expect("a dispersion figure per filter");
+        assert!(d.svg.contains("downrange error (m)") && d.svg.contains("crossrange error (m)"));
+        // 3 runs' dots + 1 legend dot.
+        assert_eq!(d.svg.matches("<circle").count(), 3 + 1, "{}", d.file);
+    }
 }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Install what entrynav's build and tests need on a fresh Debian machine with a Rust toolchain:
-# apt packages (C toolchain, OpenBLAS/gfortran for clarabel's SDP cone, Python venv support) and a
+# apt packages (C toolchain, OpenBLAS/gfortran for clarabel's SDP cone, Python venv support; Chromium for the
+# HTML report check, not with --build-only) and a
 # Python virtual environment in .venv with the FMI tools the tests drive (fmpy, fmutool, libcosimpy)
 # and Dask (distributed) for sharded trade studies.
 # Idempotent: skips what is already present.
@@ -18,17 +19,21 @@ command -v strip >/dev/null 2>&1 || need_apt+=(binutils)  # entrynav fmu pack st
 command -v python3 >/dev/null 2>&1 || need_apt+=(python3 python3-venv)
 [ -e /usr/lib/x86_64-linux-gnu/libopenblas.so ] || [ -e /usr/lib/libopenblas.so ] || need_apt+=(libopenblas-dev)
 ls /usr/lib/gcc/x86_64-linux-gnu/*/libgfortran.so >/dev/null 2>&1 || need_apt+=(libgfortran-12-dev)
-if [ ${#need_apt[@]} -gt 0 ]; then
+# Install the Debian packages named in the arguments (as root, or with sudo).
+apt_install() {
   if [ "$(id -u)" -eq 0 ]; then
     apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${need_apt[@]}" >/dev/null
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "$@" >/dev/null
   elif command -v sudo >/dev/null 2>&1; then
     sudo apt-get update -qq
-    sudo DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${need_apt[@]}" >/dev/null
+    sudo DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "$@" >/dev/null
   else
-    echo "setup: missing ${need_apt[*]}; install them (apt-get install ${need_apt[*]} as root)" >&2
+    echo "setup: missing $*; install them (apt-get install $* as root)" >&2
     exit 1
   fi
+}
+if [ ${#need_apt[@]} -gt 0 ]; then
+  apt_install "${need_apt[@]}"
   # openblas-src caches a failed library probe from a build before the packages existed: forget it.
   if [ -d target ] && command -v cargo >/dev/null 2>&1; then
     cargo clean --release -p openblas-src -p openblas-build >/dev/null 2>&1 || true
@@ -50,6 +55,9 @@ if $build_only; then
   echo "setup: build prerequisites ready ($(cargo --version))"
   exit 0
 fi
+
+# Headless Chromium renders the HTML report in scripts/check_report.sh (test.sh).
+command -v chromium >/dev/null 2>&1 || command -v chromium-browser >/dev/null 2>&1 || apt_install chromium
 
 # Python tools for the FMU and benchmark tests, pinned.
 if [ ! -x .venv/bin/python ]; then

@@ -28,6 +28,9 @@ cargo bench --workspace --no-run
 echo "== README main command"
 cargo run --release --quiet --bin entrynav -- trade --scenario four-beacon-fusion --filters ekf,ci,dcifaif --runs 200 --quiet --plots target/ci-demo/plots
 
+echo "== HTML report: a small trade's --report renders in headless Chromium (no console errors, not blank)"
+bash scripts/check_report.sh
+
 echo "== FMU: shared library, packed FMUs (MarsEntryNav, MarsEntryNavFilter, MarsEntryTruth)"
 # Before the Dask and tutorial steps: both load the packed MarsEntryNav.fmu.
 cargo build --release --workspace

@@ -3,7 +3,7 @@
 use crate::atmosphere_file::{
     AtmosphereFileArgs, nominal_altitudes, report_truth_table, truth_atmosphere,
 };
-use crate::plots::{Curve, line_plot};
+use crate::plot::{Curve, line_plot};
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
 use entrynav::atmosphere::{Atmosphere, Datum};

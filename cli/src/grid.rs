@@ -234,7 +234,9 @@ fn expand(grid: &GridFile, grid_dir: &Path) -> Result<Vec<Cell>> {
 }
 
 /// Run a grid file, writing the report into `out_dir`.
-pub fn run(grid_path: &Path, out_dir: &Path, quiet: bool) -> Result<()> {
+/// Run the grid in `grid_path`; the report goes to `out_dir`, and an HTML page to `report` if
+/// given as `html` (rewritten after every finished cell, so an interrupted grid keeps its cells there too).
+pub fn run(grid_path: &Path, out_dir: &Path, quiet: bool, html: Option<&Path>) -> Result<()> {
     let text = std::fs::read_to_string(grid_path)
         .with_context(|| format!("cannot read grid file {}", grid_path.display()))?;
     let grid: GridFile =
@@ -358,9 +360,9 @@ pub fn run(grid_path: &Path, out_dir: &Path, quiet: bool) -> Result<()> {
             report,
         ));
         // Each finished cell is in the report at once, so an interrupted grid keeps them.
-        write_outputs(&grid, out_dir, &rows, &reports)?;
+        write_outputs(&grid, out_dir, &rows, &reports, (cells.len(), html))?;
     }
-    write_outputs(&grid, out_dir, &rows, &reports)?;
+    write_outputs(&grid, out_dir, &rows, &reports, (cells.len(), html))?;
     println!(
         "grid {}: {} cells, report in {}",
         grid.name,
@@ -379,7 +381,9 @@ fn write_outputs(
     out: &Path,
     rows: &[CellRow],
     reports: &[(String, String, TradeReport)],
+    (cells_total, html): (usize, Option<&Path>),
 ) -> Result<()> {
+    let provenance = crate::provenance::Provenance::new(&[]);
     let md_path = out.join(format!("{}.md", grid.name));
     let mut md = std::io::BufWriter::new(std::fs::File::create(&md_path)?);
     writeln!(
@@ -426,7 +430,7 @@ fn write_outputs(
     std::fs::write(
         out.join(format!("{}.json", grid.name)),
         serde_json::to_string_pretty(&serde_json::json!({
-            "provenance": crate::provenance::Provenance::new(&[]),
+            "provenance": &provenance,
             "grid": grid.name, "runs": grid.runs, "seed": grid.seed, "cells": rows,
             "reports": reports.iter().map(|(c, fp, r)| serde_json::json!({"cell": c, "scenario_fingerprint": fp, "report": r})).collect::<Vec<_>>(),
             "timing": {
@@ -462,46 +466,23 @@ fn write_outputs(
         )?;
     }
     csv.flush()?;
-    // Plots: one curve per filter across cells (x = cell index).
-    let filters: Vec<&String> = grid.filters.iter().collect();
-    for (metric, get) in [
-        (
-            "pos_rmse_final_m",
-            Box::new(|r: &CellRow| r.pos_rmse_final_m) as Box<dyn Fn(&CellRow) -> Option<f64>>,
-        ),
-        (
-            "vel_rmse_final_mps",
-            Box::new(|r: &CellRow| r.vel_rmse_final_mps),
-        ),
-        ("anees", Box::new(|r: &CellRow| r.anees)),
-        ("us_per_step", Box::new(|r: &CellRow| r.us_per_step)),
-        (
-            "min_delta_scaled",
-            Box::new(|r: &CellRow| r.min_delta_scaled),
-        ),
-    ] {
-        let curves: Vec<crate::plots::Curve> = filters
-            .iter()
-            .map(|f| crate::plots::Curve {
-                name: (*f).clone(),
-                points: rows
-                    .iter()
-                    .filter(|r| &r.filter == *f)
-                    .filter_map(|r| {
-                        Some((r.cell.trim_start_matches('c').parse::<f64>().ok()?, get(r)?))
-                    })
-                    .collect(),
-                dashed: false,
-            })
-            .collect();
-        crate::plots::line_plot(
-            &out.join(format!("{}_{metric}.svg", grid.name)),
-            &format!("{}: {metric} per cell", grid.name),
-            "cell",
-            metric,
-            true,
-            &curves,
-        )?;
+    let figures = crate::grid_plots::grid_figures(&grid.name, &grid.filters, rows)?;
+    for fig in &figures {
+        std::fs::write(out.join(&fig.file), &fig.svg)?;
+    }
+    if let Some(path) = html {
+        let page = crate::report::grid_page::GridPage {
+            name: &grid.name,
+            runs: grid.runs,
+            seed: grid.seed,
+            filters: &grid.filters,
+            rows,
+            reports,
+            cells_total,
+            figures: &figures,
+            provenance: serde_json::to_value(&provenance)?,
+        };
+        crate::report::write(path, || Ok(page.html()))?;
     }
     Ok(())
 }

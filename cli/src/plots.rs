@@ -1,363 +1,325 @@
-//! SVG plots (plotters, SVG backend: no system fonts or libraries needed).
+//! The figures of a trade study, each an SVG string (`trade_figures`), and `trade_plots`, the
+//! thin wrapper that writes them to `--plots DIR`. The HTML report (`report/`) embeds the same
+//! strings.
 
+use crate::plot::labels::{WeightNames, axis, quantity};
+use crate::plot::scatter::{Cloud, ellipse, scatter_chart};
+use crate::plot::{Curve, Frame, line_chart};
 use anyhow::{Context, Result};
-use entrynav::sim::TradeReport;
-use plotters::prelude::*;
+use entrynav::sim::{FilterReport, TradeReport};
 use std::path::Path;
 
-/// One curve: legend name, points, dashed or solid.
-pub struct Curve {
-    /// Legend entry.
-    pub name: String,
-    /// (x, y) points; non-finite y values are skipped.
-    pub points: Vec<(f64, f64)>,
-    /// Draw dashed.
-    pub dashed: bool,
+/// What a figure shows (the report groups figures by it).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Kind {
+    /// RMSE of one state (or position/velocity) for every filter, with the PCRLB.
+    Rmse,
+    /// One filter's error of one state with its ±3σ envelope.
+    ErrorSigma(String),
+    /// Mean NEES with its χ² band.
+    Nees,
+    /// Mean NIS with its χ² band.
+    Nis,
+    /// Density errors.
+    Density,
+    /// One filter's fusion weights or model probabilities.
+    Weights(String),
+    /// Final downrange/crossrange errors per run with the 3σ ellipse.
+    Dispersion,
 }
 
-const PALETTE: [RGBColor; 8] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-];
+/// One rendered figure.
+pub struct Figure {
+    /// File name in `--plots DIR`.
+    pub file: String,
+    /// What it shows.
+    pub kind: Kind,
+    /// The SVG document.
+    pub svg: String,
+}
 
-/// A line plot with optional logarithmic y axis.
-pub fn line_plot(
-    path: &Path,
-    title: &str,
-    x_label: &str,
-    y_label: &str,
-    log_y: bool,
-    curves: &[Curve],
-) -> Result<()> {
-    let pts: Vec<(f64, f64)> = curves
+/// Size of a full-width figure [px].
+pub const WIDE: (u32, u32) = (900, 480);
+/// Size of one subplot of a grid of figures [px].
+pub const SMALL: (u32, u32) = (560, 330);
+
+fn series_points(f: &FilterReport, get: &dyn Fn(usize) -> Option<f64>) -> Vec<(f64, f64)> {
+    f.series
+        .times_s
         .iter()
-        .flat_map(|c| c.points.iter().copied())
-        .filter(|(x, y)| x.is_finite() && y.is_finite() && (!log_y || *y > 0.0))
-        .collect();
-    if pts.is_empty() {
-        return Ok(());
-    }
-    let (x0, x1) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
-        (a.0.min(p.0), a.1.max(p.0))
-    });
-    let (y0, y1) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
-        (a.0.min(p.1), a.1.max(p.1))
-    });
-    let x1 = if x1 > x0 { x1 } else { x0 + 1.0 };
-    let root = SVGBackend::new(path, (960, 600)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| anyhow::anyhow!("{e}"))?;
-    let draw = |root: &DrawingArea<SVGBackend, plotters::coord::Shift>| -> Result<()> {
-        let mut builder = ChartBuilder::on(root);
-        builder
-            .caption(title, ("sans-serif", 22))
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(80);
-        macro_rules! finish {
-            ($chart:expr) => {{
-                let mut chart = $chart;
-                chart
-                    .configure_mesh()
-                    .x_desc(x_label)
-                    .y_desc(y_label)
-                    .draw()
-                    .map_err(|e| anyhow::anyhow!("{e}"))?;
-                for (i, c) in curves.iter().enumerate() {
-                    let color = PALETTE[i % PALETTE.len()];
-                    let data: Vec<(f64, f64)> = c
-                        .points
-                        .iter()
-                        .copied()
-                        .filter(|(x, y)| x.is_finite() && y.is_finite() && (!log_y || *y > 0.0))
-                        .collect();
-                    let style = ShapeStyle {
-                        color: color.to_rgba(),
-                        filled: false,
-                        stroke_width: 2,
-                    };
-                    if c.dashed {
-                        chart
-                            .draw_series(DashedLineSeries::new(data, 6, 4, style))
-                            .map_err(|e| anyhow::anyhow!("{e}"))?
-                            .label(c.name.clone())
-                            .legend(move |(x, y)| {
-                                PathElement::new(vec![(x, y), (x + 20, y)], color)
-                            });
-                    } else {
-                        chart
-                            .draw_series(LineSeries::new(data, style))
-                            .map_err(|e| anyhow::anyhow!("{e}"))?
-                            .label(c.name.clone())
-                            .legend(move |(x, y)| {
-                                PathElement::new(vec![(x, y), (x + 20, y)], color)
-                            });
-                    }
-                }
-                chart
-                    .configure_series_labels()
-                    .background_style(WHITE.mix(0.8))
-                    .border_style(BLACK)
-                    .draw()
-                    .map_err(|e| anyhow::anyhow!("{e}"))?;
-            }};
-        }
-        if log_y {
-            let (lo, hi) = (y0 * 0.8, y1 * 1.25);
-            finish!(
-                builder
-                    .build_cartesian_2d(x0..x1, (lo..hi).log_scale())
-                    .map_err(|e| anyhow::anyhow!("{e}"))?
-            );
-        } else {
-            let pad = ((y1 - y0) * 0.05).max(1e-12);
-            finish!(
-                builder
-                    .build_cartesian_2d(x0..x1, (y0 - pad)..(y1 + pad))
-                    .map_err(|e| anyhow::anyhow!("{e}"))?
-            );
-        }
-        Ok(())
-    };
-    draw(&root)?;
-    root.present()
-        .map_err(|e| anyhow::anyhow!("{e}"))
-        .with_context(|| format!("writing {}", path.display()))?;
-    Ok(())
+        .enumerate()
+        .filter_map(|(k, t)| get(k).map(|v| (*t, v)))
+        .collect()
 }
 
-/// The plots of a trade study.
+fn curve(name: impl Into<String>, points: Vec<(f64, f64)>, dashed: bool) -> Curve {
+    Curve {
+        name: name.into(),
+        points,
+        dashed,
+    }
+}
+
 /// The scenario's PCRLB 1σ of `name` vs time, dashed, when the trade has one.
 fn pcrlb_curve(report: &TradeReport, name: &str) -> Option<Curve> {
     let b = report.pcrlb.as_ref().filter(|b| b.available)?;
     let v = b.series.get(name)?;
-    Some(Curve {
-        name: "PCRLB".into(),
-        points: b.times_s.iter().copied().zip(v.iter().copied()).collect(),
-        dashed: true,
-    })
+    let pts = b.times_s.iter().copied().zip(v.iter().copied()).collect();
+    Some(curve("PCRLB", pts, true))
 }
 
-pub fn trade_plots(dir: &Path, report: &TradeReport) -> Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let sc = &report.scenario;
-    let series_points =
-        |f: &entrynav::sim::FilterReport, get: &dyn Fn(usize) -> Option<f64>| -> Vec<(f64, f64)> {
-            f.series
-                .times_s
-                .iter()
-                .enumerate()
-                .filter_map(|(k, t)| get(k).map(|v| (*t, v)))
-                .collect()
-        };
-    // RMSE vs time per state, all filters, and the scenario's PCRLB (dashed).
-    for (i, st) in report.states.iter().enumerate() {
+struct Out<'a> {
+    sc: &'a str,
+    figures: Vec<Figure>,
+}
+
+impl Out<'_> {
+    fn push(&mut self, file: String, kind: Kind, svg: Option<String>) {
+        if let Some(svg) = svg {
+            self.figures.push(Figure {
+                file: format!("{}_{file}.svg", self.sc),
+                kind,
+                svg,
+            });
+        }
+    }
+}
+
+fn frame<'a>(title: &'a str, y_label: &'a str, log_y: bool, size: (u32, u32)) -> Frame<'a> {
+    Frame {
+        title,
+        x_label: "time (s)",
+        y_label,
+        log_y,
+        size,
+    }
+}
+
+/// Every figure of `report`; `names` names the weights.
+pub fn trade_figures(report: &TradeReport, names: &WeightNames) -> Result<Vec<Figure>> {
+    let sc = report.scenario.as_str();
+    let mut out = Out {
+        sc,
+        figures: Vec::new(),
+    };
+    // RMSE vs time per state, position and velocity; all filters and the PCRLB (dashed).
+    let metrics: Vec<&str> = report
+        .states
+        .iter()
+        .map(String::as_str)
+        .chain(["pos_m", "vel_mps"])
+        .collect();
+    for (i, st) in metrics.iter().enumerate() {
         let mut curves: Vec<Curve> = report
             .filters
             .iter()
-            .map(|f| Curve {
-                name: f.name.clone(),
-                points: series_points(f, &|k| f.series.rmse[k][i]),
-                dashed: false,
+            .map(|f| {
+                let pts = series_points(f, &|k| match *st {
+                    "pos_m" => f.series.pos_rmse_m[k],
+                    "vel_mps" => f.series.vel_rmse_mps[k],
+                    _ => f.series.rmse[k][i],
+                });
+                curve(f.name.clone(), pts, false)
             })
             .collect();
         curves.extend(pcrlb_curve(report, st));
-        line_plot(
-            &dir.join(format!("{sc}_rmse_{st}.svg")),
-            &format!("{sc}: RMSE of {st}"),
-            "t [s]",
-            st,
-            true,
-            &curves,
-        )?;
-    }
-    for (name, get) in [("pos_m", 0usize), ("vel_mps", 1usize)] {
-        let mut curves: Vec<Curve> = report
-            .filters
-            .iter()
-            .map(|f| Curve {
-                name: f.name.clone(),
-                points: series_points(f, &|k| {
-                    if get == 0 {
-                        f.series.pos_rmse_m[k]
-                    } else {
-                        f.series.vel_rmse_mps[k]
-                    }
-                }),
-                dashed: false,
-            })
-            .collect();
-        curves.extend(pcrlb_curve(report, name));
-        line_plot(
-            &dir.join(format!("{sc}_rmse_{name}.svg")),
-            &format!("{sc}: RMS {name} error"),
-            "t [s]",
-            name,
-            true,
-            &curves,
-        )?;
+        let title = format!("{}: RMSE over runs", quantity(st).0);
+        let y = axis(st, "error RMSE");
+        let svg = line_chart(&frame(&title, &y, true, WIDE), &curves)?;
+        out.push(format!("rmse_{st}"), Kind::Rmse, svg);
     }
     // Errors against 3σ envelopes, per filter and state.
     for f in &report.filters {
         for (i, st) in report.states.iter().enumerate() {
+            let s = &f.series;
+            let sig = |k: usize, m: f64| s.sigma_mean[k][i].map(|v| m * v);
             let curves = vec![
-                Curve {
-                    name: "RMSE".into(),
-                    points: series_points(f, &|k| f.series.rmse[k][i]),
-                    dashed: false,
-                },
-                Curve {
-                    name: "mean error".into(),
-                    points: series_points(f, &|k| f.series.bias[k][i]),
-                    dashed: false,
-                },
-                Curve {
-                    name: "+3σ (mean)".into(),
-                    points: series_points(f, &|k| f.series.sigma_mean[k][i].map(|s| 3.0 * s)),
-                    dashed: true,
-                },
-                Curve {
-                    name: "-3σ (mean)".into(),
-                    points: series_points(f, &|k| f.series.sigma_mean[k][i].map(|s| -3.0 * s)),
-                    dashed: true,
-                },
+                curve("RMSE", series_points(f, &|k| s.rmse[k][i]), false),
+                curve("mean error", series_points(f, &|k| s.bias[k][i]), false),
+                curve("+3σ (mean σ)", series_points(f, &|k| sig(k, 3.0)), true),
+                curve("−3σ (mean σ)", series_points(f, &|k| sig(k, -3.0)), true),
             ];
-            line_plot(
-                &dir.join(format!("{sc}_{}_err3s_{st}.svg", f.name)),
-                &format!("{sc} / {}: {st} error and 3σ", f.name),
-                "t [s]",
-                st,
-                false,
-                &curves,
-            )?;
+            let title = format!("{}: {}", f.name, quantity(st).0);
+            let y = axis(st, "error");
+            let svg = line_chart(&frame(&title, &y, false, SMALL), &curves)?;
+            out.push(
+                format!("{}_err3s_{st}", f.name),
+                Kind::ErrorSigma(f.name.clone()),
+                svg,
+            );
         }
     }
-    // NEES with bounds.
-    let mut curves: Vec<Curve> = report
-        .filters
-        .iter()
-        .map(|f| Curve {
-            name: f.name.clone(),
-            points: series_points(f, &|k| f.series.nees_mean[k]),
-            dashed: false,
-        })
-        .collect();
-    if let Some(f) = report.filters.first() {
-        let t: Vec<f64> = f.series.times_s.clone();
-        for (b, name) in [
-            (f.consistency.nees_bounds_95[0], "95% lower"),
-            (f.consistency.nees_bounds_95[1], "95% upper"),
-        ] {
-            curves.push(Curve {
-                name: name.into(),
-                points: t.iter().map(|t| (*t, b)).collect(),
-                dashed: true,
-            });
+    consistency_figures(report, &mut out)?;
+    density_figures(report, &mut out)?;
+    weight_figures(report, names, &mut out)?;
+    dispersion_figures(report, &mut out)?;
+    Ok(out.figures)
+}
+
+/// Mean NEES and NIS over runs with their two-sided 95 % χ² bands.
+fn consistency_figures(report: &TradeReport, out: &mut Out) -> Result<()> {
+    for (nis, file) in [(false, "nees"), (true, "nis")] {
+        let mut curves: Vec<Curve> = report
+            .filters
+            .iter()
+            .map(|f| {
+                let s = &f.series;
+                let pts = series_points(f, &|k| if nis { s.nis_mean[k] } else { s.nees_mean[k] });
+                curve(f.name.clone(), pts, false)
+            })
+            .collect();
+        if let Some(f) = report.filters.first() {
+            let c = &f.consistency;
+            let (b, dof) = if nis {
+                (
+                    c.nis_bounds_95,
+                    c.nis_dof.map_or("-".into(), |d| format!("{d:.1}")),
+                )
+            } else {
+                (c.nees_bounds_95, c.nees_dof.to_string())
+            };
+            for (v, side) in [(b[0], "lower"), (b[1], "upper")] {
+                let pts = f.series.times_s.iter().map(|t| (*t, v)).collect();
+                curves.push(curve(format!("χ² 95 % {side} (dof {dof})"), pts, true));
+            }
         }
+        let (title, y) = if nis {
+            ("mean NIS over runs", "NIS (1)")
+        } else {
+            ("mean NEES over runs", "NEES (1)")
+        };
+        let kind = if nis { Kind::Nis } else { Kind::Nees };
+        let svg = line_chart(&frame(title, y, true, WIDE), &curves)?;
+        out.push(file.into(), kind, svg);
     }
-    line_plot(
-        &dir.join(format!("{sc}_nees.svg")),
-        &format!("{sc}: mean NEES over runs"),
-        "t [s]",
-        "NEES",
-        true,
-        &curves,
-    )?;
-    // Density error (seed 001 Fig. 10) where estimated.
-    let dens: Vec<Curve> = report
+    Ok(())
+}
+
+/// Density errors (seed 001 Fig. 10) where a filter estimates the density.
+fn density_figures(report: &TradeReport, out: &mut Out) -> Result<()> {
+    let dens: Vec<&FilterReport> = report
         .filters
         .iter()
         .filter(|f| f.density_rmspe_pct.is_some())
-        .map(|f| Curve {
-            name: f.name.clone(),
-            points: series_points(f, &|k| f.series.density_rms_pct[k]),
-            dashed: false,
+        .collect();
+    let curves: Vec<Curve> = dens
+        .iter()
+        .map(|f| {
+            let pts = series_points(f, &|k| f.series.density_rms_pct[k]);
+            curve(f.name.clone(), pts, false)
         })
         .collect();
-    if !dens.is_empty() {
-        line_plot(
-            &dir.join(format!("{sc}_density_error.svg")),
-            &format!("{sc}: RMS error of the onboard density profile at the true altitude"),
-            "t [s]",
-            "%",
-            true,
-            &dens,
-        )?;
-    }
-    // Per filter (seed 001 Fig. 10): mean error of the density profile at the true altitude with
-    // its ±RMS envelope over runs, and the RMS error of the density at the filter's estimate.
-    for f in report
-        .filters
-        .iter()
-        .filter(|f| f.density_rmspe_pct.is_some())
-    {
+    let title = "RMS error of the onboard density at the true altitude";
+    let svg = line_chart(&frame(title, "density error RMS (%)", true, WIDE), &curves)?;
+    out.push("density_error".into(), Kind::Density, svg);
+    for f in dens {
         let s = &f.series;
         let rms = |k: usize, sign: f64| s.density_rms_pct[k].map(|v| sign * v);
-        line_plot(
-            &dir.join(format!("{sc}_{}_density_error.svg", f.name)),
-            &format!(
-                "{sc}, {}: density error (profile at the true altitude)",
-                f.name
+        let curves = [
+            curve(
+                "mean error",
+                series_points(f, &|k| s.density_mean_pct[k]),
+                false,
             ),
-            "t [s]",
-            "%",
-            false,
-            &[
-                Curve {
-                    name: "mean error".into(),
-                    points: series_points(f, &|k| s.density_mean_pct[k]),
-                    dashed: false,
-                },
-                Curve {
-                    name: "+RMS".into(),
-                    points: series_points(f, &|k| rms(k, 1.0)),
-                    dashed: true,
-                },
-                Curve {
-                    name: "-RMS".into(),
-                    points: series_points(f, &|k| rms(k, -1.0)),
-                    dashed: true,
-                },
-                Curve {
-                    name: "RMS at the estimate".into(),
-                    points: series_points(f, &|k| s.density_at_estimate_rms_pct[k]),
-                    dashed: false,
-                },
-            ],
-        )?;
+            curve("+RMS", series_points(f, &|k| rms(k, 1.0)), true),
+            curve("−RMS", series_points(f, &|k| rms(k, -1.0)), true),
+            curve(
+                "RMS at the estimate",
+                series_points(f, &|k| s.density_at_estimate_rms_pct[k]),
+                false,
+            ),
+        ];
+        let title = format!("{}: density error (profile at the true altitude)", f.name);
+        let svg = line_chart(&frame(&title, "density error (%)", false, WIDE), &curves)?;
+        out.push(format!("{}_density_error", f.name), Kind::Density, svg);
     }
-    // Fusion weights / model probabilities.
+    Ok(())
+}
+
+/// Mean fusion weights (named by beacon) or model probabilities (named by bank member).
+fn weight_figures(report: &TradeReport, names: &WeightNames, out: &mut Out) -> Result<()> {
     for f in &report.filters {
-        let nw = f
-            .series
-            .weights_mean
-            .iter()
-            .map(|w| w.len())
-            .max()
-            .unwrap_or(0);
+        let w = &f.series.weights_mean;
+        let nw = w.iter().map(Vec::len).max().unwrap_or(0);
         if nw == 0 {
             continue;
         }
-        let curves: Vec<Curve> = (0..nw)
-            .map(|j| Curve {
-                name: format!("w{j}"),
-                points: series_points(f, &|k| f.series.weights_mean[k].get(j).copied()),
-                dashed: false,
+        let (labels, what) = names.labels(&f.name, nw);
+        let curves: Vec<Curve> = labels
+            .iter()
+            .enumerate()
+            .map(|(j, l)| {
+                curve(
+                    l.clone(),
+                    series_points(f, &|k| w[k].get(j).copied()),
+                    false,
+                )
             })
             .collect();
-        line_plot(
-            &dir.join(format!("{sc}_{}_weights.svg", f.name)),
-            &format!("{sc} / {}: mean weights", f.name),
-            "t [s]",
-            "weight",
-            false,
-            &curves,
-        )?;
+        let title = format!("{}: mean {what} over runs", f.name);
+        let y = format!("{what} (1)");
+        let svg = line_chart(&frame(&title, &y, false, WIDE), &curves)?;
+        out.push(
+            format!("{}_weights", f.name),
+            Kind::Weights(f.name.clone()),
+            svg,
+        );
+    }
+    Ok(())
+}
+
+/// Most runs drawn per filter in the dispersion scatter (the ellipse is over all runs).
+const MAX_DOTS: usize = 2000;
+
+/// Per filter (each on its own scale: a diverging filter would squash the others): every run's
+/// final downrange/crossrange error with the 3σ ellipse.
+fn dispersion_figures(report: &TradeReport, out: &mut Out) -> Result<()> {
+    for f in &report.filters {
+        let cloud = Cloud {
+            name: f.name.clone(),
+            points: f
+                .final_errors
+                .iter()
+                .filter_map(|r| r.downrange_crossrange_m)
+                .take(MAX_DOTS)
+                .collect(),
+            outline: f.ellipse_km.as_ref().map_or_else(Vec::new, |e| {
+                ellipse(
+                    (1e3 * e.mean_downrange_km, 1e3 * e.mean_crossrange_km),
+                    1e3 * e.semi_major_km,
+                    1e3 * e.semi_minor_km,
+                    e.orientation_deg.to_radians(),
+                )
+            }),
+        };
+        let shown = if f.final_errors.len() > MAX_DOTS {
+            format!("first {MAX_DOTS} runs")
+        } else {
+            "every run".to_string()
+        };
+        let title = format!(
+            "{}: final position error, {shown}; 3σ ellipse dashed",
+            f.name
+        );
+        let frame = Frame {
+            title: &title,
+            x_label: "downrange error (m)",
+            y_label: "crossrange error (m)",
+            log_y: false,
+            size: (640, 520),
+        };
+        let svg = scatter_chart(&frame, &[cloud])?;
+        out.push(format!("{}_dispersion", f.name), Kind::Dispersion, svg);
+    }
+    Ok(())
+}
+
+/// Write every figure of `report` into `dir`.
+pub fn trade_plots(dir: &Path, report: &TradeReport, names: &WeightNames) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    for fig in trade_figures(report, names)? {
+        let path = dir.join(&fig.file);
+        std::fs::write(&path, &fig.svg).with_context(|| format!("writing {}", path.display()))?;
     }
     Ok(())
 }

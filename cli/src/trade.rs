@@ -51,6 +51,11 @@ pub struct TradeArgs {
     /// Write SVG plots (RMSE vs time, errors with 3σ envelopes, NEES) into this directory.
     #[arg(long)]
     pub plots: Option<PathBuf>,
+    /// Write one self-contained HTML report (inline SVG and CSS, nothing from the network):
+    /// consistency verdicts, RMSE and PCRLB, errors with ±3σ, NEES/NIS, weights, dispersion,
+    /// provenance. With --grid, the grid's report. Checked before the first run.
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
     #[arg(long, help = crate::QUIET_HELP)]
     pub quiet: bool,
     /// The truth atmosphere file and how to read it.
@@ -131,13 +136,15 @@ pub fn run(args: &TradeArgs) -> Result<()> {
     }
     if let Some(grid) = &args.grid {
         check_output_dir(&args.out_dir, "--out-dir")?;
-        return crate::grid::run(grid, &args.out_dir, args.quiet);
+        crate::report::check_path(args.report.as_deref())?;
+        return crate::grid::run(grid, &args.out_dir, args.quiet, args.report.as_deref());
     }
     check_outputs(
         args.json.as_deref(),
         args.csv_dir.as_deref(),
         args.plots.as_deref(),
     )?;
+    crate::report::check_path(args.report.as_deref())?;
     let to_stdout = args.json.as_deref().is_some_and(is_stdout);
     let scenario_name = args.scenario.as_deref().context("--scenario is required")?;
     let (cfg, dir) = load::resolve(scenario_name, load::Base::CurrentDir)?.into_parts();
@@ -255,9 +262,16 @@ pub fn run(args: &TradeArgs) -> Result<()> {
         write_csv_dir(dir, &report)?;
         note(format!("wrote CSV series to {}", dir.display()));
     }
+    let names = crate::plot::labels::WeightNames::of_scenario(&scenario);
     if let Some(dir) = &args.plots {
-        crate::plots::trade_plots(dir, &report)?;
+        crate::plots::trade_plots(dir, &report, &names)?;
         note(format!("wrote plots to {}", dir.display()));
+    }
+    if let Some(path) = &args.report {
+        let provenance = Provenance::new(&args.sets)
+            .with_scenario(&scenario, args.atmosphere.atmosphere_file.as_deref());
+        let s = crate::report::write_trade(path, &report, &names, &provenance, elapsed)?;
+        note(format!("wrote report {} in {s:.3} s", path.display()));
     }
     if !report.complete {
         return Err(crate::interrupt::Interrupted(format!(
@@ -303,8 +317,9 @@ fn merge(
     if let Some(dir) = csv_dir {
         write_csv_dir(dir, &report)?;
     }
+    let names = crate::plot::labels::WeightNames::of_channels(&report.channels);
     if let Some(dir) = plots {
-        crate::plots::trade_plots(dir, &report)?;
+        crate::plots::trade_plots(dir, &report, &names)?;
     }
     Ok(())
 }

@@ -212,27 +212,27 @@ pub(super) fn run_ground(a: &GroundArgs) -> Result<()> {
         let pts = |d: &DegreeSeries| -> Vec<(f64, f64)> {
             d.times().into_iter().zip(d.deltas(false)).collect()
         };
-        let mut curves = vec![crate::plots::Curve {
+        let mut curves = vec![crate::plot::Curve {
             name: format!("optimum (min {:.3e})", delta.min(false)),
             points: pts(&delta.raw),
             dashed: false,
         }];
         if let Some((_, d)) = &reference {
-            curves.push(crate::plots::Curve {
+            curves.push(crate::plot::Curve {
                 name: format!("scenario's sites (min {:.3e})", d.min(false)),
                 points: pts(&d.raw),
                 dashed: true,
             });
         }
         write_text(path, "")?;
-        crate::plots::line_plot(
+        crate::plot::line_plot(
             path,
             &format!(
                 "{}: raw SI δ = σmin/σmax ({}) along the entry",
                 cfg.name,
                 method.name()
             ),
-            "t [s]",
+            "time (s)",
             "δ (raw SI)",
             true,
             &curves,

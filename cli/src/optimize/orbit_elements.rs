@@ -217,7 +217,7 @@ pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
     }
     if let Some(path) = &a.plot {
         let t = traj.times.clone();
-        let mut curves = vec![crate::plots::Curve {
+        let mut curves = vec![crate::plot::Curve {
             name: format!("optimum ({:.3})", ev.value),
             points: t
                 .iter()
@@ -227,21 +227,21 @@ pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
             dashed: false,
         }];
         if let Some((_, r)) = &reference {
-            curves.push(crate::plots::Curve {
+            curves.push(crate::plot::Curve {
                 name: format!("scenario's orbiters ({:.3})", r.value),
                 points: t.iter().copied().zip(r.integrand.iter().copied()).collect(),
                 dashed: true,
             });
         }
         write_text(path, "")?;
-        crate::plots::line_plot(
+        crate::plot::line_plot(
             path,
             &format!(
                 "{}: {} integrand along the entry",
                 cfg.name,
                 problem.objective().name()
             ),
-            "t [s]",
+            "time (s)",
             match problem.objective() {
                 OrbiterObjective::DetN3 => "det(N3)",
                 OrbiterObjective::LogDet => "ln det FIM",

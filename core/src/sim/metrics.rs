@@ -90,6 +90,10 @@ pub struct FinalRow {
     pub vel_mps: Option<f64>,
     /// NEES at the last epoch.
     pub nees: Option<f64>,
+    /// Downrange and crossrange position error at the last epoch \[m\] (as in the deployment
+    /// ellipse); `None` without a last epoch or in shard files written before it existed.
+    #[serde(default)]
+    pub downrange_crossrange_m: Option<(f64, f64)>,
 }
 
 /// Final-epoch quantities of one run.
@@ -348,6 +352,7 @@ impl FilterAccumulator {
             pos_m: last.map(|e| e.pos_vel_err.0),
             vel_mps: last.map(|e| e.pos_vel_err.1),
             nees: last.and_then(|e| e.nees).map(|(v, _)| v),
+            downrange_crossrange_m: rec.final_.as_ref().map(|f| f.downrange_crossrange),
         });
         if let Some((t, reason)) = &rec.failure {
             self.failed += 1;

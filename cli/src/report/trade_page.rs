@@ -1,0 +1,150 @@
+//! The HTML report of one trade study (`trade --report FILE.html`): summary and consistency
+//! verdicts, RMSE beside the PCRLB, per-state errors with ±3σ, NEES/NIS with χ² bands, fusion
+//! weights and model probabilities, the deployment dispersion, provenance.
+
+use super::html::{self, escape, figures, note, section};
+use super::summary;
+use crate::plots::{Figure, Kind};
+use crate::provenance::{Provenance, Timing};
+use entrynav::sim::TradeReport;
+
+/// What a trade report shows besides the statistics.
+pub struct TradePage<'a> {
+    /// The statistics.
+    pub report: &'a TradeReport,
+    /// The figures of `report` (`plots::trade_figures`).
+    pub figures: &'a [Figure],
+    /// Where it came from.
+    pub provenance: &'a Provenance,
+    /// Wall time of the study [s].
+    pub wall_s: f64,
+}
+
+fn svgs(figs: &[Figure], keep: impl Fn(&Kind) -> bool) -> Vec<&str> {
+    figs.iter()
+        .filter(|f| keep(&f.kind))
+        .map(|f| f.svg.as_str())
+        .collect()
+}
+
+impl TradePage<'_> {
+    fn summary(&self) -> String {
+        let r = self.report;
+        let status = if r.complete {
+            format!("{} runs", r.runs_completed)
+        } else {
+            format!(
+                "INTERRUPTED: {} of {} runs completed (partial results)",
+                r.runs_completed, r.runs
+            )
+        };
+        let filters: Vec<&str> = r.filters.iter().map(|f| f.name.as_str()).collect();
+        let mut s = format!(
+            "<p>Scenario <b>{}</b>, filters <b>{}</b>, {}, seed {}, {:.2} s wall.</p>\n",
+            escape(&r.scenario),
+            escape(&filters.join(", ")),
+            escape(&status),
+            r.seed,
+            self.wall_s
+        );
+        s += &note(
+            "Verdicts compare each filter's average NEES (and NIS) over epochs with the two-sided \
+             95 % χ² band of a per-epoch mean over the runs: above the band the filter is \
+             optimistic (its σ is too small for its errors), below it pessimistic.",
+        );
+        s += &summary::consistency_table(r);
+        s
+    }
+
+    fn rmse(&self) -> String {
+        let mut s = match &self.report.pcrlb {
+            Some(b) if b.available => note(&format!(
+                "The PCRLB is the posterior Cramér–Rao lower bound of any estimator's RMSE on this \
+                 scenario (dashed in the plots); prior: {}.",
+                b.prior
+            )),
+            Some(b) => note(&format!(
+                "PCRLB not available: {}",
+                b.reason.as_deref().unwrap_or("unknown reason")
+            )),
+            None => note("No PCRLB in this study."),
+        };
+        s += &summary::rmse_table(self.report);
+        s += &figures(svgs(self.figures, |k| *k == Kind::Rmse));
+        s
+    }
+
+    fn errors(&self) -> String {
+        let mut s = note(
+            "Per filter and state: RMSE and mean error over runs against the mean predicted \
+             ±3σ envelope.",
+        );
+        for f in &self.report.filters {
+            s += &format!("<h3>{}</h3>\n", escape(&f.name));
+            s += &summary::state_table(self.report, f);
+            s += &figures(svgs(
+                self.figures,
+                |k| matches!(k, Kind::ErrorSigma(n) if *n == f.name),
+            ));
+        }
+        s
+    }
+
+    fn weights(&self) -> String {
+        let figs = svgs(self.figures, |k| matches!(k, Kind::Weights(_)));
+        if figs.is_empty() {
+            return note("No filter of this study fuses local filters or runs a model bank.");
+        }
+        let mut s = note(
+            "Mean over runs of the CI fusion weight of each beacon's local filter (ci, dcifaif) \
+             and of the model probabilities (mmae, mmae-moe).",
+        );
+        s += &figures(figs);
+        s
+    }
+
+    fn dispersion(&self) -> String {
+        let mut s = note(
+            "Every run's final position error resolved along (downrange) and across \
+             (crossrange) the true heading, with each filter's 3σ ellipse.",
+        );
+        s += &summary::ellipse_table(self.report);
+        s += &figures(svgs(self.figures, |k| *k == Kind::Dispersion));
+        s
+    }
+
+    fn provenance(&self) -> String {
+        let v = serde_json::json!({
+            "provenance": self.provenance,
+            "timing": Timing::of(self.report, self.wall_s),
+            "atmosphere": self.report.atmosphere,
+        });
+        html::json_block(&v)
+    }
+
+    /// The page.
+    pub fn html(&self) -> String {
+        let r = self.report;
+        let mut body = String::new();
+        body += &section("summary", "Summary and consistency", &self.summary());
+        body += &section("rmse", "RMSE and the PCRLB", &self.rmse());
+        body += &section("errors", "Errors and ±3σ per state", &self.errors());
+        body += &section(
+            "nees-nis",
+            "NEES and NIS with χ² bands",
+            &figures(svgs(self.figures, |k| matches!(k, Kind::Nees | Kind::Nis))),
+        );
+        let dens = svgs(self.figures, |k| *k == Kind::Density);
+        if !dens.is_empty() {
+            body += &section("density", "Density error", &figures(dens));
+        }
+        body += &section(
+            "weights",
+            "Fusion weights and model probabilities",
+            &self.weights(),
+        );
+        body += &section("dispersion", "Deployment dispersion", &self.dispersion());
+        body += &section("provenance", "Provenance", &self.provenance());
+        html::page(&format!("entrynav trade report: {}", r.scenario), &body)
+    }
+}

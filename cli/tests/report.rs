@@ -1,0 +1,216 @@
+//! End-to-end tests of `entrynav trade --report FILE.html`: one self-contained page with every
+//! section, written before a study's first run is refused, on Ctrl-C, and for grids.
+
+use std::process::Command;
+
+fn entrynav(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_entrynav"))
+        .args(args)
+        .output()
+        .expect("run entrynav");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn tmpdir(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("entrynav-report-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// No script, style sheet, font or image from anywhere: every `src=`/`href=` is local.
+fn assert_self_contained(html: &str) {
+    for bad in ["<script", "<link", "<img", "<iframe", "@import", "url("] {
+        assert!(!html.contains(bad), "page contains {bad}");
+    }
+    for attr in ["src=", "href="] {
+        for (i, _) in html.match_indices(attr) {
+            let value = &html[i + attr.len()..(i + attr.len() + 10).min(html.len())];
+            assert!(
+                !value.contains("http:") && !value.contains("https:") && !value.contains("//"),
+                "network reference {attr}{value}"
+            );
+        }
+    }
+}
+
+#[test]
+fn trade_report_is_one_self_contained_page_with_every_section() {
+    let dir = tmpdir("trade");
+    let html_path = dir.join("r.html");
+    let json = dir.join("s.json");
+    let (code, out, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "four-beacon-fusion",
+        "--filters",
+        "ekf,dcifaif",
+        "--runs",
+        "5",
+        "--quiet",
+        "--set",
+        "monte_carlo.runs=7",
+        "--json",
+        json.to_str().unwrap(),
+        "--report",
+        html_path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("wrote report"), "{out}");
+    let html = std::fs::read_to_string(&html_path).unwrap();
+    assert!(html.starts_with("<!DOCTYPE html>") && html.trim_end().ends_with("</html>"));
+    for id in [
+        "summary",
+        "rmse",
+        "errors",
+        "nees-nis",
+        "weights",
+        "dispersion",
+        "provenance",
+    ] {
+        assert!(
+            html.contains(&format!("<section id=\"{id}\">")),
+            "no {id} section"
+        );
+    }
+    assert_self_contained(&html);
+    assert!(html.matches("<svg").count() > 20, "inline SVG figures");
+    for text in [
+        "consistent",
+        "PCRLB",
+        "ekf",
+        "dcifaif",
+        "surface-1",
+        "surface-2",
+        "orbiter-1",
+        "orbiter-2",
+        "downrange error (m)",
+        "χ² 95 %",
+    ] {
+        assert!(html.contains(text), "page lacks {text}");
+    }
+    // The provenance block is the summary's.
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let fingerprint = v["provenance"]["scenario_fingerprint"].as_str().unwrap();
+    assert!(
+        html.contains(fingerprint),
+        "fingerprint {fingerprint} missing"
+    );
+    assert!(html.contains("monte_carlo.runs=7"), "overrides missing");
+    assert!(
+        html.contains("&quot;command_line&quot;"),
+        "command line missing"
+    );
+}
+
+#[test]
+fn an_unwritable_report_path_is_refused_before_the_first_run() {
+    let dir = tmpdir("refuse");
+    let file = dir.join("a-file");
+    std::fs::write(&file, "x").unwrap();
+    let bad = file.join("r.html");
+    let clock = std::time::Instant::now();
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "four-beacon-fusion",
+        "--runs",
+        "100000",
+        "--report",
+        bad.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--report"), "{err}");
+    assert!(clock.elapsed().as_secs() < 10, "refused only after running");
+    let (code, _, err) = entrynav(&["trade", "--scenario", "four-beacon-fusion", "--report", "-"]);
+    assert_eq!(code, 2, "{err}");
+}
+
+#[test]
+fn sigint_writes_the_report_of_the_partial_study() {
+    let dir = tmpdir("sigint");
+    let html_path = dir.join("partial.html");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_entrynav"))
+        .args([
+            "trade",
+            "--scenario",
+            "orbiters-3",
+            "--filters",
+            "ekf",
+            "--threads",
+            "1",
+            "--quiet",
+            "--runs",
+            "1000000",
+            "--report",
+            html_path.to_str().unwrap(),
+        ])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(2500));
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let sent = std::time::Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        assert!(
+            sent.elapsed().as_secs() < 30,
+            "still running 30 s after SIGINT"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    };
+    assert_eq!(status.code(), Some(130));
+    let html = std::fs::read_to_string(&html_path).expect("a partial report");
+    assert!(html.contains("INTERRUPTED") && html.contains("of 1000000 runs completed"));
+    assert!(html.contains("<section id=\"provenance\">"));
+}
+
+#[test]
+fn grid_report_shows_cells_as_categories() {
+    let dir = tmpdir("grid");
+    let grid = dir.join("g.toml");
+    std::fs::write(
+        &grid,
+        "name = \"g\"\nruns = 3\nseed = 2\nfilters = [\"ekf\", \"dcifaif\"]\nscenarios = [\"four-beacon-fusion\"]\n\
+         [variations]\nbeacons = [2, 4]\n",
+    )
+    .unwrap();
+    let html_path = dir.join("g.html");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--grid",
+        grid.to_str().unwrap(),
+        "--out-dir",
+        dir.join("out").to_str().unwrap(),
+        "--report",
+        html_path.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let html = std::fs::read_to_string(&html_path).unwrap();
+    assert_self_contained(&html);
+    for text in [
+        "<section id=\"summary\">",
+        "<section id=\"metrics\">",
+        "<section id=\"consistency\">",
+        "<section id=\"provenance\">",
+        "2 beacons",
+        "4 beacons",
+        "final position error RMSE (m)",
+        "grid cell (see the table)",
+    ] {
+        assert!(html.contains(text), "grid page lacks {text}");
+    }
+    assert!(html.matches("<svg").count() >= 4);
+}

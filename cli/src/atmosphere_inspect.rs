@@ -16,6 +16,9 @@ pub enum AtmosphereAction {
     /// Profiles, height and density ranges, datum and scenario coverage of a density table
     /// (CSV, Mars-GRAM output, a Mars-GRAM Monte Carlo set), with an optional SVG plot.
     Inspect(InspectArgs),
+    /// Write the synthetic test set of truth atmospheres (0.1-3x the mean above 80 km, +-30 %
+    /// below, seeded perturbation) as a Mars-GRAM Monte Carlo set file (docs/density.md).
+    Generate(crate::atmosphere_generate::GenerateArgs),
 }
 
 /// Arguments of `entrynav atmosphere inspect`.
@@ -47,7 +50,10 @@ const PLOTTED_PROFILES: usize = 6;
 
 /// Run the command.
 pub fn run(action: &AtmosphereAction) -> Result<()> {
-    let AtmosphereAction::Inspect(args) = action;
+    let args = match action {
+        AtmosphereAction::Inspect(args) => args,
+        AtmosphereAction::Generate(args) => return crate::atmosphere_generate::run(args),
+    };
     let file_args = AtmosphereFileArgs {
         atmosphere_height_column: args.atmosphere_height_column.clone(),
         atmosphere_density_column: args.atmosphere_density_column.clone(),

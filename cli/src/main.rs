@@ -1,6 +1,7 @@
 //! `entrynav`: Mars entry navigation from the command line.
 
 mod atmosphere_file;
+mod atmosphere_generate;
 mod atmosphere_inspect;
 mod compare;
 mod compare_input;

@@ -12,6 +12,7 @@
 //! | stacked Mars-GRAM Monte Carlo profiles, height datum | ours (issue 15) | [`ProfileSet`], [`parse_profiles`], [`ProfileChoice`] |
 //! | built-in non-exponential mean profile | ours (SPEC.md "msl-airdata") | [`mars_mean_profile`] |
 //! | perturbed profile generator | ours (SPEC.md "msl-airdata") | [`Perturbed`] |
+//! | synthetic test set (scaled, perturbed means; GRAM text) | ours (issue 15) | [`generate_synthetic_set`] |
 //!
 //! [`AtmosphereModel`] gathers them for scenario-driven code and [`AtmosphereConfig`] /
 //! [`PerturbationConfig`] describe them in scenario files. All failures are [`AtmosphereError`].
@@ -28,6 +29,7 @@ pub mod model;
 pub mod parse;
 pub mod perturbed;
 pub mod profiles;
+pub mod synthetic_set;
 pub mod tabulated;
 
 pub use config::{AtmosphereConfig, PerturbationConfig};
@@ -47,6 +49,10 @@ pub use perturbed::{Envelope, PerturbationSpec, Perturbed};
 pub use profiles::{
     Datum, HeightReference, MAX_PROFILES, Placement, Profile, ProfileChoice, ProfileProvenance,
     ProfileSet, areoid_radius_m, parse_profiles,
+};
+pub use synthetic_set::{
+    SyntheticCase, SyntheticProfile, SyntheticSetSpec, generate_synthetic_set,
+    synthetic_set_gram_text,
 };
 pub use tabulated::{MIN_TABLE_POINTS, Tabulated};
 

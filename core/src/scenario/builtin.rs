@@ -1,11 +1,12 @@
 //! The built-in scenarios, embedded from the repository's `scenarios/` folder.
 
 /// Names of the built-in scenarios, in listing order.
-pub const BUILTIN_NAMES: [&str; 8] = [
+pub const BUILTIN_NAMES: [&str; 9] = [
     "four-beacon-fusion",
     "four-beacon-fusion-fault",
     "four-beacon-fusion-paper",
     "msl-airdata",
+    "msl-airdata-paper",
     "ground-beacons-3",
     "orbiters-3",
     "msl-pressure",
@@ -23,6 +24,7 @@ pub fn builtin_toml(name: &str) -> Option<&'static str> {
             include_str!("../../../scenarios/four-beacon-fusion-paper.toml")
         }
         "msl-airdata" => include_str!("../../../scenarios/msl-airdata.toml"),
+        "msl-airdata-paper" => include_str!("../../../scenarios/msl-airdata-paper.toml"),
         "ground-beacons-3" => include_str!("../../../scenarios/ground-beacons-3.toml"),
         "orbiters-3" => include_str!("../../../scenarios/orbiters-3.toml"),
         "msl-pressure" => include_str!("../../../scenarios/msl-pressure.toml"),

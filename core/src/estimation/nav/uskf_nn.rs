@@ -9,8 +9,10 @@
 //!    variable centred at one, `c ← 1 + e^{−Δt/τ}(c − 1)` with
 //!    `Q_c = (1 − e^{−2Δt/τ}) P_ss` (eq. 51; τ = 5 s, P_ss = 1e-3).
 //! 2. **Maximum-likelihood optimisation** (Algorithm 2, [`maximise_likelihood`]) of the network
-//!    at the prior mean, loss eq. 52–53, Adam with β₁ = 0.1, β₂ = 0.9, p_max = 1 and step
-//!    α_𝓛 = 0.01/k at measurement epoch k (Table 4), only while the loss exceeds 𝒯.
+//!    at the prior mean, loss eq. 52–53, Adam with β₁ = 0.1, β₂ = 0.9, p_max and step
+//!    α_𝓛 = `adam_step`/k at measurement epoch k, only while the loss exceeds 𝒯. Table 4 has
+//!    p_max = 1 and α_𝓛 = 0.01/k (scenario `msl-airdata-paper`); `msl-airdata` uses p_max = 5 and
+//!    0.001/k, whose smaller first steps avoid the wrong-network lock-on (docs/density.md).
 //! 3. **Measurement update** (eq. 61–68) with the adapted network ξ_k and the Schmidt update:
 //!    the consider parameter and its variance are not updated, its cross-covariance is
 //!    ([`Ukf`] with `n_consider = 1`).

@@ -1,0 +1,86 @@
+//! `entrynav atmosphere generate --out FILE`: write the synthetic test set of truth atmospheres
+//! (`entrynav::atmosphere::synthetic_set`) as a Mars-GRAM Monte Carlo set file.
+
+use anyhow::{Context, Result};
+use clap::Args;
+use entrynav::atmosphere::{
+    SyntheticCase, SyntheticSetSpec, generate_synthetic_set, mars_mean_profile,
+    synthetic_set_gram_text,
+};
+use entrynav::planet::Planet;
+use std::path::PathBuf;
+
+/// Arguments of `entrynav atmosphere generate`.
+#[derive(Args)]
+pub struct GenerateArgs {
+    /// Output file (Mars-GRAM Monte Carlo layout: `#` header `Var_X DENSTOT Radius`, stacked
+    /// profiles; `trade --atmosphere-file FILE` flies profile k mod n in run k).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Seed of the per-profile perturbation (profile i uses seed + i).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Multiplier of the SPEC.md perturbation envelope (0: the scaled mean profiles exactly).
+    #[arg(long, default_value_t = 0.5)]
+    pub perturbation_scale: f64,
+    /// Density factors above 80 km (comma-separated; default 0.1,0.3,0.5,1,2,3).
+    #[arg(long, value_name = "LIST")]
+    pub factors_above: Option<String>,
+    /// Density factors below 60 km (comma-separated; default 0.7,1,1.3).
+    #[arg(long, value_name = "LIST")]
+    pub factors_below: Option<String>,
+}
+
+fn list(text: &Option<String>, flag: &str) -> Result<Option<Vec<f64>>> {
+    text.as_ref()
+        .map(|t| {
+            t.split(',')
+                .map(|v| v.trim().parse::<f64>())
+                .collect::<Result<Vec<_>, _>>()
+                .with_context(|| format!("{flag} '{t}': expected numbers, e.g. 0.5,1,2"))
+        })
+        .transpose()
+}
+
+/// Run the command.
+pub fn run(args: &GenerateArgs) -> Result<()> {
+    let mut spec = SyntheticSetSpec {
+        seed: args.seed,
+        perturbation_scale: args.perturbation_scale,
+        ..SyntheticSetSpec::default()
+    };
+    let above = list(&args.factors_above, "--factors-above")?;
+    let below = list(&args.factors_below, "--factors-below")?;
+    if above.is_some() || below.is_some() {
+        let above = above.unwrap_or_else(|| vec![0.1, 0.3, 0.5, 1.0, 2.0, 3.0]);
+        let below = below.unwrap_or_else(|| vec![0.7, 1.0, 1.3]);
+        spec.cases = above
+            .iter()
+            .flat_map(|&factor_above| {
+                below.iter().map(move |&factor_below| SyntheticCase {
+                    factor_above,
+                    factor_below,
+                })
+            })
+            .collect();
+    }
+    let profiles = generate_synthetic_set(&mars_mean_profile(), &spec)?;
+    let text = synthetic_set_gram_text(&profiles, &spec, Planet::MARS.radius);
+    std::fs::write(&args.out, text).with_context(|| format!("writing {}", args.out.display()))?;
+    println!(
+        "wrote {}: {} profiles (f_above x f_below), 0-150 km every 1 km, perturbation x {}, seed {}",
+        args.out.display(),
+        profiles.len(),
+        spec.perturbation_scale,
+        spec.seed
+    );
+    for (i, p) in profiles.iter().enumerate() {
+        println!(
+            "  profile {i:>3}: f_above {:>4}  f_below {:>4}  {}",
+            p.case.factor_above,
+            p.case.factor_below,
+            p.case.season()
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,77 @@
+//! `entrynav atmosphere generate` writes the synthetic test set of docs/density.md as a Mars-GRAM
+//! Monte Carlo set that `atmosphere inspect` and `trade --atmosphere-file` read back.
+
+use std::process::Command;
+
+fn entrynav(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_entrynav"))
+        .args(args)
+        .output()
+        .expect("run entrynav");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn generated_set_is_read_back_as_18_covering_profiles_and_flown_by_the_trade() {
+    let dir = std::env::temp_dir().join(format!("entrynav-synth-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("set.txt");
+    let path = file.to_str().unwrap();
+    let (code, out, err) = entrynav(&["atmosphere", "generate", "--out", path]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("18 profiles"), "{out}");
+    let text = std::fs::read_to_string(&file).unwrap();
+    assert!(text.contains("#      Var_X      DENSTOT       Radius"));
+    // The same seed writes the same file; another seed another one.
+    let again = dir.join("again.txt");
+    entrynav(&["atmosphere", "generate", "--out", again.to_str().unwrap()]);
+    assert_eq!(std::fs::read_to_string(&again).unwrap(), text);
+    let other = dir.join("other.txt");
+    entrynav(&[
+        "atmosphere",
+        "generate",
+        "--out",
+        other.to_str().unwrap(),
+        "--seed",
+        "2",
+    ]);
+    assert_ne!(std::fs::read_to_string(&other).unwrap(), text);
+
+    let (code, out, err) = entrynav(&["atmosphere", "inspect", path, "--scenario", "msl-airdata"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("profiles  18"), "{out}");
+    assert!(out.contains("radius column Radius"), "{out}");
+    assert!(!err.contains("warning"), "{err}");
+
+    // Two runs fly profiles 0 and 1 (run k flies profile k mod 18).
+    let (code, json, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "msl-airdata",
+        "--filters",
+        "uskf-nn",
+        "--runs",
+        "2",
+        "--quiet",
+        "--atmosphere-file",
+        path,
+        "--json",
+        "-",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(json.contains("run k flies profile k mod 18"), "{json}");
+    let (code, _, err) = entrynav(&[
+        "atmosphere",
+        "generate",
+        "--out",
+        path,
+        "--factors-above",
+        "0",
+    ]);
+    assert_ne!(code, 0);
+    assert!(err.contains("factor_above"), "{err}");
+}

@@ -39,6 +39,7 @@ t --scenario orbiters-3 --filters ekf,ukf --runs "$(runs 500)" --seed 1 --json "
 
 # Seed 001: density adaptation, Tables 5 and 6 (1000 runs); see docs/density.md.
 t --scenario msl-airdata --filters ukf-cm,ukf-ac,uskf-nn --runs "$(runs 1000)" --seed 1 --json "$OUT/msl-airdata.json" --csv-dir "$OUT/csv"
+t --scenario msl-airdata-paper --filters ukf-cm,ukf-ac,uskf-nn --runs "$(runs 1000)" --seed 1 --json "$OUT/msl-airdata-paper.json"
 
 # Consistency of every built-in with every filter it supports (200 runs each): docs/results.md.
 ENTRYNAV="$E" python3 scripts/consistency_table.py "$(runs 200)" "$OUT/consistency" > "$OUT/consistency.md"

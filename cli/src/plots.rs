@@ -107,7 +107,7 @@ pub fn trade_figures(report: &TradeReport, names: &WeightNames) -> Result<Vec<Fi
         .states
         .iter()
         .map(String::as_str)
-        .chain(["pos_m", "vel_mps"])
+        .chain(["pos_m", "vel_mps", "downrange_m", "crossrange_m", "up_m"])
         .collect();
     for (i, st) in metrics.iter().enumerate() {
         let mut curves: Vec<Curve> = report
@@ -117,6 +117,9 @@ pub fn trade_figures(report: &TradeReport, names: &WeightNames) -> Result<Vec<Fi
                 let pts = series_points(f, &|k| match *st {
                     "pos_m" => f.series.pos_rmse_m[k],
                     "vel_mps" => f.series.vel_rmse_mps[k],
+                    "downrange_m" => f.series.local_rmse_m.first().and_then(|s| s[k]),
+                    "crossrange_m" => f.series.local_rmse_m.get(1).and_then(|s| s[k]),
+                    "up_m" => f.series.local_rmse_m.get(2).and_then(|s| s[k]),
                     _ => f.series.rmse[k][i],
                 });
                 curve(f.name.clone(), pts, false)

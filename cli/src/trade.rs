@@ -421,7 +421,7 @@ fn print_tables(report: &TradeReport, elapsed: f64) {
             "state", "RMSE time-avg", "MAE (eq. 69)", "RMSE final", "mean err final", "in 3σ"
         );
         let mut names: Vec<&String> = report.states.iter().collect();
-        let extra = ["pos_m".to_string(), "vel_mps".to_string()];
+        let extra = ["pos_m", "vel_mps", "downrange_m", "crossrange_m", "up_m"].map(String::from);
         names.extend(extra.iter());
         for s in names {
             let get =

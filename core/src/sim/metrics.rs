@@ -59,6 +59,9 @@ pub struct EpochRecord {
     pub sigma: Vec<f64>,
     /// Position error norm \[m\] and velocity error norm [m/s].
     pub pos_vel_err: (f64, f64),
+    /// Position error in the local frame at the truth \[m\]: downrange (along the true heading),
+    /// crossrange, up (radial).
+    pub local_err: [f64; 3],
     /// NEES eᵀP⁻¹e over the states with truth, and its degrees of freedom.
     pub nees: Option<(f64, usize)>,
     /// NEES over the six kinematic states.
@@ -167,6 +170,12 @@ pub struct FilterAccumulator {
     pub(super) final_pos_sq: f64,
     pub(super) final_vel_sq: f64,
     pub(super) dr_cr: [f64; 5],
+    /// Per epoch, Σ of squared downrange, crossrange and up errors.
+    #[serde(default)]
+    pub(super) sum_local_sq: Vec<[f64; 3]>,
+    /// Σ of squared final up errors.
+    #[serde(default)]
+    pub(super) final_up_sq: f64,
     pub(super) failed: u64,
     pub(super) diverged: u64,
     pub(super) problems: Vec<RunProblem>,
@@ -239,6 +248,15 @@ impl FilterAccumulator {
         for (a, b) in self.dr_cr.iter_mut().zip(o.dr_cr) {
             *a += b;
         }
+        if self.sum_local_sq.len() < o.sum_local_sq.len() {
+            self.sum_local_sq.resize(o.sum_local_sq.len(), [0.0; 3]);
+        }
+        for (a, b) in self.sum_local_sq.iter_mut().zip(&o.sum_local_sq) {
+            for (x, y) in a.iter_mut().zip(b) {
+                *x += y;
+            }
+        }
+        self.final_up_sq += o.final_up_sq;
         self.failed += o.failed;
         self.diverged += o.diverged;
         for p in &o.problems {
@@ -310,6 +328,12 @@ impl FilterAccumulator {
                 }
             }
             self.n_epoch[k] += 1;
+            if self.sum_local_sq.len() <= k {
+                self.sum_local_sq.resize(k + 1, [0.0; 3]);
+            }
+            for (s, v) in self.sum_local_sq[k].iter_mut().zip(e.local_err) {
+                *s += v * v;
+            }
             self.sum_pos_sq[k] += e.pos_vel_err.0 * e.pos_vel_err.0;
             self.sum_vel_sq[k] += e.pos_vel_err.1 * e.pos_vel_err.1;
             self.consistency.add_epoch(k, e);
@@ -391,6 +415,7 @@ impl FilterAccumulator {
             }
             self.final_pos_sq += last.pos_vel_err.0 * last.pos_vel_err.0;
             self.final_vel_sq += last.pos_vel_err.1 * last.pos_vel_err.1;
+            self.final_up_sq += last.local_err[2] * last.local_err[2];
             let (d, c) = f.downrange_crossrange;
             for (s, v) in self.dr_cr.iter_mut().zip([d, c, d * d, c * c, d * c]) {
                 *s += v;

@@ -444,6 +444,7 @@ pub fn filter_run(
             err: j.err,
             sigma: est.sigma.clone(),
             pos_vel_err: j.pos_vel_err,
+            local_err: [j.downrange_crossrange.0, j.downrange_crossrange.1, j.up_m],
             nees: j.nees,
             nees_kinematic: j.nees_kinematic,
             nis_terms: est.info.nis_terms.clone(),

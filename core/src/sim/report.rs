@@ -46,6 +46,10 @@ impl Ellipse {
     }
 }
 
+/// Names of the local-frame position errors in the RMSE tables: along the true heading, across
+/// it in the local horizontal plane, and radial \[m\].
+pub const LOCAL_POSITION_ERRORS: [&str; 3] = ["downrange_m", "crossrange_m", "up_m"];
+
 /// Time series of a filter's Monte Carlo statistics (for CSV and plots; not in the JSON summary).
 #[derive(Debug, Clone, PartialEq, Serialize, Default)]
 pub struct Series {
@@ -59,6 +63,9 @@ pub struct Series {
     pub bias: Vec<Vec<Option<f64>>>,
     /// Position-error RMS \[m\].
     pub pos_rmse_m: Vec<Option<f64>>,
+    /// RMSE per epoch of the local position errors, in the order of [`LOCAL_POSITION_ERRORS`]
+    /// (downrange, crossrange, up) \[m\].
+    pub local_rmse_m: Vec<Vec<Option<f64>>>,
     /// Velocity-error RMS [m/s].
     pub vel_rmse_mps: Vec<Option<f64>>,
     /// NEES averaged over runs (all states with truth).
@@ -196,6 +203,19 @@ impl FilterAccumulator {
         };
         rmse_avg.insert("pos_m".into(), avg(&pos_series));
         rmse_avg.insert("vel_mps".into(), avg(&vel_series));
+        let local_series: Vec<Vec<Option<f64>>> = (0..3)
+            .map(|c| {
+                (0..nk)
+                    .map(|k| {
+                        let s = self.sum_local_sq.get(k).map_or(0.0, |v| v[c]);
+                        safe(s, self.n_epoch[k]).map(f64::sqrt)
+                    })
+                    .collect()
+            })
+            .collect();
+        for (name, series) in LOCAL_POSITION_ERRORS.iter().zip(&local_series) {
+            rmse_avg.insert((*name).into(), avg(series));
+        }
         let mut rmse_final = BTreeMap::new();
         for (i, s) in states.iter().enumerate() {
             let c = self.final_count.get(i).copied().unwrap_or(0);
@@ -212,6 +232,17 @@ impl FilterAccumulator {
             "vel_mps".into(),
             (self.final_n > 0).then(|| (self.final_vel_sq / self.final_n as f64).sqrt()),
         );
+        let n_final = self.final_n as f64;
+        for (name, sq) in
+            LOCAL_POSITION_ERRORS
+                .iter()
+                .zip([self.dr_cr[2], self.dr_cr[3], self.final_up_sq])
+        {
+            rmse_final.insert(
+                (*name).into(),
+                (self.final_n > 0).then(|| (sq / n_final).sqrt()),
+            );
+        }
 
         let dens: Vec<f64> = (0..nk)
             .filter_map(|k| safe(self.dens_abs[k], self.dens_n[k]))
@@ -290,6 +321,7 @@ impl FilterAccumulator {
                 sigma_mean: sigma_series,
                 bias: bias_series,
                 pos_rmse_m: pos_series,
+                local_rmse_m: local_series,
                 vel_rmse_mps: vel_series,
                 nees_mean: self.consistency.nees_series(),
                 nees_kinematic_mean: self.consistency.nees_kinematic_series(),

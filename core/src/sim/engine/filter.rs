@@ -60,6 +60,8 @@ pub struct Judgement {
     pub pos_vel_err: (f64, f64),
     /// Downrange and crossrange position error \[m\] (along / across the true heading).
     pub downrange_crossrange: (f64, f64),
+    /// Radial ("up") position error \[m\]: estimated minus true planet-centred radius.
+    pub up_m: f64,
     /// (ρ̂(h) − ρ(h))/ρ(h) of the filter's density profile at the true altitude h (seed 001
     /// eq. 70), for filters that estimate density.
     pub density_profile_rel_err: Option<f64>,
@@ -136,6 +138,7 @@ impl<const N: usize> ErasedFilter for Dim<N> {
                 sample.t,
                 &sample.spherical,
             ),
+            up_m: judge::estimate_spherical(scenario, &x, sample.t)[0] - sample.spherical[0],
             density_profile_rel_err: self.0.density_profile(sample.altitude).map(rel),
             density_at_estimate_rel_err: self.0.density_estimate().map(rel),
         }

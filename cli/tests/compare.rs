@@ -1,25 +1,12 @@
 //! End-to-end tests of `entrynav trade compare`.
 
+mod common;
+use common::entrynav;
 use serde_json::Value;
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 
-fn entrynav(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_entrynav"))
-        .args(args)
-        .output()
-        .expect("run entrynav");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn tmpdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("entrynav-compare-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn tmpdir(name: &str) -> std::path::PathBuf {
+    common::scratch_dir("compare", name)
 }
 
 /// A 20-run trade summary of `scenario` with `filters` and `seed`, through plain

@@ -1,20 +1,9 @@
 //! A Mars-GRAM Monte Carlo profile set (run k flies profile k mod n) gives the same study sharded
 //! and merged as in one process: the profile is chosen from the run index alone.
 
+mod common;
+use common::entrynav;
 use std::path::Path;
-use std::process::Command;
-
-fn entrynav(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_entrynav"))
-        .args(args)
-        .output()
-        .expect("run entrynav");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
 
 /// The summary without what may differ between processes (timing, command line).
 fn stable(path: &Path) -> serde_json::Value {

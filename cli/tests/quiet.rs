@@ -1,19 +1,8 @@
 //! `--quiet` means the same in every command: no progress on standard error, the same results on
 //! standard output.
 
-use std::process::Command;
-
-fn entrynav(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_entrynav"))
-        .args(args)
-        .output()
-        .expect("run entrynav");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+mod common;
+use common::entrynav;
 
 /// Standard output without the lines that carry wall-clock times.
 fn reproducible(out: &str) -> Vec<&str> {

@@ -1,24 +1,12 @@
 //! End-to-end tests of `entrynav trade --report FILE.html`: one self-contained page with every
 //! section, written before a study's first run is refused, on Ctrl-C, and for grids.
 
+mod common;
+use common::entrynav;
 use std::process::Command;
 
-fn entrynav(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_entrynav"))
-        .args(args)
-        .output()
-        .expect("run entrynav");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
 fn tmpdir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("entrynav-report-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::scratch_dir("report", name)
 }
 
 /// No script, style sheet, font or image from anywhere: every `src=`/`href=` is local.

@@ -1,19 +1,8 @@
 //! `entrynav atmosphere generate` writes the synthetic test set of docs/density.md as a Mars-GRAM
 //! Monte Carlo set that `atmosphere inspect` and `trade --atmosphere-file` read back.
 
-use std::process::Command;
-
-fn entrynav(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_entrynav"))
-        .args(args)
-        .output()
-        .expect("run entrynav");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+mod common;
+use common::entrynav;
 
 #[test]
 fn generated_set_is_read_back_as_18_covering_profiles_and_flown_by_the_trade() {

@@ -7,7 +7,7 @@
 //!
 //! Var(√M_b − √Mₐ) ≈ [Var b / (4 M_b) + Var a / (4 Mₐ) − 2 Cov(a, b) / (4 √(Mₐ M_b))] / K.
 
-use crate::compare_stats::{Difference, Estimate, Z95};
+use crate::compare_stats::{Difference, Estimate};
 use crate::exit::Usage;
 use anyhow::Result;
 use std::collections::BTreeMap;
@@ -127,8 +127,6 @@ fn paired(state: &str, pairs: &[(f64, f64)]) -> Option<Paired> {
         _ => se_of(vaa, ma).powi(2) + se_of(vbb, mb).powi(2),
     };
     let se = var_diff.max(0.0).sqrt();
-    let diff = rb - ra;
-    let half = Z95 * se;
     Some(Paired {
         state: state.to_string(),
         runs: k as u64,
@@ -140,14 +138,7 @@ fn paired(state: &str, pairs: &[(f64, f64)]) -> Option<Paired> {
             value: rb,
             se: se_of(vbb, mb),
         },
-        difference: Difference {
-            diff,
-            rel: (ra != 0.0).then(|| diff / ra),
-            se,
-            ci_low: diff - half,
-            ci_high: diff + half,
-            significant: diff.abs() > half,
-        },
+        difference: Difference::with_se(ra, rb, se),
     })
 }
 

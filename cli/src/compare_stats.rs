@@ -80,12 +80,16 @@ impl Difference {
     /// B − A, treating the two estimates as independent (conservative for the same runs: their
     /// positive correlation would narrow the interval).
     pub fn of(a: Estimate, b: Estimate) -> Difference {
-        let diff = b.value - a.value;
-        let se = a.se.hypot(b.se);
+        Difference::with_se(a.value, b.value, a.se.hypot(b.se))
+    }
+
+    /// B − A with the standard error `se` of the difference (e.g. from paired runs).
+    pub fn with_se(a: f64, b: f64, se: f64) -> Difference {
+        let diff = b - a;
         let half = Z95 * se;
         Difference {
             diff,
-            rel: (a.value != 0.0).then(|| diff / a.value),
+            rel: (a != 0.0).then(|| diff / a),
             se,
             ci_low: diff - half,
             ci_high: diff + half,

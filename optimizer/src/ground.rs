@@ -52,6 +52,21 @@ pub const PCRLB_SEED: u64 = 1;
 /// every candidate, so the objective is a smooth function of the sites).
 pub const PCRLB_RUNS: usize = 1;
 
+/// Final position PCRLB \[m\] of scenario `cfg` on run 0 of seed [`PCRLB_SEED`] (the bound a
+/// `trade --seed 1` reports for its first run): the objective of every `--objective pcrlb`.
+pub(crate) fn final_position_bound_of(cfg: ScenarioConfig) -> Result<f64, OptimizerError> {
+    let name = cfg.name.clone();
+    let scenario = Scenario::build(cfg, &entrynav::files::no_files)?;
+    let bound = entrynav::sim::pcrlb_study(&scenario, PCRLB_SEED, PCRLB_RUNS)?;
+    match bound.final_.get("pos_m").copied().flatten() {
+        Some(v) if bound.available && v.is_finite() => Ok(v),
+        _ => Err(OptimizerError::InvalidInput(format!(
+            "no PCRLB for scenario '{name}': {}",
+            bound.reason.as_deref().unwrap_or("non-finite bound")
+        ))),
+    }
+}
+
 /// A ground site (radians, metres).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Site {
@@ -526,16 +541,7 @@ impl GroundProblem {
     pub fn final_position_bound(&self, sites: &[Site]) -> Result<f64, OptimizerError> {
         let mut cfg = self.scenario.config.clone();
         cfg.beacons = surface_beacons(sites, &self.noise);
-        let scenario = Scenario::build(cfg, &entrynav::files::no_files)?;
-        let bound = entrynav::sim::pcrlb_study(&scenario, PCRLB_SEED, PCRLB_RUNS)?;
-        match bound.final_.get("pos_m").copied().flatten() {
-            Some(v) if bound.available && v.is_finite() => Ok(v),
-            _ => Err(OptimizerError::InvalidInput(format!(
-                "no PCRLB for scenario '{}': {}",
-                self.scenario.config.name,
-                bound.reason.as_deref().unwrap_or("non-finite bound")
-            ))),
-        }
+        final_position_bound_of(cfg)
     }
 
     fn cost_of_value(&self, v: f64) -> f64 {

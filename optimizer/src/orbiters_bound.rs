@@ -5,7 +5,7 @@
 //! position PCRLB** \[m\] of the whole scenario with the candidate orbiters
 //! ([`entrynav::sim::pcrlb_study`]: the filter's prior, the truth dynamics, the IMU and the
 //! ranges to the orbiters with their true noise, epochs and line of sight — the bound `trade`
-//! reports), on run 0 of seed [`PCRLB_SEED`] (common random numbers for every candidate, so the
+//! reports), on run 0 of seed [`PCRLB_SEED`](crate::ground::PCRLB_SEED) (common random numbers for every candidate, so the
 //! cost is a smooth function of the elements).
 //!
 //! **Search.** One bound costs a few milliseconds, so the proxy's global search (about 10⁵
@@ -15,12 +15,12 @@
 //! Hidden orbiters simply give no information, so no visibility penalty is needed. The answer
 //! is a local optimum of the bound near the proxy's optimum, never worse than the proxy's.
 
-use crate::ground::{PCRLB_RUNS, PCRLB_SEED};
+use crate::ground::final_position_bound_of;
 use crate::orbiters::{OrbitElements, OrbiterProblem, OrbiterSolution};
 use crate::output::{BeaconNoise, orbiter_beacons};
 use crate::search::{SearchOptions, SearchResult, polish_from};
 use crate::{OptimizerError, Progress};
-use entrynav::scenario::{Scenario, ScenarioConfig};
+use entrynav::scenario::ScenarioConfig;
 use std::time::Instant;
 
 /// Default polish of the bound: simplex 2 % of each angle's range, 60 iterations per round.
@@ -83,16 +83,7 @@ impl OrbiterBoundProblem {
         }
         let mut cfg = self.base.clone();
         cfg.beacons = orbiter_beacons(elements, self.proxy.altitude_m(), &self.noise);
-        let scenario = Scenario::build(cfg, &entrynav::files::no_files)?;
-        let bound = entrynav::sim::pcrlb_study(&scenario, PCRLB_SEED, PCRLB_RUNS)?;
-        match bound.final_.get("pos_m").copied().flatten() {
-            Some(v) if bound.available && v.is_finite() => Ok(v),
-            _ => Err(OptimizerError::InvalidInput(format!(
-                "no PCRLB for scenario '{}': {}",
-                self.base.name,
-                bound.reason.as_deref().unwrap_or("non-finite bound")
-            ))),
-        }
+        final_position_bound_of(cfg)
     }
 
     /// The polish cost at `x = [Ω₁, i₁, f₁, …]`: log10 of the bound in metres (non-finite when the

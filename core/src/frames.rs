@@ -130,10 +130,16 @@ pub fn spherical_to_fixed<T: Real>(x: &[T; 6]) -> (V3<T>, V3<T>) {
 /// `v_i = R_z(ωt) (v_rel + ω ẑ × r_f)`, `r_i = R_z(ωt) r_f`.
 pub fn spherical_to_inertial<T: Real>(x: &[T; 6], t: f64, omega: f64) -> (V3<T>, V3<T>) {
     let (pf, vf) = spherical_to_fixed(x);
+    fixed_to_inertial(&pf, &vf, t, omega)
+}
+
+/// Inertial position and velocity at time `t` of a planet-fixed position `pf` and
+/// planet-relative velocity `vf`: `r_i = R_z(ωt) r_f`, `v_i = R_z(ωt) (v_f + ω ẑ × r_f)`.
+pub fn fixed_to_inertial<T: Real>(pf: &V3<T>, vf: &V3<T>, t: f64, omega: f64) -> (V3<T>, V3<T>) {
     let w = [T::from(0.0), T::from(0.0), T::from(omega)];
-    let vin = add(&vf, &cross(&w, &pf));
+    let vin = add(vf, &cross(&w, pf));
     let ang = T::from(omega * t);
-    (rotate_z(&pf, ang), rotate_z(&vin, ang))
+    (rotate_z(pf, ang), rotate_z(&vin, ang))
 }
 
 /// Spherical (planet-relative) state from inertial position and velocity at time `t`.

@@ -86,6 +86,14 @@ pub fn seed_duals<const N: usize>(x: &SVector<f64, N>) -> SVector<Dual<N>, N> {
     })
 }
 
+/// A dual number seeded on `K` variables as one on `N ≥ K` variables of which they are the
+/// first `K` (the gradient is padded with zeros).
+pub fn lift_dual<const K: usize, const N: usize>(d: &Dual<K>) -> Dual<N> {
+    let g = dual_gradient(d);
+    let padded = SVector::<f64, N>::from_fn(|i, _| if i < K { g[i] } else { 0.0 });
+    DualVec::new(d.re, Derivative::some(padded))
+}
+
 /// Gradient (∂/∂x of the seeded variables) carried by a dual number.
 pub fn dual_gradient<const N: usize>(d: &Dual<N>) -> SVector<f64, N> {
     d.eps.unwrap_generic(Const::<N>, Const::<1>)

@@ -8,6 +8,8 @@
 //!   ([`elements`]).
 //! * [`visibility`] — line-of-sight tests of seed 002 eq. 50–52 (ground) and eq. 58–60 (orbiter),
 //!   and the [`Beacon`] enum that dispatches between them.
+//! * [`ephemeris_table`] — the beacons' states tabulated once per scenario at the measurement
+//!   epochs every run shares.
 //! * [`config`] — the scenario-file description (`[[beacons]]` tables) with validation.
 //!
 //! All quantities are SI inside (m, m/s, rad, s); km and degrees appear only in [`config`].
@@ -17,6 +19,7 @@
 pub mod config;
 mod config_validate;
 pub mod elements;
+pub mod ephemeris_table;
 pub mod orbiter;
 pub mod surface;
 pub mod visibility;
@@ -25,6 +28,7 @@ pub use config::{
     BeaconConfig, CircularConfig, ElementsConfig, OrbiterBeaconConfig, SurfaceBeaconConfig,
 };
 pub use elements::{CircularOrbit, KeplerElements};
+pub use ephemeris_table::{BeaconState, EphemerisTable};
 pub use orbiter::{Orbiter, stumpff};
 pub use surface::SurfaceBeacon;
 pub use visibility::{

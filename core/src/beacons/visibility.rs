@@ -102,11 +102,22 @@ impl Beacon {
         t: f64,
         planet_radius: f64,
     ) -> f64 {
-        let b = self.position_at(t);
+        self.visibility_margin_from(&self.position_at(t), vehicle_pos_inertial, planet_radius)
+    }
+
+    /// [`Beacon::visibility_margin`] with the beacon's inertial position `beacon_pos` at that
+    /// time already known (e.g. from the scenario's [`super::EphemerisTable`]).
+    pub fn visibility_margin_from(
+        &self,
+        beacon_pos: &[f64; 3],
+        vehicle_pos_inertial: [f64; 3],
+        planet_radius: f64,
+    ) -> f64 {
+        let b = beacon_pos;
         match self {
-            Beacon::Surface(_) => ground_visibility_margin(&b, &vehicle_pos_inertial),
+            Beacon::Surface(_) => ground_visibility_margin(b, &vehicle_pos_inertial),
             Beacon::Orbiter(_) => {
-                orbiter_visibility_margin(&b, &vehicle_pos_inertial, planet_radius)
+                orbiter_visibility_margin(b, &vehicle_pos_inertial, planet_radius)
             }
         }
     }

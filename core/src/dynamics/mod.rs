@@ -312,11 +312,53 @@ impl<A: Atmosphere> EntryModel<A> {
 }
 
 /// Horner form of the degree-4 Taylor polynomial of exp(A h): I + M(I + M/2(I + M/3(I + M/4))).
+///
+/// The entry Jacobian is sparse (constant states have zero rows, longitude appears nowhere), so
+/// each product M·Φ runs over M's non-zero entries only, row by row on a row-major Φ. Every
+/// entry of a product is still summed in column order, as the dense product sums it, so the
+/// result is the dense polynomial's bit for bit (skipped terms are exact zeros).
 fn taylor_stm<const N: usize>(a: &SMatrix<f64, N, N>, h: f64) -> SMatrix<f64, N, N> {
     let m = a * h;
-    let id = SMatrix::<f64, N, N>::identity();
-    let mut phi = id + m * 0.25;
-    phi = id + (m * phi) * (1.0 / 3.0);
-    phi = id + (m * phi) * 0.5;
-    id + m * phi
+    // Non-zero entries of M, row by row, in column order (at most N² of them).
+    let mut entries: Vec<(usize, f64)> = Vec::with_capacity(N * N);
+    let mut row_end = [0usize; N];
+    for (i, end) in row_end.iter_mut().enumerate() {
+        entries.extend((0..N).filter(|&k| m[(i, k)] != 0.0).map(|k| (k, m[(i, k)])));
+        *end = entries.len();
+    }
+    let identity_row = |i: usize| std::array::from_fn::<f64, N, _>(|j| f64::from(u8::from(i == j)));
+    // Φ ← I + c·(M·Φ), Φ row-major.
+    let step = |phi: &[[f64; N]; N], c: f64| -> [[f64; N]; N] {
+        let mut out = std::array::from_fn::<[f64; N], N, _>(identity_row);
+        let mut start = 0;
+        for (i, &end) in row_end.iter().enumerate() {
+            let row = &entries[start..end];
+            start = end;
+            let Some((&(k0, m0), rest)) = row.split_first() else {
+                continue;
+            };
+            let mut acc: [f64; N] = std::array::from_fn(|j| m0 * phi[k0][j]);
+            for &(k, mk) in rest {
+                for (x, p) in acc.iter_mut().zip(&phi[k]) {
+                    *x += mk * p;
+                }
+            }
+            for (o, x) in out[i].iter_mut().zip(&acc) {
+                *o += x * c;
+            }
+        }
+        out
+    };
+    // Ψ₄ = I + M/4, row-major.
+    let mut phi: [[f64; N]; N] = std::array::from_fn(|i| {
+        let mut r = identity_row(i);
+        for (j, x) in r.iter_mut().enumerate() {
+            *x += m[(i, j)] * 0.25;
+        }
+        r
+    });
+    phi = step(&phi, 1.0 / 3.0);
+    phi = step(&phi, 0.5);
+    phi = step(&phi, 1.0);
+    SMatrix::from_fn(|i, j| phi[i][j])
 }

@@ -13,9 +13,11 @@
 use super::adaptive::{DensityFilterConfig, DensityNetworkSet};
 use super::ukf::UkfParams;
 use crate::atmosphere::AtmosphereModel;
-use crate::beacons::{Beacon, BeaconMotion};
+use crate::beacons::{Beacon, BeaconState, EphemerisTable};
 use crate::dynamics::EntryModel;
 use crate::sensors::{Channel, MeasurementModel, Noise};
+use std::borrow::Cow;
+use std::sync::Arc;
 
 /// One measurement channel as the filter sees it: what it measures and the noise the filter
 /// assumes (which may differ from the sensor's true noise). Slot `c` of a
@@ -94,6 +96,8 @@ pub struct Onboard {
     pub beacons: Vec<Beacon>,
     /// Beacon names, in scenario order.
     pub beacon_names: Vec<String>,
+    /// `beacons`' states at the measurement epochs (the scenario's table, shared).
+    pub ephemerides: Arc<EphemerisTable>,
     /// Longest prediction sub-step \[s\] (`timing.filter_step_s`).
     pub filter_step_s: f64,
     /// Commanded bank angle at the start \[rad\] (the scenario's `truth.bank_deg`, which is the
@@ -115,9 +119,10 @@ impl Onboard {
         self.model.state_dim()
     }
 
-    /// Inertial (position, velocity) of every beacon at time `t` (the ephemerides).
-    pub fn beacon_states(&self, t: f64) -> Vec<([f64; 3], [f64; 3])> {
-        self.beacons.iter().map(|b| b.state_at(t)).collect()
+    /// Inertial (position, velocity) of every beacon at time `t` (the ephemerides, tabulated at
+    /// the measurement epochs).
+    pub fn beacon_states(&self, t: f64) -> Cow<'_, [BeaconState]> {
+        self.ephemerides.states_at(&self.beacons, t)
     }
 
     /// The same onboard view with process-noise diagonal `q_diag` and the assumed measurement noise

@@ -180,7 +180,7 @@ fn analysis_point(scenario: &Scenario, t: f64, x: &SVector<f64, 6>) -> AnalysisP
         state,
         position: kin.pos,
         velocity: kin.vel,
-        beacons: scenario.beacon_states(t),
+        beacons: scenario.beacon_states(t).into_owned(),
         available,
     }
 }

@@ -4,7 +4,8 @@ use super::config::*;
 use super::error::ScenarioError;
 use super::validate::StateForm;
 use crate::atmosphere::{AtmosphereModel, Perturbed, ProfileChoice};
-use crate::beacons::{Beacon, BeaconMotion};
+use crate::beacons::ephemeris_table::gcd;
+use crate::beacons::{Beacon, BeaconState, EphemerisTable};
 use crate::dynamics::{DynamicsKind, EntryModel, Vehicle};
 use crate::estimation::Onboard;
 use crate::files::FileLoader;
@@ -15,6 +16,7 @@ pub use crate::sensors::{ChannelSpec, Noise};
 use nalgebra::SVector;
 use rand::Rng;
 use rand_distr::{Distribution, StandardNormal};
+use std::borrow::Cow;
 use std::sync::Arc;
 
 use super::onboard::{OnboardParts, onboard_view};
@@ -44,6 +46,10 @@ pub struct Scenario {
     pub beacons: Vec<Beacon>,
     /// Beacon names, in file order.
     pub beacon_names: Vec<String>,
+    /// The beacons' states at the measurement epochs every run shares (also the onboard view's:
+    /// the filter knows the same ephemerides). Built from `beacons`: rebuild the scenario rather
+    /// than edit `beacons` in place.
+    pub ephemerides: Arc<EphemerisTable>,
     /// Deterministic measurement model.
     pub measurement: MeasurementModel,
     /// All measurement channels with their schedules and noise.
@@ -168,6 +174,7 @@ impl Scenario {
             .collect();
 
         let channels = channel_specs(&config, &beacon_names);
+        let ephemerides = Arc::new(ephemeris_table(&config, &channels, &beacons));
         let measurement = config.sensors.measurement_model();
         let truth_bank = config.truth.bank_deg.to_radians();
         let onboard = Arc::new(onboard_view(OnboardParts {
@@ -178,6 +185,7 @@ impl Scenario {
             channels: &channels,
             beacons: &beacons,
             beacon_names: &beacon_names,
+            ephemerides: Arc::clone(&ephemerides),
             initial_bank: truth_bank,
             initial_estimate: filter_initial,
         }));
@@ -192,6 +200,7 @@ impl Scenario {
             onboard,
             beacons,
             beacon_names,
+            ephemerides,
             channels,
         })
     }
@@ -201,9 +210,10 @@ impl Scenario {
         &self.onboard.model
     }
 
-    /// Inertial (position, velocity) of every beacon at time `t`.
-    pub fn beacon_states(&self, t: f64) -> Vec<([f64; 3], [f64; 3])> {
-        self.beacons.iter().map(|b| b.state_at(t)).collect()
+    /// Inertial (position, velocity) of every beacon at time `t` (tabulated at the measurement
+    /// epochs, [`EphemerisTable`]).
+    pub fn beacon_states(&self, t: f64) -> Cow<'_, [BeaconState]> {
+        self.ephemerides.states_at(&self.beacons, t)
     }
 
     /// The nominal truth realisation: the scenario's truth initial state and mean truth model,
@@ -335,6 +345,22 @@ fn entry_latitude(
         planet,
     )?;
     Ok(s[2])
+}
+
+/// The beacons' states at every measurement epoch of the truth: steps that are multiples of the
+/// channels' common period (in truth steps, as the truth schedules them), up to the duration.
+fn ephemeris_table(
+    config: &ScenarioConfig,
+    channels: &[ChannelSpec],
+    beacons: &[Beacon],
+) -> EphemerisTable {
+    let dt = config.timing.truth_step_s;
+    let max_steps = (config.timing.duration_s / dt).round().max(1.0) as usize;
+    let stride = channels
+        .iter()
+        .map(|c| (c.period_s / dt).round().max(1.0) as usize)
+        .fold(0, gcd);
+    EphemerisTable::new(beacons, dt, stride, max_steps)
 }
 
 fn channel_specs(config: &ScenarioConfig, beacon_names: &[String]) -> Vec<ChannelSpec> {

@@ -9,11 +9,12 @@
 use super::build::ChannelSpec;
 use super::config::ScenarioConfig;
 use crate::atmosphere::AtmosphereModel;
-use crate::beacons::Beacon;
+use crate::beacons::{Beacon, EphemerisTable};
 use crate::dynamics::EntryModel;
 use crate::estimation::ukf::UkfParams;
 use crate::estimation::{FilterTuning, Onboard, OnboardChannel};
 use crate::sensors::MeasurementModel;
+use std::sync::Arc;
 
 /// What [`onboard_view`] is built from (the pieces of a scenario being built).
 pub(super) struct OnboardParts<'a> {
@@ -24,6 +25,7 @@ pub(super) struct OnboardParts<'a> {
     pub channels: &'a [ChannelSpec],
     pub beacons: &'a [Beacon],
     pub beacon_names: &'a [String],
+    pub ephemerides: Arc<EphemerisTable>,
     pub initial_bank: f64,
     pub initial_estimate: Vec<f64>,
 }
@@ -47,6 +49,7 @@ pub(super) fn onboard_view(p: OnboardParts<'_>) -> Onboard {
             .collect(),
         beacons: p.beacons.to_vec(),
         beacon_names: p.beacon_names.to_vec(),
+        ephemerides: p.ephemerides,
         filter_step_s: p.config.timing.filter_step_s,
         initial_bank: p.initial_bank,
         initial_estimate: p.initial_estimate,

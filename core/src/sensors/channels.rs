@@ -101,6 +101,19 @@ pub fn kinematics<T: Real, A: Atmosphere, const N: usize>(
         let (p, v) = spherical_to_inertial(&k, t, omega);
         (p, v, k[3])
     };
+    kinematics_from_motion(model, x, pos, vel, airspeed)
+}
+
+/// [`kinematics`] from the state's inertial position `pos`, velocity `vel` and `airspeed`,
+/// already computed (e.g. with derivatives with respect to the kinematic states only): adds the
+/// density at `pos` with the state's density scale.
+pub fn kinematics_from_motion<T: Real, A: Atmosphere, const N: usize>(
+    model: &EntryModel<A>,
+    x: &SVector<T, N>,
+    pos: V3<T>,
+    vel: V3<T>,
+    airspeed: T,
+) -> Kinematics<T> {
     let scale = model.aero_params(x, 0.0).density_scale;
     let density = model.atmosphere.density(norm(&pos) - model.planet.radius) * scale;
     Kinematics {
@@ -112,6 +125,43 @@ pub fn kinematics<T: Real, A: Atmosphere, const N: usize>(
 }
 
 impl MeasurementModel {
+    /// The noiseless accelerometer triad (IMU frame, without biases) at state `x`: what
+    /// [`Channel::Accel`] reads on each axis before its bias. Compute it once per epoch and pass
+    /// it to [`MeasurementModel::accel_axis`] to read several axes.
+    pub fn accel_triad<T: Real, A: Atmosphere, const N: usize>(
+        &self,
+        model: &EntryModel<A>,
+        x: &SVector<T, N>,
+        kin: &Kinematics<T>,
+        bank: f64,
+    ) -> V3<T> {
+        let p = model.aero_params(x, bank);
+        let (d, l) = drag_lift(kin.density, kin.airspeed, &p);
+        self.imu_frame.express(&specific_force_wind(d, l, p.bank))
+    }
+
+    /// [`Channel::Accel`]`(axis)`: the triad's `axis` (clamped to 2) plus the state's bias on it;
+    /// `triad` is [`MeasurementModel::accel_triad`] at the same state, computed here when `None`.
+    pub fn accel_axis<T: Real, A: Atmosphere, const N: usize>(
+        &self,
+        model: &EntryModel<A>,
+        x: &SVector<T, N>,
+        kin: &Kinematics<T>,
+        bank: f64,
+        axis: u8,
+        triad: Option<&V3<T>>,
+    ) -> T {
+        let axis = axis.min(2);
+        let a = match triad {
+            Some(a) => a[axis as usize],
+            None => self.accel_triad(model, x, kin, bank)[axis as usize],
+        };
+        match model.accel_bias(x, axis) {
+            Some(b) => a + b,
+            None => a,
+        }
+    }
+
     /// Noiseless value of `channel` at state `x`, time `t`, bank `bank`; `beacons[i]` is the
     /// inertial (position, velocity) of beacon `i` at `t`. A radio channel whose beacon index is
     /// out of range evaluates to NaN — callers build channels from the same beacon list.
@@ -139,16 +189,7 @@ impl MeasurementModel {
         channel: Channel,
     ) -> T {
         match channel {
-            Channel::Accel(axis) => {
-                let p = model.aero_params(x, bank);
-                let (d, l) = drag_lift(kin.density, kin.airspeed, &p);
-                let a = self.imu_frame.express(&specific_force_wind(d, l, p.bank));
-                let axis = axis.min(2);
-                match model.accel_bias(x, axis) {
-                    Some(b) => a[axis as usize] + b,
-                    None => a[axis as usize],
-                }
-            }
+            Channel::Accel(axis) => self.accel_axis(model, x, kin, bank, axis, None),
             Channel::DynamicPressure => dynamic_pressure(kin.density, kin.airspeed),
             Channel::Heating => sutton_graves_heating(
                 kin.density,

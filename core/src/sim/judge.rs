@@ -20,15 +20,7 @@ pub fn truth_in_filter_coords(
     n: usize,
 ) -> Vec<f64> {
     let fm = scenario.filter_model();
-    let tm = &draw.model;
-    let kin: [f64; 6] = match (tm.kind.is_cartesian(), fm.kind.is_cartesian()) {
-        (false, false) | (true, true) => sample.state,
-        (true, false) => sample.spherical,
-        (false, true) => {
-            let (p, v) = spherical_to_inertial(&sample.state, sample.t, tm.omega());
-            [p[0], p[1], p[2], v[0], v[1], v[2]]
-        }
-    };
+    let kin = kinematic_truth(scenario, draw, sample);
     let mut x = vec![f64::NAN; n];
     let m = 6.min(n);
     x[..m].copy_from_slice(&kin[..m]);
@@ -39,6 +31,23 @@ pub fn truth_in_filter_coords(
         x[6 + k] = scenario.truth_equivalent(draw, *a).unwrap_or(f64::NAN);
     }
     x
+}
+
+/// The six kinematic states of [`truth_in_filter_coords`]: the truth's position and velocity in
+/// the filter's coordinates.
+pub fn kinematic_truth(scenario: &Scenario, draw: &TruthDraw, sample: &TruthSample) -> [f64; 6] {
+    let tm = &draw.model;
+    match (
+        tm.kind.is_cartesian(),
+        scenario.filter_model().kind.is_cartesian(),
+    ) {
+        (false, false) | (true, true) => sample.state,
+        (true, false) => sample.spherical,
+        (false, true) => {
+            let (p, v) = spherical_to_inertial(&sample.state, sample.t, tm.omega());
+            [p[0], p[1], p[2], v[0], v[1], v[2]]
+        }
+    }
 }
 
 /// Estimation error x̂ − x with angles (longitude, heading) wrapped to (−π, π] for spherical states.

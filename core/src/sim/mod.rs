@@ -21,6 +21,7 @@ pub mod judge;
 pub mod metrics;
 pub mod monte_carlo;
 pub mod pcrlb;
+mod pcrlb_epochs;
 pub mod pcrlb_sums;
 pub mod record;
 pub mod replay;

@@ -306,6 +306,7 @@ fn run_blocks(
                         .then(|| one_run_with_bound(scenario, filters, opts.seed, run, opts.pcrlb))
                 })
                 .collect();
+            let mut chunk_bounds = Vec::with_capacity(end - start);
             for (i, rec) in records.into_iter().enumerate() {
                 let Some(rec) = rec else {
                     cut = true;
@@ -315,11 +316,10 @@ fn run_blocks(
                 for (acc, r) in accs.iter_mut().zip(runs.iter()) {
                     acc.add(start + i, r);
                 }
-                if let Some(b) = &bound {
-                    bounds.add(b);
-                }
+                chunk_bounds.extend(bound);
                 done += 1;
             }
+            bounds.add_runs(&chunk_bounds);
             progress(done);
             if cut || opts.cancelled() {
                 cut = true;

@@ -23,35 +23,24 @@
 //! planet-fixed (spherical states) or inertial (Cartesian states) position or velocity: the bound
 //! on the `pos_m`/`vel_mps` RMSE of the tables.
 
-use super::judge::truth_in_filter_coords;
+use super::engine::TruthSample;
+use super::judge::{kinematic_truth, truth_in_filter_coords};
 use super::monte_carlo::RecordedRun;
 use crate::atmosphere::AtmosphereModel;
-use crate::beacons::BeaconMotion;
 use crate::dynamics::{AugmentedParam, EntryModel};
-use crate::frames::spherical_to_fixed;
-use crate::math::{dual_gradient, seed_duals};
+use crate::frames::{fixed_to_inertial, spherical_to_fixed};
+use crate::math::{Dual, dual_gradient, lift_dual, seed_duals};
 use crate::scenario::{Scenario, TruthDraw};
+use crate::sensors::Channel;
 use crate::sensors::Noise;
-use crate::sensors::channels::kinematics;
+use crate::sensors::channels::{kinematics, kinematics_from_motion};
 use crate::state_dim::{DimVisitor, UnsupportedDimension, with_state_dim};
 use nalgebra::{SMatrix, SVector};
+use std::borrow::Cow;
 use thiserror::Error;
 
-/// One epoch of one run: F, I, JₚᵀJₚ and JᵥᵀJᵥ (each row-major N×N, in that order, in one
-/// buffer: one allocation per epoch), with Jₚ, Jᵥ the 3×N position and velocity maps.
-#[derive(Debug, Clone, PartialEq)]
-pub struct BoundEpoch {
-    pub(super) t: f64,
-    pub(super) data: Vec<f64>,
-}
-
-impl BoundEpoch {
-    /// The `k`-th N×N block (0 F, 1 I, 2 JₚᵀJₚ, 3 JᵥᵀJᵥ).
-    pub(super) fn block(&self, k: usize) -> &[f64] {
-        let n2 = self.data.len() / 4;
-        &self.data[k * n2..(k + 1) * n2]
-    }
-}
+pub use super::pcrlb_epochs::BoundRunData;
+use super::pcrlb_epochs::KIN;
 
 /// Why a scenario has no PCRLB (a status of the study, reported beside the tables, not a failure).
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -91,7 +80,7 @@ pub enum NoBound {
 }
 
 /// What one run contributes to the bound, or why the bound does not exist for the scenario.
-pub type BoundRun = Result<Vec<BoundEpoch>, NoBound>;
+pub type BoundRun = Result<BoundRunData, NoBound>;
 
 /// The truth model in the filter's state layout: the run's truth (dynamics, atmosphere
 /// realisation, vehicle) with the filter's augmented and consider states, arranged so that at the
@@ -148,21 +137,32 @@ impl DimVisitor for RunVisitor<'_> {
     fn visit<const N: usize, const L: usize>(self) -> BoundRun {
         let (scenario, rec) = (self.scenario, self.rec);
         let model = bound_model(scenario, &rec.draw)?;
-        let names = super::monte_carlo::state_names(scenario);
-        let truth_at = |sample| -> Result<SVector<f64, N>, NoBound> {
-            let x = truth_in_filter_coords(scenario, &rec.draw, sample, N);
-            match x.iter().position(|v| !v.is_finite()) {
-                Some(i) => Err(NoBound::NoTruthCounterpart(
+        // The augmented states are the run's constants: their truth values once per run.
+        let template = {
+            let first = rec.truth.samples.first().ok_or(NoBound::EmptyRun)?;
+            let x = truth_in_filter_coords(scenario, &rec.draw, first, N);
+            if let Some(i) = x.iter().skip(KIN).position(|v| !v.is_finite()) {
+                let names = super::monte_carlo::state_names(scenario);
+                let i = KIN + i;
+                return Err(NoBound::NoTruthCounterpart(
                     names.get(i).cloned().unwrap_or_else(|| format!("#{i}")),
-                )),
-                None => Ok(SVector::from_column_slice(&x)),
+                ));
             }
+            SVector::<f64, N>::from_column_slice(&x)
+        };
+        let truth_at = |sample: &TruthSample| {
+            let mut x = template;
+            let kin = kinematic_truth(scenario, &rec.draw, sample);
+            for (i, v) in kin.iter().enumerate().take(N.min(KIN)) {
+                x[i] = *v;
+            }
+            x
         };
         let step = scenario.onboard.filter_step_s;
         let bank = scenario.truth_bank;
         let first = rec.truth.samples.first().ok_or(NoBound::EmptyRun)?;
-        let (mut t_prev, mut x_prev) = (first.t, truth_at(first)?);
-        let mut out = Vec::with_capacity(rec.truth.epochs.len());
+        let (mut t_prev, mut x_prev) = (first.t, truth_at(first));
+        let mut out = BoundRunData::with_capacity(N, rec.truth.epochs.len());
         for (epoch, sample) in rec.truth.epochs_with_truth() {
             let dt = epoch.t - t_prev;
             let mut phi = SMatrix::<f64, N, N>::identity();
@@ -171,67 +171,102 @@ impl DimVisitor for RunVisitor<'_> {
                 let h = dt / subs as f64;
                 let mut x = x_prev;
                 for k in 0..subs {
-                    if k + 1 == subs {
-                        // The last sub-step's state is not needed: the next epoch starts from
-                        // the recorded truth.
-                        phi = model.linear_stm(&x, bank, h) * phi;
+                    // The last sub-step's state is not needed: the next epoch starts from the
+                    // recorded truth.
+                    let f = if k + 1 == subs {
+                        model.linear_stm(&x, bank, h)
                     } else {
                         let (x_next, f) = model.step_with_linear_stm(&x, bank, h);
-                        phi = f * phi;
                         x = x_next;
-                    }
+                        f
+                    };
+                    phi = if k == 0 { f } else { f * phi };
                 }
             }
-            let x = truth_at(sample)?;
-            let info = information(scenario, &model, &x, epoch, bank)?;
-            let (jp, jv) = position_velocity_maps(&x, model.kind.is_cartesian());
-            let mut data = Vec::with_capacity(4 * N * N);
-            for m in [phi, info, jp.transpose() * jp, jv.transpose() * jv] {
-                push_row_major(&mut data, &m);
+            let x = truth_at(sample);
+            if let Some(i) = x.iter().position(|v| !v.is_finite()) {
+                let names = super::monte_carlo::state_names(scenario);
+                return Err(NoBound::NoTruthCounterpart(
+                    names.get(i).cloned().unwrap_or_else(|| format!("#{i}")),
+                ));
             }
-            out.push(BoundEpoch { t: epoch.t, data });
+            let (info, (jp, jv)) = information(scenario, &model, &x, epoch, bank)?;
+            out.push(
+                epoch.t,
+                &phi,
+                &info,
+                &(jp.transpose() * jp),
+                &(jv.transpose() * jv),
+            );
             (t_prev, x_prev) = (epoch.t, x);
         }
         Ok(out)
     }
 }
 
-/// Σ_c ∇h_cᵀ∇h_c/σ_c² (+ the variance term of relative-noise channels) at the truth state `x`.
+/// The tables' position and velocity maps Jₚ, Jᵥ (3×[`KIN`]): planet-fixed for spherical states,
+/// inertial for Cartesian ones.
+type Maps = (SMatrix<f64, 3, KIN>, SMatrix<f64, 3, KIN>);
+
+/// Σ_c ∇h_cᵀ∇h_c/σ_c² (+ the variance term of relative-noise channels) at the truth state `x`,
+/// with the tables' position and velocity maps there.
+///
+/// For spherical states the motion (planet-fixed, then inertial) is differentiated with respect
+/// to the six kinematic states only, on which it alone depends, and lifted to all N: the same
+/// numbers as N-variable AD at a third of the cost, and the planet-fixed gradients are the maps.
 fn information<const N: usize>(
     scenario: &Scenario,
     model: &EntryModel<AtmosphereModel>,
     x: &SVector<f64, N>,
     epoch: &crate::sensors::MeasurementEpoch,
     bank: f64,
-) -> Result<SMatrix<f64, N, N>, NoBound> {
+) -> Result<(SMatrix<f64, N, N>, Maps), NoBound> {
     let xd = seed_duals(x);
-    let kin = kinematics(model, &xd, epoch.t);
-    // Beacon ephemerides only when a beacon channel is measured at this epoch.
-    let ranged = epoch.values.iter().enumerate().any(|(c, v)| {
-        v.is_some()
-            && matches!(
-                scenario.channels[c].channel,
-                crate::sensors::Channel::Range(_) | crate::sensors::Channel::RangeRate(_)
-            )
-    });
-    let beacons: Vec<_> = if ranged {
-        scenario
-            .beacons
-            .iter()
-            .map(|b| b.state_at(epoch.t))
-            .collect()
+    let (kin, maps) = if model.kind.is_cartesian() {
+        (kinematics(model, &xd, epoch.t), cartesian_maps())
     } else {
-        Vec::new()
+        let x6 = SVector::<f64, KIN>::from_fn(|i, _| x[i]);
+        let d6 = seed_duals(&x6);
+        let (pf, vf) = spherical_to_fixed(&[d6[0], d6[1], d6[2], d6[3], d6[4], d6[5]]);
+        let (pi, vi) = fixed_to_inertial(&pf, &vf, epoch.t, model.omega());
+        let lift = |v: &[Dual<KIN>; 3]| v.map(|d| lift_dual::<KIN, N>(&d));
+        let kin = kinematics_from_motion(model, &xd, lift(&pi), lift(&vi), xd[3]);
+        let mut maps = Maps::default();
+        for i in 0..3 {
+            maps.0.set_row(i, &dual_gradient(&pf[i]).transpose());
+            maps.1.set_row(i, &dual_gradient(&vf[i]).transpose());
+        }
+        (kin, maps)
     };
+    let measured = |c: usize, pred: fn(&Channel) -> bool| {
+        epoch.values[c].is_some() && pred(&scenario.channels[c].channel)
+    };
+    let any = |pred: fn(&Channel) -> bool| (0..epoch.values.len()).any(|c| measured(c, pred));
+    // Beacon ephemerides only when a beacon channel is measured at this epoch, the accelerometer
+    // triad once for all its axes.
+    let beacons = if any(|ch| matches!(ch, Channel::Range(_) | Channel::RangeRate(_))) {
+        scenario.beacon_states(epoch.t)
+    } else {
+        Cow::Borrowed(&[][..])
+    };
+    let triad = any(|ch| matches!(ch, Channel::Accel(_)))
+        .then(|| scenario.measurement.accel_triad(model, &xd, &kin, bank));
     let mut info = SMatrix::<f64, N, N>::zeros();
     for (c, value) in epoch.values.iter().enumerate() {
         if value.is_none() {
             continue;
         }
         let spec = &scenario.channels[c];
-        let d = scenario
-            .measurement
-            .evaluate_with(model, &xd, &kin, bank, &beacons, spec.channel);
+        let d = match spec.channel {
+            Channel::Accel(axis) => {
+                scenario
+                    .measurement
+                    .accel_axis(model, &xd, &kin, bank, axis, triad.as_ref())
+            }
+            ch => scenario
+                .measurement
+                .evaluate_with(model, &xd, &kin, bank, &beacons, ch),
+        };
         let g = dual_gradient(&d);
         let sigma = spec.noise.sigma(d.re);
         if !(sigma.is_finite() && sigma > 0.0) || g.iter().any(|v| !v.is_finite()) {
@@ -245,38 +280,73 @@ fn information<const N: usize>(
         if let Noise::Relative(_) = spec.noise {
             w += 2.0 / (d.re * d.re);
         }
-        info += g * g.transpose() * w;
+        info.ger(w, &g, &g, 1.0);
     }
-    Ok(info)
+    Ok((info, maps))
 }
 
-/// The 3×N Jacobians of the position and velocity the RMSE tables compare.
-fn position_velocity_maps<const N: usize>(
-    x: &SVector<f64, N>,
-    cartesian: bool,
-) -> (SMatrix<f64, 3, N>, SMatrix<f64, 3, N>) {
-    let mut pos = SMatrix::<f64, 3, N>::zeros();
-    let mut vel = SMatrix::<f64, 3, N>::zeros();
-    if cartesian {
-        for i in 0..3 {
-            pos[(i, i)] = 1.0;
-            vel[(i, 3 + i)] = 1.0;
-        }
-        return (pos, vel);
-    }
-    let x6 = SVector::<f64, 6>::from_fn(|i, _| x[i]);
-    let xd = seed_duals(&x6);
-    let (p, v) = spherical_to_fixed(&[xd[0], xd[1], xd[2], xd[3], xd[4], xd[5]]);
+/// The 3×[`KIN`] Jacobians of the inertial position and velocity of Cartesian states (the maps
+/// of spherical states come out of [`information`]'s AD pass).
+fn cartesian_maps() -> Maps {
+    let mut pos = SMatrix::<f64, 3, KIN>::zeros();
+    let mut vel = SMatrix::<f64, 3, KIN>::zeros();
     for i in 0..3 {
-        let (gp, gv) = (dual_gradient(&p[i]), dual_gradient(&v[i]));
-        for j in 0..6 {
-            pos[(i, j)] = gp[j];
-            vel[(i, j)] = gv[j];
-        }
+        pos[(i, i)] = 1.0;
+        vel[(i, 3 + i)] = 1.0;
     }
     (pos, vel)
 }
 
-fn push_row_major<const N: usize>(out: &mut Vec<f64>, m: &SMatrix<f64, N, N>) {
-    out.extend((0..N).flat_map(|i| (0..N).map(move |j| m[(i, j)])));
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenario::ScenarioConfig;
+    use crate::sim::monte_carlo::record_run;
+
+    /// The 6-variable AD of the motion lifted to N gives the information matrix and maps of plain
+    /// N-variable AD (the spherical path of `information`).
+    #[test]
+    fn lifted_gradients_equal_full_ad() {
+        let cfg = ScenarioConfig::builtin("four-beacon-fusion").unwrap();
+        let s = Scenario::build(cfg, &crate::files::no_files).unwrap();
+        let rec = record_run(&s, 1, 0).unwrap();
+        let model = bound_model(&s, &rec.draw).unwrap();
+        for (epoch, sample) in rec.truth.epochs_with_truth().step_by(37) {
+            let x = SVector::<f64, 11>::from_column_slice(&truth_in_filter_coords(
+                &s, &rec.draw, sample, 11,
+            ));
+            let (info, (jp, _)) = information(&s, &model, &x, epoch, s.truth_bank).unwrap();
+            let xd = seed_duals(&x);
+            let kin = kinematics(&model, &xd, epoch.t);
+            let beacons = s.beacon_states(epoch.t);
+            let mut full = SMatrix::<f64, 11, 11>::zeros();
+            for (c, v) in epoch.values.iter().enumerate() {
+                if v.is_some() {
+                    let spec = &s.channels[c];
+                    let d = s.measurement.evaluate_with(
+                        &model,
+                        &xd,
+                        &kin,
+                        s.truth_bank,
+                        &beacons,
+                        spec.channel,
+                    );
+                    let g = dual_gradient(&d);
+                    full += g * g.transpose() / spec.noise.sigma(d.re).powi(2);
+                }
+            }
+            let scale = full.abs().max();
+            assert!(
+                (info - full).abs().max() <= 1e-12 * scale,
+                "t = {}",
+                epoch.t
+            );
+            let x6 = SVector::<f64, KIN>::from_fn(|i, _| x[i]);
+            let d6 = seed_duals(&x6);
+            let (p, _) = spherical_to_fixed(&[d6[0], d6[1], d6[2], d6[3], d6[4], d6[5]]);
+            for i in 0..3 {
+                assert_eq!(jp.row(i).transpose(), dual_gradient(&p[i]));
+            }
+        }
+    }
 }

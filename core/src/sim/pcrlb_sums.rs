@@ -1,7 +1,7 @@
 //! Run sums of the PCRLB inputs and the bound they give (see [`super::pcrlb`]).
 
 use super::monte_carlo::{TradeError, record_run, state_names};
-use super::pcrlb::{BoundEpoch, BoundRun, bound_run};
+use super::pcrlb::{BoundRun, BoundRunData, bound_run};
 use crate::observability::{BoundStep, pcrlb_recursion};
 use crate::scenario::Scenario;
 use nalgebra::DMatrix;
@@ -72,17 +72,28 @@ impl BoundSums {
         }
     }
 
-    /// Fold one run in (call in run-index order).
-    pub fn add(&mut self, run: &BoundRun) {
-        let epochs: &[BoundEpoch] = match run {
-            Ok(e) => e,
-            Err(reason) => {
-                self.unavailable.get_or_insert_with(|| reason.to_string());
-                return;
+    /// Fold consecutive runs in (call in run-index order). Every epoch's sums add the runs in
+    /// run order, so the result is the same as folding them one by one; epochs are folded in
+    /// parallel.
+    pub fn add_runs(&mut self, runs: &[BoundRun]) {
+        let mut data: Vec<&BoundRunData> = Vec::with_capacity(runs.len());
+        for run in runs {
+            match run {
+                Ok(d) => data.push(d),
+                Err(reason) => {
+                    self.unavailable.get_or_insert_with(|| reason.to_string());
+                }
             }
-        };
+        }
         let n = self.dim;
-        let k = epochs.len();
+        let Some(longest) = data
+            .iter()
+            .copied()
+            .reduce(|a, b| if b.len() > a.len() { b } else { a })
+        else {
+            return;
+        };
+        let k = longest.len();
         if self.count.len() < k {
             self.count.resize(k, 0);
             self.ends.resize(k, 0);
@@ -91,17 +102,26 @@ impl BoundSums {
             }
         }
         if self.times.len() < k {
-            self.times = epochs.iter().map(|e| e.t).collect();
+            self.times = longest.times.clone();
         }
-        for (i, e) in epochs.iter().enumerate() {
-            self.count[i] += 1;
-            add_into(&mut self.phi[i], e.block(0));
-            add_into(&mut self.info[i], e.block(1));
-            add_into(&mut self.pos[i], e.block(2));
-            add_into(&mut self.vel[i], e.block(3));
-        }
-        if k > 0 {
-            self.ends[k - 1] += 1;
+        (
+            &mut self.count[..k],
+            &mut self.phi[..k],
+            &mut self.info[..k],
+            &mut self.pos[..k],
+            &mut self.vel[..k],
+        )
+            .into_par_iter()
+            .with_min_len(16)
+            .enumerate()
+            .for_each(|(i, (count, phi, info, pos, vel))| {
+                for run in data.iter().filter(|r| i < r.len() && r.dim() == n) {
+                    *count += 1;
+                    run.add_epoch_into(i, phi, info, pos, vel);
+                }
+            });
+        for run in data.iter().filter(|r| !r.is_empty() && r.dim() == n) {
+            self.ends[run.len() - 1] += 1;
         }
     }
 
@@ -223,13 +243,11 @@ pub fn pcrlb_study(scenario: &Scenario, seed: u64, runs: usize) -> Result<PcrlbR
     let mut sums = BoundSums::new(scenario);
     for start in (0..runs).step_by(STUDY_CHUNK) {
         let end = (start + STUDY_CHUNK).min(runs);
-        let chunk: Vec<Result<BoundRun, TradeError>> = (start..end)
+        let chunk: Result<Vec<BoundRun>, TradeError> = (start..end)
             .into_par_iter()
             .map(|run| record_run(scenario, seed, run).map(|rec| bound_run(scenario, &rec)))
             .collect();
-        for r in chunk {
-            sums.add(&r?);
-        }
+        sums.add_runs(&chunk?);
     }
     Ok(sums.report(&state_names(scenario)))
 }

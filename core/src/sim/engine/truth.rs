@@ -99,7 +99,8 @@ pub fn truth_sample(
         visible: scenario
             .beacons
             .iter()
-            .map(|b| b.visible_from(kin.pos, t, model.planet.radius))
+            .zip(scenario.beacon_states(t).iter())
+            .map(|(b, (p, _))| b.visibility_margin_from(p, kin.pos, model.planet.radius) > 0.0)
             .collect(),
     }
 }

@@ -344,8 +344,8 @@ mod tests {
             let x6 = SVector::<f64, KIN>::from_fn(|i, _| x[i]);
             let d6 = seed_duals(&x6);
             let (p, _) = spherical_to_fixed(&[d6[0], d6[1], d6[2], d6[3], d6[4], d6[5]]);
-            for i in 0..3 {
-                assert_eq!(jp.row(i).transpose(), dual_gradient(&p[i]));
+            for (i, pi) in p.iter().enumerate() {
+                assert_eq!(jp.row(i).transpose(), dual_gradient(pi));
             }
         }
     }

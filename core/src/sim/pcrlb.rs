@@ -212,8 +212,8 @@ type Maps = (SMatrix<f64, 3, KIN>, SMatrix<f64, 3, KIN>);
 /// with the tables' position and velocity maps there.
 ///
 /// For spherical states the motion (planet-fixed, then inertial) is differentiated with respect
-/// to the six kinematic states only, on which it alone depends, and lifted to all N: the same
-/// numbers as N-variable AD at a third of the cost, and the planet-fixed gradients are the maps.
+/// to the six kinematic states only, on which it alone depends, and lifted to all N (the same
+/// information as N-variable AD, tested to 1e-12), and the planet-fixed gradients are the maps.
 fn information<const N: usize>(
     scenario: &Scenario,
     model: &EntryModel<AtmosphereModel>,

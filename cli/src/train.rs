@@ -1,5 +1,5 @@
 //! `entrynav train-density`: offline training of the USKF-NN density network (seed 001
-//! Algorithm 1), writing a network file such as `scenarios/msl-airdata-density-nn.toml`, and
+//! Algorithm 1), writing a network file such as `core/scenarios/msl-airdata-density-nn.toml`, and
 //! (`--evaluate RUNS`) the Monte Carlo density-error evaluation of the density-adaptation filters
 //! (seed 001 Table 6 in both readings of eq. 70, Fig. 10 plots).
 
@@ -22,7 +22,7 @@ pub struct TrainArgs {
     /// `--set filter.density.training.epochs=200`.
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub sets: Vec<String>,
-    /// Network file to write (TOML), e.g. scenarios/msl-airdata-density-nn.toml. Without it
+    /// Network file to write (TOML), e.g. core/scenarios/msl-airdata-density-nn.toml. Without it
     /// nothing is trained and `--evaluate` uses the scenario's built-in network.
     #[arg(long)]
     pub out: Option<PathBuf>,

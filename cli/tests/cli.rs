@@ -528,7 +528,10 @@ fn optimize_orbiters_beats_the_paper_and_writes_a_usable_scenario() {
 }
 
 fn gram(name: &str) -> String {
-    format!("{}/../tests/data/gram/{name}", env!("CARGO_MANIFEST_DIR"))
+    format!(
+        "{}/../core/tests/data/gram/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    )
 }
 
 fn files_of(dir: &std::path::Path) -> Vec<(String, String)> {

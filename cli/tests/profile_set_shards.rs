@@ -19,7 +19,7 @@ fn stable(path: &Path) -> serde_json::Value {
 fn sharded_profile_set_study_equals_the_single_process_one() {
     let set = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../tests/data/gram/montecarlo-3.txt"
+        "/../core/tests/data/gram/montecarlo-3.txt"
     );
     let dir = std::env::temp_dir().join(format!("entrynav-set-shards-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

@@ -9,10 +9,10 @@ use entrynav::atmosphere::{
 use entrynav::scenario::{Scenario, ScenarioConfig};
 use rand::SeedableRng;
 
-const MC2: &str = include_str!("../../tests/data/gram/montecarlo-2.txt");
-const MC3: &str = include_str!("../../tests/data/gram/montecarlo-3.txt");
-const AVERAGED: &str = include_str!("../../tests/data/gram/averaged.txt");
-const HGTMOLA: &str = include_str!("../../tests/data/gram/hgtmola.txt");
+const MC2: &str = include_str!("data/gram/montecarlo-2.txt");
+const MC3: &str = include_str!("data/gram/montecarlo-3.txt");
+const AVERAGED: &str = include_str!("data/gram/averaged.txt");
+const HGTMOLA: &str = include_str!("data/gram/hgtmola.txt");
 const R_SPHERE: f64 = 3_396_200.0;
 const LAT: f64 = -3.919;
 

@@ -1,4 +1,4 @@
-//! The built-in scenarios, embedded from the repository's `scenarios/` folder.
+//! The built-in scenarios, embedded from this crate's `scenarios/` folder (`core/scenarios/`, inside the crate so that `cargo package` carries them).
 
 /// Names of the built-in scenarios, in listing order.
 pub const BUILTIN_NAMES: [&str; 9] = [
@@ -16,19 +16,19 @@ pub const BUILTIN_NAMES: [&str; 9] = [
 /// TOML text of a built-in scenario, if `name` is one.
 pub fn builtin_toml(name: &str) -> Option<&'static str> {
     Some(match name {
-        "four-beacon-fusion" => include_str!("../../../scenarios/four-beacon-fusion.toml"),
+        "four-beacon-fusion" => include_str!("../../scenarios/four-beacon-fusion.toml"),
         "four-beacon-fusion-fault" => {
-            include_str!("../../../scenarios/four-beacon-fusion-fault.toml")
+            include_str!("../../scenarios/four-beacon-fusion-fault.toml")
         }
         "four-beacon-fusion-paper" => {
-            include_str!("../../../scenarios/four-beacon-fusion-paper.toml")
+            include_str!("../../scenarios/four-beacon-fusion-paper.toml")
         }
-        "msl-airdata" => include_str!("../../../scenarios/msl-airdata.toml"),
-        "msl-airdata-paper" => include_str!("../../../scenarios/msl-airdata-paper.toml"),
-        "ground-beacons-3" => include_str!("../../../scenarios/ground-beacons-3.toml"),
-        "orbiters-3" => include_str!("../../../scenarios/orbiters-3.toml"),
-        "msl-pressure" => include_str!("../../../scenarios/msl-pressure.toml"),
-        "msl-pressure-orbiter" => include_str!("../../../scenarios/msl-pressure-orbiter.toml"),
+        "msl-airdata" => include_str!("../../scenarios/msl-airdata.toml"),
+        "msl-airdata-paper" => include_str!("../../scenarios/msl-airdata-paper.toml"),
+        "ground-beacons-3" => include_str!("../../scenarios/ground-beacons-3.toml"),
+        "orbiters-3" => include_str!("../../scenarios/orbiters-3.toml"),
+        "msl-pressure" => include_str!("../../scenarios/msl-pressure.toml"),
+        "msl-pressure-orbiter" => include_str!("../../scenarios/msl-pressure-orbiter.toml"),
         _ => return None,
     })
 }

@@ -6,7 +6,7 @@
 //! * [`nn`] — the 1-100-1 tanh density network (eq. 28–33) with backpropagation and Adam;
 //! * [`training`] — offline training on a least-squares exponential fit (Algorithm 1);
 //! * [`network`] — network files (one network, or one per altitude band), the built-in trained
-//!   networks embedded from `scenarios/`, and the network-backed onboard atmosphere;
+//!   networks embedded from `core/scenarios/`, and the network-backed onboard atmosphere;
 //! * [`mlo`] — online maximum-likelihood adaptation with Adam and patience (eq. 52–60,
 //!   Algorithm 2), optionally over a window of past measurements;
 //! * [`config`] — the `[filter.density]` settings and their seed-001 defaults.

@@ -1,7 +1,7 @@
 //! Trained density networks on disk, one or several by altitude band, and the onboard atmosphere
 //! they define.
 //!
-//! A network file is TOML (the core's own format crate; the file ships in `scenarios/` next to
+//! A network file is TOML (the core's own format crate; the file ships in `core/scenarios/` next to
 //! the scenario and is embedded in the binary, see [`builtin_network_toml`]). It holds one network
 //! per altitude band: seed 001 trains one network over the whole entry (§IV.A); its §VI suggests
 //! "multiple neural networks ... trained at varying altitudes using a multi-height exponential
@@ -23,14 +23,14 @@ pub const MSL_AIRDATA_NETWORK: &str = "msl-airdata-density-nn.toml";
 /// File name of the built-in three-band networks for `msl-airdata`.
 pub const MSL_AIRDATA_BAND_NETWORKS: &str = "msl-airdata-density-nn-bands.toml";
 
-/// Text of a built-in network file (`scenarios/<name>`, embedded at compile time), if `name` is one.
+/// Text of a built-in network file (`core/scenarios/<name>`, embedded at compile time), if `name` is one.
 pub fn builtin_network_toml(name: &str) -> Option<&'static str> {
     match name {
         MSL_AIRDATA_NETWORK => Some(include_str!(
-            "../../../../scenarios/msl-airdata-density-nn.toml"
+            "../../../scenarios/msl-airdata-density-nn.toml"
         )),
         MSL_AIRDATA_BAND_NETWORKS => Some(include_str!(
-            "../../../../scenarios/msl-airdata-density-nn-bands.toml"
+            "../../../scenarios/msl-airdata-density-nn-bands.toml"
         )),
         _ => None,
     }

@@ -47,7 +47,7 @@ pub fn code(e: &anyhow::Error) -> i32 {
             || c.is::<entrynav::sim::SimError>()
             || matches!(
                 c.downcast_ref::<entrynav::sim::TradeError>(),
-                Some(entrynav::sim::TradeError::Truth { .. })
+                Some(entrynav::sim::TradeError::Truth(_))
             )
     });
     if runtime { 1 } else { 2 }

@@ -28,6 +28,7 @@ pub mod files;
 pub mod frames;
 pub mod math;
 pub mod observability;
+pub mod pcrlb_recursion;
 pub mod planet;
 pub mod scenario;
 pub mod sensors;

@@ -13,8 +13,6 @@
 //! * [`fisher`] / [`geometry`] — range and range-rate FIM (seed 002 eq. 25, 36, 42–45), det/trace
 //!   bounds (eq. 27–28, 37–41), geometry index I (eq. 54), the best N-beacon geometry (Table 1)
 //!   and the range FIM along a trajectory;
-//! * [`pcrlb`] — the posterior Cramér–Rao lower bound recursion (Tichavský et al. 1998) that
-//!   `sim::pcrlb` feeds with Monte Carlo averages along the truth runs.
 //!
 //! An unobservable configuration (one beacon, rank-deficient O) gives δ = 0 with its rank —
 //! never NaN; non-finite inputs are errors ([`ObservabilityError`]).
@@ -26,7 +24,6 @@ pub mod geometry;
 pub mod jet;
 mod jet_math;
 pub mod lie;
-pub mod pcrlb;
 pub mod system;
 pub mod trajectory;
 
@@ -36,7 +33,6 @@ pub use fisher::{FimSummary, geometry_index, max_det_bound};
 pub use geometry::{FimEpoch, MaxDet, max_det_directions, range_fim_series};
 pub use jet::Jet;
 pub use lie::{LieDerivatives, lie_derivatives, lie_matrix};
-pub use pcrlb::{BoundStep, pcrlb_recursion};
 pub use system::{AnalysisPoint, ObservedSystem, ScenarioSystem, analysis_points};
 pub use trajectory::{ChannelSet, DegreeSample, DegreeSeries, DeltaSummary, degree_series};
 

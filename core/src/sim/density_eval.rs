@@ -18,15 +18,14 @@
 //! The runs are those of `entrynav trade` with the same seed (same truth, noise and filter
 //! start per run), folded in run order.
 
-use super::engine::{NavStatus, Navigator};
-use super::start::initial_estimate;
-use super::{run_seed, simulate_truth};
+use super::TruthSample;
+use super::engine::{FilterFailure, Judgement, Navigator, Observer};
+use super::record::{RunError, record_run};
 use crate::estimation::Onboard;
 use crate::estimation::adaptive::DensityNetworkSet;
 use crate::estimation::nav::{FilterKind, NavError};
 use crate::scenario::Scenario;
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
+use crate::sensors::MeasurementEpoch;
 use rayon::prelude::*;
 use std::sync::Arc;
 use thiserror::Error;
@@ -57,13 +56,8 @@ pub enum DensityEvalError {
         source: super::engine::EngineError,
     },
     /// A truth run failed.
-    #[error("run {run}: {source}")]
-    Truth {
-        /// Run index.
-        run: usize,
-        /// Why.
-        source: super::engine::SimError,
-    },
+    #[error(transparent)]
+    Truth(#[from] RunError),
 }
 
 /// Options of [`evaluate_density_filters`].
@@ -100,9 +94,6 @@ pub struct DensityEvalReport {
     pub sample_runs_profile_pct: Vec<Vec<f64>>,
 }
 
-/// Per run and filter: epoch times, (profile, state) relative errors, failed?
-type RunSeries = (Vec<f64>, Vec<(f64, f64)>, bool);
-
 /// The onboard view for the evaluation: the scenario's, with the USKF-NN networks replaced by
 /// `networks` if given.
 fn onboard_with(scenario: &Scenario, networks: Option<&DensityNetworkSet>) -> Arc<Onboard> {
@@ -116,42 +107,50 @@ fn onboard_with(scenario: &Scenario, networks: Option<&DensityNetworkSet>) -> Ar
     }
 }
 
+/// The observer of one filter's flight: epoch times and (profile, state) relative errors (NaN
+/// where the filter has no density estimate), and whether it failed.
+#[derive(Default)]
+struct DensitySeries {
+    times: Vec<f64>,
+    errs: Vec<(f64, f64)>,
+    failed: bool,
+}
+
+impl Observer for DensitySeries {
+    fn epoch(&mut self, _: &Navigator, epoch: &MeasurementEpoch, _: &TruthSample, j: Judgement) {
+        let nan = f64::NAN;
+        self.times.push(epoch.t);
+        self.errs.push((
+            j.density_profile_rel_err.unwrap_or(nan),
+            j.density_at_estimate_rel_err.unwrap_or(nan),
+        ));
+    }
+
+    fn failure(&mut self, _: f64, _: &FilterFailure) {
+        self.failed = true;
+    }
+}
+
 fn one_run(
     scenario: &Arc<Scenario>,
     onboard: &Arc<Onboard>,
     kinds: &[FilterKind],
     seed: u64,
     run: usize,
-) -> Result<Vec<RunSeries>, DensityEvalError> {
-    let mut rng = ChaCha8Rng::seed_from_u64(run_seed(seed, run as u64));
-    let draw = scenario.draw_truth_run(run, &mut rng);
-    let truth = simulate_truth(scenario, &draw, &mut rng)
-        .map_err(|source| DensityEvalError::Truth { run, source })?;
-    let x0 = initial_estimate(scenario, &draw, &truth.samples[0], &mut rng);
+) -> Result<Vec<DensitySeries>, DensityEvalError> {
+    let rec = record_run(scenario, seed, run)?;
     let mut out = Vec::with_capacity(kinds.len());
     for &kind in kinds {
-        let mut nav = Navigator::new_checked(Arc::clone(onboard), kind, &x0).map_err(|source| {
-            DensityEvalError::Build {
-                filter: kind.name().to_string(),
-                source,
-            }
-        })?;
-        let (mut times, mut errs, mut failed) = (Vec::new(), Vec::new(), false);
-        for (epoch, sample) in truth.epochs_with_truth() {
-            nav.process(epoch);
-            if matches!(nav.status(), NavStatus::Failed { .. }) {
-                failed = true;
-                break;
-            }
-            let j = nav.judge(scenario, &draw, sample);
-            let nan = f64::NAN;
-            times.push(epoch.t);
-            errs.push((
-                j.density_profile_rel_err.unwrap_or(nan),
-                j.density_at_estimate_rel_err.unwrap_or(nan),
-            ));
-        }
-        out.push((times, errs, failed));
+        let mut nav =
+            Navigator::new_checked(Arc::clone(onboard), kind, &rec.x0).map_err(|source| {
+                DensityEvalError::Build {
+                    filter: kind.name().to_string(),
+                    source,
+                }
+            })?;
+        let mut series = DensitySeries::default();
+        nav.fly(scenario, &rec, &mut series);
+        out.push(series);
     }
     Ok(out)
 }
@@ -192,12 +191,20 @@ pub fn evaluate_density_filters(
     let mut done = 0;
     for start in (0..opts.runs).step_by(chunk) {
         let end = (start + chunk).min(opts.runs);
-        let runs: Vec<Result<Vec<RunSeries>, DensityEvalError>> = (start..end)
+        let runs: Vec<Result<Vec<DensitySeries>, DensityEvalError>> = (start..end)
             .into_par_iter()
             .map(|run| one_run(scenario, &onboard, kinds, opts.seed, run))
             .collect();
         for (i, r) in runs.into_iter().enumerate() {
-            for (j, (t, e, f)) in r?.into_iter().enumerate() {
+            for (
+                j,
+                DensitySeries {
+                    times: t,
+                    errs: e,
+                    failed: f,
+                },
+            ) in r?.into_iter().enumerate()
+            {
                 if f {
                     failed[j] += 1;
                 }

@@ -4,11 +4,14 @@
 //! * [`engine`] — the engine's step and the three step-wise simulators the FMUs wrap
 //!   ([`TruthSensors`](engine::TruthSensors), [`Navigator`](engine::Navigator),
 //!   [`EntryCoSim`](engine::EntryCoSim));
-//! * [`record`] — [`simulate_truth`]: a whole truth run recorded (a loop over the engine);
+//! * [`record`] — [`simulate_truth`]: a whole truth run recorded (a loop over the engine), and
+//!   [`record_run`]: Monte Carlo run k's truth and filter start, which filters then fly
+//!   ([`Navigator::fly`](engine::Navigator::fly), the engine's one loop);
+//! * [`run_record`] — what one filter records over a run (an [`engine::Observer`]);
 //! * [`judge`] — the estimate beside the truth (error, NEES, deployment error);
 //! * [`start`] — a run's initial estimate (nominal, or drawn around the truth);
-//! * [`monte_carlo`], [`shard`], [`metrics`], [`report`] — trade studies: runs in parallel,
-//!   folded in run order, shardable, summarised;
+//! * [`monte_carlo`], [`shard`], [`metrics`], [`moments`], [`report`] — trade studies: runs in
+//!   parallel, folded in run order, shardable, summarised;
 //! * [`pcrlb`], [`pcrlb_sums`] — the posterior Cramér–Rao lower bound of the scenario, from the
 //!   same truth runs, in every trade summary;
 //! * [`density_eval`] — seed 001's density RMSPE (eq. 70) over a Monte Carlo;
@@ -19,6 +22,7 @@ pub mod density_eval;
 pub mod engine;
 pub mod judge;
 pub mod metrics;
+pub mod moments;
 pub mod monte_carlo;
 pub mod pcrlb;
 mod pcrlb_epochs;
@@ -26,6 +30,7 @@ pub mod pcrlb_sums;
 pub mod record;
 pub mod replay;
 pub mod report;
+pub mod run_record;
 pub mod shard;
 pub mod start;
 pub mod training;
@@ -38,7 +43,9 @@ pub use monte_carlo::{
 };
 pub use pcrlb::NoBound;
 pub use pcrlb_sums::{PcrlbReport, pcrlb_study};
-pub use record::{TruthRun, channel_names, is_radio, simulate_truth};
+pub use record::{
+    RecordedRun, RunError, TruthRun, channel_names, is_radio, record_run, simulate_truth,
+};
 pub use report::{Ellipse, FilterReport, Series};
 pub use shard::{Shard, ShardResult, merge_shards};
 

@@ -7,27 +7,24 @@
 //! run-index order, so 1 or N threads give bit-identical statistics, and memory is bounded by the
 //! chunk size, not the number of runs.
 
-use super::engine::{NavStatus, Navigator, SimError};
-use super::metrics::{EpochRecord, FilterAccumulator, FinalRecord, RunRecord};
+use super::metrics::FilterAccumulator;
 use super::pcrlb::{BoundRun, bound_run};
 use super::pcrlb_sums::{BoundSums, PcrlbReport};
+use super::record::RunError;
+pub use super::record::{RecordedRun, record_run};
 use super::report::FilterReport;
+use super::run_record::RunRecord;
+pub use super::run_record::filter_run;
 use super::shard::{
     ACCUMULATION_BLOCK, BlockSums, SHARD_FORMAT, Shard, ShardResult, fold_partial, merge_shards,
     scenario_fingerprint,
 };
-use super::start::initial_estimate;
-use super::{TruthRun, run_seed, simulate_truth};
-use crate::estimation::Onboard;
 use crate::estimation::nav::{FilterKind, NavError};
-use crate::scenario::{Scenario, TruthDraw};
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
+use crate::scenario::Scenario;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Instant;
 use thiserror::Error;
 
 /// Why a trade study could not run.
@@ -37,13 +34,8 @@ pub enum TradeError {
     #[error(transparent)]
     Nav(#[from] NavError),
     /// The truth simulation failed (a scenario problem, reported with the run).
-    #[error("run {run}: {source}")]
-    Truth {
-        /// Run index.
-        run: usize,
-        /// Cause.
-        source: SimError,
-    },
+    #[error(transparent)]
+    Truth(#[from] RunError),
     /// Bad options or shard files.
     #[error("{0}")]
     Options(String),
@@ -341,59 +333,11 @@ fn run_blocks(
     Ok((out, true))
 }
 
-/// One Monte Carlo run's truth, recorded: the realisation, the truth run with its measurement
-/// epochs, and the filters' common initial estimate. Filters can be run over it any number of
-/// times (common random numbers: `entrynav tune` compares tunings on the same runs).
-#[derive(Debug, Clone)]
-pub struct RecordedRun {
-    /// Run index.
-    pub run: usize,
-    /// The truth realisation.
-    pub draw: TruthDraw,
-    /// The truth run and its measurement epochs.
-    pub truth: TruthRun,
-    /// The filters' initial estimate.
-    pub x0: Vec<f64>,
-}
-
-/// Record run `run` of a study with master seed `seed`.
-///
-/// Run `run` draws everything from `ChaCha8Rng::seed_from_u64(run_seed(seed, run))`, in this
-/// order: the truth dispersions, the measurement noise of the whole run, the initial estimate.
-pub fn record_run(scenario: &Scenario, seed: u64, run: usize) -> Result<RecordedRun, TradeError> {
-    let mut rng = ChaCha8Rng::seed_from_u64(run_seed(seed, run as u64));
-    let draw = scenario.draw_truth_run(run, &mut rng);
-    let truth = simulate_truth(scenario, &draw, &mut rng)
-        .map_err(|source| TradeError::Truth { run, source })?;
-    let x0 = initial_estimate(scenario, &draw, &truth.samples[0], &mut rng);
-    Ok(RecordedRun {
-        run,
-        draw,
-        truth,
-        x0,
-    })
-}
-
-/// Everything for one run: the truth recorded, then each filter's records (the engine's
-/// navigation step over its epochs).
-pub fn one_run(
-    scenario: &Arc<Scenario>,
-    filters: &[FilterKind],
-    seed: u64,
-    run: usize,
-) -> Result<Vec<RunRecord>, TradeError> {
-    let rec = record_run(scenario, seed, run)?;
-    Ok(filters
-        .iter()
-        .map(|&kind| filter_run(scenario, &scenario.onboard, &rec, kind))
-        .collect())
-}
-
 /// One run's records (one per filter) and, when asked, its PCRLB contribution.
 pub type RunWithBound = (Vec<RunRecord>, Option<BoundRun>);
 
-/// [`one_run`] and, with `pcrlb`, the run's contribution to the scenario's PCRLB
-/// ([`super::pcrlb`]).
+/// One run: the truth recorded, each filter flown over it and, with `pcrlb`, the run's
+/// contribution to the scenario's PCRLB ([`super::pcrlb`]).
 pub fn one_run_with_bound(
     scenario: &Arc<Scenario>,
     filters: &[FilterKind],
@@ -408,54 +352,4 @@ pub fn one_run_with_bound(
         .map(|&kind| filter_run(scenario, &scenario.onboard, &rec, kind))
         .collect();
     Ok((records, bound))
-}
-
-/// Filter `kind` built from `onboard` (the scenario's, or a re-tuned copy) over the recorded run
-/// `recorded`, judged at every epoch against its truth.
-pub fn filter_run(
-    scenario: &Scenario,
-    onboard: &Arc<Onboard>,
-    recorded: &RecordedRun,
-    kind: FilterKind,
-) -> RunRecord {
-    let (draw, truth) = (&recorded.draw, &recorded.truth);
-    let mut rec = RunRecord::default();
-    let mut nav = match Navigator::new_checked(Arc::clone(onboard), kind, &recorded.x0) {
-        Ok(nav) => nav,
-        Err(e) => {
-            rec.failure = Some((0.0, e.to_string()));
-            return rec;
-        }
-    };
-    let mut last = None;
-    for (epoch, sample) in truth.epochs_with_truth() {
-        let clock = Instant::now();
-        nav.process(epoch);
-        rec.filter_ns += clock.elapsed().as_nanos();
-        if let NavStatus::Failed { t, reason } = nav.status() {
-            rec.failure = Some((*t, reason.to_string()));
-            return rec;
-        }
-        rec.steps += 1;
-        let j = nav.judge(scenario, draw, sample);
-        let est = nav.estimate();
-        rec.times.push(epoch.t);
-        rec.epochs.push(EpochRecord {
-            err: j.err,
-            sigma: est.sigma.clone(),
-            pos_vel_err: j.pos_vel_err,
-            local_err: [j.downrange_crossrange.0, j.downrange_crossrange.1, j.up_m],
-            nees: j.nees,
-            nees_kinematic: j.nees_kinematic,
-            nis_terms: est.info.nis_terms.clone(),
-            density_rel_err: j.density_profile_rel_err,
-            density_at_estimate_rel_err: j.density_at_estimate_rel_err,
-            weights: est.info.weights.clone(),
-        });
-        last = Some(j.downrange_crossrange);
-    }
-    rec.final_ = last.map(|downrange_crossrange| FinalRecord {
-        downrange_crossrange,
-    });
-    rec
 }

@@ -16,7 +16,7 @@
 //! [`crate::dynamics::EntryModel::step_with_linear_stm`]), and I_k = Σ_c ∇h_cᵀ∇h_c/σ_c² over the
 //! channels measured at k (∇h by AD; relative-noise channels add the Fisher term of their
 //! state-dependent variance, 2∇h∇hᵀ/h²). Their run averages F̄_k, Ī_k feed
-//! [`crate::observability::pcrlb_recursion`]. Sums are folded in run order and merged in block
+//! [`crate::pcrlb_recursion`]. Sums are folded in run order and merged in block
 //! order, like every other statistic, so shards and thread counts give identical bounds.
 //!
 //! Position and velocity bounds are √tr(P M) with M the run average of JᵀJ, J the Jacobian of the
@@ -25,7 +25,7 @@
 
 use super::engine::TruthSample;
 use super::judge::{kinematic_truth, truth_in_filter_coords};
-use super::monte_carlo::RecordedRun;
+use super::record::RecordedRun;
 use crate::atmosphere::AtmosphereModel;
 use crate::dynamics::{AugmentedParam, EntryModel};
 use crate::frames::{fixed_to_inertial, spherical_to_fixed};
@@ -301,7 +301,7 @@ fn cartesian_maps() -> Maps {
 mod tests {
     use super::*;
     use crate::scenario::ScenarioConfig;
-    use crate::sim::monte_carlo::record_run;
+    use crate::sim::record::record_run;
 
     /// The 6-variable AD of the motion lifted to N gives the information matrix and maps of plain
     /// N-variable AD (the spherical path of `information`).

@@ -1,8 +1,9 @@
 //! Run sums of the PCRLB inputs and the bound they give (see [`super::pcrlb`]).
 
-use super::monte_carlo::{TradeError, record_run, state_names};
+use super::monte_carlo::{TradeError, state_names};
 use super::pcrlb::{BoundRun, BoundRunData, bound_run};
-use crate::observability::{BoundStep, pcrlb_recursion};
+use super::record::{RunError, record_run};
+use crate::pcrlb_recursion::{BoundStep, pcrlb_recursion};
 use crate::scenario::Scenario;
 use nalgebra::DMatrix;
 use rayon::prelude::*;
@@ -243,7 +244,7 @@ pub fn pcrlb_study(scenario: &Scenario, seed: u64, runs: usize) -> Result<PcrlbR
     let mut sums = BoundSums::new(scenario);
     for start in (0..runs).step_by(STUDY_CHUNK) {
         let end = (start + STUDY_CHUNK).min(runs);
-        let chunk: Result<Vec<BoundRun>, TradeError> = (start..end)
+        let chunk: Result<Vec<BoundRun>, RunError> = (start..end)
             .into_par_iter()
             .map(|run| record_run(scenario, seed, run).map(|rec| bound_run(scenario, &rec)))
             .collect();

@@ -1,9 +1,15 @@
-//! A whole truth run recorded: the batch loop over the engine's truth step.
+//! A whole truth run recorded: the batch loop over the engine's truth step, and one Monte Carlo
+//! run's truth with its filter start ([`record_run`]), which every filter then flies
+//! ([`Navigator::fly`](super::engine::Navigator::fly)).
 
 use super::engine::{SimError, StopReason, TruthSample, TruthSensors};
+use super::run_seed;
+use super::start::initial_estimate;
 use crate::scenario::{Scenario, TruthDraw};
 use crate::sensors::{Channel, MeasurementEpoch};
-use rand::Rng;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use thiserror::Error;
 
 /// A complete truth run.
 #[derive(Debug, Clone)]
@@ -45,6 +51,50 @@ pub fn simulate_truth<R: Rng>(
         samples,
         epochs,
         stop: truth.stop().unwrap_or(StopReason::Duration),
+    })
+}
+
+/// The truth of Monte Carlo run `run` could not be simulated (a scenario problem).
+#[derive(Debug, Error, Clone, PartialEq)]
+#[error("run {run}: {source}")]
+pub struct RunError {
+    /// Run index.
+    pub run: usize,
+    /// Why the truth stopped.
+    #[source]
+    pub source: SimError,
+}
+
+/// One Monte Carlo run's truth, recorded: the realisation, the truth run with its measurement
+/// epochs, and the filters' common initial estimate. Filters can fly it any number of times
+/// (common random numbers: `entrynav tune` compares tunings on the same runs).
+#[derive(Debug, Clone)]
+pub struct RecordedRun {
+    /// Run index.
+    pub run: usize,
+    /// The truth realisation.
+    pub draw: TruthDraw,
+    /// The truth run and its measurement epochs.
+    pub truth: TruthRun,
+    /// The filters' initial estimate.
+    pub x0: Vec<f64>,
+}
+
+/// Record run `run` of a study with master seed `seed`.
+///
+/// Run `run` draws everything from `ChaCha8Rng::seed_from_u64(run_seed(seed, run))`, in this
+/// order: the truth dispersions, the measurement noise of the whole run, the initial estimate.
+pub fn record_run(scenario: &Scenario, seed: u64, run: usize) -> Result<RecordedRun, RunError> {
+    let mut rng = ChaCha8Rng::seed_from_u64(run_seed(seed, run as u64));
+    let draw = scenario.draw_truth_run(run, &mut rng);
+    let truth =
+        simulate_truth(scenario, &draw, &mut rng).map_err(|source| RunError { run, source })?;
+    let x0 = initial_estimate(scenario, &draw, &truth.samples[0], &mut rng);
+    Ok(RecordedRun {
+        run,
+        draw,
+        truth,
+        x0,
     })
 }
 

@@ -2,10 +2,13 @@
 //! innovations and NIS, and fusion weights or model probabilities. `entrynav trade --replay-run K`
 //! writes it as CSV to trace a failed or diverged run found in a study's `failures`.
 
-use super::engine::{NavStatus, Navigator};
-use super::monte_carlo::{TradeError, record_run};
+use super::TruthSample;
+use super::engine::{FilterFailure, Judgement, Navigator, Observer};
+use super::monte_carlo::TradeError;
+use super::record::record_run;
 use crate::estimation::nav::FilterKind;
 use crate::scenario::Scenario;
+use crate::sensors::MeasurementEpoch;
 use std::sync::Arc;
 
 /// One epoch of a replayed filter.
@@ -46,6 +49,43 @@ pub struct Replay {
     pub failure: Option<(f64, String)>,
 }
 
+/// The observer that keeps every epoch of a flight in full.
+impl Observer for Replay {
+    fn epoch(
+        &mut self,
+        nav: &Navigator,
+        epoch: &MeasurementEpoch,
+        _sample: &TruthSample,
+        j: Judgement,
+    ) {
+        let est = nav.estimate();
+        let info = &est.info;
+        let aligned = info.innovations.len() == info.nis_terms.len();
+        self.epochs.push(ReplayEpoch {
+            t: epoch.t,
+            truth: j.truth,
+            estimate: est.x.clone(),
+            sigma: est.sigma.clone(),
+            err: j.err,
+            nees: j.nees,
+            nees_kinematic: j.nees_kinematic,
+            pos_vel_err: j.pos_vel_err,
+            nis: info.nis,
+            channels: info
+                .nis_terms
+                .iter()
+                .enumerate()
+                .map(|(i, &(c, v))| (c, aligned.then(|| info.innovations[i]), v))
+                .collect(),
+            weights: info.weights.clone(),
+        });
+    }
+
+    fn failure(&mut self, t: f64, reason: &FilterFailure) {
+        self.failure = Some((t, reason.to_string()));
+    }
+}
+
 /// Replay run `run` of the study (`scenario`, `filters`, `seed`): the same truth, noise and start
 /// as in the study.
 pub fn replay_run(
@@ -65,42 +105,11 @@ pub fn replay_run(
             epochs: Vec::new(),
             failure: None,
         };
-        let mut nav = match Navigator::new(Arc::clone(&scenario.onboard), kind, &rec.x0) {
-            Ok(nav) => nav,
-            Err(e) => {
-                replay.failure = Some((0.0, e.to_string()));
-                out.push(replay);
-                continue;
+        match Navigator::new(Arc::clone(&scenario.onboard), kind, &rec.x0) {
+            Ok(mut nav) => {
+                nav.fly(scenario, &rec, &mut replay);
             }
-        };
-        for (epoch, sample) in rec.truth.epochs_with_truth() {
-            nav.process(epoch);
-            if let NavStatus::Failed { t, reason } = nav.status() {
-                replay.failure = Some((*t, reason.to_string()));
-                break;
-            }
-            let j = nav.judge(scenario, &rec.draw, sample);
-            let est = nav.estimate();
-            let info = &est.info;
-            let aligned = info.innovations.len() == info.nis_terms.len();
-            replay.epochs.push(ReplayEpoch {
-                t: epoch.t,
-                truth: j.truth,
-                estimate: est.x.clone(),
-                sigma: est.sigma.clone(),
-                err: j.err,
-                nees: j.nees,
-                nees_kinematic: j.nees_kinematic,
-                pos_vel_err: j.pos_vel_err,
-                nis: info.nis,
-                channels: info
-                    .nis_terms
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &(c, v))| (c, aligned.then(|| info.innovations[i]), v))
-                    .collect(),
-                weights: info.weights.clone(),
-            });
+            Err(e) => replay.failure = Some((0.0, e.to_string())),
         }
         out.push(replay);
     }

@@ -4,6 +4,7 @@
 
 use super::consistency::Consistency;
 use super::metrics::{FilterAccumulator, FinalRow, RunProblem};
+use super::moments::{EpochSums, FinalSums, Moments};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -157,133 +158,105 @@ impl FilterReport {
     }
 }
 
+/// Time average of the epochs that have a value.
+fn time_avg(v: &[Option<f64>]) -> Option<f64> {
+    let f: Vec<f64> = v.iter().flatten().copied().collect();
+    (!f.is_empty()).then(|| f.iter().sum::<f64>() / f.len() as f64)
+}
+
+/// Per-state statistics over epochs: the RMSE, mean σ and bias series, and the time averages of
+/// the RMSE and of the mean |error| (seed 001 eq. 69), keyed by state name.
+struct StateStats {
+    rmse: Vec<Vec<Option<f64>>>,
+    sigma: Vec<Vec<Option<f64>>>,
+    bias: Vec<Vec<Option<f64>>>,
+    rmse_avg: BTreeMap<String, Option<f64>>,
+    mae_avg: BTreeMap<String, Option<f64>>,
+}
+
+fn state_stats(epochs: &[EpochSums], states: &[String]) -> StateStats {
+    let nk = epochs.len();
+    let mut out = StateStats {
+        rmse: vec![vec![None; states.len()]; nk],
+        sigma: vec![vec![None; states.len()]; nk],
+        bias: vec![vec![None; states.len()]; nk],
+        rmse_avg: BTreeMap::new(),
+        mae_avg: BTreeMap::new(),
+    };
+    for (i, s) in states.iter().enumerate() {
+        let (mut acc_rmse, mut acc_mae, mut n) = (0.0, 0.0, 0usize);
+        for (k, e) in epochs.iter().enumerate() {
+            let Some(st) = e.states.get(i).filter(|st| st.err.n > 0) else {
+                continue;
+            };
+            let c = st.err.n as f64;
+            let rmse = (st.err.sum_sq / c).sqrt();
+            out.rmse[k][i] = Some(rmse);
+            out.sigma[k][i] = Some(st.sigma / c);
+            out.bias[k][i] = Some(st.err.sum / c);
+            acc_rmse += rmse;
+            acc_mae += st.err.sum_abs / c;
+            n += 1;
+        }
+        out.rmse_avg
+            .insert(s.clone(), (n > 0).then(|| acc_rmse / n as f64));
+        out.mae_avg
+            .insert(s.clone(), (n > 0).then(|| acc_mae / n as f64));
+    }
+    out
+}
+
+/// RMSE at the final epoch per state, for `pos_m`/`vel_mps` and the local position errors.
+fn final_rmse(f: &FinalSums, states: &[String]) -> BTreeMap<String, Option<f64>> {
+    let mut out: BTreeMap<String, Option<f64>> = states
+        .iter()
+        .enumerate()
+        .map(|(i, s)| (s.clone(), f.states.get(i).and_then(Moments::rms)))
+        .collect();
+    out.insert("pos_m".into(), f.rms_of(f.pos_sq));
+    out.insert("vel_mps".into(), f.rms_of(f.vel_sq));
+    for (name, sq) in LOCAL_POSITION_ERRORS
+        .iter()
+        .zip([f.dr_cr[2], f.dr_cr[3], f.up_sq])
+    {
+        out.insert((*name).into(), f.rms_of(sq));
+    }
+    out
+}
+
+/// Seed 001 eq. 70: the time average of the per-epoch mean |relative error| [%].
+fn rmspe_pct(epochs: &[EpochSums], of: impl Fn(&EpochSums) -> &Moments) -> Option<f64> {
+    let per_epoch: Vec<f64> = epochs.iter().filter_map(|e| of(e).mean_abs()).collect();
+    (!per_epoch.is_empty()).then(|| 100.0 * per_epoch.iter().sum::<f64>() / per_epoch.len() as f64)
+}
+
 impl FilterAccumulator {
     /// Summarise into a report for the filter `name` with state names `states` and channel names
     /// `channels`.
     pub fn report(&self, name: &str, states: &[String], channels: &[String]) -> FilterReport {
-        let nk = self.times.len();
-        let safe = |s: f64, n: u64| if n > 0 { Some(s / n as f64) } else { None };
-        let mut rmse_series = vec![vec![None; states.len()]; nk];
-        let mut sigma_series = vec![vec![None; states.len()]; nk];
-        let mut bias_series = vec![vec![None; states.len()]; nk];
-        let mut rmse_avg = BTreeMap::new();
-        let mut mae_avg = BTreeMap::new();
-        for (i, s) in states.iter().enumerate() {
-            let (mut acc_rmse, mut acc_mae, mut n) = (0.0, 0.0, 0usize);
-            for k in 0..nk {
-                let c = self
-                    .count
-                    .get(k)
-                    .and_then(|v| v.get(i))
-                    .copied()
-                    .unwrap_or(0);
-                if c == 0 {
-                    continue;
-                }
-                let rmse = (self.sum_sq[k][i] / c as f64).sqrt();
-                rmse_series[k][i] = Some(rmse);
-                sigma_series[k][i] = Some(self.sum_sigma[k][i] / c as f64);
-                bias_series[k][i] = Some(self.sum_err[k][i] / c as f64);
-                acc_rmse += rmse;
-                acc_mae += self.sum_abs[k][i] / c as f64;
-                n += 1;
-            }
-            rmse_avg.insert(s.clone(), (n > 0).then(|| acc_rmse / n as f64));
-            mae_avg.insert(s.clone(), (n > 0).then(|| acc_mae / n as f64));
-        }
-        let pos_series: Vec<Option<f64>> = (0..nk)
-            .map(|k| safe(self.sum_pos_sq[k], self.n_epoch[k]).map(f64::sqrt))
-            .collect();
-        let vel_series: Vec<Option<f64>> = (0..nk)
-            .map(|k| safe(self.sum_vel_sq[k], self.n_epoch[k]).map(f64::sqrt))
-            .collect();
-        let avg = |v: &[Option<f64>]| {
-            let f: Vec<f64> = v.iter().flatten().copied().collect();
-            (!f.is_empty()).then(|| f.iter().sum::<f64>() / f.len() as f64)
+        let epochs = &self.epochs;
+        let per_epoch = |f: &dyn Fn(&EpochSums) -> Option<f64>| -> Vec<Option<f64>> {
+            epochs.iter().map(f).collect()
         };
-        rmse_avg.insert("pos_m".into(), avg(&pos_series));
-        rmse_avg.insert("vel_mps".into(), avg(&vel_series));
+        let stats = state_stats(epochs, states);
+        let pos_series = per_epoch(&|e| e.rms_of(e.pos_sq));
+        let vel_series = per_epoch(&|e| e.rms_of(e.vel_sq));
         let local_series: Vec<Vec<Option<f64>>> = (0..3)
-            .map(|c| {
-                (0..nk)
-                    .map(|k| {
-                        let s = self.sum_local_sq.get(k).map_or(0.0, |v| v[c]);
-                        safe(s, self.n_epoch[k]).map(f64::sqrt)
-                    })
-                    .collect()
-            })
+            .map(|c| per_epoch(&|e| e.rms_of(e.local_sq[c])))
             .collect();
+        let mut rmse_avg = stats.rmse_avg;
+        rmse_avg.insert("pos_m".into(), time_avg(&pos_series));
+        rmse_avg.insert("vel_mps".into(), time_avg(&vel_series));
         for (name, series) in LOCAL_POSITION_ERRORS.iter().zip(&local_series) {
-            rmse_avg.insert((*name).into(), avg(series));
+            rmse_avg.insert((*name).into(), time_avg(series));
         }
-        let mut rmse_final = BTreeMap::new();
-        for (i, s) in states.iter().enumerate() {
-            let c = self.final_count.get(i).copied().unwrap_or(0);
-            rmse_final.insert(
-                s.clone(),
-                (c > 0).then(|| (self.final_sum_sq[i] / c as f64).sqrt()),
-            );
-        }
-        rmse_final.insert(
-            "pos_m".into(),
-            (self.final_n > 0).then(|| (self.final_pos_sq / self.final_n as f64).sqrt()),
-        );
-        rmse_final.insert(
-            "vel_mps".into(),
-            (self.final_n > 0).then(|| (self.final_vel_sq / self.final_n as f64).sqrt()),
-        );
-        let n_final = self.final_n as f64;
-        for (name, sq) in
-            LOCAL_POSITION_ERRORS
-                .iter()
-                .zip([self.dr_cr[2], self.dr_cr[3], self.final_up_sq])
-        {
-            rmse_final.insert(
-                (*name).into(),
-                (self.final_n > 0).then(|| (sq / n_final).sqrt()),
-            );
-        }
-
-        let dens: Vec<f64> = (0..nk)
-            .filter_map(|k| safe(self.dens_abs[k], self.dens_n[k]))
-            .collect();
-        let density_rmspe_pct =
-            (!dens.is_empty()).then(|| 100.0 * dens.iter().sum::<f64>() / dens.len() as f64);
-        let density_series: Vec<Option<f64>> = (0..nk)
-            .map(|k| safe(self.dens_sq[k], self.dens_n[k]).map(|v| 100.0 * v.sqrt()))
-            .collect();
-        let density_bias_series: Vec<Option<f64>> = (0..nk)
-            .map(|k| {
-                let sum = self.dens_sum.get(k).copied().unwrap_or(0.0);
-                safe(sum, self.dens_n[k]).map(|v| 100.0 * v)
-            })
-            .collect();
-        let dest: Vec<f64> = (0..nk)
-            .filter_map(|k| safe(self.dest_abs[k], self.dest_n[k]))
-            .collect();
-        let density_at_estimate_rmspe_pct =
-            (!dest.is_empty()).then(|| 100.0 * dest.iter().sum::<f64>() / dest.len() as f64);
-        let density_at_estimate_series: Vec<Option<f64>> = (0..nk)
-            .map(|k| safe(self.dest_sq[k], self.dest_n[k]).map(|v| 100.0 * v.sqrt()))
-            .collect();
-        let weights_series: Vec<Vec<f64>> = (0..nk)
-            .map(|k| {
-                self.weights_sum[k]
-                    .iter()
-                    .map(|w| w / self.n_epoch[k].max(1) as f64)
-                    .collect()
-            })
-            .collect();
-
+        let fin = &self.final_sums;
         let within_3sigma_frac = states
             .iter()
             .enumerate()
             .map(|(i, s)| {
-                let n = self.within3_n.get(i).copied().unwrap_or(0);
-                (
-                    s.clone(),
-                    (n > 0).then(|| self.within3[i] as f64 / n as f64),
-                )
+                let (inside, n) = self.within_3sigma.get(i).copied().unwrap_or((0, 0));
+                (s.clone(), (n > 0).then(|| inside as f64 / n as f64))
             })
             .collect();
         FilterReport {
@@ -291,15 +264,12 @@ impl FilterAccumulator {
             within_3sigma_frac,
             runs: self.runs,
             rmse_time_avg: rmse_avg,
-            mae_time_avg_eq69: mae_avg,
-            rmse_final,
+            mae_time_avg_eq69: stats.mae_avg,
+            rmse_final: final_rmse(fin, states),
             final_error_mean: states
                 .iter()
                 .enumerate()
-                .map(|(i, s)| {
-                    let c = self.final_count.get(i).copied().unwrap_or(0);
-                    (s.clone(), (c > 0).then(|| self.final_sum_err[i] / c as f64))
-                })
+                .map(|(i, s)| (s.clone(), fin.states.get(i).and_then(Moments::mean)))
                 .collect(),
             consistency: self.consistency.report(channels),
             failed: self.failed,
@@ -310,26 +280,31 @@ impl FilterAccumulator {
             } else {
                 0.0
             },
-            density_rmspe_pct,
-            density_at_estimate_rmspe_pct,
-            ellipse_km: Ellipse::from_sums(&self.dr_cr, self.final_n),
+            density_rmspe_pct: rmspe_pct(epochs, |e| &e.density),
+            density_at_estimate_rmspe_pct: rmspe_pct(epochs, |e| &e.density_at_estimate),
+            ellipse_km: Ellipse::from_sums(&fin.dr_cr, fin.runs),
             efficiency_time_avg: BTreeMap::new(),
             efficiency_final: BTreeMap::new(),
             series: Series {
                 times_s: self.times.clone(),
-                rmse: rmse_series,
-                sigma_mean: sigma_series,
-                bias: bias_series,
+                rmse: stats.rmse,
+                sigma_mean: stats.sigma,
+                bias: stats.bias,
                 pos_rmse_m: pos_series,
                 local_rmse_m: local_series,
                 vel_rmse_mps: vel_series,
                 nees_mean: self.consistency.nees_series(),
                 nees_kinematic_mean: self.consistency.nees_kinematic_series(),
                 nis_mean: self.consistency.nis_series(),
-                density_rms_pct: density_series,
-                density_mean_pct: density_bias_series,
-                density_at_estimate_rms_pct: density_at_estimate_series,
-                weights_mean: weights_series,
+                density_rms_pct: per_epoch(&|e| e.density.rms().map(|v| 100.0 * v)),
+                density_mean_pct: per_epoch(&|e| e.density.mean().map(|v| 100.0 * v)),
+                density_at_estimate_rms_pct: per_epoch(&|e| {
+                    e.density_at_estimate.rms().map(|v| 100.0 * v)
+                }),
+                weights_mean: epochs
+                    .iter()
+                    .map(|e| e.weights.iter().map(|w| w / e.runs.max(1) as f64).collect())
+                    .collect(),
             },
             final_errors: self.finals.clone(),
         }

@@ -96,7 +96,7 @@ fn complete_default() -> bool {
 }
 
 /// Shard file format version.
-pub const SHARD_FORMAT: u32 = 2;
+pub const SHARD_FORMAT: u32 = 3;
 
 /// FNV-1a 64 fingerprint of a scenario's canonical TOML.
 pub fn scenario_fingerprint(scenario: &Scenario) -> String {

@@ -6,10 +6,11 @@
 //! consistency numbers are what `entrynav trade` prints for those runs (bit for bit up to one
 //! accumulation block, 256 runs), on any thread count.
 
-use super::metrics::{FilterAccumulator, RunRecord};
-use super::monte_carlo::{RecordedRun, TradeError, filter_run, record_run, state_names};
-use super::record::channel_names;
+use super::metrics::FilterAccumulator;
+use super::monte_carlo::{TradeError, state_names};
+use super::record::{RecordedRun, channel_names, record_run};
 use super::report::FilterReport;
+use super::run_record::{RunRecord, filter_run};
 use crate::estimation::Onboard;
 use crate::estimation::nav::FilterKind;
 use crate::scenario::Scenario;

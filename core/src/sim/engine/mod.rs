@@ -21,8 +21,10 @@
 //!
 //! [`TruthSensors`] and [`Navigator`] advance by communication steps of any length (the FMI
 //! co-simulation interface); [`EntryCoSim`] combines them. A batch run is a loop over the same
-//! steps: [`crate::sim::simulate_truth`] runs the truth to its end, the Monte Carlo then feeds
-//! the recorded epochs to one [`Navigator`] per filter.
+//! steps: [`crate::sim::simulate_truth`] runs the truth to its end, then one [`Navigator`] per
+//! filter flies the recorded epochs ([`Navigator::fly`], the engine's one loop: process, stop on
+//! failure, judge, hand to an [`Observer`]). The Monte Carlo, the replay of a run, the density
+//! evaluation and `tune` are observers; none writes its own loop.
 //!
 //! # Randomness
 //!
@@ -51,12 +53,14 @@
 
 mod entry;
 mod filter;
+mod flight;
 mod navigator;
 mod truth;
 mod truth_sensors;
 
 pub use entry::EntryCoSim;
 pub use filter::{BuildError, FilterFailure, Judgement, NavEstimate};
+pub use flight::{FlightEnd, Observer};
 pub use navigator::{NavStatus, Navigator};
 pub use truth::{SimError, StopReason, TruthPropagator, TruthSample, TruthStep, truth_sample};
 pub use truth_sensors::{StepReport, TruthOutputs, TruthSensors};

@@ -241,40 +241,62 @@ impl TruthPropagator {
 /// availability inputs), is not in a configured outage and, unless the scenario ignores
 /// visibility, is `visible` above the horizon. A value is truth + bias + σ·z, with the sensor's
 /// true σ (absolute, or relative to the true reading).
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn measure_epoch<A: Atmosphere, const N: usize>(
     scenario: &Scenario,
-    model: &EntryModel<A>,
-    x: &SVector<f64, N>,
-    kin: &Kinematics<f64>,
-    t: f64,
-    bank: f64,
-    due: impl Fn(usize) -> bool,
-    visible: &[bool],
-    commanded: impl Fn(usize) -> bool,
+    truth: &TruthAtEpoch<'_, A, N>,
+    schedule: &EpochSchedule<'_, impl Fn(usize) -> bool, impl Fn(usize) -> bool>,
     rng: &mut impl Rng,
 ) -> MeasurementEpoch {
+    let t = truth.t;
     let beacon_states = scenario.beacon_states(t);
     let mut values = Vec::with_capacity(scenario.channels.len());
     for (c, spec) in scenario.channels.iter().enumerate() {
-        if !due(c) {
+        if !(schedule.due)(c) {
             values.push(None);
             continue;
         }
-        let truth =
-            scenario
-                .measurement
-                .evaluate_with(model, x, kin, bank, &beacon_states, spec.channel);
+        let reading = scenario.measurement.evaluate_with(
+            truth.model,
+            truth.x,
+            truth.kin,
+            truth.bank,
+            &beacon_states,
+            spec.channel,
+        );
         let z: f64 = StandardNormal.sample(rng);
         let available = match spec.channel.beacon() {
             Some(i) => {
-                commanded(i)
+                (schedule.commanded)(i)
                     && !scenario.config.beacons[i].in_outage(t)
-                    && (scenario.config.ignore_visibility || visible[i])
+                    && (scenario.config.ignore_visibility || schedule.visible[i])
             }
             None => true,
         };
-        values.push(available.then(|| truth + spec.bias + spec.noise.sigma(truth) * z));
+        values.push(available.then(|| reading + spec.bias + spec.noise.sigma(reading) * z));
     }
     MeasurementEpoch { t, values }
+}
+
+/// The truth at a measurement epoch: what the sensors measure.
+pub(crate) struct TruthAtEpoch<'a, A, const N: usize> {
+    /// The run's truth model.
+    pub model: &'a EntryModel<A>,
+    /// Truth state.
+    pub x: &'a SVector<f64, N>,
+    /// Its kinematics (accelerations, dynamic pressure).
+    pub kin: &'a Kinematics<f64>,
+    /// Epoch time \[s\].
+    pub t: f64,
+    /// Bank angle flown \[rad\].
+    pub bank: f64,
+}
+
+/// Which channels are due at an epoch and which beacons can be heard.
+pub(crate) struct EpochSchedule<'a, D, C> {
+    /// Whether channel `c` is due.
+    pub due: D,
+    /// Per beacon, whether it is above the horizon.
+    pub visible: &'a [bool],
+    /// Per beacon, whether it is commanded available.
+    pub commanded: C,
 }

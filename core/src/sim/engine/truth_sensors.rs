@@ -2,7 +2,8 @@
 //! communication step.
 
 use super::truth::{
-    SimError, StopReason, TruthPropagator, TruthSample, measure_epoch, truth_sample,
+    EpochSchedule, SimError, StopReason, TruthAtEpoch, TruthPropagator, TruthSample, measure_epoch,
+    truth_sample,
 };
 use super::{EngineError, check_step};
 use crate::scenario::{Scenario, TruthDraw};
@@ -188,18 +189,19 @@ impl<R: Rng, S: Deref<Target = Scenario>> TruthSensors<R, S> {
         let sc = &self.scenario;
         let s = truth_sample(sc, &self.draw, step.t, &step.x, bank);
         let periods = &self.periods;
-        let epoch = measure_epoch(
-            sc,
+        let truth = TruthAtEpoch {
             model,
-            &step.x,
-            &step.kin,
-            step.t,
+            x: &step.x,
+            kin: &step.kin,
+            t: step.t,
             bank,
-            |c| k % periods[c] == 0,
-            &s.visible,
-            |i| beacon_available.get(i).copied().unwrap_or(true),
-            &mut self.rng,
-        );
+        };
+        let schedule = EpochSchedule {
+            due: |c: usize| k % periods[c] == 0,
+            visible: &s.visible,
+            commanded: |i: usize| beacon_available.get(i).copied().unwrap_or(true),
+        };
+        let epoch = measure_epoch(sc, &truth, &schedule, &mut self.rng);
         on_epoch(&epoch, &s);
         self.last_epoch = Some(epoch);
         Ok(Some(Some(s)))

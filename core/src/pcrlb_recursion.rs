@@ -27,9 +27,26 @@
 //!
 //! Dimensions are known only at run time here (the bound is formed when a study's sums are
 //! reported, after runs of a scenario-dependent state size), so this uses dynamic matrices.
+//!
+//! This is plain matrix numerics (the bottom layer): `sim::pcrlb` feeds it with Monte Carlo
+//! averages along the truth runs, and nothing here knows of scenarios or simulations.
 
-use super::ObservabilityError;
 use nalgebra::DMatrix;
+use thiserror::Error;
+
+/// Why the recursion could not run.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum RecursionError {
+    /// Matrices whose sizes do not fit together.
+    #[error("invalid input: {0}")]
+    InvalidInput(String),
+    /// A matrix or the bound became NaN or infinite.
+    #[error("{what} is not finite")]
+    NonFinite {
+        /// Which quantity (and where).
+        what: String,
+    },
+}
 
 /// One step of the recursion: the transition from the previous epoch, the process noise over it
 /// and the expected measurement information at the new epoch.
@@ -47,10 +64,10 @@ pub struct BoundStep {
 pub fn pcrlb_recursion(
     p0: &DMatrix<f64>,
     steps: &[BoundStep],
-) -> Result<Vec<DMatrix<f64>>, ObservabilityError> {
+) -> Result<Vec<DMatrix<f64>>, RecursionError> {
     let n = p0.nrows();
     if p0.ncols() != n {
-        return Err(ObservabilityError::InvalidInput(format!(
+        return Err(RecursionError::InvalidInput(format!(
             "prior covariance is {}x{}, not square",
             n,
             p0.ncols()
@@ -65,20 +82,20 @@ pub fn pcrlb_recursion(
             ("information", &s.info),
         ] {
             if m.nrows() != n || m.ncols() != n {
-                return Err(ObservabilityError::InvalidInput(format!(
+                return Err(RecursionError::InvalidInput(format!(
                     "step {k}: {what} matrix is {}x{}, the state has {n}",
                     m.nrows(),
                     m.ncols()
                 )));
             }
             if m.iter().any(|v| !v.is_finite()) {
-                return Err(ObservabilityError::NonFinite {
+                return Err(RecursionError::NonFinite {
                     what: format!("step {k}: {what} matrix"),
                 });
             }
         }
         let prior = symmetric(&(&s.phi * &p * s.phi.transpose() + &s.q));
-        p = posterior(&prior, &s.info).ok_or_else(|| ObservabilityError::NonFinite {
+        p = posterior(&prior, &s.info).ok_or_else(|| RecursionError::NonFinite {
             what: format!("step {k}: bound covariance (prior not positive definite)"),
         })?;
         out.push(p.clone());

@@ -1,0 +1,269 @@
+//! The architecture rules ARCHITECTURE.md states, checked on the source tree:
+//!
+//! * **layers import downward only** — every `crate::module` path in a core module names a module
+//!   of a lower layer (the table below is ARCHITECTURE.md's layer table);
+//! * **workspace crates depend downward only** — core ← loader ← optimizer, fmu ← cli, and the
+//!   shipped FMU library carries no FMI host (`libloading`, `zip`);
+//! * **no `include_str!`/`include_bytes!` reaches outside its crate** (`cargo package` would
+//!   break).
+//!
+//! A failure names the file, the line and the rule.
+
+use std::path::{Path, PathBuf};
+
+/// Layer rank of each top-level module of `core/src`, as in ARCHITECTURE.md's table: numerics
+/// (0, may import each other), physics in list order (atmosphere, dynamics, beacons, sensors),
+/// estimation, scenario, simulation, analysis. A module may import modules of a lower rank only.
+const LAYERS: &[(&str, u32)] = &[
+    ("math", 0),
+    ("planet", 0),
+    ("frames", 0),
+    ("state_dim", 0),
+    ("files", 0),
+    ("pcrlb_recursion", 0),
+    ("atmosphere", 1),
+    ("dynamics", 2),
+    ("beacons", 3),
+    ("sensors", 4),
+    ("estimation", 5),
+    ("scenario", 6),
+    ("sim", 7),
+    ("observability", 8),
+];
+
+fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("core sits in the workspace")
+        .to_path_buf()
+}
+
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    let mut entries: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+    entries.sort();
+    for p in entries {
+        if p.is_dir() {
+            if p.file_name().is_some_and(|n| n == "target") {
+                continue;
+            }
+            rust_files(&p, out);
+        } else if p.extension().is_some_and(|e| e == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+fn rank(module: &str) -> Option<u32> {
+    LAYERS.iter().find(|(m, _)| *m == module).map(|(_, r)| *r)
+}
+
+/// The top-level modules a line of code names through `crate::module` (comments excluded).
+fn crate_paths(line: &str) -> Vec<String> {
+    let code = line.split("//").next().unwrap_or("");
+    let mut out = Vec::new();
+    let mut rest = code;
+    while let Some(i) = rest.find("crate::") {
+        let after = &rest[i + "crate::".len()..];
+        let name: String = after
+            .chars()
+            .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+            .collect();
+        // `crate::{a, b}` would hide its modules from this check: refuse it outright.
+        if after.starts_with('{') {
+            out.push("{".to_string());
+        } else if !name.is_empty() {
+            out.push(name);
+        }
+        rest = after;
+    }
+    out
+}
+
+/// Every upward import in `core/src`, as "file:line: module -> imported".
+fn upward_imports(src: &Path) -> Vec<String> {
+    let mut files = Vec::new();
+    rust_files(src, &mut files);
+    let mut bad = Vec::new();
+    for file in files {
+        let rel = file.strip_prefix(src).expect("under src");
+        let first = rel.components().next().expect("a component");
+        let module = first
+            .as_os_str()
+            .to_string_lossy()
+            .trim_end_matches(".rs")
+            .to_string();
+        if module == "lib" {
+            continue;
+        }
+        let Some(own) = rank(&module) else {
+            bad.push(format!(
+                "{}: module `{module}` is not in the layer table of this test and ARCHITECTURE.md",
+                rel.display()
+            ));
+            continue;
+        };
+        let text = std::fs::read_to_string(&file).expect("readable source");
+        for (n, line) in text.lines().enumerate() {
+            for target in crate_paths(line) {
+                if target == module {
+                    continue;
+                }
+                let ok = match rank(&target) {
+                    Some(r) => r < own || (r == 0 && own == 0),
+                    // Crate-root items (`crate::Planet`) belong to numerics.
+                    None => target
+                        .chars()
+                        .next()
+                        .is_some_and(|c| c.is_ascii_uppercase()),
+                };
+                if !ok {
+                    bad.push(format!(
+                        "{}:{}: `{module}` (layer {own}) imports `crate::{target}`",
+                        rel.display(),
+                        n + 1
+                    ));
+                }
+            }
+        }
+    }
+    bad
+}
+
+#[test]
+fn core_layers_import_downward_only() {
+    let bad = upward_imports(&workspace().join("core/src"));
+    assert!(
+        bad.is_empty(),
+        "imports that run up ARCHITECTURE.md's layer table:\n{}",
+        bad.join("\n")
+    );
+}
+
+#[test]
+fn the_layer_check_sees_an_upward_import() {
+    // The check itself must fail on the defect it exists for (estimation importing sim).
+    let dir = std::env::temp_dir().join(format!("entrynav-layers-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("estimation")).unwrap();
+    std::fs::write(
+        dir.join("estimation/leak.rs"),
+        "use crate::sim::engine::TruthSample; // the truth in a filter\nuse crate::math::V3;\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("math.rs"),
+        "// crate::sim in a comment is no import\n",
+    )
+    .unwrap();
+    let bad = upward_imports(&dir);
+    std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(bad.len(), 1, "{bad:?}");
+    assert!(bad[0].contains("estimation/leak.rs:1") && bad[0].contains("crate::sim"));
+}
+
+/// The `[dependencies]` of a workspace crate that are workspace crates or named here.
+fn dependencies(manifest: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(manifest).expect("manifest");
+    let doc: toml::Table = toml::from_str(&text).expect("valid manifest");
+    doc.get("dependencies")
+        .and_then(|d| d.as_table())
+        .map(|t| t.keys().cloned().collect())
+        .unwrap_or_default()
+}
+
+#[test]
+fn workspace_crates_depend_downward_only() {
+    let ws = workspace();
+    // crate folder, package name, the workspace crates it may depend on.
+    let allowed: &[(&str, &[&str])] = &[
+        ("core", &[]),
+        ("loader", &["entrynav"]),
+        ("optimizer", &["entrynav", "entrynav-loader"]),
+        ("fmu", &["entrynav", "entrynav-loader"]),
+    ];
+    let workspace_crates = [
+        "entrynav",
+        "entrynav-loader",
+        "entrynav-optimizer",
+        "entrynav-fmu",
+        "entrynav-cli",
+        "entrynav-fmi-host",
+    ];
+    let mut bad = Vec::new();
+    for (dir, ok) in allowed {
+        for dep in dependencies(&ws.join(dir).join("Cargo.toml")) {
+            if workspace_crates.contains(&dep.as_str()) && !ok.contains(&dep.as_str()) {
+                bad.push(format!("{dir}/Cargo.toml depends on {dep}"));
+            }
+        }
+    }
+    // The shipped FMU library contains the FMU only: no FMI host (loading libraries, unzipping).
+    for dep in dependencies(&ws.join("fmu/Cargo.toml")) {
+        if ["libloading", "zip"].contains(&dep.as_str()) {
+            bad.push(format!(
+                "fmu/Cargo.toml depends on {dep}: the FMI host belongs outside the FMU"
+            ));
+        }
+    }
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
+
+/// The crate folder (nearest ancestor with a Cargo.toml) of `file`.
+fn crate_dir(file: &Path) -> PathBuf {
+    let mut d = file.parent().expect("a folder");
+    while !d.join("Cargo.toml").exists() {
+        d = d.parent().expect("inside a crate");
+    }
+    d.to_path_buf()
+}
+
+#[test]
+fn embedded_files_stay_inside_their_crate() {
+    let ws = workspace();
+    let mut files = Vec::new();
+    for entry in std::fs::read_dir(&ws).expect("workspace") {
+        let p = entry.expect("entry").path();
+        if p.is_dir() && p.join("Cargo.toml").exists() {
+            rust_files(&p, &mut files);
+        }
+    }
+    assert!(files.len() > 100, "found only {} Rust files", files.len());
+    let mut bad = Vec::new();
+    let mut seen = 0;
+    for file in &files {
+        // This file names the macros in string literals.
+        if file.ends_with("core/tests/architecture.rs") {
+            continue;
+        }
+        let text = std::fs::read_to_string(file).expect("readable source");
+        for mac in ["include_str!(", "include_bytes!("] {
+            for (i, _) in text.match_indices(mac) {
+                // The path literal may sit on the next line (rustfmt breaks long calls).
+                let arg = text[i + mac.len()..].trim_start();
+                let Some(arg) = arg.strip_prefix('"') else {
+                    continue;
+                };
+                let rel = arg.split('"').next().unwrap_or("");
+                let line = text[..i].matches('\n').count() + 1;
+                seen += 1;
+                let target = file.parent().expect("folder").join(rel);
+                let target = target
+                    .canonicalize()
+                    .unwrap_or_else(|e| panic!("{}:{line}: {rel}: {e}", file.display()));
+                let home = crate_dir(file).canonicalize().expect("crate folder");
+                if !target.starts_with(&home) {
+                    bad.push(format!(
+                        "{}:{line}: embeds {} from outside its crate {}",
+                        file.display(),
+                        target.display(),
+                        home.display()
+                    ));
+                }
+            }
+        }
+    }
+    assert!(seen >= 10, "found only {seen} embedded files");
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}

@@ -173,6 +173,7 @@ impl Scenario {
             .map(|b| b.name().to_string())
             .collect();
 
+        let climatology = climatology(&config, &filter_model, &planet, entry_lat, load)?;
         let channels = channel_specs(&config, &beacon_names);
         let ephemerides = Arc::new(ephemeris_table(&config, &channels, &beacons));
         let measurement = config.sensors.measurement_model();
@@ -180,7 +181,7 @@ impl Scenario {
         let onboard = Arc::new(onboard_view(OnboardParts {
             config: &config,
             model: filter_model,
-            climatology: truth_model.atmosphere.clone(),
+            climatology,
             measurement: measurement.clone(),
             channels: &channels,
             beacons: &beacons,
@@ -329,6 +330,40 @@ impl Scenario {
             Err(_) => nominal,
         }
     }
+}
+
+/// The onboard climatology (`filter.density.climatology`, default the filter's own atmosphere):
+/// a filter-side setting, never the truth's atmosphere. A table of several profiles must name
+/// the one to carry (`profile = k`); an averaged file holds one.
+fn climatology(
+    config: &ScenarioConfig,
+    filter_model: &EntryModel<AtmosphereModel>,
+    planet: &Planet,
+    entry_lat: f64,
+    load: &FileLoader<'_>,
+) -> Result<AtmosphereModel, ScenarioError> {
+    let field = "filter.density.climatology";
+    let Some(cfg) = config
+        .filter
+        .density
+        .as_ref()
+        .and_then(|d| d.climatology.as_ref())
+    else {
+        return Ok(filter_model.atmosphere.clone());
+    };
+    cfg.validate(field)?;
+    let (model, profiles) = cfg.build_at(planet, entry_lat, load)?;
+    if let Some(choice) = profiles.filter(|c| c.selected.is_none() && c.set.profiles.len() > 1) {
+        return Err(ScenarioError::invalid(
+            field,
+            format!(
+                "{} holds {} profiles; a climatology is one mean profile: select one with `profile = k` or give an averaged file",
+                choice.set.source_name,
+                choice.set.profiles.len()
+            ),
+        ));
+    }
+    Ok(model)
 }
 
 /// Geocentric latitude (rad) of the truth entry interface (the areoid datum of table files).

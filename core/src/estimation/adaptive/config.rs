@@ -4,6 +4,7 @@
 //! They live here, beside the filters that use them, so that the estimation layer needs nothing
 //! from the scenario layer; the scenario format re-exports them.
 
+use crate::atmosphere::AtmosphereConfig;
 use serde::{Deserialize, Serialize};
 
 fn d_cm_batch() -> usize {
@@ -67,12 +68,18 @@ pub struct DensityFilterConfig {
     /// UKF-AC: random-walk variance of 𝒦 per filter step (seed 001: 1e-7).
     #[serde(default = "d_ac_q")]
     pub ac_q: f64,
-    /// UKF-AC: initial 𝒦; absent means the ratio of the pre-flight climatology (the mean
-    /// profile the onboard model was fitted to, `Onboard::climatology`) to the onboard model at
-    /// the filter's initial altitude (our reading of "the ratio between the true density and the
-    /// nominal density").
+    /// UKF-AC: initial 𝒦; absent means the ratio of the pre-flight climatology (`climatology`,
+    /// `Onboard::climatology`) to the onboard model at the filter's initial altitude (our
+    /// reading of "the ratio between the true density and the nominal density").
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ac_initial: Option<f64>,
+    /// The pre-flight climatology the vehicle carries: the mean atmosphere the onboard model was
+    /// fitted to (an atmosphere description, e.g. `{ model = "mars-mean" }` or an averaged
+    /// Mars-GRAM table file). Absent: the filter's own atmosphere (`filter.atmosphere`), so
+    /// UKF-AC starts at 𝒦₀ = 1. It is a filter-side setting: a scenario's truth atmosphere
+    /// never reaches a filter, whatever it is.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub climatology: Option<AtmosphereConfig>,
     /// USKF-NN: network file, the name of a built-in (`msl-airdata-density-nn.toml`, one network;
     /// `msl-airdata-density-nn-bands.toml`, one per altitude band).
     #[serde(default = "d_network")]
@@ -124,6 +131,7 @@ impl Default for DensityFilterConfig {
             ac_p0: d_ac_p0(),
             ac_q: d_ac_q(),
             ac_initial: None,
+            climatology: None,
             network: d_network(),
             consider_tau_s: d_tau(),
             consider_pss: d_pss(),

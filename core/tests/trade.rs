@@ -90,12 +90,20 @@ fn a_correctly_modelled_filter_is_consistent() {
     let s = scenario("orbiters-3");
     let r = trade(&s, &[FilterKind::Ekf, FilterKind::Ukf], 40, 7, 64, 2);
     for f in &r.filters {
-        let anees = f.consistency.anees.unwrap();
+        // ANEES (the time average of the 40-run mean NEES) inside the per-epoch 95 % χ² band of
+        // a 40-run mean of 6-dof NEES (χ²(240)/40: [4.97, 7.12]), and nearly every epoch inside it
+        // (docs/results.md, 500 runs: ANEES/dof 0.963, 100 % of epochs inside).
+        let c = &f.consistency;
+        let anees = c.anees.unwrap();
+        let [lo, hi] = c.nees_bounds_95;
+        assert_eq!(c.nees_dof, 6);
         assert!(
-            anees > 3.0 && anees < 9.0,
-            "{}: ANEES {anees} for 6 states",
+            anees > lo && anees < hi,
+            "{}: ANEES {anees} outside [{lo}, {hi}] for 6 states",
             f.name
         );
+        let inside = c.nees_in_bounds_frac.unwrap();
+        assert!(inside >= 0.9, "{}: {inside} of epochs inside", f.name);
         // Without the truth the innovations tell the same: every ν²/s averages about 1.
         let anis = f.consistency.anis_per_dof.unwrap();
         assert!((0.8..1.25).contains(&anis), "{}: ANIS/dof {anis}", f.name);
@@ -115,12 +123,19 @@ fn a_correctly_modelled_filter_is_consistent() {
             );
         }
         assert_eq!((f.failed, f.diverged), (0, 0));
-        // Range-only navigation to three orbiters pins the position to tens of metres.
+        // Range-only navigation to three orbiters: 7.88 m at deployment in docs/results.md (500
+        // runs), within 2 % of the PCRLB. With 40 runs the RMSE has a ~11 % sampling error.
+        let pos = f.rmse_final["pos_m"].unwrap();
         assert!(
-            f.rmse_final["pos_m"].unwrap() < 50.0,
-            "{}: {:?}",
-            f.name,
-            f.rmse_final["pos_m"]
+            (6.0..10.0).contains(&pos),
+            "{}: final position {pos} m",
+            f.name
+        );
+        let efficiency = f.efficiency_final["pos_m"].unwrap();
+        assert!(
+            (0.8..1.25).contains(&efficiency),
+            "{}: RMSE/PCRLB {efficiency} at deployment",
+            f.name
         );
     }
 }
@@ -218,15 +233,6 @@ fn fault_scenario_keeps_every_filter_running() {
             f.name
         );
         assert_eq!(f.failed, 0, "{}: {:?}", f.name, f.failures);
-    }
-    // Fusion weights stay a valid convex combination through the fault. (With SI units the ∞-norm
-    // of seed 000 eq. 21 is dominated by the longitude/latitude information, which every local
-    // filter shares after feedback, so the fast weights stay near 1/4; see docs/results.md.)
-    for w in &r.filters[2].series.weights_mean {
-        assert!(
-            w.iter().all(|v| *v >= 0.0) && (w.iter().sum::<f64>() - 1.0).abs() < 1e-9,
-            "{w:?}"
-        );
     }
 }
 

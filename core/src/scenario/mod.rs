@@ -8,15 +8,17 @@
 pub mod build;
 pub mod builtin;
 pub mod config;
+pub mod draw;
 pub mod error;
 mod onboard;
 mod truth_values;
 pub mod validate;
 mod validate_density;
 
-pub use build::{Scenario, TruthDraw};
+pub use build::Scenario;
 pub use builtin::{BUILTIN_NAMES, builtin_toml};
 pub use config::*;
+pub use draw::TruthDraw;
 pub use error::ScenarioError;
 
 impl ScenarioConfig {

@@ -20,7 +20,8 @@
 //! `None` means the truth has no such value (ρ0 of a tabulated truth atmosphere, Δ when the
 //! filter's atmosphere is not the truth's mean model).
 
-use super::build::{Scenario, TruthDraw};
+use super::build::Scenario;
+use super::draw::TruthDraw;
 use crate::dynamics::AugmentedParam;
 
 impl Scenario {

@@ -21,6 +21,7 @@ pub mod mmae;
 pub mod nav;
 pub mod onboard;
 pub mod ukf;
+pub mod unscented;
 
 pub use onboard::{FilterTuning, FusionCovariance, Onboard, OnboardChannel};
 

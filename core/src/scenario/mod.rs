@@ -13,6 +13,9 @@ mod onboard;
 mod truth_values;
 pub mod validate;
 mod validate_density;
+mod validate_filter;
+mod validate_range;
+mod validate_state;
 
 pub use build::{Scenario, TruthDraw};
 pub use builtin::{BUILTIN_NAMES, builtin_toml};

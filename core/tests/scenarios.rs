@@ -204,7 +204,7 @@ fn structural_errors_name_the_field() {
     );
     let msg = error_of(|s| s.replacen("radius_km = 3518.2", "radius_km = 3000.0", 1));
     assert!(
-        msg.contains("truth.initial.radius_km") && msg.contains("above the surface"),
+        msg.contains("truth.initial.radius_km") && msg.contains("> the surface = 3396.2"),
         "{msg}"
     );
 }

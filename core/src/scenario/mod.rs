@@ -14,6 +14,9 @@ mod onboard;
 mod truth_values;
 pub mod validate;
 mod validate_density;
+mod validate_filter;
+mod validate_range;
+mod validate_state;
 
 pub use build::Scenario;
 pub use builtin::{BUILTIN_NAMES, builtin_toml};

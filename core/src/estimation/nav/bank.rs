@@ -2,8 +2,9 @@
 //! mixture of experts.
 
 use super::ekf_nav::EkfNav;
+use super::ensemble::EkfEnsemble;
 use super::start::FilterStart;
-use super::{NavFilter, StepInfo};
+use super::{FilterCore, NavFilter, StepInfo};
 use crate::dynamics::AugmentedParam;
 use crate::estimation::EstimationError;
 use crate::estimation::Onboard;
@@ -47,17 +48,13 @@ enum Gate {
 /// own (docs/results.md, "MoE consistency"); a consider δ keeps its cell.
 #[derive(Debug, Clone)]
 pub struct BankNav<const N: usize> {
-    members: Vec<Option<EkfNav<N>>>,
+    /// The members (model i with density bias `deltas[i]`) and their mixture.
+    ens: EkfEnsemble<N>,
     deltas: Vec<f64>,
     /// State index of a density-bias state, if the filter has one.
     density_state: Option<usize>,
     gate: Gate,
-    onboard: Arc<Onboard>,
-    fused: (SVector<f64, N>, SMatrix<f64, N, N>),
     weights: Vec<f64>,
-    t: f64,
-    /// Bank-angle command of the members' onboard models \[rad\].
-    bank: f64,
 }
 
 impl<const N: usize> BankNav<N> {
@@ -102,7 +99,7 @@ impl<const N: usize> BankNav<N> {
                     s.p0.column_mut(k).fill(0.0);
                     s.p0[(k, k)] = sigma * sigma;
                 }
-                EkfNav::new(onboard, &s, None, 1.0 + d).map(Some)
+                EkfNav::new(onboard, &s, None, 1.0 + d)
             })
             .collect::<Result<Vec<_>, _>>()?;
         let n = deltas.len();
@@ -116,15 +113,11 @@ impl<const N: usize> BankNav<N> {
             Gate::Classic(ClassicBank::new(n, DEFAULT_P_MIN)?)
         };
         Ok(BankNav {
-            members,
+            ens: EkfEnsemble::new(onboard, members, (start.x0, start.p0)),
             deltas,
             density_state,
             gate,
-            onboard: Arc::clone(onboard),
-            fused: (start.x0, start.p0),
             weights: vec![1.0 / n as f64; n],
-            t: 0.0,
-            bank: onboard.initial_bank,
         })
     }
 
@@ -148,38 +141,28 @@ impl<const N: usize> BankNav<N> {
     }
 
     fn normalised(&self, epoch: &MeasurementEpoch) -> DVector<f64> {
-        let p = &self.onboard.model.planet;
+        let onboard = &self.ens.onboard;
+        let p = &onboard.model.planet;
         let g0 = p.surface_gravity();
         DVector::from_iterator(
             epoch.values.len(),
-            epoch
-                .values
-                .iter()
-                .zip(&self.onboard.channels)
-                .map(|(v, spec)| {
-                    let Some(z) = v else { return 0.0 };
-                    match spec.channel {
-                        Channel::Accel(_) => z / g0,
-                        Channel::DynamicPressure => z / MARS_SURFACE_PRESSURE_PA,
-                        Channel::Heating => z / HEATING_SCALE_WM2,
-                        Channel::Range(_) => z / p.radius,
-                        Channel::RangeRate(_) => z / (g0 * p.radius).sqrt(),
-                    }
-                }),
+            epoch.values.iter().zip(&onboard.channels).map(|(v, spec)| {
+                let Some(z) = v else { return 0.0 };
+                match spec.channel {
+                    Channel::Accel(_) => z / g0,
+                    Channel::DynamicPressure => z / MARS_SURFACE_PRESSURE_PA,
+                    Channel::Heating => z / HEATING_SCALE_WM2,
+                    Channel::Range(_) => z / p.radius,
+                    Channel::RangeRate(_) => z / (g0 * p.radius).sqrt(),
+                }
+            }),
         )
     }
 }
 
 impl<const N: usize> NavFilter<N> for BankNav<N> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
-        for slot in self.members.iter_mut() {
-            if let Some(f) = slot
-                && f.predict(t_to).is_err()
-            {
-                *slot = None;
-            }
-        }
-        self.t = t_to;
+        self.ens.predict_each(t_to);
         Ok(())
     }
 
@@ -188,13 +171,13 @@ impl<const N: usize> NavFilter<N> for BankNav<N> {
         epoch: &MeasurementEpoch,
         beacons: &[(V3<f64>, V3<f64>)],
     ) -> Result<StepInfo, EstimationError> {
-        let mut loglik = vec![f64::NEG_INFINITY; self.members.len()];
+        let mut loglik = vec![f64::NEG_INFINITY; self.ens.members.len()];
         // Each live member's predicted measurements and innovation covariance, with its prior
         // weight: the mixture's predictive distribution (for the NIS).
         let mut predictive: Vec<(f64, DVector<f64>, DMatrix<f64>)> = Vec::new();
         let mut epoch_slots = Vec::new();
         let prior_weights = self.weights.clone();
-        for (i, slot) in self.members.iter_mut().enumerate() {
+        for (i, slot) in self.ens.members.iter_mut().enumerate() {
             let Some(f) = slot else { continue };
             let (slots, items) = f.measurement_items(epoch, beacons);
             if items.is_empty() {
@@ -217,24 +200,21 @@ impl<const N: usize> NavFilter<N> for BankNav<N> {
                 loglik[i] = f64::NEG_INFINITY;
             }
         }
-        if self.members.iter().all(Option::is_none) {
-            return Err(EstimationError::NotPositiveDefinite {
-                what: "every bank member's covariance".into(),
-            });
-        }
+        self.ens.alive("bank member")?;
         let z = self.normalised(epoch);
         self.weights = match &mut self.gate {
             Gate::Classic(b) => b.update(&loglik)?.to_vec(),
             Gate::Moe(m) => m.update(&z, &loglik)?.1,
         };
         let (w, est): (Vec<f64>, Vec<_>) = self
+            .ens
             .members
             .iter()
             .enumerate()
             .zip(&self.weights)
             .filter_map(|((i, m), w)| m.as_ref().map(|f| (*w, self.member_estimate(i, f))))
             .unzip();
-        self.fused = fuse_bank(&w, &est)?;
+        self.ens.fused = fuse_bank(&w, &est)?;
         let (nis, innovations, nis_terms) = mixture_nis(epoch, &epoch_slots, &predictive);
         Ok(StepInfo {
             nis,
@@ -245,33 +225,20 @@ impl<const N: usize> NavFilter<N> for BankNav<N> {
         })
     }
 
-    fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
-        self.fused
+    fn core(&self) -> &dyn FilterCore<N> {
+        &self.ens
     }
 
-    fn time(&self) -> f64 {
-        self.t
+    fn core_mut(&mut self) -> &mut dyn FilterCore<N> {
+        &mut self.ens
     }
 
-    /// Every member (the gating uses the measurements only, not a model).
-    fn set_bank_angle(&mut self, bank_rad: f64) {
-        for f in self.members.iter_mut().flatten() {
-            f.set_bank_angle(bank_rad);
-        }
-        self.bank = bank_rad;
-    }
-
-    fn bank_angle(&self) -> f64 {
-        self.bank
-    }
-
-    fn density_estimate(&self) -> Option<f64> {
-        self.density_profile(self.onboard.model.altitude(&self.fused.0))
-    }
-
+    /// The onboard density times the probability-weighted factor of the members' hypotheses
+    /// (and their residual density-bias estimates).
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {
-        let f = self.members.iter().flatten().next()?;
+        let f = self.ens.first()?;
         let factor: f64 = self
+            .ens
             .members
             .iter()
             .zip(self.weights.iter().zip(&self.deltas))

@@ -2,7 +2,7 @@
 
 use super::start::FilterStart;
 use super::ukf_common::substeps;
-use super::{NavFilter, StepInfo, channel_sigma};
+use super::{FilterCore, NavFilter, StepInfo, channel_sigma};
 use crate::atmosphere::AtmosphereModel;
 use crate::dynamics::EntryModel;
 use crate::estimation::EstimationError;
@@ -286,30 +286,39 @@ impl<const N: usize> NavFilter<N> for EkfNav<N> {
         self.update_iterated(&items, epoch, beacons)
     }
 
-    fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
-        (self.ekf.x, self.ekf.p)
+    fn core(&self) -> &dyn FilterCore<N> {
+        self
     }
 
-    fn time(&self) -> f64 {
-        self.t
-    }
-
-    fn set_bank_angle(&mut self, bank_rad: f64) {
-        self.bank = bank_rad;
-    }
-
-    fn bank_angle(&self) -> f64 {
-        self.bank
-    }
-
-    fn density_estimate(&self) -> Option<f64> {
-        let x = &self.ekf.x;
-        self.model
-            .estimated_density_profile(x, self.model.altitude(x))
+    fn core_mut(&mut self) -> &mut dyn FilterCore<N> {
+        self
     }
 
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {
         self.model
             .estimated_density_profile(&self.ekf.x, altitude_m)
+    }
+}
+
+/// An EKF is its own core: one filter, one estimate.
+impl<const N: usize> FilterCore<N> for EkfNav<N> {
+    fn state(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
+        (self.ekf.x, self.ekf.p)
+    }
+
+    fn t(&self) -> f64 {
+        self.t
+    }
+
+    fn bank(&self) -> f64 {
+        self.bank
+    }
+
+    fn set_bank(&mut self, bank_rad: f64) {
+        self.bank = bank_rad;
+    }
+
+    fn altitude(&self) -> f64 {
+        self.model.altitude(&self.ekf.x)
     }
 }

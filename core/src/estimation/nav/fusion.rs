@@ -2,9 +2,10 @@
 //! intersection, with or without information feedback (seed 000 §2.3.3, §3.3–3.4).
 
 use super::ekf_nav::{EkfNav, RELINEARIZATION_TOLERANCE, linearization_error};
+use super::ensemble::EkfEnsemble;
 use super::fusion_exact::{fuse_exact, local_update};
 use super::start::FilterStart;
-use super::{NavFilter, StepInfo};
+use super::{FilterCore, NavFilter, StepInfo};
 use crate::estimation::EstimationError;
 use crate::estimation::ci::{CiWeighting, covariance_intersection, feedback};
 use crate::estimation::ekf::LinearizedMeasurement;
@@ -13,6 +14,9 @@ use crate::math::V3;
 use crate::sensors::MeasurementEpoch;
 use nalgebra::{SMatrix, SVector};
 use std::sync::Arc;
+
+/// What the local filters are called in errors.
+const LOCAL: &str = "local filter";
 
 /// CI fusion of local filters.
 ///
@@ -28,17 +32,14 @@ use std::sync::Arc;
 /// observable, seed 000 §2.4); the filter fails only when every local filter has.
 #[derive(Debug, Clone)]
 pub struct FusionNav<const N: usize> {
-    locals: Vec<Option<EkfNav<N>>>,
+    /// The local filters and the fused estimate.
+    ens: EkfEnsemble<N>,
     method: CiWeighting,
     feedback: bool,
     /// Feedback with the exact fused covariance (`dcifaif` with `fusion_covariance = "exact"`).
     exact: bool,
     /// Number of consider parameters (the last states).
     n_consider: usize,
-    fused: (SVector<f64, N>, SMatrix<f64, N, N>),
-    t: f64,
-    /// Bank-angle command of the local filters' onboard models \[rad\].
-    bank: f64,
 }
 
 impl<const N: usize> FusionNav<N> {
@@ -72,7 +73,7 @@ impl<const N: usize> FusionNav<N> {
                     .filter(|(_, c)| c.channel.beacon() == Some(b))
                     .map(|(i, _)| i),
             );
-            locals.push(Some(EkfNav::new(onboard, &local_start, Some(mask), 1.0)?));
+            locals.push(EkfNav::new(onboard, &local_start, Some(mask), 1.0)?);
         }
         if locals.len() < 2 {
             return Err(EstimationError::InvalidInput(
@@ -85,19 +86,42 @@ impl<const N: usize> FusionNav<N> {
             CiWeighting::OptimalDet
         };
         Ok(FusionNav {
-            locals,
+            ens: EkfEnsemble::new(onboard, locals, (start.x0, start.p0)),
             method,
             feedback: with_feedback,
             exact,
             n_consider: onboard.tuning.n_consider,
-            fused: (start.x0, start.p0),
-            t: 0.0,
-            bank: onboard.initial_bank,
         })
     }
 }
 
 impl<const N: usize> FusionNav<N> {
+    /// With feedback every local filter holds x̂_CI: each sub-step's mean and Φ, computed once,
+    /// serve them all.
+    fn predict_shared(&mut self, t_to: f64) -> Result<(), EstimationError> {
+        let Some(first) = self.ens.first() else {
+            return Err(EkfEnsemble::<N>::all_failed(LOCAL));
+        };
+        let (n, h, q) = first.substeps_to(t_to)?;
+        for _ in 0..n {
+            let Some((x_next, phi)) = self.ens.first().map(|f| f.substep(h)) else {
+                break;
+            };
+            for slot in self.ens.members.iter_mut() {
+                if let Some(f) = slot
+                    && f.apply_substep(x_next, &phi, &q).is_err()
+                {
+                    *slot = None;
+                }
+            }
+        }
+        for f in self.ens.members.iter_mut().flatten() {
+            f.finish_prediction(t_to);
+        }
+        self.ens.t = t_to;
+        Ok(())
+    }
+
     /// The exact-covariance update: every live local updates the common prior with its channels,
     /// the updates are fused with fast CI weights and the exact covariance, and every local is
     /// reset to the result.
@@ -106,17 +130,16 @@ impl<const N: usize> FusionNav<N> {
         epoch: &MeasurementEpoch,
         beacons: &[(V3<f64>, V3<f64>)],
     ) -> Result<StepInfo, EstimationError> {
-        let Some(first) = self.locals.iter().flatten().next() else {
-            return Err(EstimationError::NotPositiveDefinite {
-                what: "every local filter's covariance".into(),
-            });
+        let Some(first) = self.ens.first() else {
+            return Err(EkfEnsemble::<N>::all_failed(LOCAL));
         };
         let (x, p) = first.estimate();
         let iterations = first.update_iterations();
         let mut items = first.all_measurement_items(epoch, beacons);
         let all_slots: Vec<usize> = items.iter().map(|(c, _)| *c).collect();
         let masks: Vec<(usize, &[usize])> = self
-            .locals
+            .ens
+            .members
             .iter()
             .enumerate()
             .filter_map(|(i, f)| f.as_ref().map(|f| (i, f.channel_mask())))
@@ -132,7 +155,7 @@ impl<const N: usize> FusionNav<N> {
             &lin,
             &items,
             &masks,
-            self.locals.len(),
+            self.ens.members.len(),
             self.n_consider,
         )?;
         for _ in 1..iterations {
@@ -157,12 +180,12 @@ impl<const N: usize> FusionNav<N> {
                 &lin,
                 &items,
                 &masks,
-                self.locals.len(),
+                self.ens.members.len(),
                 self.n_consider,
             )?;
         }
         for &i in &pass.failed {
-            self.locals[i] = None;
+            self.ens.members[i] = None;
         }
         let FusionPass {
             x: xf,
@@ -173,10 +196,10 @@ impl<const N: usize> FusionNav<N> {
             nis_terms,
             ..
         } = pass;
-        for f in self.locals.iter_mut().flatten() {
+        for f in self.ens.members.iter_mut().flatten() {
             f.set_estimate(xf, pf);
         }
-        self.fused = (xf, pf);
+        self.ens.fused = (xf, pf);
         Ok(StepInfo {
             nis: (n_meas > 0).then_some(nis),
             n_meas,
@@ -256,49 +279,10 @@ fn fusion_pass<const N: usize>(
 impl<const N: usize> NavFilter<N> for FusionNav<N> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
         if self.feedback {
-            // After feedback every local filter holds x̂_CI: each sub-step's mean and Φ, computed
-            // once, serve them all.
-            let (n, h, q) = match self.locals.iter().flatten().next() {
-                Some(f) => f.substeps_to(t_to)?,
-                None => {
-                    return Err(EstimationError::NotPositiveDefinite {
-                        what: "every local filter's covariance".into(),
-                    });
-                }
-            };
-            for _ in 0..n {
-                let Some((x_next, phi)) = self.locals.iter().flatten().next().map(|f| f.substep(h))
-                else {
-                    break;
-                };
-                for slot in self.locals.iter_mut() {
-                    if let Some(f) = slot
-                        && f.apply_substep(x_next, &phi, &q).is_err()
-                    {
-                        *slot = None;
-                    }
-                }
-            }
-            for f in self.locals.iter_mut().flatten() {
-                f.finish_prediction(t_to);
-            }
-            self.t = t_to;
-            return Ok(());
+            return self.predict_shared(t_to);
         }
-        for slot in self.locals.iter_mut() {
-            if let Some(f) = slot
-                && f.predict(t_to).is_err()
-            {
-                *slot = None;
-            }
-        }
-        self.t = t_to;
-        if self.locals.iter().all(Option::is_none) {
-            return Err(EstimationError::NotPositiveDefinite {
-                what: "every local filter's covariance".into(),
-            });
-        }
-        Ok(())
+        self.ens.predict_each(t_to);
+        self.ens.alive(LOCAL)
     }
 
     fn update(
@@ -314,15 +298,13 @@ impl<const N: usize> NavFilter<N> for FusionNav<N> {
         let mut nis_terms = Vec::new();
         // With feedback the locals share x̂⁻, so one linearisation serves them all.
         let shared = if self.feedback {
-            self.locals
-                .iter()
-                .flatten()
-                .next()
+            self.ens
+                .first()
                 .map(|f| f.all_measurement_items(epoch, beacons))
         } else {
             None
         };
-        for slot in self.locals.iter_mut() {
+        for slot in self.ens.members.iter_mut() {
             if let Some(f) = slot {
                 let result = match &shared {
                     Some(items) => f.update_iterated(items, epoch, beacons),
@@ -338,31 +320,27 @@ impl<const N: usize> NavFilter<N> for FusionNav<N> {
                 }
             }
         }
-        let alive: Vec<usize> = (0..self.locals.len())
-            .filter(|&i| self.locals[i].is_some())
+        self.ens.alive(LOCAL)?;
+        let alive: Vec<usize> = (0..self.ens.members.len())
+            .filter(|&i| self.ens.members[i].is_some())
             .collect();
-        if alive.is_empty() {
-            return Err(EstimationError::NotPositiveDefinite {
-                what: "every local filter's covariance".into(),
-            });
-        }
         let estimates: Vec<_> = alive
             .iter()
-            .filter_map(|&i| self.locals[i].as_ref().map(|f| f.estimate()))
+            .filter_map(|&i| self.ens.members[i].as_ref().map(|f| f.estimate()))
             .collect();
         let fused = covariance_intersection(&estimates, self.method)?;
         if self.feedback {
             for (&i, (x, p)) in alive.iter().zip(feedback(&fused)) {
-                if let Some(f) = self.locals[i].as_mut() {
+                if let Some(f) = self.ens.members[i].as_mut() {
                     f.set_estimate(x, p);
                 }
             }
         }
-        let mut weights = vec![0.0; self.locals.len()];
+        let mut weights = vec![0.0; self.ens.members.len()];
         for (&i, w) in alive.iter().zip(&fused.weights) {
             weights[i] = *w;
         }
-        self.fused = (fused.x, fused.p);
+        self.ens.fused = (fused.x, fused.p);
         Ok(StepInfo {
             nis: Some(nis),
             n_meas,
@@ -372,33 +350,16 @@ impl<const N: usize> NavFilter<N> for FusionNav<N> {
         })
     }
 
-    fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
-        self.fused
+    fn core(&self) -> &dyn FilterCore<N> {
+        &self.ens
     }
 
-    fn time(&self) -> f64 {
-        self.t
-    }
-
-    /// Every local filter (the fusion itself has no dynamics or measurement model of its own).
-    fn set_bank_angle(&mut self, bank_rad: f64) {
-        for f in self.locals.iter_mut().flatten() {
-            f.set_bank_angle(bank_rad);
-        }
-        self.bank = bank_rad;
-    }
-
-    fn bank_angle(&self) -> f64 {
-        self.bank
-    }
-
-    fn density_estimate(&self) -> Option<f64> {
-        let m = self.locals.iter().flatten().next()?.model();
-        m.estimated_density_profile(&self.fused.0, m.altitude(&self.fused.0))
+    fn core_mut(&mut self) -> &mut dyn FilterCore<N> {
+        &mut self.ens
     }
 
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {
-        let m = self.locals.iter().flatten().next()?.model();
-        m.estimated_density_profile(&self.fused.0, altitude_m)
+        let m = self.ens.first()?.model();
+        m.estimated_density_profile(&self.ens.fused.0, altitude_m)
     }
 }

@@ -18,7 +18,7 @@
 
 use super::start::FilterStart;
 use super::ukf_common::UkfCore;
-use super::{NavFilter, StepInfo};
+use super::{FilterCore, NavFilter, StepInfo};
 use crate::atmosphere::{Atmosphere, AtmosphereModel};
 use crate::estimation::ukf::Ukf;
 use crate::estimation::{EstimationError, Onboard};
@@ -101,13 +101,9 @@ impl<const N: usize, const L: usize> UkfAcNav<N, L> {
 }
 
 impl<const N: usize, const L: usize> NavFilter<N> for UkfAcNav<N, L> {
+    /// 𝒦 has zero derivative (random walk): the RK4 step leaves it unchanged.
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
-        let Some((n, h, step)) = self.core.substeps_to(t_to)? else {
-            return Ok(());
-        };
-        // 𝒦 has zero derivative (random walk): the RK4 step leaves it unchanged.
-        let q = self.q * (h / step);
-        self.core.propagate(t_to, n, h, &q, |_, _| {})
+        self.core.predict(t_to, &self.q).map(|_| ())
     }
 
     fn update(
@@ -118,31 +114,16 @@ impl<const N: usize, const L: usize> NavFilter<N> for UkfAcNav<N, L> {
         self.core.update(epoch, beacons)
     }
 
-    fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
-        self.core.estimate::<N>()
+    fn core(&self) -> &dyn FilterCore<N> {
+        &self.core
     }
 
-    fn time(&self) -> f64 {
-        self.core.t
+    fn core_mut(&mut self) -> &mut dyn FilterCore<N> {
+        &mut self.core
     }
 
-    fn set_bank_angle(&mut self, bank_rad: f64) {
-        self.core.bank = bank_rad;
-    }
-
-    fn bank_angle(&self) -> f64 {
-        self.core.bank
-    }
-
+    /// 𝒦̂·ρ_nominal(h) (eq. 26); at the estimate's altitude it is the density estimate.
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {
         Some(Self::density_profile(self, altitude_m))
-    }
-
-    /// 𝒦̂·ρ_nominal(r̂) (eq. 26).
-    fn density_estimate(&self) -> Option<f64> {
-        Some(Self::density_profile(
-            self,
-            self.core.model.altitude(&self.core.ukf.x),
-        ))
     }
 }

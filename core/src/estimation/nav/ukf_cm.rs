@@ -9,7 +9,7 @@
 
 use super::start::FilterStart;
 use super::ukf_common::UkfCore;
-use super::{NavFilter, StepInfo};
+use super::{FilterCore, NavFilter, StepInfo};
 use crate::atmosphere::{Atmosphere, AtmosphereModel};
 use crate::estimation::EstimationError;
 use crate::estimation::Onboard;
@@ -61,12 +61,9 @@ impl<const N: usize> UkfCmNav<N> {
 
 impl<const N: usize> NavFilter<N> for UkfCmNav<N> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
-        let Some((n, h, step)) = self.core.substeps_to(t_to)? else {
+        let Some(q_added) = self.core.predict(t_to, &self.q)? else {
             return Ok(());
         };
-        let q = self.q * (h / step);
-        self.core.propagate(t_to, n, h, &q, |_, _| {})?;
-        let q_added = q * n as f64;
         let (x, p) = (self.core.ukf.x, self.core.ukf.p);
         self.prior = Some(match self.prior.take() {
             // Several predictions without an update: D uses the total noise added.
@@ -94,20 +91,12 @@ impl<const N: usize> NavFilter<N> for UkfCmNav<N> {
         Ok(info)
     }
 
-    fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
-        (self.core.ukf.x, self.core.ukf.p)
+    fn core(&self) -> &dyn FilterCore<N> {
+        &self.core
     }
 
-    fn time(&self) -> f64 {
-        self.core.t
-    }
-
-    fn set_bank_angle(&mut self, bank_rad: f64) {
-        self.core.bank = bank_rad;
-    }
-
-    fn bank_angle(&self) -> f64 {
-        self.core.bank
+    fn core_mut(&mut self) -> &mut dyn FilterCore<N> {
+        &mut self.core
     }
 
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {

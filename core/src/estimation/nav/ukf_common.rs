@@ -2,7 +2,7 @@
 //! epoch's measurement vector with its noise, the measurement function over sigma points, the step
 //! report, and [`UkfCore`], the state and loops of every UKF navigation filter.
 
-use super::StepInfo;
+use super::{FilterCore, StepInfo};
 use crate::atmosphere::Atmosphere;
 use crate::dynamics::EntryModel;
 use crate::estimation::EstimationError;
@@ -155,6 +155,22 @@ impl<A: Atmosphere, const L: usize> UkfCore<A, L> {
         Ok(Some((n, h, step)))
     }
 
+    /// Predict to `t_to` with process noise `q` per filter step (scaled to each sub-step), every
+    /// state moved by the model's RK4 step only; the noise added in total, `None` when `t_to` is
+    /// not later than the filter time.
+    pub(crate) fn predict(
+        &mut self,
+        t_to: f64,
+        q: &SMatrix<f64, L, L>,
+    ) -> Result<Option<SMatrix<f64, L, L>>, EstimationError> {
+        let Some((n, h, step)) = self.substeps_to(t_to)? else {
+            return Ok(None);
+        };
+        let q = q * (h / step);
+        self.propagate(t_to, n, h, &q, |_, _| {})?;
+        Ok(Some(q * n as f64))
+    }
+
     /// `n` UKF time updates of length `h` with process noise `q` each (the truth's RK4 step per
     /// sigma point, the density scaled by the density state if any; `post(x, y)` may then change
     /// the propagated point y of x), ending at `t_to`.
@@ -220,13 +236,30 @@ impl<A: Atmosphere, const L: usize> UkfCore<A, L> {
             None => Ok(StepInfo::default()),
         }
     }
+}
 
-    /// The estimate and covariance of the first `M` states (the navigation states of an
-    /// augmented filter).
-    pub(crate) fn estimate<const M: usize>(&self) -> (SVector<f64, M>, SMatrix<f64, M, M>) {
+/// The navigation states are the first `N` of the `L` (an augmented filter carries one more).
+impl<A: Atmosphere, const L: usize, const N: usize> FilterCore<N> for UkfCore<A, L> {
+    fn state(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
         (
-            self.ukf.x.fixed_rows::<M>(0).into_owned(),
-            self.ukf.p.fixed_view::<M, M>(0, 0).into_owned(),
+            self.ukf.x.fixed_rows::<N>(0).into_owned(),
+            self.ukf.p.fixed_view::<N, N>(0, 0).into_owned(),
         )
+    }
+
+    fn t(&self) -> f64 {
+        self.t
+    }
+
+    fn bank(&self) -> f64 {
+        self.bank
+    }
+
+    fn set_bank(&mut self, bank_rad: f64) {
+        self.bank = bank_rad;
+    }
+
+    fn altitude(&self) -> f64 {
+        self.model.altitude(&self.ukf.x)
     }
 }

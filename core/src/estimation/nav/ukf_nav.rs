@@ -2,14 +2,14 @@
 
 use super::start::FilterStart;
 use super::ukf_common::UkfCore;
-use super::{NavFilter, StepInfo};
+use super::{FilterCore, NavFilter, StepInfo};
 use crate::atmosphere::AtmosphereModel;
 use crate::estimation::EstimationError;
 use crate::estimation::Onboard;
 use crate::estimation::ukf::Ukf;
 use crate::math::V3;
 use crate::sensors::MeasurementEpoch;
-use nalgebra::{SMatrix, SVector};
+use nalgebra::SMatrix;
 use std::sync::Arc;
 
 /// UKF navigation filter with the onboard tuning's α, β, κ (`filter.ukf`). The sigma points are
@@ -38,11 +38,7 @@ impl<const N: usize> UkfNav<N> {
 
 impl<const N: usize> NavFilter<N> for UkfNav<N> {
     fn predict(&mut self, t_to: f64) -> Result<(), EstimationError> {
-        let Some((n, h, step)) = self.core.substeps_to(t_to)? else {
-            return Ok(());
-        };
-        let q = self.q * (h / step);
-        self.core.propagate(t_to, n, h, &q, |_, _| {})
+        self.core.predict(t_to, &self.q).map(|_| ())
     }
 
     fn update(
@@ -53,25 +49,12 @@ impl<const N: usize> NavFilter<N> for UkfNav<N> {
         self.core.update(epoch, beacons)
     }
 
-    fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
-        (self.core.ukf.x, self.core.ukf.p)
+    fn core(&self) -> &dyn FilterCore<N> {
+        &self.core
     }
 
-    fn time(&self) -> f64 {
-        self.core.t
-    }
-
-    fn set_bank_angle(&mut self, bank_rad: f64) {
-        self.core.bank = bank_rad;
-    }
-
-    fn bank_angle(&self) -> f64 {
-        self.core.bank
-    }
-
-    fn density_estimate(&self) -> Option<f64> {
-        let (m, x) = (&self.core.model, &self.core.ukf.x);
-        m.estimated_density_profile(x, m.altitude(x))
+    fn core_mut(&mut self) -> &mut dyn FilterCore<N> {
+        &mut self.core
     }
 
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {

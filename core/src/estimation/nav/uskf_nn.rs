@@ -27,8 +27,7 @@
 use super::start::FilterStart;
 use super::ukf_ac::augment_start;
 use super::ukf_common::{UkfCore, epoch_measurements};
-use super::{NavFilter, StepInfo};
-use crate::atmosphere::Atmosphere;
+use super::{FilterCore, NavFilter, StepInfo};
 use crate::dynamics::EntryModel;
 use crate::estimation::adaptive::{
     Activations, DensityNetworkSet, LossContext, LossTerm, MloOutcome, MloSettings, NnAtmosphere,
@@ -229,29 +228,16 @@ impl<const N: usize, const L: usize> NavFilter<N> for UskfNnNav<N, L> {
         self.core.update_measured(&slots, &z, &r, t, beacons)
     }
 
-    fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
-        self.core.estimate::<N>()
+    fn core(&self) -> &dyn FilterCore<N> {
+        &self.core
     }
 
-    fn time(&self) -> f64 {
-        self.core.t
+    fn core_mut(&mut self) -> &mut dyn FilterCore<N> {
+        &mut self.core
     }
 
-    fn set_bank_angle(&mut self, bank_rad: f64) {
-        self.core.bank = bank_rad;
-    }
-
-    fn bank_angle(&self) -> f64 {
-        self.core.bank
-    }
-
+    /// ĉ·NN(R + h, ξ_k); at the posterior estimate's altitude it is the density estimate.
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {
         Some(Self::density_profile(self, altitude_m))
-    }
-
-    /// ĉ·NN(r̂, ξ_k) at the posterior estimate.
-    fn density_estimate(&self) -> Option<f64> {
-        let h = self.core.model.altitude(&self.core.ukf.x);
-        Some(self.core.ukf.x[N] * self.core.model.atmosphere.density(h))
     }
 }

@@ -266,7 +266,7 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
             "elapsed_s": report.elapsed_s,
             "wall_s": wall.elapsed().as_secs_f64(),
             "relaxation": {
-                "status": r.status,
+                "status": r.status.to_string(),
                 "iterations": r.iterations,
                 "primal": r.primal,
                 "dual": r.dual,

@@ -66,10 +66,10 @@ impl SelectionProblem {
             raw.status,
             SolverStatus::Solved | SolverStatus::AlmostSolved
         ) {
-            return Err(OptimizerError::Solver(format!(
-                "clarabel did not solve the relaxation: {:?}",
-                raw.status
-            )));
+            return Err(OptimizerError::Unsolved {
+                what: "the relaxation",
+                status: raw.status,
+            });
         }
         Ok(Relaxation {
             bound: raw.primal.max(raw.dual),
@@ -77,7 +77,7 @@ impl SelectionProblem {
             primal: raw.primal,
             dual: raw.dual,
             iterations: raw.iterations,
-            status: format!("{:?}", raw.status),
+            status: raw.status,
             solve_time_s: started.elapsed().as_secs_f64(),
         })
     }
@@ -235,8 +235,13 @@ impl SelectionProblem {
                 max_step_fraction: step,
                 ..DefaultSettings::default()
             };
-            let mut s = DefaultSolver::new(&p, &q, &a_mat, &b, &cones, settings)
-                .map_err(|e| OptimizerError::Solver(format!("clarabel setup: {e:?}")))?;
+            let mut s =
+                DefaultSolver::new(&p, &q, &a_mat, &b, &cones, settings).map_err(|source| {
+                    OptimizerError::ClarabelSetup {
+                        what: "the relaxation",
+                        source,
+                    }
+                })?;
             s.solve();
             let solved = matches!(
                 s.solution.status,

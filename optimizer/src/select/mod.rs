@@ -40,7 +40,8 @@
 //! | `relaxation.rs` | the clarabel conic program of a (node) relaxation |
 //! | [`bounds`] | valid upper bounds from dual points (Lagrangian duality) |
 //! | `node.rs` | one branch-and-bound node: bound, incumbent, branching variable |
-//! | [`branch_bound`] | the search: batches, best-first with dives, proof status |
+//! | [`branch_bound`] | the search: options, report, proof status, the round loop |
+//! | `search_tree.rs` | the running search: queue, dive, incumbent, batches, counters |
 //! | `information.rs` | information blocks of ground sites, spacing constraints |
 
 use crate::OptimizerError;
@@ -53,6 +54,7 @@ pub mod heuristics;
 mod information;
 mod node;
 mod relaxation;
+mod search_tree;
 
 pub use bounds::DualPoint;
 pub use branch_bound::{BranchBoundOptions, BranchBoundProgress, BranchBoundReport, ProofStatus};

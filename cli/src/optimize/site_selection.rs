@@ -69,7 +69,9 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
     let report = match problem.solve() {
         Ok(r) => r,
         Err(e) if a.exact => {
-            println!("note: the heuristic failed ({e}); branch and bound starts without it");
+            // With its sources (a solver failure names clarabel's reason).
+            let e = anyhow::Error::from(e);
+            println!("note: the heuristic failed ({e:#}); branch and bound starts without it");
             return finish_exact_only(
                 a,
                 &cfg,

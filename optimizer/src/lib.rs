@@ -79,10 +79,40 @@ pub enum OptimizerError {
     /// A beacon could not be built.
     #[error(transparent)]
     Beacon(#[from] BeaconError),
-    /// A numerical solver (argmin, clarabel) failed.
-    #[error("solver failure: {0}")]
-    Solver(String),
-    /// The truth run behind the PCRLB objective failed.
+    /// argmin failed while running `what` (the particle swarm or a Nelder–Mead polish).
+    #[error("solver failure: {what}")]
+    Argmin {
+        /// The argmin solver that failed.
+        what: &'static str,
+        /// argmin's error.
+        #[source]
+        source: argmin::core::Error,
+    },
+    /// An argmin run ended without any best point (it evaluated nothing).
+    #[error("solver failure: {what} found no point")]
+    NoPoint {
+        /// The argmin solver or search that found nothing.
+        what: &'static str,
+    },
+    /// clarabel refused the data or settings of `what` before solving.
+    #[error("solver failure: clarabel setup of {what}")]
+    ClarabelSetup {
+        /// The conic program being set up.
+        what: &'static str,
+        /// clarabel's error.
+        #[source]
+        source: clarabel::solver::SolverError,
+    },
+    /// clarabel ran but ended without a (reduced-accuracy) solution of `what`.
+    #[error("solver failure: clarabel did not solve {what}: {status:?}")]
+    Unsolved {
+        /// The conic program that was not solved.
+        what: &'static str,
+        /// How clarabel stopped (neither `Solved` nor `AlmostSolved`).
+        status: clarabel::solver::SolverStatus,
+    },
+    /// The Monte Carlo behind an objective failed: the truth run of the PCRLB objective, or the
+    /// filters of a tuning evaluation.
     #[error(transparent)]
     Trade(#[from] entrynav::sim::TradeError),
 }
@@ -92,3 +122,52 @@ pub type Progress<'a> = &'a (dyn Fn(usize, usize) + Sync);
 
 /// A progress callback that does nothing.
 pub fn no_progress(_done: usize, _total: usize) {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::error::Error as _;
+
+    /// The text `entrynav` prints for an error: the message, then every source (`{:#}` of
+    /// anyhow).
+    fn chain(e: &OptimizerError) -> String {
+        let mut text = e.to_string();
+        let mut source = e.source();
+        while let Some(s) = source {
+            text += &format!(": {s}");
+            source = s.source();
+        }
+        text
+    }
+
+    #[test]
+    fn solver_errors_keep_their_typed_source() {
+        let argmin = argmin::core::Error::msg("simplex collapsed");
+        let e = OptimizerError::Argmin {
+            what: "Nelder-Mead",
+            source: argmin,
+        };
+        assert_eq!(chain(&e), "solver failure: Nelder-Mead: simplex collapsed");
+        let e = OptimizerError::ClarabelSetup {
+            what: "the relaxation",
+            source: clarabel::solver::SolverError::BadInputData("A has the wrong shape"),
+        };
+        assert!(matches!(
+            e.source()
+                .and_then(|s| s.downcast_ref::<clarabel::solver::SolverError>()),
+            Some(clarabel::solver::SolverError::BadInputData(_))
+        ));
+        assert_eq!(
+            chain(&e),
+            "solver failure: clarabel setup of the relaxation: Bad input data: A has the wrong shape"
+        );
+        let e = OptimizerError::Unsolved {
+            what: "the relaxation",
+            status: clarabel::solver::SolverStatus::InsufficientProgress,
+        };
+        assert_eq!(
+            e.to_string(),
+            "solver failure: clarabel did not solve the relaxation: InsufficientProgress"
+        );
+    }
+}

@@ -139,8 +139,8 @@ fn check_box(lower: &[f64], upper: &[f64]) -> Result<(), OptimizerError> {
     Ok(())
 }
 
-fn solver_error(what: &str, e: ArgminError) -> OptimizerError {
-    OptimizerError::Solver(format!("{what}: {e}"))
+fn solver_error(what: &'static str, source: ArgminError) -> OptimizerError {
+    OptimizerError::Argmin { what, source }
 }
 
 /// Minimise `cost` over the box `[lower, upper]` (swarm) and then without bounds (polish).
@@ -190,9 +190,9 @@ where
                 .as_ref()
                 .map_or(0, |p| p.local.load(Ordering::Relaxed));
             let state = res.state();
-            let best = state
-                .get_best_param()
-                .ok_or_else(|| OptimizerError::Solver("particle swarm found no point".into()))?;
+            let best = state.get_best_param().ok_or(OptimizerError::NoPoint {
+                what: "particle swarm",
+            })?;
             let (x, c) = restarted_polish(
                 &problem,
                 best.position.clone(),
@@ -338,7 +338,9 @@ fn polish<F: Fn(&[f64]) -> f64>(
     let x = state
         .get_best_param()
         .cloned()
-        .ok_or_else(|| OptimizerError::Solver("Nelder-Mead found no point".into()))?;
+        .ok_or(OptimizerError::NoPoint {
+            what: "Nelder-Mead",
+        })?;
     Ok((x, state.get_best_cost()))
 }
 

@@ -1,4 +1,5 @@
-//! Orbiter geometry (seed 002 §5.2): the paper's Table 6 value is beaten quickly, the search is
+//! Orbiter geometry (seed 002 §5.2): the search reaches the documented optimum (239.845, above
+//! the paper's Table 6 value 237.963) and the documented values of Table 6's elements, it is
 //! reproducible from its seed, the closed-form circular motion is the core's two-body motion, and
 //! impossible requests are errors.
 
@@ -25,7 +26,7 @@ fn table6() -> Vec<OrbitElements> {
 }
 
 #[test]
-fn orbiters_3_beats_the_papers_237_963() {
+fn orbiters_3_reaches_the_documented_239_845_above_the_papers_237_963() {
     let tr = trajectory();
     assert_eq!(tr.len(), 241);
     assert!((tr.duration() - 240.0).abs() < 1e-9);
@@ -34,20 +35,32 @@ fn orbiters_3_beats_the_papers_237_963() {
     assert!((p.upper_bound() - 240.0).abs() < 1e-9);
     let sol = p.optimize(&default_search(2), &no_progress).unwrap();
     let ev = &sol.evaluation;
+    // docs/optimizer.md: 239.845 for seed 2 with the default search (upper bound 240), above
+    // the paper's 237.963; the search is reproducible from its seed.
     assert!(
-        ev.value >= 237.963,
-        "objective {} below the paper's 237.963",
+        (ev.value - 239.845).abs() < 5e-4,
+        "objective {} is not the documented 239.845",
         ev.value
     );
     assert!(ev.value <= 240.0 + 1e-9);
+    assert!(
+        (ev.min_margin_rad.to_degrees() - 17.3).abs() < 0.05,
+        "min visibility margin {} deg, documented 17.3",
+        ev.min_margin_rad.to_degrees()
+    );
     assert!(ev.min_margin_rad > 0.0 && ev.violation_rad_s == 0.0);
     assert!(sol.search.evaluations > 0);
     // The paper's Table 6 elements, evaluated by our objective on our trajectory.
     let paper = p.evaluate(&table6()).unwrap();
     assert!(
-        paper.value > 230.0 && paper.value < ev.value,
-        "Table 6: {}",
+        (paper.value - 236.455).abs() < 5e-4 && paper.value < ev.value,
+        "Table 6: {}, documented 236.455",
         paper.value
+    );
+    assert!(
+        (paper.min_margin_rad.to_degrees() - 24.3).abs() < 0.05,
+        "Table 6 margin {} deg, documented 24.3",
+        paper.min_margin_rad.to_degrees()
     );
     for e in &sol.elements {
         assert!((0.0..=std::f64::consts::PI).contains(&e.inc));
@@ -154,6 +167,10 @@ fn pcrlb_objective_lowers_the_final_position_bound_below_the_geometric_optimum()
     assert!(
         (own - trade_bound).abs() <= 1e-6 * trade_bound,
         "objective {own} m vs trade bound {trade_bound} m"
+    );
+    assert!(
+        (own - 7.779).abs() < 5e-4,
+        "Table 6 final position PCRLB {own} m, documented 7.779 m"
     );
     let proxy_opts = SearchOptions {
         seed: 2,

@@ -3,7 +3,7 @@
 //! its summary and its JSON, and the run without a heuristic start.
 
 use super::ground_sites::sites_json;
-use super::site_selection::{constraints_json, selection_json, write_selected};
+use super::site_selection::{constraints_json, print_selection, selection_json, write_selected};
 use super::*;
 use entrynav_optimizer::select::{BranchBoundOptions, BranchBoundProgress};
 use std::time::Duration;
@@ -143,22 +143,7 @@ pub(super) fn finish_exact_only(
 ) -> Result<()> {
     let e = run_exact(a, problem, None)?;
     let brute = problem.brute_force(a.brute_force_limit);
-    let show = |label: &str, s: &Selection| {
-        let chosen: Vec<String> = s
-            .indices
-            .iter()
-            .map(|&i| {
-                let [lat, lon] = sites[i].degrees();
-                format!("({lat:.2}, {lon:.2})")
-            })
-            .collect();
-        println!(
-            "{label:<30} value {:>11.6}  gap {:>10.3e}  sites {}",
-            s.value,
-            (e.bound - s.value).max(0.0),
-            chosen.join(" ")
-        );
-    };
+    let show = |label: &str, s: &Selection| print_selection(label, s, sites, e.bound, problem);
     if let Some(b) = &brute {
         show("brute force (exact optimum)", b);
     }

@@ -1,6 +1,7 @@
 //! `entrynav optimize ground`: surface-beacon sites visible during the whole entry (seed 002 §4.1).
 
 use super::*;
+use entrynav_optimizer::GroundSolution;
 
 /// The scenario's surface beacons as sites (lat/lon/altitude or planet-fixed position).
 pub(super) fn scenario_sites(cfg: &ScenarioConfig) -> Vec<Site> {
@@ -83,8 +84,43 @@ impl DeltaStats {
     }
 }
 
+/// What `optimize ground` starts from: the scenario, its own surface sites and the objective.
+struct GroundInputs {
+    cfg: ScenarioConfig,
+    dir: PathBuf,
+    /// The scenario's surface beacons as sites.
+    own: Vec<Site>,
+    count: usize,
+    method: Method,
+    objective: GroundObjective,
+}
+
+/// The search's answer re-evaluated at the reporting step, and the scenario's own sites.
+struct GroundAnswer {
+    /// The problem at the reporting step (`--step`).
+    report: GroundProblem,
+    opts: SearchOptions,
+    sol: GroundSolution,
+    /// The optimum's objective at the reporting step.
+    ev: GroundEvaluation,
+    delta: DeltaStats,
+    /// The scenario's own sites, when there are as many.
+    reference: Option<(GroundEvaluation, DeltaStats)>,
+}
+
 pub(super) fn run_ground(a: &GroundArgs) -> Result<()> {
     let wall = Instant::now();
+    let inputs = load_ground_inputs(a)?;
+    let answer = solve_ground(a, &inputs)?;
+    print_ground(a, &inputs, &answer, wall);
+    write_ground_scenario(a, &inputs, &answer)?;
+    plot_ground(a, &inputs, &answer)?;
+    write_ground_json(a, &inputs, &answer, wall)
+}
+
+/// The scenario with its overrides, the beacon count (default: the scenario's surface beacons,
+/// or 3) and the objective.
+fn load_ground_inputs(a: &GroundArgs) -> Result<GroundInputs> {
     let c = &a.common;
     let (cfg, dir) = load::resolve(&c.scenario, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &c.sets)?;
@@ -102,10 +138,25 @@ pub(super) fn run_ground(a: &GroundArgs) -> Result<()> {
         GroundObjectiveArg::MinEig => GroundObjective::MinEig,
         GroundObjectiveArg::Pcrlb => GroundObjective::Pcrlb,
     };
-    let load = loader(&dir);
+    Ok(GroundInputs {
+        cfg,
+        dir,
+        own,
+        count,
+        method,
+        objective,
+    })
+}
+
+/// The search at `--search-step`, then the objective and δ(t) of the optimum and of the
+/// scenario's own sites (same count only) at `--step`.
+fn solve_ground(a: &GroundArgs, inputs: &GroundInputs) -> Result<GroundAnswer> {
+    let c = &a.common;
+    let (cfg, count, objective) = (&inputs.cfg, inputs.count, inputs.objective);
+    let load = loader(&inputs.dir);
     let min_el = a.min_elevation_deg.to_radians();
-    let search_problem = GroundProblem::new(&cfg, &load, count, objective, a.search_step, min_el)?;
-    let report = GroundProblem::new(&cfg, &load, count, objective, a.step, min_el)?;
+    let search_problem = GroundProblem::new(cfg, &load, count, objective, a.search_step, min_el)?;
+    let report = GroundProblem::new(cfg, &load, count, objective, a.step, min_el)?;
     let opts = c.search(ground::default_search(c.seed));
     let bar = progress_bar(c.quiet, format!("{} ground x{count}", cfg.name));
     let progress = |done: usize, total: usize| {
@@ -114,29 +165,55 @@ pub(super) fn run_ground(a: &GroundArgs) -> Result<()> {
     };
     let sol = search_problem.optimize(&opts, &progress)?;
     bar.finish_and_clear();
-
-    // Report at the fine step: the objective and delta(t) of the optimum and of the scenario's
-    // own sites (same count only).
     let ev = report.evaluate(&sol.sites)?;
     let delta = DeltaStats {
-        raw: report.delta_series(&sol.sites, method)?,
+        raw: report.delta_series(&sol.sites, inputs.method)?,
     };
-    let reference: Option<(GroundEvaluation, DeltaStats)> = if own.len() == count {
-        let r_ev = report.evaluate(&own)?;
+    let reference = if inputs.own.len() == count {
+        let r_ev = report.evaluate(&inputs.own)?;
         let d = DeltaStats {
-            raw: report.delta_series(&own, method)?,
+            raw: report.delta_series(&inputs.own, inputs.method)?,
         };
         Some((r_ev, d))
     } else {
         None
     };
-    let paper = cfg.name == "ground-beacons-3";
+    Ok(GroundAnswer {
+        report,
+        opts,
+        sol,
+        ev,
+        delta,
+        reference,
+    })
+}
 
+/// An objective value, or `infeasible`.
+fn fmt_value(v: Option<f64>) -> String {
+    v.map_or("infeasible".to_string(), |v| format!("{v:.6e}"))
+}
+
+/// The δ line of a geometry: raw SI and scaled minimum and maximum.
+fn print_delta(method: Method, d: &DeltaStats) {
+    println!(
+        "  delta ({}) raw SI: min {:.4e}, max {:.4e};  scaled: min {:.4e}, max {:.4e}",
+        method.name(),
+        d.min(false),
+        d.max(false),
+        d.min(true),
+        d.max(true)
+    );
+}
+
+/// The problem, the optimum, the scenario's own sites, the paper's range, units and search.
+fn print_ground(a: &GroundArgs, inputs: &GroundInputs, answer: &GroundAnswer, wall: Instant) {
+    let (cfg, objective) = (&inputs.cfg, inputs.objective);
+    let paper = cfg.name == "ground-beacons-3";
     println!("scenario    {}", cfg.name);
     println!(
-        "problem     {count} ground beacons on the reference sphere, each visible during the whole \
+        "problem     {} ground beacons on the reference sphere, each visible during the whole \
          entry (eq. 52, min elevation {:.3} deg)",
-        a.min_elevation_deg
+        inputs.count, a.min_elevation_deg
     );
     println!("objective   {}: {}", objective.name(), objective.units());
     println!(
@@ -144,18 +221,14 @@ pub(super) fn run_ground(a: &GroundArgs) -> Result<()> {
         a.search_step, a.step
     );
     println!();
-    let fmt_value = |v: Option<f64>| v.map_or("infeasible".to_string(), |v| format!("{v:.6e}"));
-    println!("optimum     {} = {}", objective.name(), fmt_value(ev.value));
-    print_sites(&sol.sites, Some(&ev.min_elevation_rad));
     println!(
-        "  delta ({}) raw SI: min {:.4e}, max {:.4e};  scaled: min {:.4e}, max {:.4e}",
-        method.name(),
-        delta.min(false),
-        delta.max(false),
-        delta.min(true),
-        delta.max(true)
+        "optimum     {} = {}",
+        objective.name(),
+        fmt_value(answer.ev.value)
     );
-    if let Some((r, d)) = &reference {
+    print_sites(&answer.sol.sites, Some(&answer.ev.min_elevation_rad));
+    print_delta(inputs.method, &answer.delta);
+    if let Some((r, d)) = &answer.reference {
         println!();
         println!(
             "scenario's own sites{}: {} = {}",
@@ -167,15 +240,8 @@ pub(super) fn run_ground(a: &GroundArgs) -> Result<()> {
             objective.name(),
             fmt_value(r.value)
         );
-        print_sites(&own, Some(&r.min_elevation_rad));
-        println!(
-            "  delta ({}) raw SI: min {:.4e}, max {:.4e};  scaled: min {:.4e}, max {:.4e}",
-            method.name(),
-            d.min(false),
-            d.max(false),
-            d.min(true),
-            d.max(true)
-        );
+        print_sites(&inputs.own, Some(&r.min_elevation_rad));
+        print_delta(inputs.method, d);
     }
     if paper {
         println!();
@@ -188,88 +254,113 @@ pub(super) fn run_ground(a: &GroundArgs) -> Result<()> {
     println!(
         "units       raw SI delta: states r [m], lon, lat [rad], v [m/s], fpa, heading [rad], \
          outputs [m], Lie order k rows in m/s^k; scaled: {}",
-        scaling_note(&report)
+        scaling_note(&answer.report)
     );
-    print_search(&sol.search, sol.elapsed_s, wall, &opts);
+    print_search(&answer.sol.search, answer.sol.elapsed_s, wall, &answer.opts);
+}
 
-    if let Some(path) = &c.write_scenario {
-        let name = file_stem(path);
-        let (_, text) = output::with_beacons(
-            &cfg,
-            output::surface_beacons(&sol.sites, &report.noise()),
-            &name,
-            &format!(
-                "Ground sites optimized by `entrynav optimize ground` ({}, seed {}): value {}.",
-                objective.name(),
-                opts.seed,
-                fmt_value(ev.value)
-            ),
-        )?;
-        write_text(path, &text)?;
-        println!("wrote {}", path.display());
-    }
-    if let Some(path) = &a.plot {
-        let pts = |d: &DegreeSeries| -> Vec<(f64, f64)> {
-            d.times().into_iter().zip(d.deltas(false)).collect()
-        };
-        let mut curves = vec![crate::plot::Curve {
-            name: format!("optimum (min {:.3e})", delta.min(false)),
-            points: pts(&delta.raw),
-            dashed: false,
-        }];
-        if let Some((_, d)) = &reference {
-            curves.push(crate::plot::Curve {
-                name: format!("scenario's sites (min {:.3e})", d.min(false)),
-                points: pts(&d.raw),
-                dashed: true,
-            });
-        }
-        write_text(path, "")?;
-        crate::plot::line_plot(
-            path,
-            &format!(
-                "{}: raw SI δ = σmin/σmax ({}) along the entry",
-                cfg.name,
-                method.name()
-            ),
-            "time (s)",
-            "δ (raw SI)",
-            true,
-            &curves,
-        )?;
-        println!("wrote {}", path.display());
-    }
-    if let Some(path) = &c.json {
-        let v = json!({
-            "problem": "ground",
-            "scenario": cfg.name,
-            "objective": objective.name(),
-            "objective_units": objective.units(),
-            "value": ev.value,
-            "beacons": count,
-            "sites": sites_json(&sol.sites),
-            "min_elevation_deg": ev.min_elevation_rad.iter().map(|e| e.to_degrees()).collect::<Vec<_>>(),
-            "delta": delta.json(),
-            "evaluations": sol.search.evaluations,
-            "elapsed_s": sol.elapsed_s,
-            "wall_s": wall.elapsed().as_secs_f64(),
-            "search": search_json(&sol.search, &opts),
-            "search_step_s": a.search_step,
-            "report_step_s": a.step,
-            "delta_units": "raw SI: sigma_min/sigma_max of O with states in m, rad, m/s and outputs in m; scaled: see scaling",
-            "scaling": scaling_note(&report),
-            "reference": reference.as_ref().map(|(r, d)| json!({
-                "source": format!("scenario {} surface beacons", cfg.name),
-                "sites": sites_json(&own),
-                "value": r.value,
-                "min_elevation_deg": r.min_elevation_rad.iter().map(|e| e.to_degrees()).collect::<Vec<_>>(),
-                "delta": d.json(),
-            })),
-            "paper_delta_range": paper.then(|| json!([1.413e-8, 2.945e-7])),
-        });
-        write_json(path, &v)?;
-    }
+/// `--write-scenario`: the scenario with the optimum's sites.
+fn write_ground_scenario(
+    a: &GroundArgs,
+    inputs: &GroundInputs,
+    answer: &GroundAnswer,
+) -> Result<()> {
+    let Some(path) = &a.common.write_scenario else {
+        return Ok(());
+    };
+    let (_, text) = output::with_beacons(
+        &inputs.cfg,
+        output::surface_beacons(&answer.sol.sites, &answer.report.noise()),
+        &file_stem(path),
+        &format!(
+            "Ground sites optimized by `entrynav optimize ground` ({}, seed {}): value {}.",
+            inputs.objective.name(),
+            answer.opts.seed,
+            fmt_value(answer.ev.value)
+        ),
+    )?;
+    write_text(path, &text)?;
+    println!("wrote {}", path.display());
     Ok(())
+}
+
+/// `--plot`: raw δ(t) of the optimum and of the scenario's sites.
+fn plot_ground(a: &GroundArgs, inputs: &GroundInputs, answer: &GroundAnswer) -> Result<()> {
+    let Some(path) = &a.plot else {
+        return Ok(());
+    };
+    let pts = |d: &DegreeSeries| -> Vec<(f64, f64)> {
+        d.times().into_iter().zip(d.deltas(false)).collect()
+    };
+    let mut curves = vec![crate::plot::Curve {
+        name: format!("optimum (min {:.3e})", answer.delta.min(false)),
+        points: pts(&answer.delta.raw),
+        dashed: false,
+    }];
+    if let Some((_, d)) = &answer.reference {
+        curves.push(crate::plot::Curve {
+            name: format!("scenario's sites (min {:.3e})", d.min(false)),
+            points: pts(&d.raw),
+            dashed: true,
+        });
+    }
+    write_text(path, "")?;
+    crate::plot::line_plot(
+        path,
+        &format!(
+            "{}: raw SI δ = σmin/σmax ({}) along the entry",
+            inputs.cfg.name,
+            inputs.method.name()
+        ),
+        "time (s)",
+        "δ (raw SI)",
+        true,
+        &curves,
+    )?;
+    println!("wrote {}", path.display());
+    Ok(())
+}
+
+/// `--json`: the optimum, its δ(t), the search and the scenario's own sites.
+fn write_ground_json(
+    a: &GroundArgs,
+    inputs: &GroundInputs,
+    answer: &GroundAnswer,
+    wall: Instant,
+) -> Result<()> {
+    let Some(path) = &a.common.json else {
+        return Ok(());
+    };
+    let (cfg, objective, ev) = (&inputs.cfg, inputs.objective, &answer.ev);
+    let degrees = |e: &[f64]| e.iter().map(|e| e.to_degrees()).collect::<Vec<_>>();
+    let v = json!({
+        "problem": "ground",
+        "scenario": cfg.name,
+        "objective": objective.name(),
+        "objective_units": objective.units(),
+        "value": ev.value,
+        "beacons": inputs.count,
+        "sites": sites_json(&answer.sol.sites),
+        "min_elevation_deg": degrees(&ev.min_elevation_rad),
+        "delta": answer.delta.json(),
+        "evaluations": answer.sol.search.evaluations,
+        "elapsed_s": answer.sol.elapsed_s,
+        "wall_s": wall.elapsed().as_secs_f64(),
+        "search": search_json(&answer.sol.search, &answer.opts),
+        "search_step_s": a.search_step,
+        "report_step_s": a.step,
+        "delta_units": "raw SI: sigma_min/sigma_max of O with states in m, rad, m/s and outputs in m; scaled: see scaling",
+        "scaling": scaling_note(&answer.report),
+        "reference": answer.reference.as_ref().map(|(r, d)| json!({
+            "source": format!("scenario {} surface beacons", cfg.name),
+            "sites": sites_json(&inputs.own),
+            "value": r.value,
+            "min_elevation_deg": degrees(&r.min_elevation_rad),
+            "delta": d.json(),
+        })),
+        "paper_delta_range": (cfg.name == "ground-beacons-3").then(|| json!([1.413e-8, 2.945e-7])),
+    });
+    write_json(path, &v)
 }
 
 fn scaling_note(p: &GroundProblem) -> String {
@@ -287,6 +378,3 @@ fn scaling_note(p: &GroundProblem) -> String {
         s.time_s
     )
 }
-
-// ---------------------------------------------------------------------------------------------
-// select

@@ -32,6 +32,8 @@ mod exact_selection;
 mod ground_sites;
 mod names;
 mod orbit_elements;
+mod orbit_files;
+mod site_candidates;
 mod site_selection;
 
 /// Arguments of `entrynav optimize`.
@@ -340,6 +342,3 @@ fn file_stem(path: &Path) -> String {
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "optimized".into())
 }
-
-// ---------------------------------------------------------------------------------------------
-// orbiters

@@ -1,6 +1,11 @@
 //! `entrynav optimize orbiters`: orbiter elements (Ω, i, f) on circular orbits (seed 002 §4.2).
 
+use super::orbit_files::{
+    export_trajectory, plot_orbiters, write_orbiter_json, write_orbiter_scenario,
+};
 use super::*;
+use entrynav_optimizer::output::BeaconNoise;
+use entrynav_optimizer::{OrbiterBoundSolution, OrbiterSolution};
 
 /// The scenario's own orbiters on circular orbits: (altitude [m], elements).
 fn scenario_orbits(cfg: &ScenarioConfig) -> Vec<(f64, OrbitElements)> {
@@ -18,18 +23,7 @@ fn scenario_orbits(cfg: &ScenarioConfig) -> Vec<(f64, OrbitElements)> {
         .collect()
 }
 
-fn elements_json(el: &[OrbitElements]) -> Value {
-    Value::Array(
-        el.iter()
-            .map(|e| {
-                let [raan, inc, f] = e.degrees();
-                json!({"raan_deg": raan, "inc_deg": inc, "true_anomaly_deg": f})
-            })
-            .collect(),
-    )
-}
-
-fn print_elements(el: &[OrbitElements]) {
+pub(super) fn print_elements(el: &[OrbitElements]) {
     println!(
         "  {:<10} {:>10} {:>10} {:>10}",
         "orbiter", "RAAN [deg]", "i [deg]", "f [deg]"
@@ -40,8 +34,55 @@ fn print_elements(el: &[OrbitElements]) {
     }
 }
 
+/// What `optimize orbiters` starts from: the scenario, its own circular orbiters and the size
+/// of the constellation to search.
+pub(super) struct OrbiterInputs {
+    pub(super) cfg: ScenarioConfig,
+    pub(super) dir: PathBuf,
+    /// The scenario's own orbiters on circular orbits: (altitude [m], elements).
+    pub(super) own: Vec<(f64, OrbitElements)>,
+    pub(super) count: usize,
+    pub(super) altitude_m: f64,
+}
+
+/// What the search found, and the scenario's own orbiters evaluated the same way.
+pub(super) struct OrbiterAnswer {
+    pub(super) problem: OrbiterProblem,
+    pub(super) opts: SearchOptions,
+    pub(super) noise: BeaconNoise,
+    /// The geometric optimum (with `--objective pcrlb`, the proxy the polish started from).
+    pub(super) sol: OrbiterSolution,
+    /// `--objective pcrlb`: the polish on the final position PCRLB.
+    pub(super) bound: Option<OrbiterBoundSolution>,
+    /// `--objective pcrlb`: the bound of the scenario's own orbiters, when comparable.
+    pub(super) own_bound: Option<f64>,
+    /// The scenario's own orbiters (the paper's Table 6 for orbiters-3), when comparable.
+    pub(super) reference: Option<(Vec<OrbitElements>, OrbiterEvaluation)>,
+}
+
+impl OrbiterAnswer {
+    /// The elements written to the scenario file: the PCRLB polish's, else the optimum's.
+    pub(super) fn best_elements(&self) -> &[OrbitElements] {
+        self.bound
+            .as_ref()
+            .map_or(&self.sol.elements, |b| &b.elements)
+    }
+}
+
 pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
     let wall = Instant::now();
+    let inputs = load_orbiter_inputs(a)?;
+    let answer = solve_orbiters(a, &inputs)?;
+    print_orbiters(&inputs, &answer, wall);
+    export_trajectory(a, &inputs, &answer)?;
+    write_orbiter_scenario(a, &inputs, &answer)?;
+    plot_orbiters(a, &inputs, &answer)?;
+    write_orbiter_json(a, &inputs, &answer, wall)
+}
+
+/// The scenario with its overrides, the orbiter count (default: the scenario's, at least 3) and
+/// the altitude (default: the scenario's first circular orbiter).
+fn load_orbiter_inputs(a: &OrbitersArgs) -> Result<OrbiterInputs> {
     let c = &a.common;
     let (cfg, dir) = load::resolve(&c.scenario, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &c.sets)?;
@@ -61,20 +102,33 @@ pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
             cfg.name
         ),
     };
+    Ok(OrbiterInputs {
+        cfg,
+        dir,
+        own,
+        count,
+        altitude_m,
+    })
+}
+
+/// The global search on the geometric objective, the PCRLB polish (`--objective pcrlb`) and the
+/// evaluation of the scenario's own orbiters.
+fn solve_orbiters(a: &OrbitersArgs, inputs: &OrbiterInputs) -> Result<OrbiterAnswer> {
+    let c = &a.common;
+    let cfg = &inputs.cfg;
     let on_bound = a.objective == Some(OrbiterObjectiveArg::Pcrlb);
     let objective = a.objective.and_then(OrbiterObjectiveArg::geometric);
-    let scenario = load::build(cfg.clone(), &dir)?;
+    let scenario = load::build(cfg.clone(), &inputs.dir)?;
     let trajectory = Trajectory::from_scenario(&scenario, a.step)?;
-    let problem = OrbiterProblem::new(trajectory, count, altitude_m, objective)?;
+    let problem = OrbiterProblem::new(trajectory, inputs.count, inputs.altitude_m, objective)?;
     let opts = c.search(orbiters::default_search(c.seed));
-    let dim = 3 * count;
     let bar = progress_bar(c.quiet, format!("{} orbiters", cfg.name));
-    bar.set_length(opts.budget(dim) as u64);
+    bar.set_length(opts.budget(3 * inputs.count) as u64);
     let progress = |done: usize, total: usize| {
         bar.set_length(total as u64);
         bar.set_position(done as u64);
     };
-    let noise = template_noise(&cfg, true)?;
+    let noise = template_noise(cfg, true)?;
     let bound_problem =
         on_bound.then(|| OrbiterBoundProblem::new(problem.clone(), cfg.clone(), noise));
     let bound = bound_problem
@@ -89,23 +143,43 @@ pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
         None => problem.optimize(&opts, &progress)?,
     };
     bar.finish_and_clear();
-
-    // The scenario's own orbiters (the paper's Table 6 for orbiters-3), when comparable.
-    let reference: Option<(Vec<OrbitElements>, OrbiterEvaluation)> = (own.len() == count
-        && own.iter().all(|(alt, _)| (alt - altitude_m).abs() < 1e-6))
-    .then(|| {
-        let el: Vec<OrbitElements> = own.iter().map(|(_, e)| *e).collect();
-        problem.evaluate(&el).map(|ev| (el, ev))
+    let comparable = inputs.own.len() == inputs.count
+        && inputs
+            .own
+            .iter()
+            .all(|(alt, _)| (alt - inputs.altitude_m).abs() < 1e-6);
+    let reference = comparable
+        .then(|| {
+            let el: Vec<OrbitElements> = inputs.own.iter().map(|(_, e)| *e).collect();
+            problem.evaluate(&el).map(|ev| (el, ev))
+        })
+        .transpose()?;
+    let own_bound = match (&bound_problem, &reference) {
+        (Some(bp), Some((el, _))) => Some(bp.final_position_bound(el)?),
+        _ => None,
+    };
+    Ok(OrbiterAnswer {
+        problem,
+        opts,
+        noise,
+        sol,
+        bound,
+        own_bound,
+        reference,
     })
-    .transpose()?;
+}
 
+/// The problem, the optimum, the scenario's own orbiters, the search and the PCRLB polish.
+fn print_orbiters(inputs: &OrbiterInputs, answer: &OrbiterAnswer, wall: Instant) {
+    let (cfg, problem, sol) = (&inputs.cfg, &answer.problem, &answer.sol);
     let traj = problem.trajectory();
     let ev = &sol.evaluation;
     println!("scenario    {}", cfg.name);
     println!(
-        "problem     {count} orbiters on circular orbits at {:.1} km (seed 002 eq. 55-56), \
+        "problem     {} orbiters on circular orbits at {:.1} km (seed 002 eq. 55-56), \
          line of sight by eq. 58-60",
-        altitude_m / 1e3
+        inputs.count,
+        inputs.altitude_m / 1e3
     );
     println!(
         "objective   {} = integral over t of {} (trapezoid over {} samples, {:.0} s; \
@@ -127,7 +201,7 @@ pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
         ev.min_margin_rad.to_degrees(),
         100.0 * ev.visible_fraction
     );
-    if let Some((el, r)) = &reference {
+    if let Some((el, r)) = &answer.reference {
         println!();
         println!(
             "scenario's own orbiters{} evaluated by the same objective: {:.3}",
@@ -145,168 +219,32 @@ pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
         );
     }
     println!();
-    print_search(&sol.search, sol.elapsed_s, wall, &opts);
-    let own_bound = match (&bound_problem, &reference) {
-        (Some(bp), Some((el, _))) => Some(bp.final_position_bound(el)?),
-        _ => None,
-    };
-    if let Some(b) = &bound {
-        println!();
-        println!(
-            "pcrlb       final position PCRLB of the scenario with these orbiters (IMU, dynamics, \
-             prior and ranges; run 0 of seed 1), polished from the {} optimum",
-            problem.objective().name()
-        );
-        println!(
-            "optimum     {:.3} m  (at the {} optimum {:.3} m{})",
-            b.bound_m,
-            problem.objective().name(),
-            b.proxy_bound_m,
-            own_bound.map_or(String::new(), |v| format!(
-                "; scenario's own orbiters {v:.3} m"
-            ))
-        );
-        print_elements(&b.elements);
-        println!(
-            "  polish: {} bound evaluations, {:.1} s (proxy search and polish)",
-            b.search.evaluations, b.elapsed_s
-        );
+    print_search(&sol.search, sol.elapsed_s, wall, &answer.opts);
+    if let Some(b) = &answer.bound {
+        print_bound_polish(problem, b, answer.own_bound);
     }
-    let best_elements = bound.as_ref().map_or(&sol.elements, |b| &b.elements);
-    if let Some(path) = &a.export_trajectory {
-        let header = [
-            ("objective", problem.objective().name().to_string()),
-            ("orbiters", count.to_string()),
-            ("altitude_m", format!("{altitude_m:e}")),
-            (
-                "penalty_per_rad_s",
-                format!("{:e}", problem.penalty_per_rad_s),
-            ),
-            ("log_det_floor", format!("{:e}", orbiters::LOG_DET_FLOOR)),
-            ("our_value", format!("{:.12e}", ev.value)),
-            ("our_search_elapsed_s", format!("{:.6}", sol.elapsed_s)),
-        ];
-        write_text(path, &traj.to_csv(&header))?;
-        println!("wrote {}", path.display());
-    }
-    if let Some(path) = &c.write_scenario {
-        let name = file_stem(path);
-        let (_, text) = output::with_beacons(
-            &cfg,
-            output::orbiter_beacons(best_elements, altitude_m, &noise),
-            &name,
-            &match &bound {
-                Some(b) => format!(
-                    "Orbiter geometry optimized by `entrynav optimize orbiters --objective pcrlb` \
-                     (seed {}): final position PCRLB {:.3} m ({} optimum: {:.3} m).",
-                    opts.seed,
-                    b.bound_m,
-                    problem.objective().name(),
-                    b.proxy_bound_m
-                ),
-                None => format!(
-                    "Orbiter geometry optimized by `entrynav optimize orbiters` (seed {}): {} = {:.3}.",
-                    opts.seed,
-                    problem.objective().name(),
-                    ev.value
-                ),
-            },
-        )?;
-        write_text(path, &text)?;
-        println!("wrote {}", path.display());
-    }
-    if let Some(path) = &a.plot {
-        let t = traj.times.clone();
-        let mut curves = vec![crate::plot::Curve {
-            name: format!("optimum ({:.3})", ev.value),
-            points: t
-                .iter()
-                .copied()
-                .zip(ev.integrand.iter().copied())
-                .collect(),
-            dashed: false,
-        }];
-        if let Some((_, r)) = &reference {
-            curves.push(crate::plot::Curve {
-                name: format!("scenario's orbiters ({:.3})", r.value),
-                points: t.iter().copied().zip(r.integrand.iter().copied()).collect(),
-                dashed: true,
-            });
-        }
-        write_text(path, "")?;
-        crate::plot::line_plot(
-            path,
-            &format!(
-                "{}: {} integrand along the entry",
-                cfg.name,
-                problem.objective().name()
-            ),
-            "time (s)",
-            match problem.objective() {
-                OrbiterObjective::DetN3 => "det(N3)",
-                OrbiterObjective::LogDet => "ln det FIM",
-            },
-            false,
-            &curves,
-        )?;
-        println!("wrote {}", path.display());
-    }
-    if let Some(path) = &c.json {
-        let ev_json = |e: &OrbiterEvaluation| {
-            json!({
-                "value": e.value,
-                "min_visibility_margin_deg": e.min_margin_rad.to_degrees(),
-                "visible_fraction": e.visible_fraction,
-                "violation_rad_s": e.violation_rad_s,
-            })
-        };
-        let mut v = json!({
-            "problem": "orbiters",
-            "scenario": cfg.name,
-            "objective": problem.objective().name(),
-            "objective_definition": "integral over the trajectory (trapezoid rule) of det(N3) = [n1.(n2 x n3)]^2 (3 orbiters) or ln max(det sum n n^T, 1e-9); n_j unit vector orbiter->vehicle, hidden orbiters (eq. 58-60) contribute nothing",
-            "value": ev.value,
-            "upper_bound": problem.upper_bound(),
-            "orbiters": count,
-            "altitude_km": altitude_m / 1e3,
-            "elements": elements_json(&sol.elements),
-            "min_visibility_margin_deg": ev.min_margin_rad.to_degrees(),
-            "visible_fraction": ev.visible_fraction,
-            "evaluations": sol.search.evaluations,
-            "elapsed_s": sol.elapsed_s,
-            "wall_s": wall.elapsed().as_secs_f64(),
-            "search": search_json(&sol.search, &opts),
-            "trajectory": {
-                "samples": traj.len(),
-                "step_s": a.step,
-                "duration_s": traj.duration(),
-                "rule": "trapezoid",
-            },
-            "reference": reference.as_ref().map(|(el, r)| {
-                let mut o = ev_json(r);
-                o["elements"] = elements_json(el);
-                o["source"] = json!(format!("scenario {} orbiters", cfg.name));
-                if cfg.name == "orbiters-3" {
-                    o["paper_value"] = json!(237.963);
-                }
-                o
-            }),
-        });
-        if let Some(b) = &bound {
-            v["pcrlb"] = json!({
-                "objective": "final position PCRLB [m] (run 0 of seed 1), minimised by a Nelder-Mead polish from the geometric optimum",
-                "final_pos_m": b.bound_m,
-                "at_geometric_optimum_m": b.proxy_bound_m,
-                "scenario_orbiters_m": own_bound,
-                "elements": elements_json(&b.elements),
-                "evaluations": b.search.evaluations,
-                "elapsed_s": b.elapsed_s,
-            });
-        }
-        write_json(path, &v)?;
-    }
-    Ok(())
 }
 
-// ---------------------------------------------------------------------------------------------
-// ground
+/// The `pcrlb` lines: the polished bound against the geometric optimum's and the scenario's.
+fn print_bound_polish(problem: &OrbiterProblem, b: &OrbiterBoundSolution, own_bound: Option<f64>) {
+    println!();
+    println!(
+        "pcrlb       final position PCRLB of the scenario with these orbiters (IMU, dynamics, \
+         prior and ranges; run 0 of seed 1), polished from the {} optimum",
+        problem.objective().name()
+    );
+    println!(
+        "optimum     {:.3} m  (at the {} optimum {:.3} m{})",
+        b.bound_m,
+        problem.objective().name(),
+        b.proxy_bound_m,
+        own_bound.map_or(String::new(), |v| format!(
+            "; scenario's own orbiters {v:.3} m"
+        ))
+    );
+    print_elements(&b.elements);
+    println!(
+        "  polish: {} bound evaluations, {:.1} s (proxy search and polish)",
+        b.search.evaluations, b.elapsed_s
+    );
+}

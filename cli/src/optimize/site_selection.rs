@@ -3,8 +3,10 @@
 //! [`exact_selection`](super::exact_selection)).
 
 use super::exact_selection::{exact_json, finish_exact_only, print_proof, run_exact};
-use super::ground_sites::{scenario_sites, sites_json};
+use super::ground_sites::sites_json;
+use super::site_candidates::{Candidates, load_candidates};
 use super::*;
+use entrynav_optimizer::SelectionReport;
 
 /// `value` and `gap = bound − value` of a selection (`bound`: the best bound known).
 pub(super) fn selection_json(s: &Selection, sites: &[Site], bound: f64) -> Value {
@@ -17,117 +19,179 @@ pub(super) fn selection_json(s: &Selection, sites: &[Site], bound: f64) -> Value
     })
 }
 
-/// `--region LAT_MIN,LAT_MAX,LON_MIN,LON_MAX` as a predicate on sites.
-fn region_filter(region: &Option<Vec<f64>>) -> Result<impl Fn(&Site) -> bool + use<>> {
-    let b = match region.as_deref() {
-        None => None,
-        Some(&[lat0, lat1, lon0, lon1]) if lat0 <= lat1 && lon0 <= lon1 => {
-            Some([lat0, lat1, lon0, lon1])
-        }
-        Some(v) => {
-            bail!("--region needs LAT_MIN,LAT_MAX,LON_MIN,LON_MAX with min <= max (deg), got {v:?}")
-        }
-    };
-    Ok(move |s: &Site| {
-        b.is_none_or(|[lat0, lat1, lon0, lon1]| {
-            let [lat, lon] = s.degrees();
-            (lat0..=lat1).contains(&lat) && (lon0..=lon1).contains(&lon)
-        })
-    })
+/// What the selection found: the heuristic report, the enumeration, the proof and the answers
+/// certified.
+struct Selected {
+    report: SelectionReport,
+    /// The exact optimum by enumeration, when there are few enough k-subsets.
+    brute: Option<Selection>,
+    /// `--exact`: the branch and bound.
+    exact: Option<BranchBoundReport>,
+    /// Each answer to certify, labelled.
+    certified: Vec<(String, Selection)>,
+}
+
+impl Selected {
+    /// The best bound known: the proof's, else the relaxation's. Gaps are measured from it.
+    fn bound(&self) -> f64 {
+        self.exact
+            .as_ref()
+            .map_or(self.report.relaxation.bound, |e| e.bound)
+    }
+
+    /// The answer: the proof's, else the swap-improved heuristic.
+    fn answer(&self) -> &Selection {
+        self.exact
+            .as_ref()
+            .map_or(&self.report.improved, |e| &e.best)
+    }
 }
 
 pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
     let wall = Instant::now();
     let (cfg, dir) = load::resolve(&a.scenario, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &a.sets)?;
-    let load = loader(&dir);
     let criterion = SelectionCriterion::from(a.criterion);
     if a.eig_epochs.is_some() && criterion != SelectionCriterion::MinEig {
         bail!("--eig-epochs applies to --criterion min-eig only");
     }
     let ground = GroundProblem::new(
         &cfg,
-        &load,
+        &loader(&dir),
         a.k.max(1),
         GroundObjective::LogDet,
         a.step,
         a.min_elevation_deg.to_radians(),
     )?;
-    let inside = region_filter(&a.region)?;
-    let mut sites = ground.visible_grid(a.grid_deg)?;
-    sites.retain(&inside);
-    if sites.is_empty() {
-        bail!("no visible grid site lies inside --region {:?}", a.region);
-    }
-    let grid_count = sites.len();
-    // Heuristic answers to certify: the scenario's own surface sites (if k of them, all
-    // feasible) and the sites of a ground-optimizer JSON file.
-    let mut extra: Vec<(String, Vec<usize>)> = Vec::new();
-    let mut add = |label: String, list: Vec<Site>, sites: &mut Vec<Site>| {
-        if list.len() == a.k && list.iter().all(|s| ground.is_feasible(s) && inside(s)) {
-            let start = sites.len();
-            sites.extend(list);
-            extra.push((label, (start..sites.len()).collect()));
-        } else {
-            println!(
-                "note: {label} not certified (needs exactly k = {} sites, each visible during the \
-                 whole entry and inside --region)",
-                a.k
+    let candidates = load_candidates(a, &cfg, &ground)?;
+    let (problem, pairs) = selection_problem(a, criterion, &ground, &candidates.sites)?;
+    // The heuristic; with --exact the branch and bound can go on without it.
+    let report = match problem.solve() {
+        Ok(r) => r,
+        Err(e) if a.exact => {
+            // With its sources (a solver failure names clarabel's reason).
+            let e = anyhow::Error::from(e);
+            println!("note: the heuristic failed ({e:#}); branch and bound starts without it");
+            return finish_exact_only(
+                a,
+                &cfg,
+                &problem,
+                &candidates.sites,
+                candidates.grid_count,
+                wall,
             );
         }
+        Err(e) => return Err(e.into()),
     };
-    let own = scenario_sites(&cfg);
-    if !own.is_empty() {
-        add(format!("scenario {} sites", cfg.name), own, &mut sites);
-    }
-    if let Some(path) = &a.compare {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read {}", path.display()))?;
-        let v: Value = serde_json::from_str(&text)
-            .with_context(|| format!("{} is not JSON", path.display()))?;
-        let list = v["sites"]
-            .as_array()
-            .with_context(|| format!("{} has no \"sites\" array", path.display()))?
-            .iter()
-            .map(|s| {
-                Some(Site::from_degrees(
-                    s["lat_deg"].as_f64()?,
-                    s["lon_deg"].as_f64()?,
-                ))
-            })
-            .collect::<Option<Vec<Site>>>()
-            .with_context(|| format!("{}: sites need lat_deg and lon_deg", path.display()))?;
-        add(format!("sites of {}", path.display()), list, &mut sites);
-    }
-    let blocks = site_information(&ground, &sites, a.eig_epochs)?;
+    let selected = certify(a, &problem, &candidates, report)?;
+    print_select(a, &cfg, &problem, &candidates, pairs, &selected, wall);
+    let answer = selected.answer();
+    write_selected(
+        a,
+        &cfg,
+        &candidates.sites,
+        criterion,
+        answer,
+        selected.bound(),
+        selected.exact.as_ref(),
+    )?;
+    write_select_json(a, &cfg, &problem, &candidates, pairs, &selected, wall)
+}
+
+/// The information blocks of the candidates and the spacing constraints (with the number of
+/// close pairs).
+fn selection_problem(
+    a: &SelectArgs,
+    criterion: SelectionCriterion,
+    ground: &GroundProblem,
+    sites: &[Site],
+) -> Result<(SelectionProblem, usize)> {
+    let blocks = site_information(ground, sites, a.eig_epochs)?;
     let spacing = match a.min_separation_deg {
-        Some(d) => separation_constraints(&sites, d.to_radians())?,
+        Some(d) => separation_constraints(sites, d.to_radians())?,
         None => Vec::new(),
     };
     let pairs = spacing.len();
     let problem = SelectionProblem::new(blocks, a.k, criterion)?
         .with_solver_verbose(a.solver_verbose)
         .with_constraints(spacing)?;
-    // The heuristic; with --exact the branch and bound can go on without it.
-    let report = match problem.solve() {
-        Ok(r) => r,
-        Err(e) if a.exact => {
-            println!("note: the heuristic failed ({e}); branch and bound starts without it");
-            return finish_exact_only(a, &cfg, &problem, &sites, grid_count, wall);
-        }
-        Err(e) => return Err(e.into()),
-    };
+    Ok((problem, pairs))
+}
+
+/// Enumeration (within `--brute-force-limit`), the proof (`--exact`, from the heuristic
+/// answer) and the values of the answers to certify.
+fn certify(
+    a: &SelectArgs,
+    problem: &SelectionProblem,
+    candidates: &Candidates,
+    report: SelectionReport,
+) -> Result<Selected> {
     let brute = problem.brute_force(a.brute_force_limit);
     let exact = if a.exact {
-        Some(run_exact(a, &problem, Some(&report.improved))?)
+        Some(run_exact(a, problem, Some(&report.improved))?)
     } else {
         None
     };
-    let r = &report.relaxation;
-    // Gaps are measured from the best bound known: the proof's, else the relaxation's.
-    let bound = exact.as_ref().map_or(r.bound, |e| e.bound);
-    let answer = exact.as_ref().map_or(&report.improved, |e| &e.best);
+    let certified = candidates
+        .extra
+        .iter()
+        .map(|(label, idx)| {
+            let s = Selection {
+                indices: idx.clone(),
+                value: problem.value(idx),
+            };
+            (label.clone(), s)
+        })
+        .collect();
+    Ok(Selected {
+        report,
+        brute,
+        exact,
+        certified,
+    })
+}
 
+/// One line per selection: value, gap from `bound` and sites (and whether it breaks the side
+/// constraints).
+pub(super) fn print_selection(
+    label: &str,
+    s: &Selection,
+    sites: &[Site],
+    bound: f64,
+    problem: &SelectionProblem,
+) {
+    let chosen: Vec<String> = s
+        .indices
+        .iter()
+        .map(|&i| {
+            let [lat, lon] = sites[i].degrees();
+            format!("({lat:.2}, {lon:.2})")
+        })
+        .collect();
+    println!(
+        "{label:<30} value {:>11.6}  gap {:>10.3e}  sites {}{}",
+        s.value,
+        (bound - s.value).max(0.0),
+        chosen.join(" "),
+        if problem.admissible(&s.indices) {
+            ""
+        } else {
+            "  (breaks the side constraints)"
+        }
+    );
+}
+
+/// The candidates, constraints, criterion and relaxation, then every selection and the proof.
+fn print_select(
+    a: &SelectArgs,
+    cfg: &ScenarioConfig,
+    problem: &SelectionProblem,
+    candidates: &Candidates,
+    pairs: usize,
+    selected: &Selected,
+    wall: Instant,
+) {
+    let (sites, grid_count) = (&candidates.sites, candidates.grid_count);
     println!("scenario    {}", cfg.name);
     println!(
         "candidates  {grid_count} grid sites every {} deg visible during the whole entry \
@@ -154,49 +218,23 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
     }
     println!(
         "criterion   {} over k = {} of m = {} ({})",
-        criterion.name(),
+        problem.criterion().name(),
         a.k,
         sites.len(),
-        match (criterion, a.eig_epochs) {
-            (SelectionCriterion::LogDet, _) =>
-                "ln det of the time-averaged unit-sigma range FIM sum_i A_i, A_i = (1/T) integral n_i n_i^T dt (planet-fixed frame)".to_string(),
-            (SelectionCriterion::MinEig, None) =>
-                "lambda_min of the time-averaged unit-sigma range FIM".to_string(),
-            (SelectionCriterion::MinEig, Some(s)) => format!(
-                "min over epochs every {s} s of lambda_min of the instantaneous unit-sigma FIM sum n n^T"
-            ),
-        }
+        criterion_definition(problem.criterion(), a.eig_epochs)
     );
+    let (report, r) = (&selected.report, &selected.report.relaxation);
     println!(
         "relaxation  bound {:.6} (primal {:.6}, dual {:.6}; clarabel {}, {} iterations, {:.3} s)",
         r.bound, r.primal, r.dual, r.status, r.iterations, r.solve_time_s
     );
-    let show = |label: &str, s: &Selection| {
-        let chosen: Vec<String> = s
-            .indices
-            .iter()
-            .map(|&i| {
-                let [lat, lon] = sites[i].degrees();
-                format!("({lat:.2}, {lon:.2})")
-            })
-            .collect();
-        println!(
-            "{label:<30} value {:>11.6}  gap {:>10.3e}  sites {}{}",
-            s.value,
-            (bound - s.value).max(0.0),
-            chosen.join(" "),
-            if problem.admissible(&s.indices) {
-                ""
-            } else {
-                "  (breaks the side constraints)"
-            }
-        );
-    };
+    let bound = selected.bound();
+    let show = |label: &str, s: &Selection| print_selection(label, s, sites, bound, problem);
     if let Some(s) = &report.rounded {
         show("rounded (top-k of z)", s);
     }
     show(
-        if exact.is_some() {
+        if selected.exact.is_some() {
             "swap-improved (heuristic)"
         } else {
             "swap-improved (answer)"
@@ -206,25 +244,13 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
     if let Some(s) = &report.greedy {
         show("greedy", s);
     }
-    if let Some(b) = &brute {
+    if let Some(b) = &selected.brute {
         show("brute force (exact optimum)", b);
     }
-    if let Some(e) = &exact {
+    if let Some(e) = &selected.exact {
         show("branch and bound (answer)", &e.best);
     }
-    let extra_sel: Vec<(String, Selection)> = extra
-        .iter()
-        .map(|(label, idx)| {
-            (
-                label.clone(),
-                Selection {
-                    indices: idx.clone(),
-                    value: problem.value(idx),
-                },
-            )
-        })
-        .collect();
-    for (label, s) in &extra_sel {
+    for (label, s) in &selected.certified {
         show(label, s);
     }
     println!(
@@ -232,63 +258,89 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
         report.evaluations,
         wall.elapsed().as_secs_f64()
     );
-    if let Some(e) = &exact {
+    if let Some(e) = &selected.exact {
         print_proof(a, e);
     }
+}
 
-    write_selected(a, &cfg, &sites, criterion, answer, bound, exact.as_ref())?;
-    if let Some(path) = &a.json {
-        let chosen: Vec<Site> = answer.indices.iter().map(|&i| sites[i]).collect();
-        let support: Vec<Value> =
-            r.z.iter()
-                .enumerate()
-                .filter(|(_, z)| **z > 1e-4)
-                .map(|(i, z)| {
-                    let [lat, lon] = sites[i].degrees();
-                    json!({"index": i, "z": z, "lat_deg": lat, "lon_deg": lon})
-                })
-                .collect();
-        let v = json!({
-            "problem": "select",
-            "scenario": cfg.name,
-            "objective": criterion.name(),
-            "eig_epochs_s": a.eig_epochs,
-            "answer": if exact.is_some() { "exact" } else { "heuristic" },
-            "value": answer.value,
-            "sites": sites_json(&chosen),
-            "bound": bound,
-            "gap": (bound - answer.value).max(0.0),
-            "k": a.k,
-            "candidates": sites.len(),
-            "grid_candidates": grid_count,
-            "grid_deg": a.grid_deg,
-            "evaluations": report.evaluations,
-            "elapsed_s": report.elapsed_s,
-            "wall_s": wall.elapsed().as_secs_f64(),
-            "relaxation": {
-                "status": r.status,
-                "iterations": r.iterations,
-                "primal": r.primal,
-                "dual": r.dual,
-                "solve_time_s": r.solve_time_s,
-                "support": support,
-            },
-            "rounded": report.rounded.as_ref().map(|s| selection_json(s, &sites, bound)),
-            "greedy": report.greedy.as_ref().map(|s| selection_json(s, &sites, bound)),
-            "heuristic": selection_json(&report.improved, &sites, bound),
-            "brute_force": brute.as_ref().map(|b| selection_json(b, &sites, bound)),
-            "certified": extra_sel.iter().map(|(label, s)| {
-                let mut o = selection_json(s, &sites, bound);
-                o["label"] = json!(label);
-                o["admissible"] = json!(problem.admissible(&s.indices));
-                o
-            }).collect::<Vec<_>>(),
-            "constraints": constraints_json(a, pairs),
-            "exact": exact.as_ref().map(|e| exact_json(a, e, &sites)),
-        });
-        write_json(path, &v)?;
+/// What the criterion's value is, in words.
+fn criterion_definition(criterion: SelectionCriterion, eig_epochs: Option<f64>) -> String {
+    match (criterion, eig_epochs) {
+        (SelectionCriterion::LogDet, _) =>
+            "ln det of the time-averaged unit-sigma range FIM sum_i A_i, A_i = (1/T) integral n_i n_i^T dt (planet-fixed frame)".to_string(),
+        (SelectionCriterion::MinEig, None) =>
+            "lambda_min of the time-averaged unit-sigma range FIM".to_string(),
+        (SelectionCriterion::MinEig, Some(s)) => format!(
+            "min over epochs every {s} s of lambda_min of the instantaneous unit-sigma FIM sum n n^T"
+        ),
     }
-    Ok(())
+}
+
+/// `--json`: the answer, the relaxation and its support, every selection and the proof.
+fn write_select_json(
+    a: &SelectArgs,
+    cfg: &ScenarioConfig,
+    problem: &SelectionProblem,
+    candidates: &Candidates,
+    pairs: usize,
+    selected: &Selected,
+    wall: Instant,
+) -> Result<()> {
+    let Some(path) = &a.json else {
+        return Ok(());
+    };
+    let sites = &candidates.sites;
+    let (report, r) = (&selected.report, &selected.report.relaxation);
+    let (answer, bound, exact) = (selected.answer(), selected.bound(), &selected.exact);
+    let chosen: Vec<Site> = answer.indices.iter().map(|&i| sites[i]).collect();
+    let support: Vec<Value> =
+        r.z.iter()
+            .enumerate()
+            .filter(|(_, z)| **z > 1e-4)
+            .map(|(i, z)| {
+                let [lat, lon] = sites[i].degrees();
+                json!({"index": i, "z": z, "lat_deg": lat, "lon_deg": lon})
+            })
+            .collect();
+    let v = json!({
+        "problem": "select",
+        "scenario": cfg.name,
+        "objective": problem.criterion().name(),
+        "eig_epochs_s": a.eig_epochs,
+        "answer": if exact.is_some() { "exact" } else { "heuristic" },
+        "value": answer.value,
+        "sites": sites_json(&chosen),
+        "bound": bound,
+        "gap": (bound - answer.value).max(0.0),
+        "k": a.k,
+        "candidates": sites.len(),
+        "grid_candidates": candidates.grid_count,
+        "grid_deg": a.grid_deg,
+        "evaluations": report.evaluations,
+        "elapsed_s": report.elapsed_s,
+        "wall_s": wall.elapsed().as_secs_f64(),
+        "relaxation": {
+            "status": r.status.to_string(),
+            "iterations": r.iterations,
+            "primal": r.primal,
+            "dual": r.dual,
+            "solve_time_s": r.solve_time_s,
+            "support": support,
+        },
+        "rounded": report.rounded.as_ref().map(|s| selection_json(s, sites, bound)),
+        "greedy": report.greedy.as_ref().map(|s| selection_json(s, sites, bound)),
+        "heuristic": selection_json(&report.improved, sites, bound),
+        "brute_force": selected.brute.as_ref().map(|b| selection_json(b, sites, bound)),
+        "certified": selected.certified.iter().map(|(label, s)| {
+            let mut o = selection_json(s, sites, bound);
+            o["label"] = json!(label);
+            o["admissible"] = json!(problem.admissible(&s.indices));
+            o
+        }).collect::<Vec<_>>(),
+        "constraints": constraints_json(a, pairs),
+        "exact": exact.as_ref().map(|e| exact_json(a, e, sites)),
+    });
+    write_json(path, &v)
 }
 
 pub(super) fn constraints_json(a: &SelectArgs, pairs: usize) -> Value {

@@ -1,8 +1,8 @@
 //! Certified optimal k-subsets: branch and bound over site inclusion `z_i ∈ {0, 1}` on the
 //! relaxation of the [parent module](super) (D- and E-optimal, with the side constraints).
 //!
-//! **Search.** Nodes (`node.rs`) are kept in a best-bound-first queue (ties: the
-//! deeper, then the older node). Each round takes a *batch* of `batch` nodes — first the node of
+//! **Search** (its state in `search_tree.rs`). Nodes (`node.rs`) are kept in a best-bound-first
+//! queue (ties: the deeper, then the older node). Each round takes a *batch* of `batch` nodes — first the node of
 //! the current depth-first *dive* (the "choose j" child of the previous round's first node, so a
 //! dive runs from a best node down to a leaf in at most k rounds), then the best queued nodes —
 //! evaluates them in parallel on rayon's pool and folds the outcomes **in batch order**: the
@@ -22,11 +22,8 @@
 //! `bound − value` is at most [`PROOF_GAP`]; `Gap` when it is exhausted with a looser requested
 //! gap; `TimeLimit` / `NodeLimit` when stopped early, with the gap certified at that point.
 
-use super::node::{Node, Outcome};
+use super::search_tree::SearchTree;
 use super::*;
-use rayon::prelude::*;
-use std::cmp::Ordering;
-use std::collections::BinaryHeap;
 use std::time::Duration;
 
 /// The certified gap at or below which an answer is called optimal, on the criterion's scale
@@ -156,38 +153,6 @@ pub struct BranchBoundReport {
     pub elapsed_s: f64,
 }
 
-/// Make `s` the incumbent if it is strictly better (earlier candidates win ties).
-fn offer(best: &mut Option<Selection>, s: Selection, updates: &mut usize) {
-    if best.as_ref().is_none_or(|b| s.value > b.value) {
-        *best = Some(s);
-        *updates += 1;
-    }
-}
-
-/// A queued node ordered by bound, then depth, then age.
-struct Queued(Node);
-
-impl PartialEq for Queued {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-impl Eq for Queued {}
-impl PartialOrd for Queued {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Queued {
-    fn cmp(&self, other: &Self) -> Ordering {
-        self.0
-            .bound
-            .total_cmp(&other.0.bound)
-            .then(self.0.depth.cmp(&other.0.depth))
-            .then(other.0.seq.cmp(&self.0.seq))
-    }
-}
-
 impl SelectionProblem {
     /// The absolute gap that `gap` means at the value `value`: D-optimal, `gap` itself (ln det is
     /// already a log scale: a gap of 1e-6 is a relative 1e-6 in det F); E-optimal, `gap · |value|`
@@ -212,12 +177,33 @@ impl SelectionProblem {
         progress: &dyn Fn(&BranchBoundProgress),
     ) -> Result<BranchBoundReport, OptimizerError> {
         let started = Instant::now();
-        if !(opts.gap.is_finite() && opts.gap >= 0.0) || opts.batch == 0 {
-            return Err(OptimizerError::InvalidInput(format!(
-                "branch and bound needs a finite gap ≥ 0 (got {}) and a batch of at least 1",
-                opts.gap
-            )));
-        }
+        check_options(opts)?;
+        let (incumbent, evaluations) = self.first_incumbent(start)?;
+        let mut tree = SearchTree::new(self, opts, incumbent, evaluations);
+        let stopped = loop {
+            progress(&tree.progress(started));
+            let batch = tree.take_batch();
+            if batch.is_empty() {
+                break None;
+            }
+            // The limits are checked between batches; the first batch (the root) always runs, so
+            // the bound is finite.
+            if let Some(limit) = tree.limit_reached(started) {
+                tree.requeue(batch);
+                break Some(limit);
+            }
+            tree.evaluate_batch(batch)?;
+        };
+        tree.finish(stopped, started)
+    }
+
+    /// The first incumbent: the better of the caller's `start` (checked: an admissible set of
+    /// k candidates) and the swap-improved greedy selection; with the criterion evaluations
+    /// spent.
+    fn first_incumbent(
+        &self,
+        start: Option<&Selection>,
+    ) -> Result<(Option<Selection>, usize), OptimizerError> {
         let mut best: Option<Selection> = None;
         if let Some(s) = start {
             let mut idx = s.indices.clone();
@@ -242,173 +228,17 @@ impl SelectionProblem {
                 best = Some(g);
             }
         }
-        let initial_value = best.as_ref().map_or(f64::NEG_INFINITY, |b| b.value);
-        let mut r = BranchBoundReport {
-            best: Selection {
-                indices: Vec::new(),
-                value: f64::NEG_INFINITY,
-            },
-            bound: f64::INFINITY,
-            gap: f64::INFINITY,
-            proof_tolerance: 0.0,
-            status: ProofStatus::Optimal,
-            root_bound: f64::INFINITY,
-            initial_value,
-            nodes: 0,
-            solver_calls: 0,
-            solver_trouble: 0,
-            pruned_cheap: 0,
-            pruned_relaxation: 0,
-            pruned_queued: 0,
-            screened: 0,
-            leaves: 0,
-            infeasible: 0,
-            branched: 0,
-            open: 0,
-            max_depth: 0,
-            incumbent_updates: 0,
-            evaluations,
-            elapsed_s: 0.0,
-        };
-        let mut queue: BinaryHeap<Queued> = BinaryHeap::new();
-        let mut dive: Option<Node> = Some(Node::root(self.candidates()));
-        let mut seq = 0u64;
-        // Largest bound of a closed node (each was within `tol` of the incumbent of its time).
-        let mut closed = f64::NEG_INFINITY;
-        let value = |b: &Option<Selection>| b.as_ref().map_or(f64::NEG_INFINITY, |s| s.value);
-        let stopped = loop {
-            let inc = value(&best);
-            let tol = self.tolerance(opts.gap, inc);
-            let open_bound = queue
-                .peek()
-                .map(|q| q.0.bound)
-                .into_iter()
-                .chain(dive.as_ref().map(|d| d.bound))
-                .fold(f64::NEG_INFINITY, f64::max);
-            progress(&BranchBoundProgress {
-                nodes: r.nodes,
-                open: queue.len() + usize::from(dive.is_some()),
-                incumbent: inc,
-                bound: inc.max(closed).max(open_bound),
-                elapsed_s: started.elapsed().as_secs_f64(),
-            });
-            let mut batch: Vec<Node> = Vec::with_capacity(opts.batch);
-            if let Some(d) = dive.take() {
-                if d.bound > inc + tol {
-                    batch.push(d);
-                } else {
-                    closed = closed.max(d.bound);
-                    r.pruned_queued += 1;
-                }
-            }
-            while batch.len() < opts.batch {
-                let Some(Queued(n)) = queue.pop() else { break };
-                if n.bound > inc + tol {
-                    batch.push(n);
-                } else {
-                    closed = closed.max(n.bound);
-                    r.pruned_queued += 1;
-                }
-            }
-            if batch.is_empty() {
-                break None;
-            }
-            // The limits are checked between batches; the first batch (the root) always runs, so
-            // the bound is finite.
-            if r.nodes > 0 && opts.time_limit.is_some_and(|t| started.elapsed() >= t) {
-                queue.extend(batch.into_iter().map(Queued));
-                break Some(ProofStatus::TimeLimit);
-            }
-            if r.nodes > 0 && opts.node_limit.is_some_and(|n| r.nodes >= n) {
-                queue.extend(batch.into_iter().map(Queued));
-                break Some(ProofStatus::NodeLimit);
-            }
-            let outcomes: Vec<_> = batch
-                .par_iter()
-                .map(|n| self.evaluate_node(n, inc, tol, opts.screening))
-                .collect();
-            for (slot, (node, ev)) in batch.iter().zip(outcomes).enumerate() {
-                let ev = ev?;
-                r.nodes += 1;
-                closed = closed.max(ev.screened_bound);
-                r.screened += ev.screened.len();
-                r.solver_calls += ev.solver_calls;
-                r.solver_trouble += ev.solver_trouble;
-                r.evaluations += ev.evaluations;
-                r.max_depth = r.max_depth.max(node.depth);
-                match ev.outcome {
-                    Outcome::Infeasible => r.infeasible += 1,
-                    Outcome::Leaf(s) => {
-                        r.leaves += 1;
-                        offer(&mut best, s, &mut r.incumbent_updates);
-                    }
-                    Outcome::Pruned { bound, by_solver } => {
-                        if node.depth == 0 {
-                            r.root_bound = bound;
-                        }
-                        closed = closed.max(bound);
-                        if by_solver {
-                            r.pruned_relaxation += 1;
-                        } else {
-                            r.pruned_cheap += 1;
-                        }
-                    }
-                    Outcome::Branched {
-                        bound,
-                        incumbent,
-                        branch,
-                        dual,
-                    } => {
-                        if node.depth == 0 {
-                            r.root_bound = bound;
-                        }
-                        if let Some(s) = incumbent {
-                            offer(&mut best, s, &mut r.incumbent_updates);
-                        }
-                        let inc = value(&best);
-                        if bound <= inc + self.tolerance(opts.gap, inc) {
-                            closed = closed.max(bound);
-                            r.pruned_relaxation += 1;
-                            continue;
-                        }
-                        r.branched += 1;
-                        let (include, exclude) =
-                            self.children(node, branch, bound, &dual, &ev.screened, &mut seq);
-                        queue.push(Queued(exclude));
-                        match include {
-                            Some(c) if opts.dives && slot == 0 => dive = Some(c),
-                            Some(c) => queue.push(Queued(c)),
-                            None => {}
-                        }
-                    }
-                }
-            }
-        };
-        let best = best.ok_or_else(|| {
-            OptimizerError::Infeasible(format!(
-                "no set of k = {} candidates satisfies the side constraints",
-                self.k
-            ))
-        })?;
-        let open_bound = queue
-            .iter()
-            .map(|q| q.0.bound)
-            .chain(dive.as_ref().map(|d| d.bound))
-            .fold(f64::NEG_INFINITY, f64::max);
-        r.open = queue.len() + usize::from(dive.is_some());
-        r.bound = best.value.max(closed).max(open_bound);
-        r.gap = r.bound - best.value;
-        if r.root_bound == f64::INFINITY {
-            r.root_bound = r.bound;
-        }
-        r.proof_tolerance = self.tolerance(PROOF_GAP, best.value);
-        r.status = match stopped {
-            Some(s) => s,
-            None if r.gap <= r.proof_tolerance => ProofStatus::Optimal,
-            None => ProofStatus::Gap,
-        };
-        r.best = best;
-        r.elapsed_s = started.elapsed().as_secs_f64();
-        Ok(r)
+        Ok((best, evaluations))
     }
+}
+
+/// Options the search cannot run with: a gap that is negative or not finite, an empty batch.
+fn check_options(opts: &BranchBoundOptions) -> Result<(), OptimizerError> {
+    if !(opts.gap.is_finite() && opts.gap >= 0.0) || opts.batch == 0 {
+        return Err(OptimizerError::InvalidInput(format!(
+            "branch and bound needs a finite gap ≥ 0 (got {}) and a batch of at least 1",
+            opts.gap
+        )));
+    }
+    Ok(())
 }

@@ -71,6 +71,41 @@ pub(super) struct Evaluation {
     pub evaluations: usize,
 }
 
+impl Evaluation {
+    /// No work done yet; `Infeasible` until an outcome is set.
+    fn new() -> Evaluation {
+        Evaluation {
+            outcome: Outcome::Infeasible,
+            screened: Vec::new(),
+            screened_bound: f64::NEG_INFINITY,
+            solver_calls: 0,
+            solver_trouble: 0,
+            evaluations: 0,
+        }
+    }
+
+    /// The evaluation ending with `outcome`.
+    fn with(mut self, outcome: Outcome) -> Evaluation {
+        self.outcome = outcome;
+        self
+    }
+}
+
+/// The branching variable: the free site whose relaxed weight is closest to ½ (ties: the larger
+/// weight, then the lower index). `free` is not empty (a node with `free.len() > r ≥ 1`).
+fn branching_site(free: &[usize], z: &[f64]) -> usize {
+    (0..free.len())
+        .max_by(|&p, &q| {
+            let frac = |v: f64| v.min(1.0 - v);
+            frac(z[p])
+                .total_cmp(&frac(z[q]))
+                .then(z[p].total_cmp(&z[q]))
+                .then(free[q].cmp(&free[p]))
+        })
+        .map(|p| free[p])
+        .expect("a node with free.len() > r ≥ 1 has free sites")
+}
+
 pub(super) fn bit(set: &[u64], i: usize) -> bool {
     set[i / 64] >> (i % 64) & 1 == 1
 }
@@ -95,7 +130,8 @@ impl Node {
 
 impl SelectionProblem {
     /// Evaluate `node` against the incumbent value `incumbent` with gap tolerance `tol`
-    /// (`screening`: apply the reduced-cost screening of [`SelectionProblem::screen`]).
+    /// (`screening`: apply the reduced-cost screening of [`SelectionProblem::screen`]), in the
+    /// steps of the module documentation.
     pub(super) fn evaluate_node(
         &self,
         node: &Node,
@@ -103,14 +139,7 @@ impl SelectionProblem {
         tol: f64,
         screening: bool,
     ) -> Result<Evaluation, OptimizerError> {
-        let mut eval = Evaluation {
-            outcome: Outcome::Infeasible,
-            screened: Vec::new(),
-            screened_bound: f64::NEG_INFINITY,
-            solver_calls: 0,
-            solver_trouble: 0,
-            evaluations: 0,
-        };
+        let mut eval = Evaluation::new();
         if !self.admissible(&node.fixed) || node.fixed.len() > self.k {
             return Ok(eval);
         }
@@ -119,32 +148,19 @@ impl SelectionProblem {
             .filter(|&i| !bit(&node.excluded, i) && node.fixed.binary_search(&i).is_err())
             .collect();
         if let Some(outcome) = self.settled(&node.fixed, &free, r) {
-            eval.outcome = outcome;
-            return Ok(eval);
+            return Ok(eval.with(outcome));
         }
         let threshold = incumbent + tol;
-        let sub = Subproblem {
-            fixed: &node.fixed,
-            free: &free,
-            r,
-        };
-        let mut bound = node.bound.min(self.trace_bound(&sub));
-        if let Some(d) = &node.dual {
-            bound = bound.min(self.dual_bound(d, &sub));
-        }
+        let mut bound = self.cheap_bound(node, &free, r);
         if bound <= threshold {
-            eval.outcome = Outcome::Pruned {
-                bound,
-                by_solver: false,
-            };
-            return Ok(eval);
+            let by_solver = false;
+            return Ok(eval.with(Outcome::Pruned { bound, by_solver }));
         }
         // Screen with the parent's dual point before solving: a smaller program.
         if let Some(d) = node.dual.as_ref().filter(|_| screening) {
             self.apply_screen(d, &node.fixed, &mut free, r, threshold, &mut eval);
             if let Some(outcome) = self.settled(&node.fixed, &free, r) {
-                eval.outcome = outcome;
-                return Ok(eval);
+                return Ok(eval.with(outcome));
             }
         }
         let sub = Subproblem {
@@ -177,43 +193,60 @@ impl SelectionProblem {
         if let Some(d) = dual.as_ref().filter(|_| screening) {
             self.apply_screen(d, &node.fixed, &mut free, r, threshold, &mut eval);
             if let Some(outcome) = self.settled(&node.fixed, &free, r) {
-                eval.outcome = outcome;
-                return Ok(eval);
+                return Ok(eval.with(outcome));
             }
         }
+        // The relaxed weights of the sites still free after screening.
         let z: Vec<f64> = z_of
             .iter()
             .filter(|(i, _)| free.binary_search(i).is_ok())
             .map(|&(_, v)| v)
             .collect();
-        let incumbent = self.round_among(&node.fixed, &free, r, &z).map(|s| {
-            let movable: Vec<usize> = s
-                .indices
-                .iter()
-                .filter(|i| node.fixed.binary_search(i).is_err())
-                .copied()
-                .collect();
-            let (s, e) = self.swap_search(&node.fixed, &movable, &free);
-            eval.evaluations = e + 1;
-            s
-        });
-        let branch = (0..free.len())
-            .max_by(|&p, &q| {
-                let frac = |v: f64| v.min(1.0 - v);
-                frac(z[p])
-                    .total_cmp(&frac(z[q]))
-                    .then(z[p].total_cmp(&z[q]))
-                    .then(free[q].cmp(&free[p]))
-            })
-            .map(|p| free[p])
-            .expect("a node with free.len() > r ≥ 1 has free sites");
-        eval.outcome = Outcome::Branched {
+        let incumbent = self.node_incumbent(&node.fixed, &free, r, &z, &mut eval);
+        let branch = branching_site(&free, &z);
+        Ok(eval.with(Outcome::Branched {
             bound,
             incumbent,
             branch,
             dual,
+        }))
+    }
+
+    /// The bounds that need no solve: the parent's, the trace bound and the parent's dual point.
+    fn cheap_bound(&self, node: &Node, free: &[usize], r: usize) -> f64 {
+        let sub = Subproblem {
+            fixed: &node.fixed,
+            free,
+            r,
         };
-        Ok(eval)
+        let mut bound = node.bound.min(self.trace_bound(&sub));
+        if let Some(d) = &node.dual {
+            bound = bound.min(self.dual_bound(d, &sub));
+        }
+        bound
+    }
+
+    /// The top-r rounding of the relaxed weights `z` of the `free` sites, swap-improved inside
+    /// the node (the `fixed` sites stay); `None` when the side constraints stop the rounding.
+    fn node_incumbent(
+        &self,
+        fixed: &[usize],
+        free: &[usize],
+        r: usize,
+        z: &[f64],
+        eval: &mut Evaluation,
+    ) -> Option<Selection> {
+        self.round_among(fixed, free, r, z).map(|s| {
+            let movable: Vec<usize> = s
+                .indices
+                .iter()
+                .filter(|i| fixed.binary_search(i).is_err())
+                .copied()
+                .collect();
+            let (s, e) = self.swap_search(fixed, &movable, free);
+            eval.evaluations = e + 1;
+            s
+        })
     }
 
     /// A node that needs no bound: nothing left to choose, too few free sites, or exactly

@@ -66,10 +66,10 @@ impl SelectionProblem {
             raw.status,
             SolverStatus::Solved | SolverStatus::AlmostSolved
         ) {
-            return Err(OptimizerError::Solver(format!(
-                "clarabel did not solve the relaxation: {:?}",
-                raw.status
-            )));
+            return Err(OptimizerError::Unsolved {
+                what: "the relaxation",
+                status: raw.status,
+            });
         }
         Ok(Relaxation {
             bound: raw.primal.max(raw.dual),
@@ -77,7 +77,7 @@ impl SelectionProblem {
             primal: raw.primal,
             dual: raw.dual,
             iterations: raw.iterations,
-            status: format!("{:?}", raw.status),
+            status: raw.status,
             solve_time_s: started.elapsed().as_secs_f64(),
         })
     }
@@ -88,26 +88,32 @@ impl SelectionProblem {
         &self,
         sub: &Subproblem<'_>,
     ) -> Result<RawRelaxation, OptimizerError> {
+        let program = self.conic_program(sub);
+        let solver = self.solve_program(&program)?;
+        Ok(self.read_solution(&solver, &program, sub.free.len()))
+    }
+
+    /// The conic program of `sub`: the selection rows, the side constraints, then the cones of
+    /// the criterion.
+    fn conic_program(&self, sub: &Subproblem<'_>) -> ConicProgram {
         let m = sub.free.len();
-        let mut a = Triplets::default();
-        let mut b = Vec::new();
-        let mut cones: Vec<SupportedConeT<f64>> = Vec::new();
-        // Σ z = r.
-        for i in 0..m {
-            a.push(0, i, 1.0);
+        let mut program = ConicProgram::default();
+        program.selection_rows(m, sub.r);
+        self.side_constraint_rows(&mut program, sub);
+        // One non-negative cone over the box rows and the side-constraint rows.
+        let nonnegative = program.rows() - 1;
+        program.cones.push(NonnegativeConeT(nonnegative));
+        match self.criterion {
+            SelectionCriterion::LogDet => self.log_det_cones(&mut program, sub),
+            SelectionCriterion::MinEig => self.min_eig_cones(&mut program, sub),
         }
-        b.push(sub.r as f64);
-        cones.push(ZeroConeT(1));
-        // z ≥ 0 (s = z) and z ≤ 1 (s = 1 − z).
-        for i in 0..m {
-            a.push(1 + i, i, -1.0);
-            a.push(1 + m + i, i, 1.0);
-        }
-        b.extend(std::iter::repeat_n(0.0, m));
-        b.extend(std::iter::repeat_n(1.0, m));
-        let mut row = 1 + 2 * m;
-        // Side constraints on the free sites: Σ_{G ∩ free} z ≤ max − |G ∩ fixed| (s = rhs − Σ z).
-        let mut constraint_rows = Vec::new();
+        program
+    }
+
+    /// Side constraints on the free sites: `Σ_{G ∩ free} z ≤ max − |G ∩ fixed|`
+    /// (`s = rhs − Σ z`), one row for every constraint with a free member.
+    fn side_constraint_rows(&self, program: &mut ConicProgram, sub: &Subproblem<'_>) {
+        let m = sub.free.len();
         for (id, c) in self.constraints.iter().enumerate() {
             let members: Vec<usize> = (0..m)
                 .filter(|&p| c.sites.binary_search(&sub.free[p]).is_ok())
@@ -120,114 +126,123 @@ impl SelectionProblem {
                 .iter()
                 .filter(|i| c.sites.binary_search(i).is_ok())
                 .count();
+            let row = program.rows();
             for p in members {
-                a.push(row, p, 1.0);
+                program.a.push(row, p, 1.0);
             }
-            b.push(c.max as f64 - taken as f64);
-            constraint_rows.push((id, row));
-            row += 1;
+            program.b.push(c.max as f64 - taken as f64);
+            program.constraint_rows.push((id, row));
         }
-        cones.push(NonnegativeConeT(row - 1));
-        let n_var;
-        let mut q;
-        let mut psd_rows = Vec::new();
-        match self.criterion {
-            SelectionCriterion::LogDet => {
-                let constant = sub
-                    .fixed
-                    .iter()
-                    .fold(Matrix3::zeros(), |acc, &i| acc + self.summed[i]);
-                // Variables: z (m), L lower-triangular (6: (0,0) (1,0) (1,1) (2,0) (2,1) (2,2)),
-                // u (3).
-                let l_index = |r: usize, c: usize| m + r * (r + 1) / 2 + c;
-                let u_index = |j: usize| m + 6 + j;
-                n_var = m + 9;
-                q = vec![0.0; n_var];
-                for j in 0..3 {
-                    q[u_index(j)] = -1.0;
-                }
-                // svec of M = [[C + X, L], [Lᵀ, Diag(d)]] (6×6, upper triangle by columns,
-                // off-diagonal entries × √2); s = b − A x = svec(M), so A = −coefficients and b
-                // carries C.
-                b.extend(std::iter::repeat_n(0.0, 21));
-                for c in 0..6 {
-                    for r in 0..=c {
-                        let (off, w) = svec(r, c);
-                        let idx = row + off;
-                        if c < 3 {
-                            b[idx] = w * constant[(r, c)];
-                            for (p, &i) in sub.free.iter().enumerate() {
-                                let v = self.summed[i][(r, c)];
-                                if v != 0.0 {
-                                    a.push(idx, p, -w * v);
-                                }
-                            }
-                        } else if r < 3 {
-                            // M[r][c] = L[r][c − 3], non-zero for r ≥ c − 3.
-                            let j = c - 3;
-                            if r >= j {
-                                a.push(idx, l_index(r, j), -w);
-                            }
-                        } else if r == c {
-                            let j = c - 3;
-                            a.push(idx, l_index(j, j), -1.0);
+    }
+
+    /// D-optimal: variables z (m), L lower-triangular (6: (0,0) (1,0) (1,1) (2,0) (2,1) (2,2)),
+    /// u (3); maximise `Σ u_j` with `[[C + X, L], [Lᵀ, Diag(d)]] ⪰ 0` and `(u_j, 1, d_j) ∈ K_exp`.
+    fn log_det_cones(&self, program: &mut ConicProgram, sub: &Subproblem<'_>) {
+        let m = sub.free.len();
+        let constant = sub
+            .fixed
+            .iter()
+            .fold(Matrix3::zeros(), |acc, &i| acc + self.summed[i]);
+        let l_index = |r: usize, c: usize| m + r * (r + 1) / 2 + c;
+        let u_index = |j: usize| m + 6 + j;
+        program.q = vec![0.0; m + 9];
+        for j in 0..3 {
+            program.q[u_index(j)] = -1.0;
+        }
+        // svec of M = [[C + X, L], [Lᵀ, Diag(d)]] (6×6, upper triangle by columns, off-diagonal
+        // entries × √2); s = b − A x = svec(M), so A = −coefficients and b carries C.
+        let row = program.rows();
+        let (a, b) = (&mut program.a, &mut program.b);
+        b.extend(std::iter::repeat_n(0.0, 21));
+        for c in 0..6 {
+            for r in 0..=c {
+                let (off, w) = svec(r, c);
+                let idx = row + off;
+                if c < 3 {
+                    b[idx] = w * constant[(r, c)];
+                    for (p, &i) in sub.free.iter().enumerate() {
+                        let v = self.summed[i][(r, c)];
+                        if v != 0.0 {
+                            a.push(idx, p, -w * v);
                         }
                     }
-                }
-                cones.push(PSDTriangleConeT(6));
-                // The first six svec entries are the C + X block: its dual is the W of the bound.
-                psd_rows.push(row);
-                row += 21;
-                // (u_j, 1, d_j) ∈ K_exp.
-                for j in 0..3 {
-                    a.push(row, u_index(j), -1.0);
-                    b.push(0.0);
-                    b.push(1.0);
-                    a.push(row + 2, l_index(j, j), -1.0);
-                    b.push(0.0);
-                    cones.push(ExponentialConeT());
-                    row += 3;
-                }
-            }
-            SelectionCriterion::MinEig => {
-                // Variables: z (m), t. s = svec(C_e + Σ z A^e − t I) for every epoch.
-                let t_index = m;
-                n_var = m + 1;
-                q = vec![0.0; n_var];
-                q[t_index] = -1.0;
-                for e in 0..self.blocks[0].len() {
-                    let constant = sub
-                        .fixed
-                        .iter()
-                        .fold(Matrix3::zeros(), |acc, &i| acc + self.blocks[i][e]);
-                    for c in 0..3 {
-                        for r in 0..=c {
-                            let (off, w) = svec(r, c);
-                            let idx = row + off;
-                            for (p, &i) in sub.free.iter().enumerate() {
-                                let v = self.blocks[i][e][(r, c)];
-                                if v != 0.0 {
-                                    a.push(idx, p, -w * v);
-                                }
-                            }
-                            if r == c {
-                                a.push(idx, t_index, 1.0);
-                            }
-                            b.push(w * constant[(r, c)]);
-                        }
+                } else if r < 3 {
+                    // M[r][c] = L[r][c − 3], non-zero for r ≥ c − 3.
+                    let j = c - 3;
+                    if r >= j {
+                        a.push(idx, l_index(r, j), -w);
                     }
-                    // b above was pushed in svec order (c outer, r inner), as the rows are.
-                    cones.push(PSDTriangleConeT(3));
-                    psd_rows.push(row);
-                    row += 6;
+                } else if r == c {
+                    let j = c - 3;
+                    a.push(idx, l_index(j, j), -1.0);
                 }
             }
         }
-        let a_mat = CscMatrix::new_from_triplets(row, n_var, a.rows, a.cols, a.vals);
+        program.cones.push(PSDTriangleConeT(6));
+        // The first six svec entries are the C + X block: its dual is the W of the bound.
+        program.psd_rows.push(row);
+        // (u_j, 1, d_j) ∈ K_exp.
+        for j in 0..3 {
+            let row = program.rows();
+            program.a.push(row, u_index(j), -1.0);
+            program.b.push(0.0);
+            program.b.push(1.0);
+            program.a.push(row + 2, l_index(j, j), -1.0);
+            program.b.push(0.0);
+            program.cones.push(ExponentialConeT());
+        }
+    }
+
+    /// E-optimal: variables z (m), t; maximise t with `s = svec(C_e + Σ z A^e − t I) ⪰ 0` for
+    /// every epoch e.
+    fn min_eig_cones(&self, program: &mut ConicProgram, sub: &Subproblem<'_>) {
+        let m = sub.free.len();
+        let t_index = m;
+        program.q = vec![0.0; m + 1];
+        program.q[t_index] = -1.0;
+        for e in 0..self.blocks[0].len() {
+            let constant = sub
+                .fixed
+                .iter()
+                .fold(Matrix3::zeros(), |acc, &i| acc + self.blocks[i][e]);
+            let row = program.rows();
+            for c in 0..3 {
+                for r in 0..=c {
+                    let (off, w) = svec(r, c);
+                    let idx = row + off;
+                    for (p, &i) in sub.free.iter().enumerate() {
+                        let v = self.blocks[i][e][(r, c)];
+                        if v != 0.0 {
+                            program.a.push(idx, p, -w * v);
+                        }
+                    }
+                    if r == c {
+                        program.a.push(idx, t_index, 1.0);
+                    }
+                    // b is pushed in svec order (c outer, r inner), as the rows are.
+                    program.b.push(w * constant[(r, c)]);
+                }
+            }
+            program.cones.push(PSDTriangleConeT(3));
+            program.psd_rows.push(row);
+        }
+    }
+
+    /// clarabel's defaults first; on a numerical failure (e.g. `InsufficientProgress` on the
+    /// 0.5° grid with k = 4, where the default full steps stall), shorter steps. Returns the
+    /// last attempt, solved or not.
+    fn solve_program(&self, program: &ConicProgram) -> Result<DefaultSolver<f64>, OptimizerError> {
+        let n_var = program.q.len();
+        let t = &program.a;
+        let a_mat = CscMatrix::new_from_triplets(
+            program.rows(),
+            n_var,
+            t.rows.clone(),
+            t.cols.clone(),
+            t.vals.clone(),
+        );
         let p = CscMatrix::<f64>::zeros((n_var, n_var));
-        // clarabel's defaults first; on a numerical failure (e.g. `InsufficientProgress` on the
-        // 0.5° grid with k = 4, where the default full steps stall), shorter steps.
-        let mut solver = None;
+        let mut last = None;
         for step in MAX_STEP_FRACTIONS {
             let settings = DefaultSettings::<f64> {
                 verbose: self.solver_verbose,
@@ -235,19 +250,33 @@ impl SelectionProblem {
                 max_step_fraction: step,
                 ..DefaultSettings::default()
             };
-            let mut s = DefaultSolver::new(&p, &q, &a_mat, &b, &cones, settings)
-                .map_err(|e| OptimizerError::Solver(format!("clarabel setup: {e:?}")))?;
-            s.solve();
+            let mut solver =
+                DefaultSolver::new(&p, &program.q, &a_mat, &program.b, &program.cones, settings)
+                    .map_err(|source| OptimizerError::ClarabelSetup {
+                        what: "the relaxation",
+                        source,
+                    })?;
+            solver.solve();
             let solved = matches!(
-                s.solution.status,
+                solver.solution.status,
                 SolverStatus::Solved | SolverStatus::AlmostSolved
             );
-            solver = Some(s);
             if solved {
-                break;
+                return Ok(solver);
             }
+            last = Some(solver);
         }
-        let solver = solver.expect("at least one attempt");
+        Ok(last.expect("MAX_STEP_FRACTIONS is not empty"))
+    }
+
+    /// The weights of the `m` free sites, the objectives and the duals of `program`'s PSD
+    /// blocks and side-constraint rows from clarabel's answer.
+    fn read_solution(
+        &self,
+        solver: &DefaultSolver<f64>,
+        program: &ConicProgram,
+        m: usize,
+    ) -> RawRelaxation {
         let sol = &solver.solution;
         let smat = |r0: usize| {
             let mut y = Matrix3::zeros();
@@ -261,18 +290,55 @@ impl SelectionProblem {
             y
         };
         let mut row_duals = vec![0.0; self.constraints.len()];
-        for &(id, r) in &constraint_rows {
+        for &(id, r) in &program.constraint_rows {
             row_duals[id] = sol.z[r];
         }
-        Ok(RawRelaxation {
+        RawRelaxation {
             z: sol.x[..m].iter().map(|v| v.clamp(0.0, 1.0)).collect(),
             primal: -solver.info.cost_primal,
             dual: -solver.info.cost_dual,
             status: sol.status,
             iterations: solver.info.iterations,
-            psd_duals: psd_rows.iter().map(|&r0| smat(r0)).collect(),
+            psd_duals: program.psd_rows.iter().map(|&r0| smat(r0)).collect(),
             row_duals,
-        })
+        }
+    }
+}
+
+/// A relaxation in clarabel's form: minimise `qᵀx` subject to `s = b − A x` in `cones` (rows in
+/// cone order); the answer's objective is `−qᵀx`.
+#[derive(Default)]
+struct ConicProgram {
+    a: Triplets,
+    b: Vec<f64>,
+    cones: Vec<SupportedConeT<f64>>,
+    q: Vec<f64>,
+    /// First row of each PSD cone's information block.
+    psd_rows: Vec<usize>,
+    /// `(constraint id, row)` of the side constraints that have a row.
+    constraint_rows: Vec<(usize, usize)>,
+}
+
+impl ConicProgram {
+    /// Rows so far.
+    fn rows(&self) -> usize {
+        self.b.len()
+    }
+
+    /// `Σ z = r` (a zero cone), then `z ≥ 0` (`s = z`) and `z ≤ 1` (`s = 1 − z`), the first
+    /// rows of the non-negative cone.
+    fn selection_rows(&mut self, m: usize, r: usize) {
+        for i in 0..m {
+            self.a.push(0, i, 1.0);
+        }
+        self.b.push(r as f64);
+        self.cones.push(ZeroConeT(1));
+        for i in 0..m {
+            self.a.push(1 + i, i, -1.0);
+            self.a.push(1 + m + i, i, 1.0);
+        }
+        self.b.extend(std::iter::repeat_n(0.0, m));
+        self.b.extend(std::iter::repeat_n(1.0, m));
     }
 }
 

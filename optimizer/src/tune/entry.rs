@@ -156,8 +156,7 @@ impl<'a> EntryTuning<'a> {
     ) -> Result<Vec<FilterReport>, OptimizerError> {
         let (q, noise) = self.tuning(theta);
         let onboard = Arc::new(runs.scenario().onboard.with_tuning(&q, &noise));
-        runs.evaluate(&onboard, &self.kinds)
-            .map_err(|e| OptimizerError::InvalidInput(e.to_string()))
+        Ok(runs.evaluate(&onboard, &self.kinds)?)
     }
 
     /// The scenario configuration `base` with the tuning θ written in: `filter.q_diag` scaled and

@@ -126,16 +126,15 @@ struct Cost<'a, P> {
     progress: &'a (dyn Fn(usize, usize, f64) + Sync),
 }
 
-impl<P: TuningProblem> CostFunction for Cost<'_, P> {
-    type Param = Vec<f64>;
-    type Output = f64;
-
-    fn cost(&self, theta: &Vec<f64>) -> Result<f64, ArgminError> {
+impl<P: TuningProblem> Cost<'_, P> {
+    /// The objective at `theta`, counted against the budget. A failed evaluation is kept (the
+    /// first one is returned by [`tune`]) and costs as much as a point past the budget.
+    fn evaluate(&self, theta: &[f64]) -> f64 {
         let done = self.count.fetch_add(1, Ordering::Relaxed) + 1;
         if done > self.budget {
             // Past the budget every point is worse than the best one found: the simplex stops
             // moving and the executor's iteration cap ends the search.
-            return Ok(f64::MAX / 4.0);
+            return f64::MAX / 4.0;
         }
         let outside: f64 = theta.iter().map(|t| (t.abs() - THETA_BOUND).max(0.0)).sum();
         let clamped: Vec<f64> = theta
@@ -148,7 +147,7 @@ impl<P: TuningProblem> CostFunction for Cost<'_, P> {
                 if let Ok(mut slot) = self.error.lock() {
                     slot.get_or_insert(e);
                 }
-                return Ok(f64::MAX / 4.0);
+                return f64::MAX / 4.0;
             }
         };
         let j = objective(&m, self.objective) + 10.0 * outside;
@@ -164,7 +163,27 @@ impl<P: TuningProblem> CostFunction for Cost<'_, P> {
             .and_then(|b| b.as_ref().map(|b| b.0))
             .unwrap_or(j);
         (self.progress)(done, self.budget, best_j);
-        Ok(j)
+        j
+    }
+}
+
+/// The objective as argmin's cost function, borrowing the [`Cost`] so that its best point, count
+/// and first error stay with the caller after the run.
+struct Borrowed<'c, 'a, P>(&'c Cost<'a, P>);
+
+impl<P: TuningProblem> CostFunction for Borrowed<'_, '_, P> {
+    type Param = Vec<f64>;
+    type Output = f64;
+
+    fn cost(&self, theta: &Vec<f64>) -> Result<f64, ArgminError> {
+        Ok(self.0.evaluate(theta))
+    }
+}
+
+fn nelder_mead_error(source: ArgminError) -> OptimizerError {
+    OptimizerError::Argmin {
+        what: "Nelder-Mead",
+        source,
     }
 }
 
@@ -211,9 +230,7 @@ pub fn tune(
     let mut centre = 0.0;
     let mut best_j = objective(&initial, opts.objective);
     for c in scan {
-        let j = cost
-            .cost(&vec![c; n])
-            .map_err(|e| OptimizerError::Solver(e.to_string()))?;
+        let j = cost.evaluate(&vec![c; n]);
         if j < best_j {
             (best_j, centre) = (j, c);
         }
@@ -227,15 +244,11 @@ pub fn tune(
     }
     let nm = NelderMead::new(simplex)
         .with_sd_tolerance(1e-6)
-        .map_err(|e| OptimizerError::Solver(format!("Nelder-Mead: {e}")))?;
-    let res = Executor::new(cost, nm)
+        .map_err(nelder_mead_error)?;
+    Executor::new(Borrowed(&cost), nm)
         .configure(|st| st.max_iters(opts.max_evaluations as u64))
         .run()
-        .map_err(|e| OptimizerError::Solver(format!("Nelder-Mead: {e}")))?;
-    let cost = res
-        .problem
-        .problem
-        .ok_or_else(|| OptimizerError::Solver("Nelder-Mead returned without its problem".into()))?;
+        .map_err(nelder_mead_error)?;
     if let Some(e) = cost.error.into_inner().ok().flatten() {
         return Err(e);
     }
@@ -245,7 +258,7 @@ pub fn tune(
         .into_inner()
         .ok()
         .flatten()
-        .ok_or_else(|| OptimizerError::Solver("tuning found no point".into()))?;
+        .ok_or(OptimizerError::NoPoint { what: "tuning" })?;
     Ok(TuneResult {
         theta,
         cost: j,

@@ -1,0 +1,180 @@
+//! What a set of ground sites is worth: δ(t) and the FIM along the entry, the objective's value,
+//! its cost with the visibility penalty, and the search over sites.
+
+use super::*;
+
+impl GroundProblem {
+    /// The analysis points with the beacons placed at `sites` (availability by eq. 52).
+    pub fn points_with(&self, sites: &[Site]) -> Vec<AnalysisPoint> {
+        let radius = self.trajectory.planet.radius;
+        let w = self.trajectory.omega;
+        let fixed: Vec<[f64; 3]> = sites.iter().map(|s| s.fixed_position(radius)).collect();
+        self.points
+            .iter()
+            .zip(&self.fixed)
+            .map(|(p, v)| {
+                let mut q = p.clone();
+                q.beacons = fixed
+                    .iter()
+                    .map(|b| {
+                        let r = rotate_z(b, w * p.t);
+                        (r, [-w * r[1], w * r[0], 0.0])
+                    })
+                    .collect();
+                q.available = fixed
+                    .iter()
+                    .map(|b| ground_visibility_margin(b, v) > 0.0)
+                    .collect();
+                q
+            })
+            .collect()
+    }
+
+    /// δ(t) for beacons at `sites` (the same count as the problem's), by `method`.
+    pub fn delta_series(
+        &self,
+        sites: &[Site],
+        method: Method,
+    ) -> Result<DegreeSeries, OptimizerError> {
+        self.check_count(sites)?;
+        let points = self.points_with(sites);
+        Ok(degree_series(
+            &self.scenario,
+            &points,
+            &self.channels,
+            method,
+            &self.scaling,
+        )?)
+    }
+
+    /// Range FIM of the vehicle position at each sample [m⁻²] (visible beacons only).
+    pub fn fim_series(&self, sites: &[Site]) -> Vec<Matrix3<f64>> {
+        let radius = self.trajectory.planet.radius;
+        let s2 = self.noise.range_sigma_m.powi(-2);
+        let fixed: Vec<[f64; 3]> = sites.iter().map(|s| s.fixed_position(radius)).collect();
+        self.fixed
+            .iter()
+            .map(|v| {
+                fixed.iter().fold(Matrix3::zeros(), |acc, b| {
+                    if ground_visibility_margin(b, v) <= 0.0 {
+                        return acc;
+                    }
+                    let d = sub(v, b);
+                    let u = Vector3::from(d) / norm(&d);
+                    acc + u * u.transpose() * s2
+                })
+            })
+            .collect()
+    }
+
+    fn check_count(&self, sites: &[Site]) -> Result<(), OptimizerError> {
+        if sites.len() != self.count {
+            return Err(OptimizerError::InvalidInput(format!(
+                "{} site(s) given for a {}-beacon problem",
+                sites.len(),
+                self.count
+            )));
+        }
+        Ok(())
+    }
+
+    /// Objective value of feasible `sites` (no feasibility test).
+    fn value(&self, sites: &[Site]) -> Result<f64, OptimizerError> {
+        Ok(match self.objective {
+            GroundObjective::MinDelta { method, scaled } => self
+                .delta_series(sites, method)?
+                .summary(scaled)
+                .map_or(0.0, |s| s.min),
+            GroundObjective::LogDet => {
+                let f = self.fim_series(sites);
+                f.iter()
+                    .zip(&self.trajectory.weights)
+                    .map(|(m, w)| w * m.determinant().max(1e-300).ln())
+                    .sum()
+            }
+            GroundObjective::MinEig => self
+                .fim_series(sites)
+                .iter()
+                .map(|m| m.symmetric_eigenvalues().min().max(0.0))
+                .fold(f64::INFINITY, f64::min),
+            GroundObjective::Pcrlb => self.final_position_bound(sites)?,
+        })
+    }
+
+    /// Final position PCRLB \[m\] of the working scenario with beacons at `sites` (one truth
+    /// run: seed 1, run 0, the first run of a `trade --seed 1`).
+    pub fn final_position_bound(&self, sites: &[Site]) -> Result<f64, OptimizerError> {
+        let mut cfg = self.scenario.config.clone();
+        cfg.beacons = surface_beacons(sites, &self.noise);
+        final_position_bound_of(cfg)
+    }
+
+    fn cost_of_value(&self, v: f64) -> f64 {
+        match self.objective {
+            GroundObjective::MinDelta { .. } | GroundObjective::MinEig => -v.max(1e-300).log10(),
+            GroundObjective::LogDet => -v / self.trajectory.duration(),
+            GroundObjective::Pcrlb => v.max(1e-300).log10(),
+        }
+    }
+
+    /// Evaluate `sites`: elevations, feasibility, objective and search cost.
+    pub fn evaluate(&self, sites: &[Site]) -> Result<GroundEvaluation, OptimizerError> {
+        self.check_count(sites)?;
+        let min_elevation_rad: Vec<f64> = sites.iter().map(|s| self.min_elevation_of(s)).collect();
+        let shortfall: f64 = min_elevation_rad
+            .iter()
+            .map(|e| (self.min_elevation + 1e-9 - e).max(0.0))
+            .sum();
+        let feasible = shortfall == 0.0;
+        if !feasible {
+            return Ok(GroundEvaluation {
+                value: None,
+                cost: INFEASIBLE_COST + PENALTY_PER_RAD * shortfall,
+                min_elevation_rad,
+                feasible,
+            });
+        }
+        let v = self.value(sites)?;
+        Ok(GroundEvaluation {
+            value: Some(v),
+            cost: self.cost_of_value(v),
+            min_elevation_rad,
+            feasible,
+        })
+    }
+
+    /// The search cost at `x = [lat₁, lon₁, …]` (finite; errors become the infeasible cost).
+    pub fn cost(&self, x: &[f64]) -> f64 {
+        match self.evaluate(&self.sites_from(x)) {
+            Ok(e) => e.cost,
+            Err(_) => 2.0 * INFEASIBLE_COST,
+        }
+    }
+
+    /// Seeded particle swarm + Nelder–Mead search (see [`crate::search`]).
+    pub fn optimize(
+        &self,
+        opts: &SearchOptions,
+        progress: Progress<'_>,
+    ) -> Result<GroundSolution, OptimizerError> {
+        let started = Instant::now();
+        let (lower, upper) = self.bounds()?;
+        let cost = |x: &[f64]| self.cost(x);
+        let search = minimize(&cost, &lower, &upper, opts, progress)?;
+        let sites: Vec<Site> = self
+            .sites_from(&search.x)
+            .iter()
+            .map(Site::canonical)
+            .collect();
+        let evaluation = self.evaluate(&sites)?;
+        if !evaluation.feasible {
+            return Err(self.no_site_error());
+        }
+        Ok(GroundSolution {
+            sites,
+            evaluation,
+            search,
+            elapsed_s: started.elapsed().as_secs_f64(),
+        })
+    }
+}

@@ -22,6 +22,7 @@ mod provenance;
 mod replay;
 mod report;
 mod simulate;
+mod threads;
 mod trade;
 mod train;
 mod tune;

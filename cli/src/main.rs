@@ -104,12 +104,7 @@ enum ScenarioAction {
 }
 
 fn main() {
-    // Rust ignores SIGPIPE, so printing into a closed pipe (`entrynav simulate … | head -1`)
-    // would panic; restore the default so the process ends quietly, as other Unix tools do.
-    // SAFETY: called once at start-up, before any thread exists.
-    unsafe {
-        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
-    }
+    interrupt::die_on_broken_pipe();
     let cli = Cli::parse();
     if let Err(e) = run(cli) {
         let code = exit::code(&e);

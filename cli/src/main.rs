@@ -20,12 +20,16 @@ mod observe_pcrlb;
 mod optimize;
 mod plot;
 mod plots;
+mod progress;
 mod provenance;
 mod replay;
 mod report;
 mod simulate;
 mod threads;
 mod trade;
+mod trade_args;
+mod trade_files;
+mod trade_tables;
 mod train;
 mod tune;
 

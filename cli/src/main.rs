@@ -33,7 +33,7 @@ mod trade_tables;
 mod train;
 mod tune;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use entrynav_loader as load;
 
@@ -141,7 +141,10 @@ fn run(cli: Cli) -> Result<()> {
             } else if let Some(text) = entrynav::scenario::builtin_toml(name.trim()) {
                 print!("{text}");
             } else {
-                print!("{}", std::fs::read_to_string(name.trim())?);
+                let path = name.trim();
+                let text = std::fs::read_to_string(path)
+                    .with_context(|| format!("cannot read scenario file {path}"))?;
+                print!("{text}");
             }
             Ok(())
         }

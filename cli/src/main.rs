@@ -79,6 +79,11 @@ enum Command {
     /// the run completed but its final NEES exceeds 100 × its degrees of freedom (confidently
     /// wrong). `failures` lists run index, time and reason; `--replay-run K --csv-dir DIR`
     /// writes run K's full series.
+    ///
+    /// Progress is a bar on a terminal; with the environment variable `ENTRYNAV_PROGRESS=lines`
+    /// (and no `--quiet`) it is one `progress: DONE/TOTAL runs` line on standard error per chunk
+    /// of finished runs, for a script that reads it through a pipe (e.g. to know that runs have
+    /// finished before it sends Ctrl-C).
     Trade(trade::TradeArgs),
     /// Tune a scenario's process noise (and optionally the assumed measurement noise) until its
     /// filters are consistent (ANEES/dof and ANIS/dof near 1, no divergence), validate on fresh

@@ -61,7 +61,7 @@ pub struct Variations {
     /// Last beacon silent from `fault_time_s` on.
     #[serde(default)]
     pub beacon_fault: Vec<bool>,
-    /// Fault time [s] (default: 2/3 of the duration).
+    /// Fault time (s) (default: 2/3 of the duration).
     #[serde(default)]
     pub fault_time_s: Option<f64>,
     /// Density perturbation scale.
@@ -88,11 +88,11 @@ pub struct CellRow {
     pub filter: String,
     /// Refused (does not fit) — reason.
     pub refused: Option<String>,
-    /// Position RMSE at the final epoch [m].
+    /// Position RMSE at the final epoch (m).
     pub pos_rmse_final_m: Option<f64>,
     /// Velocity RMSE at the final epoch [m/s].
     pub vel_rmse_final_mps: Option<f64>,
-    /// Time-averaged position RMSE [m].
+    /// Time-averaged position RMSE (m).
     pub pos_rmse_avg_m: Option<f64>,
     /// ANEES.
     pub anees: Option<f64>,
@@ -100,7 +100,7 @@ pub struct CellRow {
     pub min_within_3sigma: Option<f64>,
     /// Diverged runs.
     pub diverged: Option<u64>,
-    /// CPU per step [µs] (Markdown and CSV; in the JSON it is under `timing`, the one block
+    /// CPU per step (µs) (Markdown and CSV; in the JSON it is under `timing`, the one block
     /// that is not reproducible).
     #[serde(skip)]
     pub us_per_step: Option<f64>,

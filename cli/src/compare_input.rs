@@ -1,7 +1,7 @@
 //! The part of a trade summary (`trade --json`) that `trade compare` reads, and reading it.
 
 use crate::exit::Usage;
-use anyhow::Result;
+use anyhow::{Context, Result};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -55,7 +55,8 @@ pub(crate) struct FilterIn {
 /// Read the trade summary `path`; anything else is a usage error (exit code 2) naming it.
 pub(crate) fn read(path: &Path) -> Result<SummaryIn> {
     let usage = |m: String| Usage(format!("{}: {m}", path.display()));
-    let text = std::fs::read_to_string(path).map_err(|e| usage(format!("cannot read: {e}")))?;
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("{}: cannot read", path.display()))?;
     let summary = serde_json::from_str(&text).map_err(|e| {
         usage(format!(
             "not a trade summary written by `trade --json` ({e})"

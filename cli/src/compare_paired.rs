@@ -9,7 +9,7 @@
 
 use crate::compare_stats::{Difference, Estimate};
 use crate::exit::Usage;
-use anyhow::Result;
+use anyhow::{Context, Result};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -25,33 +25,51 @@ impl FinalErrors {
     /// Read `path`, a `{scenario}_final_errors.csv` written by `trade --csv-dir`. Failed runs
     /// (numerical stops) are left out, as in the summary's final RMSE.
     pub fn read(path: &Path) -> Result<FinalErrors> {
-        let usage = |m: String| Usage(format!("--final-errors {}: {m}", path.display()));
-        let text = std::fs::read_to_string(path).map_err(|e| usage(format!("cannot read: {e}")))?;
-        let mut lines = text.lines();
-        let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
-        if header.len() < 4 || header[..3] != ["run", "filter", "status"] {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("--final-errors {}: cannot read", path.display()))?;
+        Self::parse(&text, &|m| {
+            Usage(format!("--final-errors {}: {m}", path.display()))
+        })
+    }
+
+    /// Parse the text of a final-errors CSV; `usage` turns what is wrong (and where) into the
+    /// error.
+    fn parse(text: &str, usage: &dyn Fn(String) -> Usage) -> Result<FinalErrors> {
+        let mut records = csv::ReaderBuilder::new()
+            .has_headers(false)
+            .flexible(true)
+            .from_reader(text.as_bytes())
+            .into_records();
+        let header = records.next().and_then(Result::ok).unwrap_or_default();
+        if header.len() < 4 || header.iter().take(3).ne(["run", "filter", "status"]) {
             return Err(usage(
                 "not a final-errors CSV (header run,filter,status,…) from `trade --csv-dir`".into(),
             )
             .into());
         }
-        let names: Vec<String> = header[3..]
+        let names: Vec<String> = header
             .iter()
+            .skip(3)
             .map(|h| h.strip_prefix("err_").unwrap_or(h).to_string())
             .collect();
         let mut filters: BTreeMap<String, Columns> = BTreeMap::new();
-        for (i, line) in lines.enumerate() {
-            let cells: Vec<&str> = line.split(',').collect();
-            let bad = || usage(format!("line {}: malformed row", i + 2));
+        for (i, record) in records.enumerate() {
+            let line = record
+                .as_ref()
+                .ok()
+                .and_then(|r| r.position())
+                .map_or(i as u64 + 2, |p| p.line());
+            let bad = || usage(format!("line {line}: malformed row"));
+            let cells = record.map_err(|_| bad())?;
             if cells.len() != header.len() {
                 return Err(bad().into());
             }
             let run: u64 = cells[0].parse().map_err(|_| bad())?;
-            if cells[2] == "failed" {
+            if &cells[2] == "failed" {
                 continue;
             }
             let columns = filters.entry(cells[1].to_string()).or_default();
-            for (name, cell) in names.iter().zip(&cells[3..]) {
+            for (name, cell) in names.iter().zip(cells.iter().skip(3)) {
                 if name == "nees" || cell.is_empty() {
                     continue;
                 }
@@ -145,6 +163,34 @@ fn paired(state: &str, pairs: &[(f64, f64)]) -> Option<Paired> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn parse(text: &str) -> Result<FinalErrors> {
+        FinalErrors::parse(text, &|m| Usage(m))
+    }
+
+    #[test]
+    fn a_quoted_filter_name_with_a_comma_reads_back_whole() {
+        // A name with a comma is quoted by the CSV writer; splitting lines at commas would see a
+        // row one cell too long and refuse the file.
+        let text = "run,filter,status,err_r_m,pos_m,vel_mps,nees\n\
+                    0,\"ekf, tuned\",ok,1.5,2,0.5,6\n\
+                    1,\"ekf, tuned\",failed,,,,\n\
+                    2,\"ekf, tuned\",diverged,-3,4,1,900\n";
+        let f = parse(text).unwrap();
+        let columns = &f.filters["ekf, tuned"];
+        assert_eq!(columns["r_m"], BTreeMap::from([(0, 1.5), (2, -3.0)]));
+        assert_eq!(columns["pos_m"], BTreeMap::from([(0, 2.0), (2, 4.0)]));
+        assert!(!columns.contains_key("nees"));
+    }
+
+    #[test]
+    fn a_short_row_or_a_foreign_header_is_refused_naming_the_line() {
+        let short = "run,filter,status,err_r_m\n0,ekf,ok,1\n1,ekf,ok\n";
+        let e = parse(short).err().unwrap().to_string();
+        assert_eq!(e, "line 3: malformed row");
+        let e = parse("t_s,rmse_r_m\n0,1\n").err().unwrap().to_string();
+        assert!(e.contains("not a final-errors CSV"), "{e}");
+    }
 
     #[test]
     fn identical_runs_differ_by_exactly_zero_with_a_zero_width_interval() {

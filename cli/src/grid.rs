@@ -16,6 +16,7 @@
 //! beacon_files = ["opt.toml"]    # take the [[beacons]] of these scenario files (e.g. optimizer output)
 //! ```
 
+use crate::grid_files::write_outputs;
 use anyhow::{Context, Result, bail};
 use entrynav::atmosphere::PerturbationConfig;
 use entrynav::estimation::nav::FilterKind;
@@ -24,7 +25,6 @@ use entrynav::scenario::ScenarioConfig;
 use entrynav::sim::{McOptions, TradeReport, run_trade};
 use entrynav_loader as load;
 use serde::{Deserialize, Serialize};
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// A grid file.
@@ -61,7 +61,7 @@ pub struct Variations {
     /// Last beacon silent from `fault_time_s` on.
     #[serde(default)]
     pub beacon_fault: Vec<bool>,
-    /// Fault time [s] (default: 2/3 of the duration).
+    /// Fault time (s) (default: 2/3 of the duration).
     #[serde(default)]
     pub fault_time_s: Option<f64>,
     /// Density perturbation scale.
@@ -88,11 +88,11 @@ pub struct CellRow {
     pub filter: String,
     /// Refused (does not fit) — reason.
     pub refused: Option<String>,
-    /// Position RMSE at the final epoch [m].
+    /// Position RMSE at the final epoch (m).
     pub pos_rmse_final_m: Option<f64>,
     /// Velocity RMSE at the final epoch [m/s].
     pub vel_rmse_final_mps: Option<f64>,
-    /// Time-averaged position RMSE [m].
+    /// Time-averaged position RMSE (m).
     pub pos_rmse_avg_m: Option<f64>,
     /// ANEES.
     pub anees: Option<f64>,
@@ -100,7 +100,7 @@ pub struct CellRow {
     pub min_within_3sigma: Option<f64>,
     /// Diverged runs.
     pub diverged: Option<u64>,
-    /// CPU per step [µs] (Markdown and CSV; in the JSON it is under `timing`, the one block
+    /// CPU per step (µs) (Markdown and CSV; in the JSON it is under `timing`, the one block
     /// that is not reproducible).
     #[serde(skip)]
     pub us_per_step: Option<f64>,
@@ -369,120 +369,5 @@ pub fn run(grid_path: &Path, out_dir: &Path, quiet: bool, html: Option<&Path>) -
         cells.len(),
         out_dir.display()
     );
-    Ok(())
-}
-
-fn o(v: Option<f64>) -> String {
-    v.map(|x| format!("{x:.4}")).unwrap_or_else(|| "–".into())
-}
-
-fn write_outputs(
-    grid: &GridFile,
-    out: &Path,
-    rows: &[CellRow],
-    reports: &[(String, String, TradeReport)],
-    (cells_total, html): (usize, Option<&Path>),
-) -> Result<()> {
-    let provenance = crate::provenance::Provenance::new(&[]);
-    let md_path = out.join(format!("{}.md", grid.name));
-    let mut md = std::io::BufWriter::new(std::fs::File::create(&md_path)?);
-    writeln!(
-        md,
-        "# Grid `{}`\n\n{} runs per cell, seed {}, filters {}.\n",
-        grid.name,
-        grid.runs,
-        grid.seed,
-        grid.filters.join(", ")
-    )?;
-    writeln!(
-        md,
-        "| cell | scenario | variation | filter | pos RMSE final [m] | vel RMSE final [m/s] | pos RMSE avg [m] | ANEES | min in-3σ | diverged | µs/step | min δ (scaled) |"
-    )?;
-    writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|---|")?;
-    for r in rows {
-        match &r.refused {
-            Some(why) => writeln!(
-                md,
-                "| {} | {} | {} | {} | refused: {} ||||||||",
-                r.cell, r.scenario, r.variation, r.filter, why
-            )?,
-            None => writeln!(
-                md,
-                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-                r.cell,
-                r.scenario,
-                r.variation,
-                r.filter,
-                o(r.pos_rmse_final_m),
-                o(r.vel_rmse_final_mps),
-                o(r.pos_rmse_avg_m),
-                o(r.anees),
-                o(r.min_within_3sigma),
-                r.diverged.map(|d| d.to_string()).unwrap_or_default(),
-                o(r.us_per_step),
-                r.min_delta_scaled
-                    .map(|d| format!("{d:.3e}"))
-                    .unwrap_or_else(|| "–".into())
-            )?,
-        }
-    }
-    md.flush()?;
-    std::fs::write(
-        out.join(format!("{}.json", grid.name)),
-        serde_json::to_string_pretty(&serde_json::json!({
-            "provenance": &provenance,
-            "grid": grid.name, "runs": grid.runs, "seed": grid.seed, "cells": rows,
-            "reports": reports.iter().map(|(c, fp, r)| serde_json::json!({"cell": c, "scenario_fingerprint": fp, "report": r})).collect::<Vec<_>>(),
-            "timing": {
-                "us_per_step": rows.iter().filter(|r| r.us_per_step.is_some()).map(|r| serde_json::json!({"cell": r.cell, "filter": r.filter, "us_per_step": r.us_per_step})).collect::<Vec<_>>(),
-            },
-        }))? + "\n",
-    )?;
-    let mut csv = std::io::BufWriter::new(std::fs::File::create(
-        out.join(format!("{}.csv", grid.name)),
-    )?);
-    writeln!(
-        csv,
-        "cell,scenario,variation,filter,refused,pos_rmse_final_m,vel_rmse_final_mps,pos_rmse_avg_m,anees,min_within_3sigma,diverged,us_per_step,min_delta_scaled"
-    )?;
-    let c = |v: Option<f64>| v.map(|x| x.to_string()).unwrap_or_default();
-    for r in rows {
-        writeln!(
-            csv,
-            "{},{},\"{}\",{},\"{}\",{},{},{},{},{},{},{},{}",
-            r.cell,
-            r.scenario,
-            r.variation,
-            r.filter,
-            r.refused.clone().unwrap_or_default().replace('"', "'"),
-            c(r.pos_rmse_final_m),
-            c(r.vel_rmse_final_mps),
-            c(r.pos_rmse_avg_m),
-            c(r.anees),
-            c(r.min_within_3sigma),
-            r.diverged.map(|d| d.to_string()).unwrap_or_default(),
-            c(r.us_per_step),
-            c(r.min_delta_scaled)
-        )?;
-    }
-    csv.flush()?;
-    let figures = crate::grid_plots::grid_figures(&grid.name, &grid.filters, rows)?;
-    for fig in &figures {
-        std::fs::write(out.join(&fig.file), &fig.svg)?;
-    }
-    if let Some(path) = html {
-        let page = crate::report::grid_page::GridPage {
-            name: &grid.name,
-            runs: grid.runs,
-            seed: grid.seed,
-            filters: &grid.filters,
-            rows,
-            reports,
-            cells_total,
-            figures: &figures,
-            provenance: serde_json::to_value(&provenance)?,
-        };
-        crate::report::write(path, || Ok(page.html()))?;
-    }
     Ok(())
 }

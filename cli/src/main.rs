@@ -8,9 +8,11 @@ mod compare_input;
 mod compare_paired;
 mod compare_stats;
 mod compare_table;
+mod csv_file;
 mod exit;
 mod fmu;
 mod grid;
+mod grid_files;
 mod grid_plots;
 mod interrupt;
 mod observe;
@@ -18,15 +20,20 @@ mod observe_pcrlb;
 mod optimize;
 mod plot;
 mod plots;
+mod progress;
 mod provenance;
 mod replay;
 mod report;
 mod simulate;
+mod threads;
 mod trade;
+mod trade_args;
+mod trade_files;
+mod trade_tables;
 mod train;
 mod tune;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use entrynav_loader as load;
 
@@ -72,6 +79,11 @@ enum Command {
     /// the run completed but its final NEES exceeds 100 × its degrees of freedom (confidently
     /// wrong). `failures` lists run index, time and reason; `--replay-run K --csv-dir DIR`
     /// writes run K's full series.
+    ///
+    /// Progress is a bar on a terminal; with the environment variable `ENTRYNAV_PROGRESS=lines`
+    /// (and no `--quiet`) it is one `progress: DONE/TOTAL runs` line on standard error per chunk
+    /// of finished runs, for a script that reads it through a pipe (e.g. to know that runs have
+    /// finished before it sends Ctrl-C).
     Trade(trade::TradeArgs),
     /// Tune a scenario's process noise (and optionally the assumed measurement noise) until its
     /// filters are consistent (ANEES/dof and ANIS/dof near 1, no divergence), validate on fresh
@@ -103,12 +115,7 @@ enum ScenarioAction {
 }
 
 fn main() {
-    // Rust ignores SIGPIPE, so printing into a closed pipe (`entrynav simulate … | head -1`)
-    // would panic; restore the default so the process ends quietly, as other Unix tools do.
-    // SAFETY: called once at start-up, before any thread exists.
-    unsafe {
-        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
-    }
+    interrupt::die_on_broken_pipe();
     let cli = Cli::parse();
     if let Err(e) = run(cli) {
         let code = exit::code(&e);
@@ -139,7 +146,10 @@ fn run(cli: Cli) -> Result<()> {
             } else if let Some(text) = entrynav::scenario::builtin_toml(name.trim()) {
                 print!("{text}");
             } else {
-                print!("{}", std::fs::read_to_string(name.trim())?);
+                let path = name.trim();
+                let text = std::fs::read_to_string(path)
+                    .with_context(|| format!("cannot read scenario file {path}"))?;
+                print!("{text}");
             }
             Ok(())
         }

@@ -38,9 +38,9 @@ pub struct Figure {
     pub svg: String,
 }
 
-/// Size of a full-width figure [px].
+/// Size of a full-width figure (px).
 pub const WIDE: (u32, u32) = (900, 480);
-/// Size of one subplot of a grid of figures [px].
+/// Size of one subplot of a grid of figures (px).
 pub const SMALL: (u32, u32) = (560, 330);
 
 fn series_points(f: &FilterReport, get: &dyn Fn(usize) -> Option<f64>) -> Vec<(f64, f64)> {

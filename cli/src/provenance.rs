@@ -60,9 +60,9 @@ impl Provenance {
 /// Wall-clock measurements (not reproducible).
 #[derive(Debug, Clone, Serialize)]
 pub struct Timing {
-    /// Wall time of the study [s] (0 for a merge).
+    /// Wall time of the study (s) (0 for a merge).
     pub wall_s: f64,
-    /// Mean CPU time per filter step [µs], per filter.
+    /// Mean CPU time per filter step (µs), per filter.
     pub us_per_step: BTreeMap<String, f64>,
 }
 

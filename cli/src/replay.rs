@@ -1,6 +1,7 @@
 //! `entrynav trade --replay-run K --csv-dir DIR`: run K of a study replayed in full, one CSV per
 //! filter (truth, estimate, σ, error, NEES, per-channel innovation and NIS, weights).
 
+use crate::csv_file::FileWriter;
 use anyhow::{Context, Result};
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
@@ -29,12 +30,7 @@ pub fn write_replay(
             "{}_run{run}_{}.csv",
             scenario.config.name, r.filter
         ));
-        let file = std::fs::File::create(&path)
-            .with_context(|| format!("cannot create {}", path.display()))?;
-        let mut w = std::io::BufWriter::new(file);
-        write_csv(&mut w, r, &states, &channels, &weights)
-            .with_context(|| format!("writing {}", path.display()))?;
-        w.flush()?;
+        crate::csv_file::write(&path, |w| write_csv(w, r, &states, &channels, &weights))?;
         let last = r.epochs.last();
         println!(
             "run {run} {}: {} epochs{}; final NEES {}, position error {} m -> {}",
@@ -68,8 +64,9 @@ fn weight_names(scenario: &Scenario) -> Vec<String> {
     names
 }
 
+/// The replay's rows, then a `# failed at …` line if the filter stopped on a numerical failure.
 fn write_csv(
-    w: &mut dyn Write,
+    w: &mut FileWriter,
     r: &Replay,
     states: &[String],
     channels: &[String],
@@ -115,7 +112,7 @@ fn write_csv(
             .unwrap_or_else(|| format!("weight_{j}"))
     };
     header.extend((0..n_weights).map(weight_header));
-    writeln!(w, "{}", header.join(","))?;
+    w.write_record(&header)?;
     let o = |v: Option<f64>| v.map(|x| format!("{x:e}")).unwrap_or_default();
     for e in &r.epochs {
         let mut row = vec![format!("{}", e.t)];
@@ -142,10 +139,13 @@ fn write_csv(
         for j in 0..n_weights {
             row.push(o(e.weights.as_ref().and_then(|w| w.get(j).copied())));
         }
-        writeln!(w, "{}", row.join(","))?;
+        w.write_record(&row)?;
     }
     if let Some((t, why)) = &r.failure {
-        writeln!(w, "# failed at t = {t} s: {why}")?;
+        // A comment line after the records, written to the file past the CSV writer (which
+        // writes no comments) once the records are flushed.
+        w.flush()?;
+        writeln!(&mut w.get_ref(), "# failed at t = {t} s: {why}")?;
     }
     Ok(())
 }

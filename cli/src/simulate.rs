@@ -49,35 +49,26 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     };
     let run = simulate_truth(&scenario, &draw, &mut rng)?;
     if let Some(path) = args.out.as_deref().filter(|p| crate::exit::is_stdout(p)) {
-        let mut w = std::io::BufWriter::new(std::io::stdout().lock());
+        let mut w = crate::csv_file::writer(std::io::stdout().lock());
         write_csv(&mut w, &scenario, &run)
-            .and_then(|()| w.flush())
+            .and_then(|()| Ok(w.flush()?))
             .with_context(|| format!("writing {}", path.display()))?;
         return Ok(());
     }
     if let Some(path) = &args.out {
-        if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
-            std::fs::create_dir_all(parent)
-                .with_context(|| format!("cannot create {}", parent.display()))?;
-        }
-        let file = std::fs::File::create(path)
-            .with_context(|| format!("cannot create {}", path.display()))?;
-        let mut w = std::io::BufWriter::new(file);
-        write_csv(&mut w, &scenario, &run)
-            .with_context(|| format!("writing {}", path.display()))?;
-        w.flush()?;
+        crate::csv_file::write(path, |w| Ok(write_csv(w, &scenario, &run)?))?;
     }
     print_summary(&scenario, &run, args);
     Ok(())
 }
 
-fn fmt_opt(v: Option<f64>) -> String {
-    v.map(|x| x.to_string()).unwrap_or_default()
-}
-
 /// CSV: one row per truth sample (t = 0, every measurement epoch, the final time); measurement
 /// columns are empty where the channel was not sampled or not available.
-pub fn write_csv(w: &mut impl Write, scenario: &Scenario, run: &TruthRun) -> std::io::Result<()> {
+fn write_csv<W: Write>(
+    w: &mut csv::Writer<W>,
+    scenario: &Scenario,
+    run: &TruthRun,
+) -> csv::Result<()> {
     let mut header = vec![
         "t_s",
         "r_m",
@@ -106,7 +97,7 @@ pub fn write_csv(w: &mut impl Write, scenario: &Scenario, run: &TruthRun) -> std
     for c in &scenario.channels {
         header.push(c.name.clone());
     }
-    writeln!(w, "{}", header.join(","))?;
+    w.write_record(&header)?;
     let mut epochs = run.epochs.iter().peekable();
     for s in &run.samples {
         let mut row: Vec<String> = vec![s.t.to_string()];
@@ -126,12 +117,12 @@ pub fn write_csv(w: &mut impl Write, scenario: &Scenario, run: &TruthRun) -> std
         row.extend(s.visible.iter().map(|v| (*v as u8).to_string()));
         match epochs.peek() {
             Some(e) if (e.t - s.t).abs() < 1e-9 => {
-                row.extend(e.values.iter().map(|v| fmt_opt(*v)));
+                row.extend(e.values.iter().map(|v| crate::csv_file::opt(*v)));
                 epochs.next();
             }
             _ => row.extend(std::iter::repeat_n(String::new(), scenario.channels.len())),
         }
-        writeln!(w, "{}", row.join(","))?;
+        w.write_record(&row)?;
     }
     Ok(())
 }

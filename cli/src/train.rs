@@ -98,8 +98,7 @@ pub fn run(args: &TrainArgs) -> Result<()> {
     }
     let trained = match &args.out {
         Some(out) => {
-            let pool = thread_pool(args.threads)?;
-            let file = pool.install(|| train(args, &scenario))?;
+            let file = crate::threads::with_threads(args.threads, || train(args, &scenario))?;
             let text = file.to_toml_string();
             NetworkFile::from_toml_str(&text, "written network").map_err(|e| anyhow::anyhow!(e))?;
             if let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
@@ -113,18 +112,11 @@ pub fn run(args: &TrainArgs) -> Result<()> {
         None => None,
     };
     if let Some(runs) = args.evaluate {
-        let pool = thread_pool(args.threads)?;
-        pool.install(|| evaluate(args, scenario, trained.as_ref(), runs))?;
+        crate::threads::with_threads(args.threads, || {
+            evaluate(args, scenario, trained.as_ref(), runs)
+        })?;
     }
     Ok(())
-}
-
-fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool> {
-    let mut b = rayon::ThreadPoolBuilder::new();
-    if let Some(t) = threads {
-        b = b.num_threads(t.max(1));
-    }
-    Ok(b.build()?)
 }
 
 fn train(args: &TrainArgs, scenario: &entrynav::scenario::Scenario) -> Result<NetworkFile> {

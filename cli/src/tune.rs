@@ -61,14 +61,7 @@ fn validation_seed(seed: u64) -> u64 {
 
 /// Run the command.
 pub fn run(args: &TuneArgs) -> Result<()> {
-    match args.threads {
-        Some(0) => bail!("--threads 0: need at least one thread"),
-        Some(t) => rayon::ThreadPoolBuilder::new()
-            .num_threads(t)
-            .build()?
-            .install(|| run_tuning(args)),
-        None => run_tuning(args),
-    }
+    crate::threads::with_threads(args.threads, || run_tuning(args))
 }
 
 fn run_tuning(args: &TuneArgs) -> Result<()> {

@@ -103,8 +103,7 @@ fn simulate_writes_the_documented_columns_and_summary() {
     ] {
         assert!(out.contains(key), "summary lacks '{key}':\n{out}");
     }
-    let text = std::fs::read_to_string(&csv).unwrap();
-    let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+    let (header, cells) = read_csv(&csv);
     for col in [
         "t_s",
         "r_m",
@@ -122,13 +121,15 @@ fn simulate_writes_the_documented_columns_and_summary() {
         "dynamic_pressure_meas_pa",
         "heating_meas_wm2",
     ] {
-        assert!(header.contains(&col), "missing column {col} in {header:?}");
+        assert!(
+            header.iter().any(|h| h == col),
+            "missing column {col} in {header:?}"
+        );
     }
-    let rows: Vec<Vec<f64>> = text
-        .lines()
-        .skip(1)
+    let rows: Vec<Vec<f64>> = cells
+        .iter()
         .map(|l| {
-            l.split(',')
+            l.iter()
                 .map(|c| {
                     if c.is_empty() {
                         f64::NAN
@@ -820,42 +821,29 @@ fn sigint_writes_the_partial_summary_of_the_completed_runs_and_exits_130() {
         "8",
         "--threads",
         "1",
-        "--quiet",
     ];
-    let mut child = Command::new(env!("CARGO_BIN_EXE_entrynav"))
-        .args(common)
-        .args(["--runs", "1000000", "--json", json.to_str().unwrap()])
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(2500));
-    let kill = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(kill.success());
-    let sent = std::time::Instant::now();
-    let status = loop {
-        if let Some(s) = child.try_wait().unwrap() {
-            break s;
-        }
-        assert!(
-            sent.elapsed().as_secs() < 20,
-            "still running 20 s after SIGINT"
-        );
-        std::thread::sleep(std::time::Duration::from_millis(50));
-    };
-    let mut err = String::new();
-    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut err).unwrap();
-    assert_eq!(status.code(), Some(130), "{err}");
+    let args: Vec<&str> = common
+        .iter()
+        .copied()
+        .chain(["--runs", "1000000", "--json", json.to_str().unwrap()])
+        .collect();
+    let mut child = common::spawn_with_progress(&args, std::process::Stdio::null());
+    // Interrupt once runs have finished (no sleep: the progress line says so).
+    let first = child.wait_for_runs(0);
+    child.interrupt();
+    let end = child.finish(60);
+    let err = &end.err;
+    assert_eq!(end.status.code(), Some(130), "{err}");
     assert!(err.contains("interrupted"), "{err}");
     let partial: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert_eq!(partial["complete"], false);
     assert_eq!(partial["runs"], 1000000);
     let done = partial["runs_completed"].as_u64().unwrap();
-    assert!(done > 0 && done < 1000000, "{done}");
+    // Every run reported finished is in the summary, and nothing else: the last progress line
+    // (written after the runs cut short by Ctrl-C were folded) is the summary's count.
+    assert!(done >= first && done < 1000000, "{done} after {first}");
+    assert_eq!(end.last_progress, Some(done), "{err}");
     assert_eq!(partial["filters"][0]["runs"], done);
 
     // The partial statistics are exactly those of a study of `done` runs.
@@ -864,6 +852,7 @@ fn sigint_writes_the_partial_summary_of_the_completed_runs_and_exits_130() {
         &[
             &common[..],
             &[
+                "--quiet",
                 "--runs",
                 &done.to_string(),
                 "--json",
@@ -878,6 +867,40 @@ fn sigint_writes_the_partial_summary_of_the_completed_runs_and_exits_130() {
     assert_eq!(full["complete"], true);
     assert!(partial["filters"] == full["filters"], "partial != full");
     assert!(partial["pcrlb"] == full["pcrlb"], "partial PCRLB != full");
+}
+
+#[test]
+fn a_second_sigint_kills_a_study_that_is_writing_its_partial_results() {
+    use std::os::unix::process::ExitStatusExt;
+    // The summary goes to a pipe nobody reads: three filters' series are far more than a pipe
+    // holds (64 KiB), so after the first Ctrl-C the process stays in that write until killed.
+    let mut child = common::spawn_with_progress(
+        &[
+            "trade",
+            "--scenario",
+            "four-beacon-fusion",
+            "--filters",
+            "ekf,dcifaif,ukf",
+            "--threads",
+            "1",
+            "--runs",
+            "1000000",
+            "--json",
+            "-",
+        ],
+        std::process::Stdio::piped(),
+    );
+    child.wait_for_runs(0);
+    child.interrupt();
+    child.wait_for_line(|l| l.starts_with("interrupted: "));
+    child.interrupt();
+    let end = child.finish(60);
+    assert_eq!(
+        end.status.signal(),
+        Some(2),
+        "not killed by SIGINT: {:?}",
+        end.status
+    );
 }
 
 #[test]
@@ -997,17 +1020,13 @@ fn final_errors_csv_has_one_row_per_run_and_filter_matching_the_summary() {
     assert_eq!(code, 0, "{err}");
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-    let text =
-        std::fs::read_to_string(csv.join("four-beacon-fusion-fault_final_errors.csv")).unwrap();
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let (header, rows) = read_csv(&csv.join("four-beacon-fusion-fault_final_errors.csv"));
     assert_eq!(&header[..4], ["run", "filter", "status", "err_r_m"]);
     assert_eq!(&header[header.len() - 3..], ["pos_m", "vel_mps", "nees"]);
-    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     assert_eq!(rows.len(), 14, "7 runs x 2 filters");
     for f in v["filters"].as_array().unwrap() {
         let name = f["name"].as_str().unwrap();
-        let mine: Vec<&Vec<&str>> = rows.iter().filter(|r| r[1] == name).collect();
+        let mine: Vec<&Vec<String>> = rows.iter().filter(|r| r[1] == name).collect();
         let runs: Vec<usize> = mine.iter().map(|r| r[0].parse().unwrap()).collect();
         assert_eq!(runs, (0..7).collect::<Vec<_>>());
         let count = |s: &str| mine.iter().filter(|r| r[2] == s).count() as u64;
@@ -1027,8 +1046,12 @@ fn final_errors_csv_has_one_row_per_run_and_filter_matching_the_summary() {
 
 #[test]
 fn resume_continues_an_interrupted_study_to_exactly_the_uninterrupted_result() {
+    // A study too long to finish is interrupted, resumed and interrupted again: the second
+    // partial summary (its own runs plus the first one's) equals an uninterrupted study of as
+    // many runs. Each interruption waits for a progress line, so no timing is involved.
     let dir = tmpdir("resume");
-    let partial = dir.join("partial.json");
+    let first = dir.join("first.json");
+    let second = dir.join("second.json");
     let common = [
         "trade",
         "--scenario",
@@ -1037,59 +1060,60 @@ fn resume_continues_an_interrupted_study_to_exactly_the_uninterrupted_result() {
         "ekf",
         "--seed",
         "11",
-        "--runs",
-        "1500",
         "--threads",
         "1",
-        "--quiet",
     ];
-    let mut child = Command::new(env!("CARGO_BIN_EXE_entrynav"))
-        .args(common)
-        .args(["--json", partial.to_str().unwrap()])
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::null())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(1500));
-    Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert_eq!(child.wait().unwrap().code(), Some(130));
-    let p: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&partial).unwrap()).unwrap();
-    assert_eq!(p["complete"], false);
-    let done = p["runs_completed"].as_u64().unwrap();
-    assert!(done > 0 && done < 1500, "{done}");
-    assert!(p["resume"].is_object());
-
-    let resumed = dir.join("resumed.json");
-    let full = dir.join("full.json");
-    for (out, extra) in [
-        (&resumed, vec!["--resume", partial.to_str().unwrap()]),
-        (&full, vec![]),
-    ] {
+    let interrupted = |extra: &[&str], out: &std::path::Path, after: u64| -> serde_json::Value {
         let args: Vec<&str> = common
             .iter()
             .copied()
-            .chain(extra)
+            .chain(["--runs", "1000000"])
+            .chain(extra.iter().copied())
             .chain(["--json", out.to_str().unwrap()])
             .collect();
-        let (code, _, err) = entrynav(&args);
-        assert_eq!(code, 0, "{err}");
-    }
-    let read = |p: &std::path::Path| -> serde_json::Value {
-        serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
+        let mut child = common::spawn_with_progress(&args, std::process::Stdio::null());
+        child.wait_for_runs(after);
+        child.interrupt();
+        let end = child.finish(60);
+        assert_eq!(end.status.code(), Some(130), "{}", end.err);
+        let p: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out).unwrap()).unwrap();
+        assert_eq!(p["complete"], false);
+        assert!(p["resume"].is_object());
+        assert_eq!(end.last_progress, p["runs_completed"].as_u64());
+        p
     };
-    let (r, f) = (read(&resumed), read(&full));
-    assert_eq!(r["complete"], true);
-    assert!(r.get("resume").is_none());
-    assert!(r["filters"] == f["filters"], "resumed != uninterrupted");
-    assert!(r["pcrlb"] == f["pcrlb"], "resumed PCRLB != uninterrupted");
+    let p1 = interrupted(&[], &first, 0);
+    let k1 = p1["runs_completed"].as_u64().unwrap();
+    let p2 = interrupted(&["--resume", first.to_str().unwrap()], &second, k1);
+    let k2 = p2["runs_completed"].as_u64().unwrap();
+    assert!(k1 > 0 && k2 > k1, "{k1} then {k2}");
+
+    let full = dir.join("full.json");
+    let k2_runs = k2.to_string();
+    let args: Vec<&str> = common
+        .iter()
+        .copied()
+        .chain([
+            "--quiet",
+            "--runs",
+            &k2_runs,
+            "--json",
+            full.to_str().unwrap(),
+        ])
+        .collect();
+    let (code, _, err) = entrynav(&args);
+    assert_eq!(code, 0, "{err}");
+    let f: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&full).unwrap()).unwrap();
+    assert_eq!(f["complete"], true);
+    assert!(f.get("resume").is_none());
+    assert!(p2["filters"] == f["filters"], "resumed != uninterrupted");
+    assert!(p2["pcrlb"] == f["pcrlb"], "resumed PCRLB != uninterrupted");
     // Resuming with another seed is refused.
     let mut other: Vec<&str> = common.to_vec();
     other[6] = "12";
-    other.extend(["--resume", partial.to_str().unwrap()]);
+    other.extend(["--runs", "1000000", "--resume", first.to_str().unwrap()]);
     let (code, _, err) = entrynav(&other);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("seed"), "{err}");
@@ -1134,4 +1158,130 @@ fn an_interrupted_grid_keeps_the_cells_it_finished() {
     assert!((1..10).contains(&cells), "{cells} cells");
     assert_eq!(v["cells"].as_array().unwrap().len(), cells);
     assert!(v["provenance"]["version"].is_string());
+}
+
+/// Read a CSV file whole; a row whose field count differs from the header's is an error.
+fn read_csv(path: &std::path::Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let mut r = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .from_path(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let header = r.headers().unwrap().iter().map(String::from).collect();
+    let rows = r
+        .records()
+        .map(|rec| {
+            rec.unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+                .iter()
+                .map(String::from)
+                .collect()
+        })
+        .collect();
+    (header, rows)
+}
+
+#[test]
+fn names_with_commas_stay_one_csv_field_in_every_csv_written() {
+    let dir = tmpdir("commas");
+    let (code, text, err) = entrynav(&["scenario", "show", "four-beacon-fusion"]);
+    assert_eq!(code, 0, "{err}");
+    let text = text
+        .replacen(
+            "name = \"four-beacon-fusion\"",
+            "name = \"fusion, renamed\"",
+            1,
+        )
+        .replacen("name = \"surface-1\"", "name = \"surface-1, Gale\"", 1);
+    let scenario = dir.join("comma.toml");
+    std::fs::write(&scenario, text).unwrap();
+    let scenario = scenario.to_str().unwrap();
+
+    let sim = dir.join("sim.csv");
+    let (code, _, err) = entrynav(&[
+        "simulate",
+        "--scenario",
+        scenario,
+        "--out",
+        sim.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let (header, rows) = read_csv(&sim);
+    assert!(
+        header.iter().any(|h| h == "visible_surface-1, Gale"),
+        "{header:?}"
+    );
+    assert!(
+        header.iter().any(|h| h == "range_surface-1, Gale_m"),
+        "{header:?}"
+    );
+    assert!(rows.len() > 100);
+
+    let replay = dir.join("replay");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        scenario,
+        "--filters",
+        "dcifaif",
+        "--replay-run",
+        "0",
+        "--csv-dir",
+        replay.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let (header, rows) = read_csv(&replay.join("fusion, renamed_run0_dcifaif.csv"));
+    assert!(
+        header.iter().any(|h| h == "weight_surface-1, Gale"),
+        "{header:?}"
+    );
+    assert!(!rows.is_empty());
+
+    let grid = dir.join("g.toml");
+    std::fs::write(
+        &grid,
+        "name = \"g\"\nruns = 2\nfilters = [\"ekf\"]\nscenarios = [\"comma.toml\"]\n",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--grid",
+        grid.to_str().unwrap(),
+        "--out-dir",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let (header, rows) = read_csv(&out.join("g.csv"));
+    let col = header.iter().position(|h| h == "scenario").unwrap();
+    assert_eq!(rows.len(), 1);
+    assert_eq!(rows[0][col], "fusion, renamed");
+}
+
+#[test]
+fn a_file_that_cannot_be_read_is_named_with_the_reason() {
+    let dir = tmpdir("unreadable");
+    let missing = dir.join("missing.toml");
+    let (code, _, err) = entrynav(&["scenario", "show", missing.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains(missing.to_str().unwrap()) && err.contains("No such file"),
+        "{err}"
+    );
+    let missing = dir.join("missing.json");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--runs",
+        "2",
+        "--quiet",
+        "--resume",
+        missing.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains(&format!("--resume {}: cannot read", missing.display()))
+            && err.contains("No such file"),
+        "{err}"
+    );
 }

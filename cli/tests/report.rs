@@ -3,7 +3,6 @@
 
 mod common;
 use common::entrynav;
-use std::process::Command;
 
 fn tmpdir(name: &str) -> std::path::PathBuf {
     common::scratch_dir("report", name)
@@ -122,8 +121,8 @@ fn an_unwritable_report_path_is_refused_before_the_first_run() {
 fn sigint_writes_the_report_of_the_partial_study() {
     let dir = tmpdir("sigint");
     let html_path = dir.join("partial.html");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_entrynav"))
-        .args([
+    let mut child = common::spawn_with_progress(
+        &[
             "trade",
             "--scenario",
             "orbiters-3",
@@ -131,36 +130,23 @@ fn sigint_writes_the_report_of_the_partial_study() {
             "ekf",
             "--threads",
             "1",
-            "--quiet",
             "--runs",
             "1000000",
             "--report",
             html_path.to_str().unwrap(),
-        ])
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::null())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(2500));
-    let kill = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(kill.success());
-    let sent = std::time::Instant::now();
-    let status = loop {
-        if let Some(s) = child.try_wait().unwrap() {
-            break s;
-        }
-        assert!(
-            sent.elapsed().as_secs() < 30,
-            "still running 30 s after SIGINT"
-        );
-        std::thread::sleep(std::time::Duration::from_millis(50));
-    };
-    assert_eq!(status.code(), Some(130));
+        ],
+        std::process::Stdio::null(),
+    );
+    child.wait_for_runs(0);
+    child.interrupt();
+    let end = child.finish(60);
+    assert_eq!(end.status.code(), Some(130), "{}", end.err);
+    let done = end.last_progress.unwrap();
     let html = std::fs::read_to_string(&html_path).expect("a partial report");
-    assert!(html.contains("INTERRUPTED") && html.contains("of 1000000 runs completed"));
+    assert!(
+        html.contains(&format!("INTERRUPTED: {done} of 1000000 runs completed")),
+        "the page does not say {done} runs"
+    );
     assert!(html.contains("<section id=\"provenance\">"));
 }
 

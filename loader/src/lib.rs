@@ -17,17 +17,19 @@ use thiserror::Error;
 pub enum LoadError {
     /// Neither a built-in nor a readable file.
     #[error(
-        "scenario '{name}' is neither a built-in ({builtins}) nor a readable file ({path}: {reason})"
+        "scenario '{name}' is neither a built-in ({builtins}) nor a readable file ({})",
+        path.display()
     )]
     NotFound {
         /// What was asked for.
         name: String,
         /// Where it was looked for.
-        path: String,
-        /// Why the file could not be read.
-        reason: String,
+        path: PathBuf,
         /// Comma-separated built-in names.
         builtins: String,
+        /// Why the file could not be read.
+        #[source]
+        source: std::io::Error,
     },
     /// A relative file name with no folder to resolve it against.
     #[error(
@@ -49,6 +51,24 @@ pub enum LoadError {
         set: String,
         /// What is wrong.
         reason: String,
+    },
+    /// The scenario's canonical TOML did not read back as a table (a bug, not a user error).
+    #[error("--set {sets}: the scenario's canonical TOML does not read back")]
+    OverrideParse {
+        /// The overrides as given, space-separated.
+        sets: String,
+        /// The TOML parser's error.
+        #[source]
+        source: toml::de::Error,
+    },
+    /// The edited scenario could not be written as TOML again.
+    #[error("--set {sets}: the edited scenario cannot be written as TOML")]
+    OverrideWrite {
+        /// The overrides as given, space-separated.
+        sets: String,
+        /// The TOML writer's error.
+        #[source]
+        source: toml::ser::Error,
     },
 }
 
@@ -118,11 +138,11 @@ pub fn resolve(name_or_file: &str, base: Base<'_>) -> Result<ScenarioSource, Loa
             });
         }
     };
-    let text = std::fs::read_to_string(&path).map_err(|e| LoadError::NotFound {
+    let text = std::fs::read_to_string(&path).map_err(|source| LoadError::NotFound {
         name: name.to_string(),
-        path: path.display().to_string(),
-        reason: e.to_string(),
+        path: path.clone(),
         builtins: builtins(),
+        source,
     })?;
     let config = ScenarioConfig::from_toml_str(&text, &path.display().to_string())?;
     let dir = path
@@ -143,12 +163,11 @@ pub fn apply_overrides(cfg: ScenarioConfig, sets: &[String]) -> Result<ScenarioC
     if sets.is_empty() {
         return Ok(cfg);
     }
-    let internal = |reason: String| LoadError::Override {
-        set: sets.join(" "),
-        reason,
-    };
     let mut doc: toml::Table =
-        toml::from_str(&cfg.to_toml_string()).map_err(|e| internal(e.to_string()))?;
+        toml::from_str(&cfg.to_toml_string()).map_err(|source| LoadError::OverrideParse {
+            sets: sets.join(" "),
+            source,
+        })?;
     for set in sets {
         let bad = |reason: String| LoadError::Override {
             set: set.clone(),
@@ -174,7 +193,10 @@ pub fn apply_overrides(cfg: ScenarioConfig, sets: &[String]) -> Result<ScenarioC
         }
         table.insert(keys[keys.len() - 1].to_string(), value);
     }
-    let text = toml::to_string(&doc).map_err(|e| internal(e.to_string()))?;
+    let text = toml::to_string(&doc).map_err(|source| LoadError::OverrideWrite {
+        sets: sets.join(" "),
+        source,
+    })?;
     Ok(ScenarioConfig::from_toml_str(
         &text,
         "scenario with --set overrides",
@@ -243,6 +265,25 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("truth.density_bias"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn an_unreadable_file_keeps_the_operating_systems_error_as_its_source() {
+        let dir = std::env::temp_dir().join(format!("entrynav-loader-src-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let e = resolve("missing.toml", Base::Folder(&dir)).unwrap_err();
+        let io = std::error::Error::source(&e)
+            .and_then(|s| s.downcast_ref::<std::io::Error>())
+            .expect("the io::Error is the source");
+        assert_eq!(io.kind(), std::io::ErrorKind::NotFound);
+        // The message names the path; the reason is the source's, not repeated in the message.
+        let text = e.to_string();
+        assert!(
+            text.contains(&dir.join("missing.toml").display().to_string()),
+            "{text}"
+        );
+        assert!(!text.contains(&io.to_string()), "{text}");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -5,6 +5,7 @@
 //! This module holds the arguments and the helpers the three problems share; each problem's
 //! command is in its own file.
 
+use crate::threads::with_threads;
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
 use entrynav::beacons::BeaconConfig;
@@ -262,16 +263,6 @@ pub fn run(args: &OptimizeArgs) -> Result<()> {
             with_threads(a.common.threads, || ground_sites::run_ground(a))
         }
         OptimizeProblem::Select(a) => with_threads(a.threads, || site_selection::run_select(a)),
-    }
-}
-
-fn with_threads(threads: Option<usize>, f: impl FnOnce() -> Result<()> + Send) -> Result<()> {
-    match threads {
-        Some(t) => rayon::ThreadPoolBuilder::new()
-            .num_threads(t.max(1))
-            .build()?
-            .install(f),
-        None => f(),
     }
 }
 

@@ -28,11 +28,11 @@ pub struct Frame<'a> {
     pub y_label: &'a str,
     /// Logarithmic y axis.
     pub log_y: bool,
-    /// Width and height [px].
+    /// Width and height (px).
     pub size: (u32, u32),
 }
 
-/// Margin around the chart [px].
+/// Margin around the chart (px).
 pub const MARGIN: u32 = 10;
 
 /// A plotters error as an `anyhow` error.

@@ -42,7 +42,7 @@ pub struct Entry<'a> {
     pub mark: Mark,
 }
 
-/// Width [px] of a legend column for these names.
+/// Width (px) of a legend column for these names.
 pub fn width(names: &[&str]) -> u32 {
     let longest = names.iter().map(|n| n.chars().count()).max().unwrap_or(0) as u32;
     (44 + 7 * longest).clamp(110, 260)

@@ -24,7 +24,7 @@ pub fn write(path: &Path, make: impl FnOnce() -> Result<String>) -> Result<f64> 
     Ok(clock.elapsed().as_secs_f64())
 }
 
-/// The trade report of `report` to `path`; returns the time it took [s].
+/// The trade report of `report` to `path`; returns the time it took (s).
 pub fn write_trade(
     path: &Path,
     report: &entrynav::sim::TradeReport,

@@ -16,7 +16,7 @@ pub struct TradePage<'a> {
     pub figures: &'a [Figure],
     /// Where it came from.
     pub provenance: &'a Provenance,
-    /// Wall time of the study [s].
+    /// Wall time of the study (s).
     pub wall_s: f64,
 }
 

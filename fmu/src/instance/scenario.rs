@@ -206,9 +206,9 @@ fn load_file(
     let text_path = canonical.to_string_lossy().into_owned();
     let src = entrynav_loader::resolve(&text_path, Base::Nowhere).map_err(|e| match e {
         LoadError::Scenario(e) => invalid(&e),
-        LoadError::NotFound { reason, .. } => ScenarioFileError::Unreadable {
+        LoadError::NotFound { source, .. } => ScenarioFileError::Unreadable {
             name: name.to_string(),
-            reason,
+            reason: source.to_string(),
         },
         other => ScenarioFileError::Invalid {
             name: name.to_string(),

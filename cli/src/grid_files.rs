@@ -1,0 +1,147 @@
+//! The report of `entrynav trade --grid` in `--out-dir`: `GRID.md` (a table), `GRID.json` (the
+//! cells and every cell's trade report), `GRID.csv`, the SVG figures, and the HTML page of
+//! `--report`. All are rewritten after every finished cell.
+
+use crate::grid::{CellRow, GridFile};
+use anyhow::{Context, Result};
+use entrynav::sim::TradeReport;
+use std::io::Write;
+use std::path::Path;
+
+/// `GRID.csv`: one row per cell and filter (a string field is quoted only when it holds a comma
+/// or a quote, as most variations do).
+fn write_rows_csv(w: &mut crate::csv_file::FileWriter, rows: &[CellRow]) -> Result<()> {
+    w.write_record([
+        "cell",
+        "scenario",
+        "variation",
+        "filter",
+        "refused",
+        "pos_rmse_final_m",
+        "vel_rmse_final_mps",
+        "pos_rmse_avg_m",
+        "anees",
+        "min_within_3sigma",
+        "diverged",
+        "us_per_step",
+        "min_delta_scaled",
+    ])?;
+    let c = crate::csv_file::opt;
+    for r in rows {
+        w.write_record([
+            r.cell.clone(),
+            r.scenario.clone(),
+            r.variation.clone(),
+            r.filter.clone(),
+            r.refused.clone().unwrap_or_default(),
+            c(r.pos_rmse_final_m),
+            c(r.vel_rmse_final_mps),
+            c(r.pos_rmse_avg_m),
+            c(r.anees),
+            c(r.min_within_3sigma),
+            r.diverged.map(|d| d.to_string()).unwrap_or_default(),
+            c(r.us_per_step),
+            c(r.min_delta_scaled),
+        ])?;
+    }
+    Ok(())
+}
+
+fn o(v: Option<f64>) -> String {
+    v.map(|x| format!("{x:.4}")).unwrap_or_else(|| "–".into())
+}
+
+/// Write every file of the grid's report from the cells finished so far (`cells_total`: the
+/// grid's size; `html`: the `--report` page).
+pub fn write_outputs(
+    grid: &GridFile,
+    out: &Path,
+    rows: &[CellRow],
+    reports: &[(String, String, TradeReport)],
+    (cells_total, html): (usize, Option<&Path>),
+) -> Result<()> {
+    let provenance = crate::provenance::Provenance::new(&[]);
+    let md_path = out.join(format!("{}.md", grid.name));
+    let mut md = std::io::BufWriter::new(
+        std::fs::File::create(&md_path)
+            .with_context(|| format!("cannot create {}", md_path.display()))?,
+    );
+    writeln!(
+        md,
+        "# Grid `{}`\n\n{} runs per cell, seed {}, filters {}.\n",
+        grid.name,
+        grid.runs,
+        grid.seed,
+        grid.filters.join(", ")
+    )?;
+    writeln!(
+        md,
+        "| cell | scenario | variation | filter | pos RMSE final [m] | vel RMSE final [m/s] | pos RMSE avg [m] | ANEES | min in-3σ | diverged | µs/step | min δ (scaled) |"
+    )?;
+    writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|---|")?;
+    for r in rows {
+        match &r.refused {
+            Some(why) => writeln!(
+                md,
+                "| {} | {} | {} | {} | refused: {} ||||||||",
+                r.cell, r.scenario, r.variation, r.filter, why
+            )?,
+            None => writeln!(
+                md,
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                r.cell,
+                r.scenario,
+                r.variation,
+                r.filter,
+                o(r.pos_rmse_final_m),
+                o(r.vel_rmse_final_mps),
+                o(r.pos_rmse_avg_m),
+                o(r.anees),
+                o(r.min_within_3sigma),
+                r.diverged.map(|d| d.to_string()).unwrap_or_default(),
+                o(r.us_per_step),
+                r.min_delta_scaled
+                    .map(|d| format!("{d:.3e}"))
+                    .unwrap_or_else(|| "–".into())
+            )?,
+        }
+    }
+    md.flush()
+        .with_context(|| format!("writing {}", md_path.display()))?;
+    let json_path = out.join(format!("{}.json", grid.name));
+    std::fs::write(
+        &json_path,
+        serde_json::to_string_pretty(&serde_json::json!({
+            "provenance": &provenance,
+            "grid": grid.name, "runs": grid.runs, "seed": grid.seed, "cells": rows,
+            "reports": reports.iter().map(|(c, fp, r)| serde_json::json!({"cell": c, "scenario_fingerprint": fp, "report": r})).collect::<Vec<_>>(),
+            "timing": {
+                "us_per_step": rows.iter().filter(|r| r.us_per_step.is_some()).map(|r| serde_json::json!({"cell": r.cell, "filter": r.filter, "us_per_step": r.us_per_step})).collect::<Vec<_>>(),
+            },
+        }))? + "\n",
+    )
+    .with_context(|| format!("writing {}", json_path.display()))?;
+    crate::csv_file::write(&out.join(format!("{}.csv", grid.name)), |w| {
+        write_rows_csv(w, rows)
+    })?;
+    let figures = crate::grid_plots::grid_figures(&grid.name, &grid.filters, rows)?;
+    for fig in &figures {
+        let path = out.join(&fig.file);
+        std::fs::write(&path, &fig.svg).with_context(|| format!("writing {}", path.display()))?;
+    }
+    if let Some(path) = html {
+        let page = crate::report::grid_page::GridPage {
+            name: &grid.name,
+            runs: grid.runs,
+            seed: grid.seed,
+            filters: &grid.filters,
+            rows,
+            reports,
+            cells_total,
+            figures: &figures,
+            provenance: serde_json::to_value(&provenance)?,
+        };
+        crate::report::write(path, || Ok(page.html()))?;
+    }
+    Ok(())
+}

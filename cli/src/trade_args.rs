@@ -1,0 +1,104 @@
+//! The arguments of `entrynav trade` and its subcommands `merge` and `compare`.
+
+use clap::Args;
+use std::path::PathBuf;
+
+/// Arguments of `entrynav trade`.
+#[derive(Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+pub struct TradeArgs {
+    /// Merge shard files or compare summaries instead of running.
+    #[command(subcommand)]
+    pub action: Option<TradeAction>,
+    /// Built-in scenario name or path to a scenario TOML file.
+    #[arg(long, required_unless_present = "grid")]
+    pub scenario: Option<String>,
+    /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable), e.g.
+    /// `--set truth.density_bias=0.095`.
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub sets: Vec<String>,
+    /// Comma-separated filters: ekf, ukf, ci, dcifaif, mmae, mmae-moe, ukf-cm, ukf-ac, uskf-nn.
+    #[arg(long, default_value = "ekf")]
+    pub filters: String,
+    /// Monte Carlo runs (default: the scenario's monte_carlo.runs).
+    #[arg(long)]
+    pub runs: Option<usize>,
+    /// Master seed; the same seed gives the same statistics on any thread count.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = crate::exit::parse_threads)]
+    pub threads: Option<usize>,
+    /// Write the summary as JSON (`-`: to standard output, and no tables). Every output path is
+    /// checked before the first run.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// Write per-filter time series (RMSE, mean σ, NEES, …) as CSV files into this directory.
+    #[arg(long)]
+    pub csv_dir: Option<PathBuf>,
+    /// Write SVG plots (RMSE vs time, errors with 3σ envelopes, NEES) into this directory.
+    #[arg(long)]
+    pub plots: Option<PathBuf>,
+    /// Write one self-contained HTML report (inline SVG and CSS, nothing from the network):
+    /// consistency verdicts, RMSE and PCRLB, errors with ±3σ, NEES/NIS, weights, dispersion,
+    /// provenance. With --grid, the grid's report. Checked before the first run.
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+    #[arg(long, help = crate::QUIET_HELP)]
+    pub quiet: bool,
+    /// The truth atmosphere file and how to read it.
+    #[command(flatten)]
+    pub atmosphere: crate::atmosphere_file::AtmosphereFileArgs,
+    /// Fly every run in the unperturbed truth mean atmosphere (no per-run perturbation).
+    #[arg(long)]
+    pub no_perturbation: bool,
+    /// Run a grid of scenarios × variations × filters (see `docs/tutorial.md`); the report
+    /// (Markdown, CSV, JSON, SVG plots) goes to --out-dir.
+    #[arg(long, value_name = "FILE.toml", conflicts_with_all = ["shard"])]
+    pub grid: Option<PathBuf>,
+    /// Output directory of a --grid report.
+    #[arg(long, default_value = "out/grid")]
+    pub out_dir: PathBuf,
+    /// Run only shard I of N (contiguous blocks of runs) and write the shard file to --json;
+    /// `entrynav trade merge` combines the shards into exactly the single-process result.
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
+    /// Replay run K of this study (same scenario, --set overrides, seed and filters) and write
+    /// its full series per filter to --csv-dir: truth, estimate, σ, error, NEES, innovation and
+    /// NIS per channel, weights. Use it on a run listed under `failures`.
+    #[arg(long, value_name = "K", requires = "csv_dir", conflicts_with_all = ["shard", "grid"])]
+    pub replay_run: Option<usize>,
+    /// Continue the interrupted study whose partial summary (`complete: false`) is FILE: give
+    /// the same scenario, overrides, filters, runs and seed; the result is exactly that of an
+    /// uninterrupted run.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["shard", "grid", "replay_run"])]
+    pub resume: Option<PathBuf>,
+    /// Skip the posterior Cramér–Rao lower bound (on by default: the `pcrlb` block of the
+    /// summary, each filter's RMSE/PCRLB efficiency, the dashed PCRLB curve in the RMSE plots;
+    /// it costs about one EKF's worth of work per run).
+    #[arg(long)]
+    pub no_pcrlb: bool,
+}
+
+/// `entrynav trade merge`, `entrynav trade compare`.
+#[derive(clap::Subcommand)]
+pub enum TradeAction {
+    /// Compare two trade summaries (`trade --json`): per filter in both, B − A of every RMSE and
+    /// ANEES with a 95 % Monte Carlo interval; refuses different scenarios.
+    Compare(crate::compare::CompareArgs),
+    /// Combine shard files written by `trade --shard I/N --json FILE` into the study's report.
+    Merge {
+        /// Shard files (all N shards of one study).
+        #[arg(required = true)]
+        shards: Vec<PathBuf>,
+        /// Write the merged summary as JSON.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Write per-filter time series as CSV into this directory.
+        #[arg(long)]
+        csv_dir: Option<PathBuf>,
+        /// Write SVG plots into this directory.
+        #[arg(long)]
+        plots: Option<PathBuf>,
+    },
+}

@@ -1,0 +1,178 @@
+//! The files of `entrynav trade`: the JSON summary (and the `resume` block read back from it),
+//! and the CSV series of `--csv-dir` (per filter, the final errors per run, the PCRLB).
+
+use crate::csv_file::{self, FileWriter, opt};
+use crate::exit::{check_output_dir, check_output_file, is_stdout};
+use crate::provenance::{Provenance, Summary, Timing};
+use anyhow::{Context, Result};
+use entrynav::sim::{FilterReport, PcrlbReport, ShardResult, TradeReport};
+use std::io::Write;
+use std::path::Path;
+
+/// Check every output path of a study before its first run (exit code 2 naming the path).
+pub fn check_outputs(
+    json: Option<&Path>,
+    csv_dir: Option<&Path>,
+    plots: Option<&Path>,
+) -> Result<()> {
+    if let Some(p) = json {
+        check_output_file(p, "--json")?;
+    }
+    if let Some(d) = csv_dir {
+        check_output_dir(d, "--csv-dir")?;
+    }
+    if let Some(d) = plots {
+        check_output_dir(d, "--plots")?;
+    }
+    Ok(())
+}
+
+/// Write a trade summary: provenance, the statistics, then the wall-clock `timing`.
+pub fn write_summary(
+    path: &Path,
+    provenance: &Provenance,
+    report: &TradeReport,
+    resume: Option<&ShardResult>,
+    wall_s: f64,
+) -> Result<()> {
+    let summary = Summary {
+        provenance,
+        report,
+        resume,
+        timing: Timing::of(report, wall_s),
+    };
+    write_file(path, |w| {
+        serde_json::to_writer_pretty(&mut *w, &summary)?;
+        writeln!(w)?;
+        Ok(())
+    })
+}
+
+/// The block sums stored in the partial summary `path` (`--resume`).
+pub fn read_resume(path: &Path) -> Result<ShardResult> {
+    let usage = |m: String| crate::exit::Usage(format!("--resume {}: {m}", path.display()));
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("--resume {}: cannot read", path.display()))?;
+    let mut v: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| usage(format!("not JSON: {e}")))?;
+    let block = v
+        .get_mut("resume")
+        .map(serde_json::Value::take)
+        .ok_or_else(|| {
+            usage("no `resume` block: not the summary of an interrupted trade".into())
+        })?;
+    Ok(serde_json::from_value(block).map_err(|e| usage(format!("corrupt `resume` block: {e}")))?)
+}
+
+/// Write `path` (`-`: standard output), creating its directory.
+pub fn write_file(path: &Path, body: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
+    if is_stdout(path) {
+        let mut w = std::io::BufWriter::new(std::io::stdout().lock());
+        body(&mut w).context("writing standard output")?;
+        w.flush()?;
+        return Ok(());
+    }
+    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(parent)
+            .with_context(|| format!("cannot create {}", parent.display()))?;
+    }
+    let f =
+        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
+    let mut w = std::io::BufWriter::new(f);
+    body(&mut w)
+        .and_then(|()| Ok(w.flush()?))
+        .map_err(|e| crate::exit::Runtime(format!("writing {}: {e:#}", path.display())))?;
+    Ok(())
+}
+
+/// Write the `--csv-dir` files of `report`: `{scenario}_pcrlb.csv` (when the bound is
+/// available), `{scenario}_final_errors.csv` and one `{scenario}_{filter}.csv` per filter.
+pub fn write_csv_dir(dir: &Path, report: &TradeReport) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let file = |suffix: &str| dir.join(format!("{}_{suffix}.csv", report.scenario));
+    if let Some(b) = report.pcrlb.as_ref().filter(|b| b.available) {
+        csv_file::write(&file("pcrlb"), |w| write_pcrlb(w, b))?;
+    }
+    csv_file::write(&file("final_errors"), |w| write_final_errors(w, report))?;
+    for f in &report.filters {
+        csv_file::write(&file(&f.name), |w| write_series(w, &report.states, f))?;
+    }
+    Ok(())
+}
+
+/// The PCRLB per epoch: `t_s`, then `pcrlb_<series>` per series.
+fn write_pcrlb(w: &mut FileWriter, b: &PcrlbReport) -> Result<()> {
+    let names: Vec<&String> = b.series.keys().collect();
+    let mut header = vec!["t_s".to_string()];
+    header.extend(names.iter().map(|n| format!("pcrlb_{n}")));
+    w.write_record(&header)?;
+    for (k, t) in b.times_s.iter().enumerate() {
+        let mut row = vec![t.to_string()];
+        row.extend(names.iter().map(|n| b.series[*n][k].to_string()));
+        w.write_record(&row)?;
+    }
+    Ok(())
+}
+
+/// One row per run and filter: run, filter, status, the final error per state, position and
+/// velocity error, NEES.
+fn write_final_errors(w: &mut FileWriter, report: &TradeReport) -> Result<()> {
+    let mut header = vec!["run".to_string(), "filter".into(), "status".into()];
+    header.extend(report.states.iter().map(|s| format!("err_{s}")));
+    header.extend(["pos_m", "vel_mps", "nees"].map(String::from));
+    w.write_record(&header)?;
+    for f in &report.filters {
+        for r in &f.final_errors {
+            let mut row = vec![r.run.to_string(), f.name.clone(), r.status.clone()];
+            row.extend((0..report.states.len()).map(|i| opt(r.err.get(i).copied().flatten())));
+            row.extend([opt(r.pos_m), opt(r.vel_mps), opt(r.nees)]);
+            w.write_record(&row)?;
+        }
+    }
+    Ok(())
+}
+
+/// A filter's statistics per epoch: RMSE, mean σ and bias per state, position/velocity RMSE,
+/// mean NEES, density errors, mean weights.
+fn write_series(w: &mut FileWriter, states: &[String], f: &FilterReport) -> Result<()> {
+    let s = &f.series;
+    let mut header = vec!["t_s".to_string()];
+    for st in states {
+        header.push(format!("rmse_{st}"));
+        header.push(format!("sigma_mean_{st}"));
+        header.push(format!("bias_{st}"));
+    }
+    header.extend(
+        [
+            "rmse_pos_m",
+            "rmse_vel_mps",
+            "nees_mean",
+            "density_rms_pct",
+            "density_mean_pct",
+            "density_at_estimate_rms_pct",
+        ]
+        .map(String::from),
+    );
+    let nw = s.weights_mean.iter().map(|w| w.len()).max().unwrap_or(0);
+    header.extend((0..nw).map(|j| format!("weight_{j}")));
+    w.write_record(&header)?;
+    for (k, t) in s.times_s.iter().enumerate() {
+        let mut row = vec![t.to_string()];
+        for i in 0..states.len() {
+            row.push(opt(s.rmse[k][i]));
+            row.push(opt(s.sigma_mean[k][i]));
+            row.push(opt(s.bias[k][i]));
+        }
+        row.extend([
+            opt(s.pos_rmse_m[k]),
+            opt(s.vel_rmse_mps[k]),
+            opt(s.nees_mean[k]),
+            opt(s.density_rms_pct[k]),
+            opt(s.density_mean_pct[k]),
+            opt(s.density_at_estimate_rms_pct[k]),
+        ]);
+        row.extend((0..nw).map(|j| opt(s.weights_mean[k].get(j).copied())));
+        w.write_record(&row)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,173 @@
+//! The tables `entrynav trade` (and `trade merge`) prints: per filter the RMSE and final errors
+//! per state, consistency (ANEES, ANIS), failures; then the PCRLB and each filter's efficiency.
+
+use entrynav::sim::{FilterReport, TradeReport};
+use std::collections::BTreeMap;
+
+/// A table cell: four decimals, scientific notation outside [1e-3, 1e5), `-` when absent.
+fn fmt(v: Option<f64>) -> String {
+    match v {
+        Some(x) if x != 0.0 && (x.abs() < 1e-3 || x.abs() >= 1e5) => format!("{x:.4e}"),
+        Some(x) => format!("{x:.4}"),
+        None => "-".into(),
+    }
+}
+
+/// Print the tables of `report` (`elapsed`: the study's wall time in seconds).
+pub fn print_tables(report: &TradeReport, elapsed: f64) {
+    let partial = if report.complete {
+        String::new()
+    } else {
+        format!(" of {} asked (interrupted)", report.runs)
+    };
+    println!(
+        "scenario {}  runs {}{partial}  seed {}  ({elapsed:.2} s wall)",
+        report.scenario, report.runs_completed, report.seed
+    );
+    for f in &report.filters {
+        println!();
+        println!("filter {}", f.name);
+        println!(
+            "  {:<20} {:>14} {:>14} {:>14} {:>14} {:>10}",
+            "state", "RMSE time-avg", "MAE (eq. 69)", "RMSE final", "mean err final", "in 3σ"
+        );
+        let mut names: Vec<&String> = report.states.iter().collect();
+        let extra = ["pos_m", "vel_mps", "downrange_m", "crossrange_m", "up_m"].map(String::from);
+        names.extend(extra.iter());
+        for s in names {
+            let get = |m: &BTreeMap<String, Option<f64>>| m.get(s).copied().flatten();
+            let in3 = get(&f.within_3sigma_frac)
+                .map(|v| format!("{:.1}%", 100.0 * v))
+                .unwrap_or_default();
+            println!(
+                "  {:<20} {:>14} {:>14} {:>14} {:>14} {:>10}",
+                s,
+                fmt(get(&f.rmse_time_avg)),
+                fmt(get(&f.mae_time_avg_eq69)),
+                fmt(get(&f.rmse_final)),
+                fmt(get(&f.final_error_mean)),
+                in3
+            );
+        }
+        print_consistency(f);
+    }
+    print_pcrlb(report);
+}
+
+/// The scenario's PCRLB and each filter's efficiency RMSE / PCRLB (1 = the best any estimator
+/// could do with the scenario's information).
+fn print_pcrlb(report: &TradeReport) {
+    let Some(b) = &report.pcrlb else { return };
+    println!();
+    if !b.available {
+        println!(
+            "PCRLB: not available ({})",
+            b.reason.as_deref().unwrap_or("unknown reason")
+        );
+        return;
+    }
+    let get = |m: &BTreeMap<String, Option<f64>>, k: &str| m.get(k).copied().flatten();
+    println!(
+        "PCRLB (lower bound on any estimator's RMSE): pos {} m time-avg, {} m final; vel {} m/s time-avg, {} m/s final",
+        fmt(get(&b.time_avg, "pos_m")),
+        fmt(get(&b.final_, "pos_m")),
+        fmt(get(&b.time_avg, "vel_mps")),
+        fmt(get(&b.final_, "vel_mps"))
+    );
+    println!("  prior: {}", b.prior);
+    for f in &report.filters {
+        println!(
+            "  {:<10} efficiency RMSE/PCRLB: pos {} time-avg, {} final; vel {} time-avg, {} final",
+            f.name,
+            fmt(get(&f.efficiency_time_avg, "pos_m")),
+            fmt(get(&f.efficiency_final, "pos_m")),
+            fmt(get(&f.efficiency_time_avg, "vel_mps")),
+            fmt(get(&f.efficiency_final, "vel_mps"))
+        );
+    }
+}
+
+fn print_consistency(f: &FilterReport) {
+    let c = &f.consistency;
+    let pct = |v: Option<f64>| {
+        v.map(|v| format!("{:.0}%", 100.0 * v))
+            .unwrap_or_else(|| "-".into())
+    };
+    let per_dof = |a: Option<f64>, dof: f64| a.map(|a| format!("{:.3}", a / dof));
+    println!(
+        "  ANEES {} (dof {}, /dof {}, per-epoch 95% bounds [{:.3}, {:.3}], {} of epochs inside)",
+        fmt(c.anees),
+        c.nees_dof,
+        per_dof(c.anees, c.nees_dof as f64).unwrap_or_else(|| "-".into()),
+        c.nees_bounds_95[0],
+        c.nees_bounds_95[1],
+        pct(c.nees_in_bounds_frac)
+    );
+    println!(
+        "  ANEES kinematic {} (dof 6, /dof {}, bounds [{:.3}, {:.3}], {} inside)",
+        fmt(c.anees_kinematic),
+        per_dof(c.anees_kinematic, 6.0).unwrap_or_else(|| "-".into()),
+        c.nees_kinematic_bounds_95[0],
+        c.nees_kinematic_bounds_95[1],
+        pct(c.nees_kinematic_in_bounds_frac)
+    );
+    if let (Some(anis), Some(dof)) = (c.anis, c.nis_dof) {
+        let channels: Vec<String> = c
+            .nis_per_channel
+            .iter()
+            .map(|(name, n)| format!("{name} {:.3}", n.anis_per_dof))
+            .collect();
+        println!(
+            "  ANIS {} (dof {dof:.2}, /dof {}, bounds [{:.3}, {:.3}], {} of epochs inside); per channel /dof: {}",
+            fmt(Some(anis)),
+            fmt(c.anis_per_dof),
+            c.nis_bounds_95[0],
+            c.nis_bounds_95[1],
+            pct(c.nis_in_bounds_frac),
+            channels.join(", ")
+        );
+    }
+    if let Some(d) = f.density_rmspe_pct {
+        let at_est = f
+            .density_at_estimate_rmspe_pct
+            .map(|v| format!("{v:.4} %"))
+            .unwrap_or_else(|| "-".into());
+        println!(
+            "  density RMSPE (eq. 70) {d:.4} % (onboard profile at the true altitude); {at_est} at the estimate"
+        );
+    }
+    if let Some(e) = &f.ellipse_km {
+        println!(
+            "  deployment 3σ ellipse: {:.3} × {:.3} km at {:.1}° from downrange, mean offset ({:.3}, {:.3}) km",
+            e.semi_major_km,
+            e.semi_minor_km,
+            e.orientation_deg,
+            e.mean_downrange_km,
+            e.mean_crossrange_km
+        );
+    }
+    println!(
+        "  failed {} of {} runs (numerical), diverged {} (final NEES > 100 x dof); {:.2} µs per filter step",
+        f.failed, f.runs, f.diverged, f.us_per_step
+    );
+    for p in &f.failures {
+        println!(
+            "    run {} at t = {} s ({}): {}",
+            p.run,
+            p.t_s,
+            match p.kind {
+                entrynav::sim::metrics::ProblemKind::Numerical => "numerical",
+                entrynav::sim::metrics::ProblemKind::Nees => "NEES",
+            },
+            p.reason
+        );
+    }
+    let bad = f.failed + f.diverged;
+    if bad * 100 > f.runs {
+        println!(
+            "  WARNING: {bad} of {} runs ({:.1}%) failed or diverged; replay one with --replay-run RUN --csv-dir DIR",
+            f.runs,
+            100.0 * bad as f64 / f.runs.max(1) as f64
+        );
+    }
+}

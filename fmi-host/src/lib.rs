@@ -7,7 +7,7 @@
 //! `.fmu`) carries only the FMU: the host's libloading and zip stay in the `entrynav` command.
 //!
 //! Modules: [`api`] (the fmi2 functions of a loaded library and the logger the host passes),
-//! [`unpack`] (opening an archive, reading its model description, loading its library) and
+//! [`unpack`](mod@unpack) (opening an archive, reading its model description, loading its library) and
 //! `slave` (one instance through the host, and reading all outputs of it or of an in-process
 //! instance the same way).
 #![warn(missing_docs)]

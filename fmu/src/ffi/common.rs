@@ -138,7 +138,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
 }
 
 /// `fmi2FreeInstance`: safe with NULL, after any error, twice, and while another thread is
-/// inside a call on the instance (see [`registry`](super::registry)).
+/// inside a call on the instance (see `ffi/registry.rs`).
 ///
 /// # Safety
 /// FMI 2.0 calling conventions.

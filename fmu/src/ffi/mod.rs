@@ -4,7 +4,7 @@
 //! reads or allocates by it ([`crate::limits`]), runs the call under [`panic_hook::guarded`] (a panic
 //! becomes `fmi2Error` with its message and location logged through the instance's logger, and
 //! nothing reaches stderr), and reaches the instance through the registry of live instances
-//! ([`registry`]: an `fmi2Component` is a token, never dereferenced, so null, foreign and freed
+//! (`registry.rs`: an `fmi2Component` is a token, never dereferenced, so null, foreign and freed
 //! ones are refused and `fmi2FreeInstance` is safe against a concurrent call) and a per-instance
 //! mutex (`try_lock`: a second thread calling the same instance at the same time gets `fmi2Error`
 //! and a logged reason instead of a data race). Messages go only to the FMI logger callback, with

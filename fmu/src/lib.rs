@@ -12,15 +12,14 @@
 //! Layers: [`vars`] (the variable table, shared with the XML generator, and the GUID), [`xml`]
 //! (`modelDescription.xml`), [`state`] (FMU state snapshots and their byte format), [`limits`]
 //! (the bound on everything from outside), [`instance`] (a safe instance with the FMI state
-//! machine over `entrynav::sim::engine`), and `ffi` (the 34 exported `fmi2*` functions, the only
-//! unsafe code of the FMU itself). [`host`] is the other side of the C ABI: our own FMI importer,
-//! used by `entrynav fmu check` and `fuzz` to drive a packed `.fmu` through its exported
-//! functions.
+//! machine over `entrynav::sim::engine`, and its allowed-state table), and [`ffi`] (the 34
+//! exported `fmi2*` functions and the registry of live instances, the only unsafe code). The
+//! other side of the C ABI, our own FMI importer used by `entrynav fmu check` and `fuzz`, is the
+//! `entrynav-fmi-host` crate, so this library carries only the FMU.
 #![warn(missing_docs)]
 
 pub mod binding;
 pub mod ffi;
-pub mod host;
 pub mod instance;
 pub mod limits;
 pub mod state;

@@ -4,7 +4,7 @@
 #![allow(non_snake_case)]
 
 use super::*;
-use mars_entry_nav::host::*;
+use entrynav_fmi_host::*;
 
 /// The input values at communication point `t` for a check run (bank profile, beacon 2 outage,
 /// and for the filter FMU the measurements of the previous step).
@@ -159,7 +159,7 @@ pub(super) fn check(a: &CheckArgs) -> Result<()> {
             vars[*i].name,
             slave.messages()
         );
-        ensure!(inst.set("fmi2Set", &[vars[*i].vr], vec![v.clone()]) == Status::Ok);
+        ensure!(inst.set(v.ty(), &[vars[*i].vr], vec![v.clone()]) == Status::Ok);
     }
     // SAFETY: our instance.
     unsafe {
@@ -210,7 +210,7 @@ pub(super) fn check(a: &CheckArgs) -> Result<()> {
                 vars[i].name,
                 slave.messages()
             );
-            ensure!(inst.set("fmi2Set", &[vars[i].vr], vec![v]) == Status::Ok);
+            ensure!(inst.set(v.ty(), &[vars[i].vr], vec![v]) == Status::Ok);
         }
         // SAFETY: our instance.
         let st = unsafe { (u.api.fmi2DoStep)(slave.c, t, h, 1) };
@@ -324,7 +324,7 @@ pub(super) fn bench(
         )
         .map_err(|(_, e)| anyhow::anyhow!(e))?;
         for (i, v) in params {
-            inst.set("fmi2Set", &[vars[*i].vr], vec![v.clone()]);
+            inst.set(v.ty(), &[vars[*i].vr], vec![v.clone()]);
         }
         inst.setup_experiment(0.0, Some(duration));
         inst.enter_initialization_mode();
@@ -333,7 +333,7 @@ pub(super) fn bench(
         for k in 0..n_steps {
             let t = k as f64 * h;
             let bank = if t < 100.0 { 0.0 } else { 0.35 };
-            inst.set("fmi2SetReal", &[bank_vr], vec![Value::Real(bank)]);
+            inst.set(Type::Real, &[bank_vr], vec![Value::Real(bank)]);
             ensure!(inst.do_step(t, h) <= Status::Warning);
         }
         wrapped.push(clock.elapsed().as_secs_f64());

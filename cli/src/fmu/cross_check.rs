@@ -11,10 +11,11 @@
 #![allow(non_snake_case)]
 
 use super::check::{check_inputs, load_scenario};
-use super::run::{Table, csv, fmt_value, run_in_process};
+use super::run::run_in_process;
+use super::table::{Table, csv, fmt_value};
 use super::*;
+use entrynav_fmi_host::unpack;
 use mars_entry_nav::ModelSpec;
-use mars_entry_nav::host::unpack;
 use mars_entry_nav::vars::{DEFAULT_SCENARIO, DEFAULT_SEED};
 
 /// Arguments of `entrynav fmu cross-check`.
@@ -176,11 +177,14 @@ pub(super) fn cross_check(a: &CrossCheckArgs) -> Result<()> {
             }
         }
         let refs: Vec<&str> = names.iter().map(String::as_str).collect();
-        write_limited(&dir.join(format!("{id}_ref.csv")), &csv(&refs, &rows, true))?;
+        write_limited(
+            &dir.join(format!("{id}_ref.csv")),
+            &csv(&refs, &rows, true)?,
+        )?;
         let in_names: Vec<&str> = table.columns.iter().map(|v| v.name.as_str()).collect();
         write_limited(
             &dir.join(format!("{id}_in.csv")),
-            &csv(&in_names, &table.rows, true),
+            &csv(&in_names, &table.rows, true)?,
         )?;
         std::fs::write(
             dir.join(format!("{id}_ref.opt")),

@@ -3,7 +3,7 @@
 //! `--bench`), drive random call sequences through the host (`fuzz`), run a model in process
 //! (`run`) and write the FMI Cross-Check files of packed FMUs (`cross-check`).
 //!
-//! The host (`mars_entry_nav::host`, in the `fmu` crate) loads
+//! The host (the `entrynav-fmi-host` crate, kept out of the FMU library) loads
 //! `binaries/linux64/<modelIdentifier>.so` with libloading and calls the 34 fmi2 functions.
 
 #![allow(non_snake_case)]
@@ -14,6 +14,7 @@ mod fuzz;
 mod library;
 mod pack;
 mod run;
+mod table;
 
 use check::check;
 use cross_check::{CrossCheckArgs, cross_check};

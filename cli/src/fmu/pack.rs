@@ -193,7 +193,7 @@ pub(super) fn pack(a: &PackArgs) -> Result<()> {
         let path = write_fmu(&a.out, spec, &so, resources)?;
         // The packed FMU must unpack to the model it was packed for (binding, description and,
         // for a specific FMU, the embedded scenario).
-        let u = mars_entry_nav::host::unpack(&path)
+        let u = entrynav_fmi_host::unpack(&path)
             .with_context(|| format!("the packed {} does not check", path.display()))?;
         ensure!(
             u.spec.guid() == spec.guid(),

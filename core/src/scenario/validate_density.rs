@@ -34,6 +34,9 @@ impl DensityFilterConfig {
         if let Some(k) = self.ac_initial {
             c.range(f("ac_initial"), k, Range::gt(0.0).lt(100.0))?;
         }
+        if let Some(climatology) = &self.climatology {
+            climatology.validate(&f("climatology"))?;
+        }
         if self.network.trim().is_empty() {
             return Err(ScenarioError::invalid(
                 f("network"),

@@ -28,7 +28,7 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
     n: usize,
     categories: *const *const c_char,
 ) -> Fmi2Status {
-    const F: &str = "fmi2SetDebugLogging";
+    const F: Fmi2 = Fmi2::SetDebugLogging;
     status(c, F, |inner| {
         // SAFETY: the master passes `n` category strings (n is bounded first).
         let Some(cats) = (unsafe { slice(categories, n, MAX_CATEGORIES) }) else {
@@ -120,15 +120,14 @@ pub unsafe extern "C" fn fmi2Instantiate(
         let sink_logger = Arc::clone(&logger);
         let sink: LogSink = Box::new(move |s, cat, msg| sink_logger.log(s, cat, msg));
         match Instance::new(spec, name, guid, res, logging_on != 0, sink) {
-            Ok(inst) => Box::into_raw(Box::new(Handle {
-                magic: MAGIC,
-                log: logger,
-                inner: Mutex::new(Inner {
+            Ok(inst) => registry::register(
+                logger,
+                Inner {
                     inst,
                     strings: Vec::new(),
                     snapshots: HashMap::new(),
-                }),
-            })) as Fmi2Component,
+                },
+            ),
             Err((sink, e)) => {
                 sink(Status::Error, "logStatusError", &e.to_string());
                 std::ptr::null_mut()
@@ -138,39 +137,14 @@ pub unsafe extern "C" fn fmi2Instantiate(
     r.unwrap_or(std::ptr::null_mut())
 }
 
-/// `fmi2FreeInstance`: safe with NULL and after any error.
+/// `fmi2FreeInstance`: safe with NULL, after any error, twice, and while another thread is
+/// inside a call on the instance (see `ffi/registry.rs`).
 ///
 /// # Safety
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2FreeInstance(c: Fmi2Component) {
-    let _ = panic_hook::guarded(|| {
-        if c.is_null() {
-            return;
-        }
-        let h = c as *mut Handle;
-        // SAFETY: a pointer from fmi2Instantiate (see `with_inst`).
-        let handle = unsafe { &mut *h };
-        if handle.magic != MAGIC {
-            return;
-        }
-        if handle
-            .inner
-            .try_lock()
-            .is_err_and(|e| matches!(e, TryLockError::WouldBlock))
-        {
-            // In use by another thread: leaking beats a use-after-free.
-            handle.log.log(
-                Status::Error,
-                "logStatusError",
-                "fmi2FreeInstance: the instance is busy in another thread; it is not freed",
-            );
-            return;
-        }
-        handle.magic = FREED;
-        // SAFETY: created by Box::into_raw in fmi2Instantiate, freed once (magic now cleared).
-        drop(unsafe { Box::from_raw(h) });
-    });
+    let _ = panic_hook::guarded(|| registry::free(c));
 }
 
 /// `fmi2SetupExperiment`.
@@ -186,7 +160,7 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
     stop_time_defined: Fmi2Boolean,
     stop_time: f64,
 ) -> Fmi2Status {
-    status(c, "fmi2SetupExperiment", |i| {
+    status(c, Fmi2::SetupExperiment, |i| {
         i.inst
             .setup_experiment(start_time, (stop_time_defined != 0).then_some(stop_time))
     })
@@ -198,7 +172,7 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2EnterInitializationMode(c: Fmi2Component) -> Fmi2Status {
-    status(c, "fmi2EnterInitializationMode", |i| {
+    status(c, Fmi2::EnterInitializationMode, |i| {
         i.inst.enter_initialization_mode()
     })
 }
@@ -209,7 +183,7 @@ pub unsafe extern "C" fn fmi2EnterInitializationMode(c: Fmi2Component) -> Fmi2St
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2ExitInitializationMode(c: Fmi2Component) -> Fmi2Status {
-    status(c, "fmi2ExitInitializationMode", |i| {
+    status(c, Fmi2::ExitInitializationMode, |i| {
         i.inst.exit_initialization_mode()
     })
 }
@@ -220,7 +194,7 @@ pub unsafe extern "C" fn fmi2ExitInitializationMode(c: Fmi2Component) -> Fmi2Sta
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2Terminate(c: Fmi2Component) -> Fmi2Status {
-    status(c, "fmi2Terminate", |i| i.inst.terminate())
+    status(c, Fmi2::Terminate, |i| i.inst.terminate())
 }
 
 /// `fmi2Reset`.
@@ -229,5 +203,5 @@ pub unsafe extern "C" fn fmi2Terminate(c: Fmi2Component) -> Fmi2Status {
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2Reset(c: Fmi2Component) -> Fmi2Status {
-    status(c, "fmi2Reset", |i| i.inst.reset())
+    status(c, Fmi2::Reset, |i| i.inst.reset())
 }

@@ -3,7 +3,7 @@
 
 use super::*;
 
-use crate::instance::{AFTER_INIT, GET, SET, StatusAnswer, StatusType};
+use crate::instance::{StatusAnswer, StatusType};
 
 /// `fmi2GetDirectionalDerivative`: not supported (providesDirectionalDerivative = false).
 ///
@@ -19,10 +19,9 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
     _dv_known: *const f64,
     _dv_unknown: *mut f64,
 ) -> Fmi2Status {
-    status(c, "fmi2GetDirectionalDerivative", |i| {
+    status(c, Fmi2::GetDirectionalDerivative, |i| {
         i.inst.unsupported(
-            "fmi2GetDirectionalDerivative",
-            GET,
+            Fmi2::GetDirectionalDerivative,
             "directional derivatives (providesDirectionalDerivative = false)",
         )
     })
@@ -40,10 +39,9 @@ pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
     _order: *const c_int,
     _value: *const f64,
 ) -> Fmi2Status {
-    status(c, "fmi2SetRealInputDerivatives", |i| {
+    status(c, Fmi2::SetRealInputDerivatives, |i| {
         i.inst.unsupported(
-            "fmi2SetRealInputDerivatives",
-            SET,
+            Fmi2::SetRealInputDerivatives,
             "input derivatives (canInterpolateInputs = false)",
         )
     })
@@ -61,10 +59,9 @@ pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
     _order: *const c_int,
     _value: *mut f64,
 ) -> Fmi2Status {
-    status(c, "fmi2GetRealOutputDerivatives", |i| {
+    status(c, Fmi2::GetRealOutputDerivatives, |i| {
         i.inst.unsupported(
-            "fmi2GetRealOutputDerivatives",
-            AFTER_INIT,
+            Fmi2::GetRealOutputDerivatives,
             "output derivatives (maxOutputDerivativeOrder = 0)",
         )
     })
@@ -81,7 +78,7 @@ pub unsafe extern "C" fn fmi2DoStep(
     communication_step_size: f64,
     _no_set_fmu_state_prior: Fmi2Boolean,
 ) -> Fmi2Status {
-    status(c, "fmi2DoStep", |i| {
+    status(c, Fmi2::DoStep, |i| {
         i.inst
             .do_step(current_communication_point, communication_step_size)
     })
@@ -93,7 +90,7 @@ pub unsafe extern "C" fn fmi2DoStep(
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2CancelStep(c: Fmi2Component) -> Fmi2Status {
-    status(c, "fmi2CancelStep", |i| i.inst.cancel_step())
+    status(c, Fmi2::CancelStep, |i| i.inst.cancel_step())
 }
 
 /// A status query: `answer` turns the instance's answer into the value written to `out`.
@@ -105,7 +102,7 @@ fn status_query<T>(
     answer: impl FnOnce(StatusAnswer) -> Option<T>,
 ) -> Status {
     let func = ty.function();
-    let a = match inner.inst.query_status(func, kind, ty) {
+    let a = match inner.inst.query_status(kind, ty) {
         Ok(a) => a,
         Err(s) => return s,
     };
@@ -134,7 +131,7 @@ pub unsafe extern "C" fn fmi2GetStatus(
     kind: c_int,
     value: *mut Fmi2Status,
 ) -> Fmi2Status {
-    status(c, "fmi2GetStatus", |i| {
+    status(c, Fmi2::GetStatus, |i| {
         status_query(i, StatusType::Status, kind, value, |_| None)
     })
 }
@@ -149,7 +146,7 @@ pub unsafe extern "C" fn fmi2GetRealStatus(
     kind: c_int,
     value: *mut f64,
 ) -> Fmi2Status {
-    status(c, "fmi2GetRealStatus", |i| {
+    status(c, Fmi2::GetRealStatus, |i| {
         status_query(i, StatusType::Real, kind, value, |a| match a {
             StatusAnswer::Real(t) => Some(t),
             StatusAnswer::Boolean(_) => None,
@@ -167,7 +164,7 @@ pub unsafe extern "C" fn fmi2GetIntegerStatus(
     kind: c_int,
     value: *mut c_int,
 ) -> Fmi2Status {
-    status(c, "fmi2GetIntegerStatus", |i| {
+    status(c, Fmi2::GetIntegerStatus, |i| {
         status_query(i, StatusType::Integer, kind, value, |_| None)
     })
 }
@@ -182,7 +179,7 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(
     kind: c_int,
     value: *mut Fmi2Boolean,
 ) -> Fmi2Status {
-    status(c, "fmi2GetBooleanStatus", |i| {
+    status(c, Fmi2::GetBooleanStatus, |i| {
         status_query(i, StatusType::Boolean, kind, value, |a| match a {
             StatusAnswer::Boolean(b) => Some(b as Fmi2Boolean),
             StatusAnswer::Real(_) => None,
@@ -200,7 +197,7 @@ pub unsafe extern "C" fn fmi2GetStringStatus(
     kind: c_int,
     value: *mut *const c_char,
 ) -> Fmi2Status {
-    status(c, "fmi2GetStringStatus", |i| {
+    status(c, Fmi2::GetStringStatus, |i| {
         status_query(i, StatusType::String, kind, value, |_| None)
     })
 }

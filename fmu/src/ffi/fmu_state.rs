@@ -10,7 +10,7 @@ fn known(inner: &Inner, p: Fmi2State) -> bool {
 
 /// Store `snap` in `*slot` (a state of this instance, overwritten) or in a new state; refused
 /// when the instance already holds [`MAX_SNAPSHOTS`] states.
-fn store_snapshot(inner: &mut Inner, func: &str, slot: &mut Fmi2State, snap: Snapshot) -> Status {
+fn store_snapshot(inner: &mut Inner, func: Fmi2, slot: &mut Fmi2State, snap: Snapshot) -> Status {
     if known(inner, *slot) {
         if let Some(b) = inner.snapshots.get_mut(&(*slot as usize)) {
             **b = snap;
@@ -35,9 +35,9 @@ fn store_snapshot(inner: &mut Inner, func: &str, slot: &mut Fmi2State, snap: Sna
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetFMUstate(c: Fmi2Component, state: *mut Fmi2State) -> Fmi2Status {
-    status(c, "fmi2GetFMUstate", |i| {
+    status(c, Fmi2::GetFMUstate, |i| {
         if state.is_null() {
-            return null_arg(i, "fmi2GetFMUstate", "FMUstate");
+            return null_arg(i, Fmi2::GetFMUstate, "FMUstate");
         }
         // SAFETY: non-null pointer to the master's fmi2FMUstate variable.
         let slot = unsafe { &mut *state };
@@ -47,7 +47,7 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: Fmi2Component, state: *mut Fmi2State
                 .error("fmi2GetFMUstate: *FMUstate is neither NULL nor a state of this instance");
         }
         match i.inst.get_state() {
-            Ok(snap) => store_snapshot(i, "fmi2GetFMUstate", slot, snap),
+            Ok(snap) => store_snapshot(i, Fmi2::GetFMUstate, slot, snap),
             Err(s) => s,
         }
     })
@@ -59,7 +59,7 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: Fmi2Component, state: *mut Fmi2State
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2SetFMUstate(c: Fmi2Component, state: Fmi2State) -> Fmi2Status {
-    status(c, "fmi2SetFMUstate", |i| {
+    status(c, Fmi2::SetFMUstate, |i| {
         if !known(i, state) {
             return i
                 .inst
@@ -76,12 +76,12 @@ pub unsafe extern "C" fn fmi2SetFMUstate(c: Fmi2Component, state: Fmi2State) -> 
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: Fmi2Component, state: *mut Fmi2State) -> Fmi2Status {
-    status(c, "fmi2FreeFMUstate", |i| {
-        if let Err(s) = i.inst.check_state_call("fmi2FreeFMUstate") {
+    status(c, Fmi2::FreeFMUstate, |i| {
+        if let Err(s) = i.inst.check(Fmi2::FreeFMUstate) {
             return s;
         }
         if state.is_null() {
-            return null_arg(i, "fmi2FreeFMUstate", "FMUstate");
+            return null_arg(i, Fmi2::FreeFMUstate, "FMUstate");
         }
         // SAFETY: non-null pointer to the master's fmi2FMUstate variable.
         let slot = unsafe { &mut *state };
@@ -108,12 +108,12 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
     state: Fmi2State,
     size: *mut usize,
 ) -> Fmi2Status {
-    status(c, "fmi2SerializedFMUstateSize", |i| {
-        if let Err(s) = i.inst.check_state_call("fmi2SerializedFMUstateSize") {
+    status(c, Fmi2::SerializedFMUstateSize, |i| {
+        if let Err(s) = i.inst.check(Fmi2::SerializedFMUstateSize) {
             return s;
         }
         if size.is_null() {
-            return null_arg(i, "fmi2SerializedFMUstateSize", "size");
+            return null_arg(i, Fmi2::SerializedFMUstateSize, "size");
         }
         if !known(i, state) {
             return i
@@ -138,8 +138,8 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
     bytes: *mut u8,
     size: usize,
 ) -> Fmi2Status {
-    status(c, "fmi2SerializeFMUstate", |i| {
-        if let Err(s) = i.inst.check_state_call("fmi2SerializeFMUstate") {
+    status(c, Fmi2::SerializeFMUstate, |i| {
+        if let Err(s) = i.inst.check(Fmi2::SerializeFMUstate) {
             return s;
         }
         if !known(i, state) {
@@ -156,7 +156,7 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
         }
         // SAFETY: the master provides `size` writable bytes; only the state's length is touched.
         let Some(out) = (unsafe { slice_mut(bytes, data.len(), MAX_STATE_BYTES) }) else {
-            return null_arg(i, "fmi2SerializeFMUstate", "serializedState");
+            return null_arg(i, Fmi2::SerializeFMUstate, "serializedState");
         };
         out[..data.len()].copy_from_slice(&data);
         Status::Ok
@@ -174,8 +174,8 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     size: usize,
     state: *mut Fmi2State,
 ) -> Fmi2Status {
-    status(c, "fmi2DeSerializeFMUstate", |i| {
-        if let Err(s) = i.inst.check_state_call("fmi2DeSerializeFMUstate") {
+    status(c, Fmi2::DeSerializeFMUstate, |i| {
+        if let Err(s) = i.inst.check(Fmi2::DeSerializeFMUstate) {
             return s;
         }
         if size > MAX_STATE_BYTES {
@@ -185,10 +185,10 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
         }
         // SAFETY: the master passes `size` readable bytes (bounded above).
         let Some(data) = (unsafe { slice(bytes, size, MAX_STATE_BYTES) }) else {
-            return null_arg(i, "fmi2DeSerializeFMUstate", "serializedState");
+            return null_arg(i, Fmi2::DeSerializeFMUstate, "serializedState");
         };
         if state.is_null() {
-            return null_arg(i, "fmi2DeSerializeFMUstate", "FMUstate");
+            return null_arg(i, Fmi2::DeSerializeFMUstate, "FMUstate");
         }
         // SAFETY: non-null pointer to the master's fmi2FMUstate variable.
         let slot = unsafe { &mut *state };
@@ -201,9 +201,9 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
             Ok(s) => s,
             Err(e) => return i.inst.error(&format!("fmi2DeSerializeFMUstate: {e}")),
         };
-        if let Err(s) = i.inst.check_snapshot("fmi2DeSerializeFMUstate", &snap) {
+        if let Err(s) = i.inst.check_snapshot(Fmi2::DeSerializeFMUstate, &snap) {
             return s;
         }
-        store_snapshot(i, "fmi2DeSerializeFMUstate", slot, snap)
+        store_snapshot(i, Fmi2::DeSerializeFMUstate, slot, snap)
     })
 }

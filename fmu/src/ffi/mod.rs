@@ -3,19 +3,22 @@
 //! Every entry point checks its pointers, bounds every length and count it is given before it
 //! reads or allocates by it ([`crate::limits`]), runs the call under [`panic_hook::guarded`] (a panic
 //! becomes `fmi2Error` with its message and location logged through the instance's logger, and
-//! nothing reaches stderr), and reaches the instance through a per-instance mutex (`try_lock`: a
-//! second thread calling the same instance at the same time gets `fmi2Error` and a logged reason
-//! instead of a data race). Messages go only to the FMI logger callback, with `%` escaped as `%%`
-//! (the logger is printf-like). The only process-wide state is the panic hook ([`panic_hook`]).
+//! nothing reaches stderr), and reaches the instance through the registry of live instances
+//! (`registry.rs`: an `fmi2Component` is a token, never dereferenced, so null, foreign and freed
+//! ones are refused and `fmi2FreeInstance` is safe against a concurrent call) and a per-instance
+//! mutex (`try_lock`: a second thread calling the same instance at the same time gets `fmi2Error`
+//! and a logged reason instead of a data race). Messages go only to the FMI logger callback, with
+//! `%` escaped as `%%` (the logger is printf-like). The process-wide state is the panic hook
+//! ([`panic_hook`]) and the registry.
 
 #![allow(non_snake_case)]
 
-use crate::instance::{Instance, LogSink, Status};
+use crate::instance::{Fmi2, Instance, LogSink, Status};
 use crate::state::Snapshot;
 use crate::vars::{Type, Value};
 use std::collections::HashMap;
 use std::ffi::{CString, c_char, c_int, c_void};
-use std::sync::{Arc, Mutex, TryLockError};
+use std::sync::Arc;
 
 type Fmi2Status = c_int;
 type Fmi2Boolean = c_int;
@@ -48,20 +51,10 @@ pub struct CallbackFunctions {
     pub component_environment: *mut c_void,
 }
 
-const MAGIC: u64 = 0x454E_4156_464D_5531; // "ENAVFMU1"
-const FREED: u64 = 0xDEAD_DEAD_DEAD_DEAD;
-
 struct Inner {
     inst: Instance,
     strings: Vec<CString>,
     snapshots: HashMap<usize, Box<Snapshot>>,
-}
-
-struct Handle {
-    magic: u64,
-    /// The master's logger, outside the lock so a refused concurrent call can still log.
-    log: Arc<CLogger>,
-    inner: Mutex<Inner>,
 }
 
 /// The logger callback with its environment.
@@ -102,50 +95,6 @@ impl CLogger {
             };
         }
     }
-}
-
-/// Run `f` on the instance behind `c`; null, freed or foreign pointers, concurrent calls and
-/// panics give `fail`.
-fn with_inst<T>(c: Fmi2Component, func: &str, fail: T, f: impl FnOnce(&mut Inner) -> T) -> T {
-    if c.is_null() {
-        return fail;
-    }
-    let handle = c as *const Handle;
-    // SAFETY: a non-null component must be a pointer returned by fmi2Instantiate and not yet
-    // freed (FMI 2.0); the magic check rejects freed handles while their memory is still mapped.
-    let handle = unsafe { &*handle };
-    if handle.magic != MAGIC {
-        return fail;
-    }
-    let mut guard = match handle.inner.try_lock() {
-        Ok(g) => g,
-        Err(TryLockError::Poisoned(p)) => p.into_inner(),
-        Err(TryLockError::WouldBlock) => {
-            let log = &handle.log;
-            let _ = panic_hook::guarded(|| {
-                log.log(
-                    Status::Error,
-                    "logStatusError",
-                    &format!(
-                        "{func}: the instance is busy: another thread is inside a call on it (FMI 2.0 allows one call at a time per instance); nothing was done"
-                    ),
-                )
-            });
-            return fail;
-        }
-    };
-    match panic_hook::guarded(|| f(&mut guard)) {
-        Ok(v) => v,
-        Err(msg) => {
-            let msg = format!("{func}: internal error (caught panic: {msg})");
-            let _ = panic_hook::guarded(|| guard.inst.poison(&msg));
-            fail
-        }
-    }
-}
-
-fn status(c: Fmi2Component, func: &str, f: impl FnOnce(&mut Inner) -> Status) -> Fmi2Status {
-    with_inst(c, func, Status::Error, f) as Fmi2Status
 }
 
 /// Borrow a C array of `n` elements; null is allowed only for length 0, and `n` must be at most
@@ -220,7 +169,7 @@ unsafe fn text<'a>(p: *const c_char, max: usize) -> Result<&'a str, TextError> {
     std::str::from_utf8(bytes).map_err(|_| TextError::NotUtf8)
 }
 
-fn null_arg(inner: &Inner, func: &str, what: &str) -> Status {
+fn null_arg(inner: &Inner, func: Fmi2, what: &str) -> Status {
     inner.inst.error(&format!(
         "{func}: {what} is a null pointer, or its length is over the limit ({} elements)",
         crate::limits::MAX_VALUE_REFS
@@ -232,7 +181,11 @@ mod common;
 mod cosim;
 mod fmu_state;
 pub mod panic_hook;
+mod registry;
 mod values;
+
+pub use registry::live_instances;
+use registry::status;
 
 pub use common::*;
 pub use cosim::*;

@@ -5,7 +5,6 @@ use crate::limits::{MAX_STRING_BYTES, MAX_STRING_REFS, MAX_VALUE_REFS};
 
 fn get_values<T>(
     inner: &mut Inner,
-    func: &str,
     ty: Type,
     vr: *const u32,
     nvr: usize,
@@ -21,9 +20,9 @@ fn get_values<T>(
     let (Some(vrs), Some(out)) = (unsafe { slice(vr, nvr, max) }, unsafe {
         slice_mut(out, nvr, max)
     }) else {
-        return null_arg(inner, func, "vr or value");
+        return null_arg(inner, Fmi2::getter(ty), "vr or value");
     };
-    match inner.inst.get(func, ty, vrs) {
+    match inner.inst.get(ty, vrs) {
         Ok(values) => {
             // Strings handed out by fmi2GetString stay valid until the next fmi2GetString.
             if ty == Type::String {
@@ -49,19 +48,11 @@ pub unsafe extern "C" fn fmi2GetReal(
     nvr: usize,
     value: *mut f64,
 ) -> Fmi2Status {
-    status(c, "fmi2GetReal", |i| {
-        get_values(
-            i,
-            "fmi2GetReal",
-            Type::Real,
-            vr,
-            nvr,
-            value,
-            |v, _| match v {
-                Value::Real(x) => x,
-                _ => f64::NAN,
-            },
-        )
+    status(c, Fmi2::GetReal, |i| {
+        get_values(i, Type::Real, vr, nvr, value, |v, _| match v {
+            Value::Real(x) => x,
+            _ => f64::NAN,
+        })
     })
 }
 
@@ -76,19 +67,11 @@ pub unsafe extern "C" fn fmi2GetInteger(
     nvr: usize,
     value: *mut c_int,
 ) -> Fmi2Status {
-    status(c, "fmi2GetInteger", |i| {
-        get_values(
-            i,
-            "fmi2GetInteger",
-            Type::Integer,
-            vr,
-            nvr,
-            value,
-            |v, _| match v {
-                Value::Integer(x) => x,
-                _ => 0,
-            },
-        )
+    status(c, Fmi2::GetInteger, |i| {
+        get_values(i, Type::Integer, vr, nvr, value, |v, _| match v {
+            Value::Integer(x) => x,
+            _ => 0,
+        })
     })
 }
 
@@ -103,16 +86,10 @@ pub unsafe extern "C" fn fmi2GetBoolean(
     nvr: usize,
     value: *mut Fmi2Boolean,
 ) -> Fmi2Status {
-    status(c, "fmi2GetBoolean", |i| {
-        get_values(
-            i,
-            "fmi2GetBoolean",
-            Type::Boolean,
-            vr,
-            nvr,
-            value,
-            |v, _| matches!(v, Value::Boolean(true)) as Fmi2Boolean,
-        )
+    status(c, Fmi2::GetBoolean, |i| {
+        get_values(i, Type::Boolean, vr, nvr, value, |v, _| {
+            matches!(v, Value::Boolean(true)) as Fmi2Boolean
+        })
     })
 }
 
@@ -128,24 +105,16 @@ pub unsafe extern "C" fn fmi2GetString(
     nvr: usize,
     value: *mut *const c_char,
 ) -> Fmi2Status {
-    status(c, "fmi2GetString", |i| {
-        get_values(
-            i,
-            "fmi2GetString",
-            Type::String,
-            vr,
-            nvr,
-            value,
-            |v, store| {
-                let s = match v {
-                    Value::String(s) => c_text(&s),
-                    _ => CString::default(),
-                };
-                let p = s.as_ptr();
-                store.push(s);
-                p
-            },
-        )
+    status(c, Fmi2::GetString, |i| {
+        get_values(i, Type::String, vr, nvr, value, |v, store| {
+            let s = match v {
+                Value::String(s) => c_text(&s),
+                _ => CString::default(),
+            };
+            let p = s.as_ptr();
+            store.push(s);
+            p
+        })
     })
 }
 
@@ -153,13 +122,14 @@ pub unsafe extern "C" fn fmi2GetString(
 #[allow(clippy::too_many_arguments)]
 fn set_values<T: Copy>(
     inner: &mut Inner,
-    func: &str,
+    ty: Type,
     vr: *const u32,
     nvr: usize,
     value: *const T,
     max: usize,
     mut conv: impl FnMut(T) -> Result<Value, TextError>,
 ) -> Status {
+    let func = Fmi2::setter(ty);
     // SAFETY: the master passes `nvr` references and values (nvr bounded first).
     let (Some(vrs), Some(vals)) = (unsafe { slice(vr, nvr, max) }, unsafe {
         slice(value, nvr, max)
@@ -177,7 +147,7 @@ fn set_values<T: Copy>(
             }
         }
     }
-    inner.inst.set(func, vrs, values)
+    inner.inst.set(ty, vrs, values)
 }
 
 /// `fmi2SetReal`.
@@ -191,8 +161,8 @@ pub unsafe extern "C" fn fmi2SetReal(
     nvr: usize,
     value: *const f64,
 ) -> Fmi2Status {
-    status(c, "fmi2SetReal", |i| {
-        set_values(i, "fmi2SetReal", vr, nvr, value, MAX_VALUE_REFS, |x| {
+    status(c, Fmi2::SetReal, |i| {
+        set_values(i, Type::Real, vr, nvr, value, MAX_VALUE_REFS, |x| {
             Ok(Value::Real(x))
         })
     })
@@ -209,8 +179,8 @@ pub unsafe extern "C" fn fmi2SetInteger(
     nvr: usize,
     value: *const c_int,
 ) -> Fmi2Status {
-    status(c, "fmi2SetInteger", |i| {
-        set_values(i, "fmi2SetInteger", vr, nvr, value, MAX_VALUE_REFS, |x| {
+    status(c, Fmi2::SetInteger, |i| {
+        set_values(i, Type::Integer, vr, nvr, value, MAX_VALUE_REFS, |x| {
             Ok(Value::Integer(x))
         })
     })
@@ -227,8 +197,8 @@ pub unsafe extern "C" fn fmi2SetBoolean(
     nvr: usize,
     value: *const Fmi2Boolean,
 ) -> Fmi2Status {
-    status(c, "fmi2SetBoolean", |i| {
-        set_values(i, "fmi2SetBoolean", vr, nvr, value, MAX_VALUE_REFS, |x| {
+    status(c, Fmi2::SetBoolean, |i| {
+        set_values(i, Type::Boolean, vr, nvr, value, MAX_VALUE_REFS, |x| {
             Ok(Value::Boolean(x != 0))
         })
     })
@@ -245,8 +215,8 @@ pub unsafe extern "C" fn fmi2SetString(
     nvr: usize,
     value: *const *const c_char,
 ) -> Fmi2Status {
-    status(c, "fmi2SetString", |i| {
-        set_values(i, "fmi2SetString", vr, nvr, value, MAX_STRING_REFS, |p| {
+    status(c, Fmi2::SetString, |i| {
+        set_values(i, Type::String, vr, nvr, value, MAX_STRING_REFS, |p| {
             // SAFETY: each value is null (rejected) or a C string.
             unsafe { text(p, MAX_STRING_BYTES) }.map(|s| Value::String(s.to_string()))
         })

@@ -7,7 +7,7 @@ use crate::limits::{self, LimitError, STEP_CHUNK_TRUTH_STEPS};
 use crate::vars::{Key, MAX_BEACONS, Model, Slot, Value};
 use entrynav::estimation::nav::{FilterKind, NavError};
 use entrynav::scenario::Scenario;
-use entrynav::sensors::MeasurementEpoch;
+use entrynav::sensors::{Channel, MeasurementEpoch};
 use entrynav::sim::engine::{
     EngineError, EntryCoSim, NavStatus, Navigator, StepReport, TruthSensors,
 };
@@ -53,16 +53,26 @@ pub enum Engine {
     Combined(Box<EntryCoSim>),
     /// Truth and sensors.
     Truth(Box<TruthSensors>),
-    /// Filter alone.
-    Filter(Arc<Scenario>, Box<Navigator>),
+    /// Filter alone: it sees only its onboard view ([`Navigator::onboard`]), and the instance
+    /// keeps of the scenario only the run's duration, which bounds the filter's prediction.
+    Filter {
+        /// The filter.
+        nav: Box<Navigator>,
+        /// The scenario's `timing.duration_s`.
+        duration_s: f64,
+    },
 }
 
 impl Engine {
-    pub(super) fn scenario(&self) -> &Arc<Scenario> {
+    /// The measurement channels, in the order of an epoch's values.
+    pub(super) fn channels(&self) -> Vec<Channel> {
+        let of_scenario = |s: &Scenario| s.channels.iter().map(|c| c.channel).collect();
         match self {
-            Engine::Combined(c) => c.truth().scenario(),
-            Engine::Truth(t) => t.scenario(),
-            Engine::Filter(s, _) => s,
+            Engine::Combined(c) => of_scenario(c.truth().scenario()),
+            Engine::Truth(t) => of_scenario(t.scenario()),
+            Engine::Filter { nav, .. } => {
+                nav.onboard().channels.iter().map(|c| c.channel).collect()
+            }
         }
     }
 
@@ -70,14 +80,14 @@ impl Engine {
         match self {
             Engine::Combined(c) => Some(c.truth()),
             Engine::Truth(t) => Some(t),
-            Engine::Filter(..) => None,
+            Engine::Filter { .. } => None,
         }
     }
 
     pub(super) fn nav(&self) -> Option<&Navigator> {
         match self {
             Engine::Combined(c) => Some(c.nav()),
-            Engine::Filter(_, f) => Some(f),
+            Engine::Filter { nav, .. } => Some(nav),
             Engine::Truth(_) => None,
         }
     }
@@ -87,7 +97,7 @@ impl Engine {
         match self {
             Engine::Combined(c) => c.time(),
             Engine::Truth(t) => t.time(),
-            Engine::Filter(_, f) => f.time(),
+            Engine::Filter { nav, .. } => nav.time(),
         }
     }
 }
@@ -130,7 +140,10 @@ impl Instance {
             )?)),
             Model::Filter => {
                 let nav = Navigator::for_seed(&scenario, kind()?, seed, dispersed)?;
-                Engine::Filter(scenario, Box::new(nav))
+                Engine::Filter {
+                    nav: Box::new(nav),
+                    duration_s: scenario.config.timing.duration_s,
+                }
             }
             Model::Truth => Engine::Truth(Box::new(TruthSensors::new(scenario, seed, dispersed))),
         })
@@ -140,11 +153,10 @@ impl Instance {
         if self.engine.is_none() {
             let e = self.build_engine()?;
             self.slot_channel = e
-                .scenario()
-                .channels
-                .iter()
+                .channels()
+                .into_iter()
                 .enumerate()
-                .filter_map(|(i, c)| Slot::of(c.channel).map(|s| (s, i)))
+                .filter_map(|(i, c)| Slot::of(c).map(|s| (s, i)))
                 .collect();
             self.engine = Some(e);
         }
@@ -153,10 +165,13 @@ impl Instance {
 
     /// The measurement epoch the filter FMU's inputs describe, if `meas_epoch` is set.
     fn input_epoch(&self) -> Option<MeasurementEpoch> {
-        if self.model != Model::Filter || !self.input_bool(Key::MeasEpoch, false) {
+        let Some(Engine::Filter { nav, .. }) = &self.engine else {
+            return None;
+        };
+        if !self.input_bool(Key::MeasEpoch, false) {
             return None;
         }
-        let n = self.engine.as_ref().map(|e| e.scenario().channels.len())?;
+        let n = nav.onboard().channels.len();
         let mut values = vec![None; n];
         for (slot, &c) in &self.slot_channel {
             if self.input_bool(Key::MeasValid(*slot), false) {
@@ -173,7 +188,8 @@ impl Instance {
     /// prediction to an input epoch it would process. (The truth's work is bounded by the
     /// scenario, checked when the engine is built.)
     pub(super) fn check_step_work(&self, t: f64, h: f64) -> Result<(), LimitError> {
-        let (Some(Engine::Filter(scenario, nav)), Some(epoch)) = (&self.engine, self.input_epoch())
+        let (Some(Engine::Filter { nav, duration_s }), Some(epoch)) =
+            (&self.engine, self.input_epoch())
         else {
             return Ok(());
         };
@@ -184,12 +200,7 @@ impl Instance {
         if !processed {
             return Ok(());
         }
-        limits::check_prediction(
-            last,
-            epoch.t,
-            nav.onboard().filter_step_s,
-            scenario.config.timing.duration_s,
-        )
+        limits::check_prediction(last, epoch.t, nav.onboard().filter_step_s, *duration_s)
     }
 
     /// One step of the combined engine, advanced in chunks of at most
@@ -239,7 +250,7 @@ impl Instance {
         let report = match engine {
             Engine::Combined(c) => Self::step_combined(c, t, h, bank, &avail),
             Engine::Truth(ts) => ts.do_step(t, h, bank, &avail),
-            Engine::Filter(_, f) => f.do_step(t, h, bank, epoch.as_ref()),
+            Engine::Filter { nav, .. } => nav.do_step(t, h, bank, epoch.as_ref()),
         }?;
         let mut status = Status::Ok;
         if self.model == Model::Truth && report.epochs > 1 {

@@ -1,31 +1,14 @@
-//! The FMI 2.0 co-simulation state machine: the table of allowed states per function (as the
-//! Reference-FMUs' `MASK_fmi2*`), the calls that move between states, fmi2DoStep and the status
+//! The FMI 2.0 co-simulation state machine: the calls that move between states (each checked
+//! against its entry of the allowed-state table, [`super::allowed`]), fmi2DoStep and the status
 //! queries.
 
-use super::{Instance, Status};
+use super::{Fmi2, Instance, Status};
 use crate::limits::MAX_CATEGORIES;
 use crate::state::{Phase, StepRecord};
 use crate::xml::LOG_CATEGORIES;
 use Phase::*;
 use entrynav::sim::engine::same_time;
 use std::sync::Arc;
-
-/// fmi2Get*, fmi2GetDirectionalDerivative.
-pub const GET: &[Phase] = &[InitializationMode, StepComplete, Terminated, Error];
-/// fmi2Set*, fmi2SetRealInputDerivatives.
-pub const SET: &[Phase] = &[Instantiated, InitializationMode, StepComplete];
-/// fmi2SetDebugLogging, fmi2Reset, the FMU-state functions.
-pub const ANY: &[Phase] = &[
-    Instantiated,
-    InitializationMode,
-    StepComplete,
-    Terminated,
-    Error,
-];
-/// fmi2Get*Status.
-pub const STATUS: &[Phase] = &[StepComplete, Terminated];
-/// fmi2GetRealOutputDerivatives.
-pub const AFTER_INIT: &[Phase] = &[StepComplete, Terminated, Error];
 
 /// The value type of a fmi2Get*Status function.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -44,13 +27,13 @@ pub enum StatusType {
 
 impl StatusType {
     /// The function of this value type.
-    pub fn function(self) -> &'static str {
+    pub fn function(self) -> Fmi2 {
         match self {
-            StatusType::Status => "fmi2GetStatus",
-            StatusType::Real => "fmi2GetRealStatus",
-            StatusType::Integer => "fmi2GetIntegerStatus",
-            StatusType::Boolean => "fmi2GetBooleanStatus",
-            StatusType::String => "fmi2GetStringStatus",
+            StatusType::Status => Fmi2::GetStatus,
+            StatusType::Real => Fmi2::GetRealStatus,
+            StatusType::Integer => Fmi2::GetIntegerStatus,
+            StatusType::Boolean => Fmi2::GetBooleanStatus,
+            StatusType::String => Fmi2::GetStringStatus,
         }
     }
 }
@@ -75,7 +58,7 @@ const STATUS_KINDS: [(&str, StatusType); 4] = [
 impl Instance {
     /// fmi2SetDebugLogging.
     pub fn set_debug_logging(&mut self, on: bool, categories: &[String]) -> Status {
-        if let Err(s) = self.check("fmi2SetDebugLogging", ANY) {
+        if let Err(s) = self.check(Fmi2::SetDebugLogging) {
             return s;
         }
         if categories.len() > MAX_CATEGORIES {
@@ -99,7 +82,7 @@ impl Instance {
 
     /// fmi2SetupExperiment.
     pub fn setup_experiment(&mut self, start: f64, stop: Option<f64>) -> Status {
-        if let Err(s) = self.check("fmi2SetupExperiment", &[Instantiated]) {
+        if let Err(s) = self.check(Fmi2::SetupExperiment) {
             return s;
         }
         if !start.is_finite() || start != 0.0 {
@@ -121,7 +104,7 @@ impl Instance {
 
     /// fmi2EnterInitializationMode.
     pub fn enter_initialization_mode(&mut self) -> Status {
-        if let Err(s) = self.check("fmi2EnterInitializationMode", &[Instantiated]) {
+        if let Err(s) = self.check(Fmi2::EnterInitializationMode) {
             return s;
         }
         self.phase = InitializationMode;
@@ -131,7 +114,7 @@ impl Instance {
     /// fmi2ExitInitializationMode: builds the engine from the parameters. If it cannot (a scenario
     /// that does not load, a filter that does not fit it), the instance enters the error state.
     pub fn exit_initialization_mode(&mut self) -> Status {
-        if let Err(s) = self.check("fmi2ExitInitializationMode", &[InitializationMode]) {
+        if let Err(s) = self.check(Fmi2::ExitInitializationMode) {
             return s;
         }
         if let Err(e) = self.ensure_engine() {
@@ -146,7 +129,7 @@ impl Instance {
 
     /// fmi2Terminate.
     pub fn terminate(&mut self) -> Status {
-        if let Err(s) = self.check("fmi2Terminate", &[StepComplete]) {
+        if let Err(s) = self.check(Fmi2::Terminate) {
             return s;
         }
         self.phase = Terminated;
@@ -155,7 +138,7 @@ impl Instance {
 
     /// fmi2Reset: back to the instantiated state with the start values.
     pub fn reset(&mut self) -> Status {
-        if let Err(s) = self.check("fmi2Reset", ANY) {
+        if let Err(s) = self.check(Fmi2::Reset) {
             return s;
         }
         self.values = self.vars.iter().map(|v| v.start.clone()).collect();
@@ -171,7 +154,7 @@ impl Instance {
     /// fmi2DoStep. A refused step (bad arguments, a request over a bound) changes nothing; a step
     /// in which the simulation fails moves the instance to the error state.
     pub fn do_step(&mut self, t: f64, h: f64) -> Status {
-        if let Err(s) = self.check("fmi2DoStep", &[StepComplete]) {
+        if let Err(s) = self.check(Fmi2::DoStep) {
             return s;
         }
         if !(t.is_finite() && h.is_finite()) || h <= 0.0 || !(t + h).is_finite() {
@@ -257,17 +240,13 @@ impl Instance {
             .unwrap_or(self.start_time)
     }
 
-    /// A fmi2Get*Status query of `kind` through the function `func` of value type `ty`: a value
-    /// that is not an fmi2StatusKind, or the kind of another Get*Status function, is an illegal
-    /// argument (fmi2Error); a status this FMU cannot give (the pending or asynchronous step
-    /// status: steps are synchronous) is fmi2Discard.
-    pub fn query_status(
-        &self,
-        func: &str,
-        kind: i32,
-        ty: StatusType,
-    ) -> Result<StatusAnswer, Status> {
-        self.check(func, STATUS)?;
+    /// A fmi2Get*Status query of `kind` through the function of value type `ty`: a value that is
+    /// not an fmi2StatusKind, or the kind of another Get*Status function, is an illegal argument
+    /// (fmi2Error); a status this FMU cannot give (the pending or asynchronous step status: steps
+    /// are synchronous) is fmi2Discard.
+    pub fn query_status(&self, kind: i32, ty: StatusType) -> Result<StatusAnswer, Status> {
+        let func = ty.function();
+        self.check(func)?;
         let Some((name, kind_ty)) = usize::try_from(kind).ok().and_then(|k| STATUS_KINDS.get(k))
         else {
             return Err(self.error(&format!(
@@ -297,17 +276,19 @@ impl Instance {
     }
 
     /// Check an unsupported-capability call: legal sequence first, then "not supported".
-    pub fn unsupported(&self, func: &str, allowed: &[Phase], what: &str) -> Status {
-        if let Err(s) = self.check(func, allowed) {
+    pub fn unsupported(&self, f: Fmi2, what: &str) -> Status {
+        if let Err(s) = self.check(f) {
             return s;
         }
-        self.error(&format!("{func}: {what} is not supported by this FMU"))
+        self.error(&format!("{f}: {what} is not supported by this FMU"))
     }
 
-    /// fmi2CancelStep: steps are synchronous, so there is never a step to cancel.
+    /// fmi2CancelStep: steps are synchronous, so there is never a step to cancel (the table
+    /// allows it in no phase of this FMU).
     pub fn cancel_step(&self) -> Status {
-        self.error(
-            "fmi2CancelStep: Illegal call sequence (no asynchronous step is in progress; canRunAsynchronuously = false)",
-        )
+        match self.check(Fmi2::CancelStep) {
+            Ok(()) => Status::Ok,
+            Err(s) => s,
+        }
     }
 }

@@ -1,14 +1,15 @@
 //! A safe FMU instance: the FMI 2.0 co-simulation state machine, variable access and the engine.
 //!
-//! Every method checks the calling sequence first against the table of allowed states ([`GET`], [`SET`], [`ANY`], [`STATUS`]); an illegal
-//! call is answered with [`Status::Error`] and the message "Illegal call sequence", and leaves the
-//! instance as it was. A *refused* call changes nothing either: a bad argument (unknown value
+//! Every method checks the calling sequence first against the table of allowed states, one entry
+//! per fmi2 function ([`Fmi2::allowed`]); an illegal call is answered with [`Status::Error`] and
+//! the message "Illegal call sequence", and leaves the instance as it was. A *refused* call changes nothing either: a bad argument (unknown value
 //! reference, a wrong type, NaN/Inf reals, a step at the wrong communication point or past the
 //! stop time) or a request over a bound of [`crate::limits`]. A call that *starts and fails* —
 //! fmi2ExitInitializationMode that cannot build the engine, a step in which the simulation
 //! fails, fmi2SetFMUstate whose replay fails — moves the instance to the error state, from which
 //! only fmi2Reset, fmi2SetFMUstate, fmi2FreeInstance and the queries lead on (FMI 2.0 §2.1.3).
 
+mod allowed;
 mod engine;
 mod lifecycle;
 mod outputs;
@@ -17,8 +18,9 @@ mod snapshot;
 mod spec;
 mod values;
 
+pub use allowed::{Fmi2, Phases};
 pub use engine::{Engine, InstanceError};
-pub use lifecycle::{AFTER_INIT, ANY, GET, SET, STATUS, StatusAnswer, StatusType};
+pub use lifecycle::{StatusAnswer, StatusType};
 pub use scenario::{ScenarioFileError, load_resource_scenario};
 pub use spec::resolve_spec;
 
@@ -245,19 +247,21 @@ impl Instance {
         self.error(msg)
     }
 
-    fn check(&self, func: &str, allowed: &[Phase]) -> Result<(), Status> {
-        if allowed.contains(&self.phase) {
-            Ok(())
-        } else {
-            Err(self.error(&format!(
-                "{func}: Illegal call sequence (the instance is in state {}; allowed in {})",
-                phase_name(self.phase),
-                allowed
-                    .iter()
-                    .map(|p| phase_name(*p))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )))
+    /// Whether `f` may be called in the current phase ([`Fmi2::allowed`]); if not, the error is
+    /// logged ("Illegal call sequence") and returned.
+    pub fn check(&self, f: Fmi2) -> Result<(), Status> {
+        let allowed = f.allowed();
+        if allowed.contains(self.phase) {
+            return Ok(());
         }
+        let states: Vec<&str> = allowed.iter().map(phase_name).collect();
+        let allowed_in = match states.is_empty() {
+            true => "only in states this FMU never enters".to_string(),
+            false => format!("in {}", states.join(", ")),
+        };
+        Err(self.error(&format!(
+            "{f}: Illegal call sequence (the instance is in state {}; allowed {allowed_in})",
+            phase_name(self.phase),
+        )))
     }
 }

@@ -14,12 +14,11 @@ impl Instance {
         let Some(engine) = &self.engine else {
             return Value::Real(f64::NAN);
         };
-        let scenario = engine.scenario();
         let nan = f64::NAN;
         let real = Value::Real;
         if let Some(ts) = engine.truth() {
             let o = ts.outputs();
-            let nb = scenario.beacons.len();
+            let nb = ts.scenario().beacons.len();
             match key {
                 Key::TruthSph(k) => return real(o.sample.spherical[k]),
                 Key::TruthAltitude => return real(o.sample.altitude),
@@ -70,7 +69,7 @@ impl Instance {
                 Key::EstX(i) => return slot(&est.x, i),
                 Key::EstSigma(i) => return slot(&est.sigma, i),
                 Key::EstSph(k) => {
-                    let fm = scenario.filter_model();
+                    let fm = &nav.onboard().model;
                     let x = &est.x;
                     let s = if fm.kind.is_cartesian() {
                         inertial_to_spherical(

@@ -1,9 +1,8 @@
 //! Variable access of an instance: fmi2Get* and fmi2Set* by value reference, and the parameter and
 //! input values the engine reads.
 
-use super::lifecycle::{GET, SET};
 use super::outputs::validate;
-use super::{Instance, Status};
+use super::{Fmi2, Instance, Status};
 use crate::state::Phase;
 use crate::vars::{Causality, Key, Type, Value};
 
@@ -22,7 +21,7 @@ impl Instance {
             .and_then(|i| self.values[i].as_ref())
     }
 
-    fn lookup(&self, func: &str, vr: u32, ty: Type) -> Result<usize, Status> {
+    fn lookup(&self, func: Fmi2, vr: u32, ty: Type) -> Result<usize, Status> {
         match self.vars.get(vr as usize) {
             Some(v) if v.ty == ty => Ok(vr as usize),
             Some(v) => Err(self.error(&format!(
@@ -40,8 +39,9 @@ impl Instance {
     }
 
     /// fmi2GetReal / Integer / Boolean / String: the values of `vrs`, all of type `ty`.
-    pub fn get(&mut self, func: &str, ty: Type, vrs: &[u32]) -> Result<Vec<Value>, Status> {
-        self.check(func, GET)?;
+    pub fn get(&mut self, ty: Type, vrs: &[u32]) -> Result<Vec<Value>, Status> {
+        let func = Fmi2::getter(ty);
+        self.check(func)?;
         let mut idx = Vec::with_capacity(vrs.len());
         for vr in vrs {
             idx.push(self.lookup(func, *vr, ty)?);
@@ -63,10 +63,19 @@ impl Instance {
             .collect())
     }
 
-    /// fmi2SetReal / Integer / Boolean / String; a rejected call changes nothing.
-    pub fn set(&mut self, func: &str, vrs: &[u32], values: Vec<Value>) -> Status {
-        if let Err(s) = self.check(func, SET) {
+    /// fmi2SetReal / Integer / Boolean / String: the `values` of `vrs`, all of type `ty`; a
+    /// rejected call changes nothing.
+    pub fn set(&mut self, ty: Type, vrs: &[u32], values: Vec<Value>) -> Status {
+        let func = Fmi2::setter(ty);
+        if let Err(s) = self.check(func) {
             return s;
+        }
+        if let Some(v) = values.iter().find(|v| v.ty() != ty) {
+            return self.error(&format!(
+                "{func}: a {} value among {} values",
+                v.ty().xml(),
+                ty.xml()
+            ));
         }
         if vrs.len() != values.len() {
             return self.error(&format!(
@@ -76,7 +85,7 @@ impl Instance {
             ));
         }
         for (vr, val) in vrs.iter().zip(&values) {
-            let i = match self.lookup(func, *vr, val.ty()) {
+            let i = match self.lookup(func, *vr, ty) {
                 Ok(i) => i,
                 Err(s) => return s,
             };

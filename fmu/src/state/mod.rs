@@ -83,7 +83,17 @@ pub enum Phase {
 }
 
 impl Phase {
-    pub(super) fn code(self) -> u8 {
+    /// Every phase, in the order of the FMI 2.0 state machine.
+    pub const ALL: [Phase; 5] = [
+        Phase::Instantiated,
+        Phase::InitializationMode,
+        Phase::StepComplete,
+        Phase::Terminated,
+        Phase::Error,
+    ];
+
+    /// Its code in the state byte format (and its bit in [`crate::instance::Phases`]).
+    pub(crate) const fn code(self) -> u8 {
         match self {
             Phase::Instantiated => 0,
             Phase::InitializationMode => 1,

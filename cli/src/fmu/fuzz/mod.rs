@@ -15,7 +15,7 @@ mod ops;
 mod values;
 
 use super::*;
-use mars_entry_nav::host::*;
+use entrynav_fmi_host::*;
 use model::{Expect, Scenarios, Sim};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;

@@ -1,9 +1,10 @@
 //! One instance of a loaded FMU through the host ([`Slave`]), and reading all outputs of a slave or
 //! of an in-process instance the same way.
 
-use super::{Api, Callbacks, Comp, HostError, Result, Unpacked, host_logger};
-use crate::instance::Instance;
-use crate::vars::{Causality, Type, Value, Var};
+use crate::api::{Api, Callbacks, Comp, host_logger};
+use crate::{HostError, Result, Unpacked};
+use mars_entry_nav::instance::{Fmi2, Instance};
+use mars_entry_nav::vars::{Causality, Type, Value, Var};
 use std::ffi::{CString, c_int, c_void};
 use std::path::Path;
 use std::sync::Mutex;
@@ -144,12 +145,10 @@ pub fn in_process_get_all(inst: &mut Instance, g: &OutputGroups) -> Result<Vec<u
         (Type::Integer, &g.int),
         (Type::Boolean, &g.bool),
     ] {
-        let vals = inst
-            .get("fmi2Get", t, vrs)
-            .map_err(|status| HostError::InProcess {
-                call: "fmi2Get",
-                status,
-            })?;
+        let vals = inst.get(t, vrs).map_err(|status| HostError::InProcess {
+            call: Fmi2::getter(t).name(),
+            status,
+        })?;
         out.extend(vals.into_iter().map(|v| match v {
             Value::Real(x) => x.to_bits(),
             Value::Integer(x) => x as u64,

@@ -16,6 +16,7 @@ mod grid_files;
 mod grid_plots;
 mod interrupt;
 mod observe;
+mod observe_files;
 mod observe_pcrlb;
 mod optimize;
 mod plot;

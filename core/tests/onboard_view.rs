@@ -133,8 +133,7 @@ fn a_climatology_out_of_range_is_refused_at_load_naming_the_field() {
         "climatology = { model = \"exponential\", rho_ref_kgm3 = 0.02, ref_radius_km = 3396.2, scale_height_km = -3.0 }",
     );
     let err = ScenarioConfig::from_toml_str(&text, "t.toml")
-        .err()
-        .expect("a negative scale height must be refused")
+        .expect_err("a negative scale height must be refused")
         .to_string();
     assert!(
         err.contains("filter.density.climatology.scale_height_km") && err.contains("-3"),

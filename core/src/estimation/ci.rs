@@ -19,8 +19,9 @@
 //! `D = diag(1/√p̄_k)`, `p̄_k = (1/n) Σ_i (P_i)_kk`, which makes every scaled variance O(1).
 //! The fused result is mapped back exactly (`P_CI = D⁻¹ P'_CI D⁻¹`).
 
+use super::ci_weights::optimal_weights;
 use super::{EstimationError, symmetrize};
-use nalgebra::{Cholesky, Const, DMatrix, DVector, SMatrix, SVector};
+use nalgebra::{SMatrix, SVector};
 use serde::{Deserialize, Serialize};
 
 /// Smallest weight [`feedback`] divides by: a local filter with `ω_i < FEEDBACK_WEIGHT_FLOOR`
@@ -30,9 +31,6 @@ pub const FEEDBACK_WEIGHT_FLOOR: f64 = 1e-6;
 
 /// Tolerance on `|Σ ω_i − 1|` accepted by [`ci_fuse`] (the weights are then renormalised).
 pub const WEIGHT_SUM_TOLERANCE: f64 = 1e-8;
-
-/// Iteration cap of the optimal-weight Newton solver (it normally needs 3–10 iterations).
-const MAX_ITER: usize = 60;
 
 type Mat<const N: usize> = SMatrix<f64, N, N>;
 type Vect<const N: usize> = SVector<f64, N>;
@@ -67,7 +65,7 @@ pub struct CiResult<const N: usize> {
 fn nonfinite(what: String) -> EstimationError {
     EstimationError::NonFinite { what }
 }
-fn not_pd(what: String) -> EstimationError {
+pub(super) fn not_pd(what: String) -> EstimationError {
     EstimationError::NotPositiveDefinite { what }
 }
 fn invalid<T>(msg: String) -> Result<T, EstimationError> {
@@ -180,194 +178,6 @@ fn fast_weights<const N: usize>(infos: &[Mat<N>]) -> Result<Vec<f64>, Estimation
     Ok(num.iter().map(|v| v / den).collect())
 }
 
-/// Objective (and optionally gradient and Hessian in ω) of the optimal-weight problem on the
-/// scaled information matrices. With `Y = Σ ω_i Y_i`, `M_i = Y⁻¹ Y_i`, `S_i = M_i Y⁻¹`:
-/// * det: `f = −log det Y`, `∂f/∂ω_i = −tr(Y⁻¹Y_i) = −tr M_i`, `∂²f/∂ω_i∂ω_j = tr(M_i M_j)`;
-/// * trace: `f = tr Y⁻¹`, `∂f/∂ω_i = −tr(Y⁻¹Y_iY⁻¹) = −tr S_i`,
-///   `∂²f/∂ω_i∂ω_j = 2 tr(Y⁻¹Y_iY⁻¹Y_jY⁻¹) = 2 tr(M_i S_j)`.
-///
-/// `m`, `s` are work space; `g`, `h` receive the gradient and Hessian.
-struct Problem<'a, const N: usize> {
-    ys: &'a [Mat<N>],
-    trace: bool,
-    m: Vec<Mat<N>>,
-    s: Vec<Mat<N>>,
-    g: Vec<f64>,
-    h: DMatrix<f64>,
-}
-
-/// Factorisation of `Y(ω)`: Cholesky factor, objective value and (trace objective) `Y⁻¹`.
-struct Factor<const N: usize> {
-    chol: Cholesky<f64, Const<N>>,
-    f: f64,
-    yinv: Option<Mat<N>>,
-}
-
-impl<'a, const N: usize> Problem<'a, N> {
-    fn new(ys: &'a [Mat<N>], trace: bool) -> Self {
-        let (n, z) = (ys.len(), Mat::<N>::zeros());
-        let (g, h) = (vec![0.0; n], DMatrix::zeros(n, n));
-        Problem {
-            ys,
-            trace,
-            m: vec![z; n],
-            s: vec![z; n],
-            g,
-            h,
-        }
-    }
-
-    /// Factor `Y(ω)` and evaluate `f`; `None` if not positive definite.
-    fn factor(&self, w: &[f64]) -> Option<Factor<N>> {
-        let y: Mat<N> = self.ys.iter().zip(w).map(|(yi, wi)| yi * *wi).sum();
-        let chol = y.cholesky()?;
-        let yinv = self.trace.then(|| chol.inverse());
-        let f = match &yinv {
-            Some(yi) => yi.trace(),
-            None => -2.0 * chol.l_dirty().diagonal().map(f64::ln).sum(),
-        };
-        f.is_finite().then_some(Factor { chol, f, yinv })
-    }
-
-    /// Gradient `g` and Hessian `h` at a factorisation.
-    fn derivatives(&mut self, fac: &Factor<N>) {
-        let yinv = fac.yinv.unwrap_or_else(|| fac.chol.inverse());
-        let (m, s) = (&mut self.m, &mut self.s);
-        for i in 0..self.ys.len() {
-            m[i] = yinv * self.ys[i];
-            if self.trace {
-                s[i] = m[i] * yinv;
-            }
-            self.g[i] = -(if self.trace { s[i] } else { m[i] }).trace();
-            let mt = m[i].transpose();
-            for j in 0..=i {
-                // tr(M_i X) = Σ (M_iᵀ)_kl X_kl.
-                let hij = if self.trace {
-                    2.0 * mt.dot(&s[j])
-                } else {
-                    mt.dot(&m[j])
-                };
-                (self.h[(i, j)], self.h[(j, i)]) = (hij, hij);
-            }
-        }
-    }
-}
-
-/// Newton direction on the face `{Σ_{i∈free} d_i = 0}`: solve the KKT system
-/// `[H_FF + δI, 1; 1ᵀ, 0] [d; λ] = [−g_F; 0]` (δ a 1e-12 relative damping for flat directions).
-/// `None` if the solve fails.
-fn newton_direction(free: &[usize], g: &[f64], h: &DMatrix<f64>) -> Option<Vec<f64>> {
-    let m = free.len();
-    let hmax = free.iter().map(|&i| h[(i, i)]).fold(0.0, f64::max);
-    let delta = 1e-12 * hmax + f64::MIN_POSITIVE;
-    let mut k = DMatrix::<f64>::zeros(m + 1, m + 1);
-    let mut rhs = DVector::<f64>::zeros(m + 1);
-    for (r, &i) in free.iter().enumerate() {
-        for (c, &j) in free.iter().enumerate() {
-            k[(r, c)] = h[(i, j)] + if r == c { delta } else { 0.0 };
-        }
-        k[(r, m)] = 1.0;
-        k[(m, r)] = 1.0;
-        rhs[r] = -g[i];
-    }
-    let sol = k.lu().solve(&rhs)?;
-    sol.iter()
-        .all(|v| v.is_finite())
-        .then(|| sol.rows(0, m).iter().copied().collect())
-}
-
-/// Active-set projected Newton method on the simplex for the convex objectives of
-/// [`Problem`]. Starts from uniform weights; on each face takes damped Newton steps with an
-/// Armijo backtracking line search and a ratio test that drops weights reaching 0; when the
-/// face is stationary (projected gradient ≤ 1e-13 ‖g‖∞, Newton step ≤ 1e-12, or a final full
-/// Newton step with decrement ≤ 1e-12 (1 + |f|)), re-admits the zero weight whose KKT
-/// multiplier is most violated. Weights are accurate to ~1e-9 (far below the 1e-6 the tests
-/// demand). At the iteration cap the current (feasible) iterate is returned: CI is consistent
-/// for any admissible ω, so this is safe.
-fn optimal_weights<const N: usize>(
-    ys: &[Mat<N>],
-    trace: bool,
-) -> Result<Vec<f64>, EstimationError> {
-    let n = ys.len();
-    if n == 1 {
-        return Ok(vec![1.0]);
-    }
-    let mut prob = Problem::new(ys, trace);
-    let (mut w, mut trial, mut active) = (vec![1.0 / n as f64; n], vec![0.0; n], vec![true; n]);
-    let not_pd_sum = || not_pd("CI weighted information".into());
-    let mut fac = prob.factor(&w).ok_or_else(not_pd_sum)?;
-    for _ in 0..MAX_ITER {
-        prob.derivatives(&fac);
-        let (f, g) = (fac.f, prob.g.clone());
-        let free: Vec<usize> = (0..n).filter(|&i| active[i]).collect();
-        let gmax = g.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
-        let mean_g = |set: &[usize]| set.iter().map(|&i| g[i]).sum::<f64>() / set.len() as f64;
-        let mu = mean_g(&free);
-        let pg = free.iter().map(|&i| (g[i] - mu).abs()).fold(0.0, f64::max);
-        let tilted = free.len() > 1 && pg > 1e-13 * gmax;
-        let dir = tilted
-            .then(|| newton_direction(&free, &g, &prob.h))
-            .flatten();
-        let mut stationary = dir.is_none();
-        if let Some(d) = dir {
-            let slope: f64 = free.iter().zip(&d).map(|(&i, di)| g[i] * di).sum();
-            let dmax = d.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
-            let (mut amax, mut block) = (f64::INFINITY, None);
-            for (&i, &di) in free.iter().zip(&d) {
-                if di < 0.0 && -w[i] / di < amax {
-                    amax = -w[i] / di;
-                    block = Some(i);
-                }
-            }
-            let small = -slope <= 1e-12 * (1.0 + f.abs());
-            stationary = small || dmax <= 1e-12 || slope.is_nan() || slope >= 0.0;
-            if !stationary || small {
-                // Near the optimum (`small`) the full Newton step is taken without a line search,
-                // whose Armijo test would only see round-off.
-                let mut alpha = amax.min(1.0);
-                let mut accepted = false;
-                for _ in 0..40 {
-                    trial.copy_from_slice(&w);
-                    for (&i, di) in free.iter().zip(&d) {
-                        trial[i] = (w[i] + alpha * di).max(0.0);
-                    }
-                    let hit = (alpha == amax).then_some(block).flatten();
-                    if let Some(b) = hit {
-                        trial[b] = 0.0;
-                    }
-                    let sum: f64 = trial.iter().sum();
-                    trial.iter_mut().for_each(|t| *t /= sum);
-                    let cand = prob
-                        .factor(&trial)
-                        .filter(|c| small || c.f <= f + 1e-4 * alpha * slope);
-                    if let Some(c) = cand {
-                        fac = c;
-                        w.copy_from_slice(&trial);
-                        if let Some(b) = hit {
-                            active[b] = false;
-                        }
-                        accepted = true;
-                        break;
-                    }
-                    alpha *= 0.5;
-                }
-                stationary |= !accepted;
-            }
-        }
-        if stationary {
-            let mu = mean_g(&(0..n).filter(|&i| active[i]).collect::<Vec<_>>());
-            let worst = (0..n)
-                .filter(|&i| !active[i])
-                .min_by(|&i, &j| g[i].total_cmp(&g[j]));
-            match worst {
-                Some(j) if g[j] < mu - 1e-12 * gmax => active[j] = true,
-                _ => break,
-            }
-        }
-    }
-    Ok(w)
-}
-
 /// CI weights ω for information matrices `infos` = `Y_i = P_i⁻¹` (seed 000 §3.3): by minimum
 /// (normalised) trace or determinant of `P_CI`, or by the fast ∞-norm rule of eq. 21 (see
 /// [`CiWeighting`]). Each `Y_i` must be finite and positive definite; `n = 1` gives `[1]`.
@@ -451,48 +261,4 @@ pub fn feedback<const N: usize>(fused: &CiResult<N>) -> Vec<(SVector<f64, N>, SM
             (fused.x, symmetrize(&(fused.p / w)))
         })
         .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use nalgebra::Matrix3;
-
-    fn spd(seed: f64) -> Matrix3<f64> {
-        let a = Matrix3::from_fn(|r, c| ((r * 3 + c) as f64 * seed).sin());
-        a * a.transpose() + Matrix3::identity() * 0.3
-    }
-
-    #[test]
-    fn analytic_gradient_and_hessian_match_finite_differences() {
-        let ys = [spd(1.3), spd(2.1), spd(0.7)];
-        for trace in [false, true] {
-            let mut prob = Problem::new(&ys, trace);
-            let mut deriv = |w: &[f64]| {
-                let fac = prob.factor(w).unwrap();
-                prob.derivatives(&fac);
-                (fac.f, prob.g.clone(), prob.h.clone())
-            };
-            let (w, eps) = ([0.5, 0.3, 0.2], 1e-6);
-            let (_, g, h) = deriv(&w);
-            for i in 0..3 {
-                let (mut wp, mut wm) = (w, w);
-                (wp[i], wm[i]) = (w[i] + eps, w[i] - eps);
-                let ((fp, gp, _), (fm, gm, _)) = (deriv(&wp), deriv(&wm));
-                let fd = (fp - fm) / (2.0 * eps);
-                assert!(
-                    (fd - g[i]).abs() < 1e-6 * (1.0 + g[i].abs()),
-                    "{fd} vs {}",
-                    g[i]
-                );
-                for j in 0..3 {
-                    let fd = (gp[j] - gm[j]) / (2.0 * eps);
-                    assert!(
-                        (fd - h[(i, j)]).abs() < 1e-5 * (1.0 + fd.abs()),
-                        "hess {i}{j}"
-                    );
-                }
-            }
-        }
-    }
 }

@@ -16,6 +16,7 @@
 
 pub mod adaptive;
 pub mod ci;
+mod ci_weights;
 pub mod ekf;
 pub mod mmae;
 pub mod nav;

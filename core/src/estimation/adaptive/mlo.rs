@@ -16,8 +16,9 @@
 //! candidate keeps ξ but passes its moments on, so that the retry differs (an unchanged state
 //! would reproduce the rejected candidate exactly).
 
+use super::adam::Adam;
 use super::network::DensityNetworkSet;
-use super::nn::{Activations, Adam};
+use super::nn::Activations;
 use crate::atmosphere::Atmosphere;
 use crate::dynamics::EntryModel;
 use crate::math::V3;

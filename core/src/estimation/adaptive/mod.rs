@@ -3,7 +3,8 @@
 //!
 //! * [`covariance_matching`] — Myers–Tapley process-noise covariance matching (eq. 20–21), used
 //!   by UKF-CM;
-//! * [`nn`] — the 1-100-1 tanh density network (eq. 28–33) with backpropagation and Adam;
+//! * [`nn`] — the 1-100-1 tanh density network (eq. 28–33) with backpropagation;
+//! * [`adam`] — the Adam moments and step (eq. 55–60);
 //! * [`training`] — offline training on a least-squares exponential fit (Algorithm 1);
 //! * [`network`] — network files (one network, or one per altitude band), the built-in trained
 //!   networks embedded from `core/scenarios/`, and the network-backed onboard atmosphere;
@@ -18,6 +19,7 @@
 //! UKF-AC (eq. 24–26) needs no building block beyond the UKF: its correction factor is an
 //! augmented random-walk state (see [`super::nav::ukf_ac`]).
 
+pub mod adam;
 pub mod config;
 pub mod covariance_matching;
 pub mod error;
@@ -26,6 +28,7 @@ pub mod network;
 pub mod nn;
 pub mod training;
 
+pub use adam::Adam;
 pub use config::{DensityFilterConfig, DensityTrainingConfig};
 pub use covariance_matching::CovarianceMatching;
 pub use error::NetworkError;
@@ -34,7 +37,7 @@ pub use network::{
     BUILTIN_NETWORKS, DensityNetworkSet, NETWORK_FORMAT, NetworkFile, NetworkRecord, NnAtmosphere,
     TrainingRecord, builtin_network_toml,
 };
-pub use nn::{Activations, Adam, DensityNetwork, Normalisation, tanh_fast};
+pub use nn::{Activations, DensityNetwork, Normalisation, tanh_fast};
 pub use training::{
     BandedExponential, TrainedNetwork, TrainingData, fit_onboard_exponential, train_network,
 };

@@ -18,10 +18,11 @@
 //! uniform initialisation) and the mini-batch order. Mini-batch gradients are summed over a
 //! fixed number of chunks in chunk order, so the result does not depend on the thread count.
 
+use super::adam::Adam;
 use super::config::DensityTrainingConfig;
 use super::error::NetworkError;
 use super::network::TrainingRecord;
-use super::nn::{Activations, Adam, DensityNetwork, Normalisation};
+use super::nn::{Activations, DensityNetwork, Normalisation};
 use crate::atmosphere::AtmosphereError;
 use crate::atmosphere::{Atmosphere, Exponential};
 use crate::math::Real;

@@ -1,0 +1,216 @@
+//! What `entrynav observe` writes: the JSON summary (δ series of the centralised system and its
+//! subsystems, scaling, Fisher information per epoch) and the SVG plot.
+
+use crate::observe::{RAW_NOTE, scaling_note};
+use anyhow::Result;
+use entrynav::observability::{DegreeSeries, FimEpoch, Scaling};
+use entrynav::scenario::Scenario;
+use serde_json::{Value, json};
+use std::path::Path;
+
+fn series_json(s: &DegreeSeries, elapsed_s: f64) -> Value {
+    let stat = |scaled: bool| s.summary(scaled);
+    let (raw, sc) = (stat(false), stat(true));
+    json!({
+        "name": s.name,
+        "method": s.method.name(),
+        "times_s": s.times(),
+        "delta": s.deltas(false),
+        "delta_min": raw.map(|m| m.min),
+        "delta_max": raw.map(|m| m.max),
+        "t_delta_min_s": raw.map(|m| m.t_min_s),
+        "t_delta_max_s": raw.map(|m| m.t_max_s),
+        "rank": s.samples.iter().map(|x| x.raw.rank).collect::<Vec<_>>(),
+        "delta_scaled": s.deltas(true),
+        "delta_scaled_min": sc.map(|m| m.min),
+        "delta_scaled_max": sc.map(|m| m.max),
+        "t_delta_scaled_min_s": sc.map(|m| m.t_min_s),
+        "t_delta_scaled_max_s": sc.map(|m| m.t_max_s),
+        "rank_scaled": s.samples.iter().map(|x| x.scaled.rank).collect::<Vec<_>>(),
+        "outputs": s.samples.iter().map(|x| x.outputs).collect::<Vec<_>>(),
+        "elapsed_s": elapsed_s,
+    })
+}
+
+pub(crate) fn to_json(
+    scenario: &Scenario,
+    scaling: &Scaling,
+    central: &DegreeSeries,
+    elapsed_s: f64,
+    subsystems: &[(DegreeSeries, f64)],
+    fim: Option<&[FimEpoch]>,
+) -> Value {
+    let mut v = series_json(central, elapsed_s);
+    let o = v.as_object_mut().expect("series_json builds an object");
+    o.insert("scenario".into(), json!(scenario.config.name));
+    o.insert("delta_units".into(), json!(RAW_NOTE));
+    o.insert(
+        "scaling".into(),
+        json!({
+            "description": scaling_note(scaling),
+            "state_names": scaling.state_names,
+            "state_scale": scaling.state,
+            "time_s": scaling.time_s,
+            "rows": "divided by the channel's noise 1-sigma (relative noise: at the analysis point)",
+        }),
+    );
+    o.insert(
+        "subsystems".into(),
+        Value::Array(subsystems.iter().map(|(s, e)| series_json(s, *e)).collect()),
+    );
+    if let Some(f) = fim {
+        let col = |g: &dyn Fn(&FimEpoch) -> Value| Value::Array(f.iter().map(g).collect());
+        o.insert("fim_times_s".into(), col(&|e| json!(e.t)));
+        o.insert(
+            "fim_beacons".into(),
+            col(&|e| {
+                json!(
+                    e.beacons
+                        .iter()
+                        .map(|&b| scenario.beacon_names[b].clone())
+                        .collect::<Vec<_>>()
+                )
+            }),
+        );
+        o.insert("fim_det".into(), col(&|e| json!(e.summary.det)));
+        o.insert("fim_trace".into(), col(&|e| json!(e.summary.trace)));
+        o.insert(
+            "fim_eigenvalues".into(),
+            col(&|e| json!(e.summary.eigenvalues)),
+        );
+        o.insert(
+            "fim_trace_inverse".into(),
+            col(&|e| json!(e.summary.trace_inverse)),
+        );
+        o.insert(
+            "fim_trace_lower_bound".into(),
+            col(&|e| {
+                json!(
+                    e.summary
+                        .trace_lower_bound
+                        .is_finite()
+                        .then_some(e.summary.trace_lower_bound)
+                )
+            }),
+        );
+        o.insert(
+            "fim_det_upper_bound".into(),
+            col(&|e| json!(e.summary.det_upper_bound)),
+        );
+        o.insert("fim_det_max".into(), col(&|e| json!(e.summary.det_max)));
+        o.insert("geometry_index".into(), col(&|e| json!(e.geometry_index)));
+    }
+    v
+}
+
+pub(crate) fn plot(
+    path: &Path,
+    scenario: &Scenario,
+    central: &DegreeSeries,
+    subsystems: &[&DegreeSeries],
+    fim: Option<&[FimEpoch]>,
+) -> Result<()> {
+    use plotters::prelude::*;
+    let err = |e: &dyn std::fmt::Display| anyhow::anyhow!("plot {}: {e}", path.display());
+    let panels = if fim.is_some() { 3 } else { 2 };
+    let root = SVGBackend::new(path, (1000, 380 * panels)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| err(&e))?;
+    let areas = root.split_evenly((panels as usize, 1));
+    let t_end = central.samples.last().map_or(1.0, |s| s.t).max(1e-9);
+    let mut series: Vec<&DegreeSeries> = vec![central];
+    series.extend_from_slice(subsystems);
+    for (area, scaled) in areas.iter().zip([false, true]) {
+        let pts: Vec<Vec<(f64, f64)>> = series
+            .iter()
+            .map(|s| {
+                s.times()
+                    .into_iter()
+                    .zip(s.deltas(scaled))
+                    .filter(|(_, d)| *d > 0.0 && d.is_finite())
+                    .collect()
+            })
+            .collect();
+        let all = pts.iter().flatten().map(|p| p.1);
+        let (lo, hi) = all.fold((f64::INFINITY, 0.0_f64), |a, d| (a.0.min(d), a.1.max(d)));
+        let (lo, hi) = if lo.is_finite() {
+            (lo / 2.0, hi * 2.0)
+        } else {
+            (1e-20, 1.0)
+        };
+        // At least two decades, so that the log axis gets labelled ticks.
+        let (lo, hi) = if hi / lo < 100.0 {
+            let c = (lo * hi).sqrt();
+            (c / 10.0, c * 10.0)
+        } else {
+            (lo, hi)
+        };
+        let label = if scaled { "scaled δ" } else { "raw SI δ" };
+        let mut chart = ChartBuilder::on(area)
+            .caption(
+                format!(
+                    "{}: {label} = σmin/σmax ({}; δ = 0 not drawn)",
+                    scenario.config.name,
+                    central.method.name()
+                ),
+                ("sans-serif", 20),
+            )
+            .margin(10)
+            .x_label_area_size(40)
+            .y_label_area_size(80)
+            .build_cartesian_2d(0.0..t_end, (lo..hi).log_scale())
+            .map_err(|e| err(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc("t [s]")
+            .y_desc(label)
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .draw()
+            .map_err(|e| err(&e))?;
+        for (i, (s, p)) in series.iter().zip(pts).enumerate() {
+            let color = Palette99::pick(i).to_rgba();
+            let name = if p.is_empty() {
+                format!("{} (δ = 0 throughout: rank-deficient)", s.name)
+            } else {
+                s.name.clone()
+            };
+            chart
+                .draw_series(LineSeries::new(p, color.stroke_width(2)))
+                .map_err(|e| err(&e))?
+                .label(name)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| err(&e))?;
+    }
+    if let Some(f) = fim {
+        let top = f.iter().map(|e| e.geometry_index).fold(0.0_f64, f64::max);
+        let mut chart = ChartBuilder::on(&areas[2])
+            .caption(
+                "geometry index I = Σ [n_i·(n_j × n_k)]² (seed 002 eq. 54)",
+                ("sans-serif", 20),
+            )
+            .margin(10)
+            .x_label_area_size(40)
+            .y_label_area_size(80)
+            .build_cartesian_2d(0.0..t_end, 0.0..(top * 1.1).max(1e-12))
+            .map_err(|e| err(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc("t [s]")
+            .y_desc("I")
+            .draw()
+            .map_err(|e| err(&e))?;
+        chart
+            .draw_series(LineSeries::new(
+                f.iter().map(|e| (e.t, e.geometry_index)),
+                BLUE.stroke_width(2),
+            ))
+            .map_err(|e| err(&e))?;
+    }
+    root.present().map_err(|e| err(&e))?;
+    Ok(())
+}

@@ -66,7 +66,7 @@ pub fn run(args: &GenerateArgs) -> Result<()> {
     }
     let profiles = generate_synthetic_set(&mars_mean_profile(), &spec)?;
     let text = synthetic_set_gram_text(&profiles, &spec, Planet::MARS.radius);
-    std::fs::write(&args.out, text).with_context(|| format!("writing {}", args.out.display()))?;
+    crate::atomic_file::write(&args.out, text)?;
     println!(
         "wrote {}: {} profiles (f_above x f_below), 0-150 km every 1 km, perturbation x {}, seed {}",
         args.out.display(),

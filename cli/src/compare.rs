@@ -148,8 +148,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         if to_stdout {
             print!("{text}");
         } else {
-            std::fs::write(p, text)
-                .map_err(|e| crate::exit::Runtime(format!("writing {}: {e}", p.display())))?;
+            crate::atomic_file::write(p, text)?;
             println!("wrote {}", p.display());
         }
     }

@@ -3,13 +3,13 @@
 //! columns are exactly the text the caller formatted; a name with a comma (a beacon, a scenario,
 //! a grid variation) is quoted and reads back whole.
 
-use anyhow::{Context, Result};
-use std::fs::File;
+use crate::atomic_file::AtomicFile;
+use anyhow::Result;
 use std::io::Write;
 use std::path::Path;
 
-/// A CSV writer into a file.
-pub type FileWriter = csv::Writer<File>;
+/// A CSV writer into a file (written whole or not at all, [`crate::atomic_file`]).
+pub type FileWriter = csv::Writer<AtomicFile>;
 
 /// A CSV writer over `w` (the writer buffers; call `flush` at the end to see write errors).
 pub fn writer<W: Write>(w: W) -> csv::Writer<W> {
@@ -20,16 +20,26 @@ pub fn writer<W: Write>(w: W) -> csv::Writer<W> {
 /// created is refused with its path; an error while writing rows is a runtime failure (exit
 /// code 1) naming the path.
 pub fn write(path: &Path, body: impl FnOnce(&mut FileWriter) -> Result<()>) -> Result<()> {
-    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent)
-            .with_context(|| format!("cannot create {}", parent.display()))?;
+    write_with_comment(path, |w| body(w).map(|()| None))
+}
+
+/// [`write`], where `body` may return a comment line (`# …`, no line break) that goes after the
+/// records (the `csv` crate writes no comments). The file appears whole, comment included, or
+/// not at all.
+pub fn write_with_comment(
+    path: &Path,
+    body: impl FnOnce(&mut FileWriter) -> Result<Option<String>>,
+) -> Result<()> {
+    let runtime = |e: &dyn std::fmt::Display| {
+        crate::exit::Runtime(format!("writing {}: {e:#}", path.display()))
+    };
+    let mut w = writer(AtomicFile::create(path)?);
+    let comment = body(&mut w).map_err(|e| runtime(&format!("{e:#}")))?;
+    let mut file = w.into_inner().map_err(|e| runtime(e.error()))?;
+    if let Some(line) = comment {
+        writeln!(file, "{line}").map_err(|e| runtime(&e))?;
     }
-    let file = File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
-    let mut w = writer(file);
-    body(&mut w)
-        .and_then(|()| Ok(w.flush()?))
-        .map_err(|e| crate::exit::Runtime(format!("writing {}: {e:#}", path.display())))?;
-    Ok(())
+    Ok(file.commit()?)
 }
 
 /// A value as the CLI's CSV files write it: Rust's shortest round-trip `Display` (`0.1`, `0.0000001`,

@@ -44,6 +44,7 @@ pub fn code(e: &anyhow::Error) -> i32 {
     }
     let runtime = e.chain().any(|c| {
         c.is::<Runtime>()
+            || c.is::<crate::atomic_file::OutputError>()
             || c.is::<entrynav::sim::SimError>()
             || matches!(
                 c.downcast_ref::<entrynav::sim::TradeError>(),

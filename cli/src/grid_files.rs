@@ -3,7 +3,7 @@
 //! `--report`. All are rewritten after every finished cell.
 
 use crate::grid::{CellRow, GridFile};
-use anyhow::{Context, Result};
+use anyhow::Result;
 use entrynav::sim::TradeReport;
 use std::io::Write;
 use std::path::Path;
@@ -62,10 +62,7 @@ pub fn write_outputs(
 ) -> Result<()> {
     let provenance = crate::provenance::Provenance::new(&[]);
     let md_path = out.join(format!("{}.md", grid.name));
-    let mut md = std::io::BufWriter::new(
-        std::fs::File::create(&md_path)
-            .with_context(|| format!("cannot create {}", md_path.display()))?,
-    );
+    let mut md = crate::atomic_file::AtomicFile::create(&md_path)?;
     writeln!(
         md,
         "# Grid `{}`\n\n{} runs per cell, seed {}, filters {}.\n",
@@ -106,10 +103,9 @@ pub fn write_outputs(
             )?,
         }
     }
-    md.flush()
-        .with_context(|| format!("writing {}", md_path.display()))?;
+    md.commit()?;
     let json_path = out.join(format!("{}.json", grid.name));
-    std::fs::write(
+    crate::atomic_file::write(
         &json_path,
         serde_json::to_string_pretty(&serde_json::json!({
             "provenance": &provenance,
@@ -119,15 +115,14 @@ pub fn write_outputs(
                 "us_per_step": rows.iter().filter(|r| r.us_per_step.is_some()).map(|r| serde_json::json!({"cell": r.cell, "filter": r.filter, "us_per_step": r.us_per_step})).collect::<Vec<_>>(),
             },
         }))? + "\n",
-    )
-    .with_context(|| format!("writing {}", json_path.display()))?;
+    )?;
     crate::csv_file::write(&out.join(format!("{}.csv", grid.name)), |w| {
         write_rows_csv(w, rows)
     })?;
     let figures = crate::grid_plots::grid_figures(&grid.name, &grid.filters, rows)?;
     for fig in &figures {
         let path = out.join(&fig.file);
-        std::fs::write(&path, &fig.svg).with_context(|| format!("writing {}", path.display()))?;
+        crate::atomic_file::write(&path, &fig.svg)?;
     }
     if let Some(path) = html {
         let page = crate::report::grid_page::GridPage {

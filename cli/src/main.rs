@@ -3,6 +3,7 @@
 mod atmosphere_file;
 mod atmosphere_generate;
 mod atmosphere_inspect;
+mod atomic_file;
 mod compare;
 mod compare_input;
 mod compare_paired;

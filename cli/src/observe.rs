@@ -126,9 +126,7 @@ pub fn run(args: &ObserveArgs) -> Result<()> {
             v["pcrlb_runs"] = json!(args.runs);
             v["pcrlb_seed"] = json!(args.seed);
         }
-        create_parent(path)?;
-        std::fs::write(path, serde_json::to_string_pretty(&v)? + "\n")
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        crate::atomic_file::write(path, serde_json::to_string_pretty(&v)? + "\n")?;
         println!("wrote {}", path.display());
     }
     if let Some(path) = &args.plot {

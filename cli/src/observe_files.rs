@@ -110,10 +110,24 @@ pub(crate) fn plot(
     subsystems: &[&DegreeSeries],
     fim: Option<&[FimEpoch]>,
 ) -> Result<()> {
+    let mut svg = String::new();
+    draw(&mut svg, scenario, central, subsystems, fim)
+        .map_err(|e| anyhow::anyhow!("plot {}: {e}", path.display()))?;
+    Ok(crate::atomic_file::write(path, svg)?)
+}
+
+/// The plot of [`plot`] drawn into `svg`.
+fn draw(
+    svg: &mut String,
+    scenario: &Scenario,
+    central: &DegreeSeries,
+    subsystems: &[&DegreeSeries],
+    fim: Option<&[FimEpoch]>,
+) -> Result<()> {
     use plotters::prelude::*;
-    let err = |e: &dyn std::fmt::Display| anyhow::anyhow!("plot {}: {e}", path.display());
+    let err = |e: &dyn std::fmt::Display| anyhow::anyhow!("{e}");
     let panels = if fim.is_some() { 3 } else { 2 };
-    let root = SVGBackend::new(path, (1000, 380 * panels)).into_drawing_area();
+    let root = SVGBackend::with_string(svg, (1000, 380 * panels)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(&e))?;
     let areas = root.split_evenly((panels as usize, 1));
     let t_end = central.samples.last().map_or(1.0, |s| s.t).max(1e-9);

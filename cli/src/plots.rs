@@ -322,7 +322,7 @@ pub fn trade_plots(dir: &Path, report: &TradeReport, names: &WeightNames) -> Res
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     for fig in trade_figures(report, names)? {
         let path = dir.join(&fig.file);
-        std::fs::write(&path, &fig.svg).with_context(|| format!("writing {}", path.display()))?;
+        crate::atomic_file::write(&path, &fig.svg)?;
     }
     Ok(())
 }

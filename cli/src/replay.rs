@@ -7,7 +7,6 @@ use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
 use entrynav::sim::replay::{Replay, replay_run};
 use entrynav::sim::{channel_names, state_names};
-use std::io::Write;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -30,7 +29,9 @@ pub fn write_replay(
             "{}_run{run}_{}.csv",
             scenario.config.name, r.filter
         ));
-        crate::csv_file::write(&path, |w| write_csv(w, r, &states, &channels, &weights))?;
+        crate::csv_file::write_with_comment(&path, |w| {
+            write_csv(w, r, &states, &channels, &weights)
+        })?;
         let last = r.epochs.last();
         println!(
             "run {run} {}: {} epochs{}; final NEES {}, position error {} m -> {}",
@@ -64,14 +65,15 @@ fn weight_names(scenario: &Scenario) -> Vec<String> {
     names
 }
 
-/// The replay's rows, then a `# failed at …` line if the filter stopped on a numerical failure.
+/// The replay's rows; returns the `# failed at …` line that follows them if the filter stopped
+/// on a numerical failure.
 fn write_csv(
     w: &mut FileWriter,
     r: &Replay,
     states: &[String],
     channels: &[String],
     weight_names: &[String],
-) -> Result<()> {
+) -> Result<Option<String>> {
     let mut header = vec!["t_s".to_string()];
     for s in states {
         for q in ["truth", "est", "sigma", "err"] {
@@ -141,11 +143,7 @@ fn write_csv(
         }
         w.write_record(&row)?;
     }
-    if let Some((t, why)) = &r.failure {
-        // A comment line after the records, written to the file past the CSV writer (which
-        // writes no comments) once the records are flushed.
-        w.flush()?;
-        writeln!(&mut w.get_ref(), "# failed at t = {t} s: {why}")?;
-    }
-    Ok(())
+    Ok(r.failure
+        .as_ref()
+        .map(|(t, why)| format!("# failed at t = {t} s: {why}")))
 }

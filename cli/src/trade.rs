@@ -253,7 +253,10 @@ fn fly(
     Ok(folded)
 }
 
-/// Print the tables (unless the JSON goes to standard output) and write every output asked for.
+/// Write every output asked for, then print the tables (unless the JSON goes to standard
+/// output) and what was written. Files come first, so a closed standard output (`… | head`)
+/// never costs one; every output is attempted, and a failed one (exit code 1) does not skip
+/// the others.
 fn write_results(
     args: &TradeArgs,
     setup: &Setup,
@@ -263,37 +266,68 @@ fn write_results(
 ) -> Result<()> {
     // With `--json -` the JSON is standard output: no tables, notes to stderr.
     let to_stdout = args.json.as_deref().is_some_and(is_stdout);
-    let note = |msg: String| {
-        if to_stdout {
-            eprintln!("{msg}");
-        } else {
-            println!("{msg}");
-        }
-    };
-    if !to_stdout {
-        print_tables(report, elapsed);
-    }
+    let mut outputs = Outputs::default();
     if let Some(path) = &args.json {
-        write_summary(path, &setup.provenance(args), report, resume, elapsed)?;
-        if !to_stdout {
-            note(format!("wrote {}", path.display()));
-        }
+        let done = write_summary(path, &setup.provenance(args), report, resume, elapsed);
+        let note = (!to_stdout).then(|| format!("wrote {}", path.display()));
+        outputs.record(done.map(|()| note));
     }
     if let Some(dir) = &args.csv_dir {
-        write_csv_dir(dir, report)?;
-        note(format!("wrote CSV series to {}", dir.display()));
+        let done = write_csv_dir(dir, report);
+        outputs.record(done.map(|()| Some(format!("wrote CSV series to {}", dir.display()))));
     }
     let names = WeightNames::of_scenario(&setup.scenario);
     if let Some(dir) = &args.plots {
-        crate::plots::trade_plots(dir, report, &names)?;
-        note(format!("wrote plots to {}", dir.display()));
+        let done = crate::plots::trade_plots(dir, report, &names);
+        outputs.record(done.map(|()| Some(format!("wrote plots to {}", dir.display()))));
     }
     if let Some(path) = &args.report {
         let provenance = setup.provenance(args);
-        let s = crate::report::write_trade(path, report, &names, &provenance, elapsed)?;
-        note(format!("wrote report {} in {s:.3} s", path.display()));
+        let done = crate::report::write_trade(path, report, &names, &provenance, elapsed);
+        outputs.record(done.map(|s| Some(format!("wrote report {} in {s:.3} s", path.display()))));
     }
-    Ok(())
+    if !to_stdout {
+        print_tables(report, elapsed);
+    }
+    outputs.finish(to_stdout)
+}
+
+/// The outputs of a study: what was written (its note) and what failed.
+#[derive(Default)]
+struct Outputs {
+    notes: Vec<String>,
+    failures: Vec<anyhow::Error>,
+}
+
+impl Outputs {
+    fn record(&mut self, done: Result<Option<String>>) {
+        match done {
+            Ok(note) => self.notes.extend(note),
+            Err(e) => self.failures.push(e),
+        }
+    }
+
+    /// Print the notes (to standard error when standard output carries the JSON); fail with
+    /// every failed output named.
+    fn finish(self, to_stdout: bool) -> Result<()> {
+        for n in &self.notes {
+            if to_stdout {
+                eprintln!("{n}");
+            } else {
+                println!("{n}");
+            }
+        }
+        let mut failures = self.failures;
+        match failures.len() {
+            0 => Ok(()),
+            // The work is done: a failure to write it is a runtime failure (exit code 1).
+            1 if crate::exit::code(&failures[0]) == 1 => Err(failures.remove(0)),
+            _ => {
+                let all: Vec<String> = failures.iter().map(|e| format!("{e:#}")).collect();
+                Err(crate::exit::Runtime(all.join("; also: ")).into())
+            }
+        }
+    }
 }
 
 /// `trade merge`: combine the shard files into the study's report, print it and write the

@@ -72,17 +72,11 @@ pub fn write_file(path: &Path, body: impl FnOnce(&mut dyn Write) -> Result<()>) 
         w.flush()?;
         return Ok(());
     }
-    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent)
-            .with_context(|| format!("cannot create {}", parent.display()))?;
-    }
-    let f =
-        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
-    let mut w = std::io::BufWriter::new(f);
+    let mut w = crate::atomic_file::AtomicFile::create(path)?;
     body(&mut w)
         .and_then(|()| Ok(w.flush()?))
         .map_err(|e| crate::exit::Runtime(format!("writing {}: {e:#}", path.display())))?;
-    Ok(())
+    Ok(w.commit()?)
 }
 
 /// Write the `--csv-dir` files of `report`: `{scenario}_pcrlb.csv` (when the bound is

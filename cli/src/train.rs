@@ -105,7 +105,7 @@ pub fn run(args: &TrainArgs) -> Result<()> {
                 std::fs::create_dir_all(parent)
                     .with_context(|| format!("cannot create {}", parent.display()))?;
             }
-            std::fs::write(out, text).with_context(|| format!("cannot write {}", out.display()))?;
+            crate::atomic_file::write(out, text)?;
             println!("wrote {}", out.display());
             Some(file.to_set().map_err(|e| anyhow::anyhow!(e))?)
         }
@@ -252,6 +252,17 @@ fn fig10(
     scenario: &str,
     r: &entrynav::sim::density_eval::DensityEvalReport,
 ) -> Result<()> {
+    let mut svg = String::new();
+    draw_fig10(&mut svg, scenario, r)?;
+    Ok(crate::atomic_file::write(path, svg)?)
+}
+
+/// Fig. 10 of [`fig10`] drawn into `svg`.
+fn draw_fig10(
+    svg: &mut String,
+    scenario: &str,
+    r: &entrynav::sim::density_eval::DensityEvalReport,
+) -> Result<()> {
     use plotters::prelude::*;
     let e = |e: DrawingAreaErrorKind<std::io::Error>| anyhow::anyhow!("{e}");
     let t1 = r.times_s.last().copied().unwrap_or(1.0);
@@ -265,7 +276,7 @@ fn fig10(
         .max(0.5)
         * 3.0;
     let clip = |v: f64| v.clamp(-ymax, ymax);
-    let root = SVGBackend::new(path, (960, 540)).into_drawing_area();
+    let root = SVGBackend::with_string(svg, (960, 540)).into_drawing_area();
     root.fill(&WHITE).map_err(e)?;
     let mut chart = ChartBuilder::on(&root)
         .caption(

@@ -140,8 +140,8 @@ fn run_tuning(args: &TuneArgs) -> Result<()> {
     }
     let tuned = problem.tuned_config(&cfg, &result.theta);
     let header = header_comment(args, &problem, &result, &before, &after, &warnings);
-    std::fs::write(&args.out, format!("{header}{}", tuned.to_toml_string()))
-        .with_context(|| format!("cannot write {}", args.out.display()))?;
+    let text = format!("{header}{}", tuned.to_toml_string());
+    crate::atomic_file::write(&args.out, text)?;
     println!("wrote {}", args.out.display());
     Ok(())
 }

@@ -136,7 +136,7 @@ fn write_limited(path: &Path, text: &str) -> Result<()> {
         path.display(),
         text.len()
     );
-    std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
+    Ok(crate::atomic_file::write(path, text)?)
 }
 
 pub(super) fn cross_check(a: &CrossCheckArgs) -> Result<()> {
@@ -186,16 +186,16 @@ pub(super) fn cross_check(a: &CrossCheckArgs) -> Result<()> {
             &dir.join(format!("{id}_in.csv")),
             &csv(&in_names, &table.rows, true)?,
         )?;
-        std::fs::write(
-            dir.join(format!("{id}_ref.opt")),
+        crate::atomic_file::write(
+            &dir.join(format!("{id}_ref.opt")),
             format!(
                 "StartTime, {start:?}\nStopTime, {stop:?}\nStepSize, {step:?}\nRelTol, 1e-06\n"
             ),
         )?;
-        std::fs::copy(fmu, dir.join(format!("{id}.fmu")))
-            .with_context(|| format!("cannot copy {}", fmu.display()))?;
-        std::fs::write(
-            dir.join("README.md"),
+        let bytes = std::fs::read(fmu).with_context(|| format!("cannot read {}", fmu.display()))?;
+        crate::atomic_file::write(&dir.join(format!("{id}.fmu")), bytes)?;
+        crate::atomic_file::write(
+            &dir.join("README.md"),
             format!(
                 "# {id}\n\n{}\n\nExported by entrynav {} (`entrynav fmu pack`), FMI 2.0 co-simulation, linux64.\n\n\
                  The reference result `{id}_ref.csv` is the model run with its default parameters from {start} s to {stop} s \

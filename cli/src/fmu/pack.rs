@@ -150,8 +150,7 @@ fn write_fmu(out: &Path, spec: &ModelSpec, so: &[u8], resources: &Resources) -> 
     };
     let bound = patch(so, &binding)?;
     let path = out.join(format!("{id}.fmu"));
-    let file = std::fs::File::create(&path)
-        .with_context(|| format!("cannot create {}", path.display()))?;
+    let file = crate::atomic_file::AtomicFile::create(&path)?;
     let mut zip = zip::ZipWriter::new(file);
     let opts = zip::write::SimpleFileOptions::default()
         .compression_method(zip::CompressionMethod::Deflated)
@@ -173,7 +172,7 @@ fn write_fmu(out: &Path, spec: &ModelSpec, so: &[u8], resources: &Resources) -> 
     zip.add_directory("documentation/", opts)?;
     zip.start_file("documentation/index.html", opts)?;
     zip.write_all(documentation(spec).as_bytes())?;
-    zip.finish()?;
+    zip.finish()?.commit()?;
     Ok(path)
 }
 

@@ -129,7 +129,6 @@ pub(super) fn run_reference(a: &RunArgs) -> Result<()> {
         &outputs,
     )?;
     let names: Vec<&str> = outputs.iter().map(|v| v.name.as_str()).collect();
-    std::fs::write(&a.out, csv(&names, &rows, false)?)
-        .with_context(|| format!("cannot write {}", a.out.display()))?;
+    crate::atomic_file::write(&a.out, csv(&names, &rows, false)?)?;
     Ok(())
 }

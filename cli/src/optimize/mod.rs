@@ -290,7 +290,7 @@ fn write_text(path: &Path, text: &str) -> Result<()> {
         std::fs::create_dir_all(parent)
             .with_context(|| format!("cannot create {}", parent.display()))?;
     }
-    std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
+    Ok(crate::atomic_file::write(path, text)?)
 }
 
 fn write_json(path: &Path, v: &Value) -> Result<()> {

@@ -25,7 +25,6 @@ pub fn line_plot(
     log_y: bool,
     curves: &[Curve],
 ) -> anyhow::Result<()> {
-    use anyhow::Context;
     let frame = Frame {
         title,
         x_label,
@@ -34,7 +33,7 @@ pub fn line_plot(
         size: (960, 540),
     };
     if let Some(svg) = line_chart(&frame, curves)? {
-        std::fs::write(path, svg).with_context(|| format!("writing {}", path.display()))?;
+        crate::atomic_file::write(path, svg)?;
     }
     Ok(())
 }

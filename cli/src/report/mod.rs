@@ -7,7 +7,7 @@ pub mod html;
 pub mod summary;
 pub mod trade_page;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use std::path::Path;
 
 /// Write `html` to `path` (creating its directory) and return the seconds spent on `make`
@@ -15,12 +15,7 @@ use std::path::Path;
 pub fn write(path: &Path, make: impl FnOnce() -> Result<String>) -> Result<f64> {
     let clock = std::time::Instant::now();
     let html = make()?;
-    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent)
-            .with_context(|| format!("cannot create {}", parent.display()))?;
-    }
-    std::fs::write(path, html)
-        .map_err(|e| crate::exit::Runtime(format!("writing {}: {e}", path.display())))?;
+    crate::atomic_file::write(path, html)?;
     Ok(clock.elapsed().as_secs_f64())
 }
 

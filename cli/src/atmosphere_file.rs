@@ -68,7 +68,7 @@ pub(crate) fn truth_atmosphere(
     no_perturbation: bool,
 ) -> Result<ScenarioConfig> {
     if let Some(path) = &args.atmosphere_file {
-        let text = std::fs::read_to_string(path)
+        let text = entrynav_loader::read_text(path)
             .with_context(|| format!("cannot read atmosphere file {}", path.display()))?;
         let format = TableFormat::detect(&text);
         let abs = std::fs::canonicalize(path)

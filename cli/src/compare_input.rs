@@ -55,7 +55,7 @@ pub(crate) struct FilterIn {
 /// Read the trade summary `path`; anything else is a usage error (exit code 2) naming it.
 pub(crate) fn read(path: &Path) -> Result<SummaryIn> {
     let usage = |m: String| Usage(format!("{}: {m}", path.display()));
-    let text = std::fs::read_to_string(path)
+    let text = entrynav_loader::read_text(path)
         .with_context(|| format!("{}: cannot read", path.display()))?;
     let summary = serde_json::from_str(&text).map_err(|e| {
         usage(format!(

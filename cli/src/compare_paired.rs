@@ -25,7 +25,7 @@ impl FinalErrors {
     /// Read `path`, a `{scenario}_final_errors.csv` written by `trade --csv-dir`. Failed runs
     /// (numerical stops) are left out, as in the summary's final RMSE.
     pub fn read(path: &Path) -> Result<FinalErrors> {
-        let text = std::fs::read_to_string(path)
+        let text = entrynav_loader::read_text(path)
             .with_context(|| format!("--final-errors {}: cannot read", path.display()))?;
         Self::parse(&text, &|m| {
             Usage(format!("--final-errors {}: {m}", path.display()))

@@ -237,7 +237,7 @@ fn expand(grid: &GridFile, grid_dir: &Path) -> Result<Vec<Cell>> {
 /// Run the grid in `grid_path`; the report goes to `out_dir`, and an HTML page to `report` if
 /// given as `html` (rewritten after every finished cell, so an interrupted grid keeps its cells there too).
 pub fn run(grid_path: &Path, out_dir: &Path, quiet: bool, html: Option<&Path>) -> Result<()> {
-    let text = std::fs::read_to_string(grid_path)
+    let text = entrynav_loader::read_text(grid_path)
         .with_context(|| format!("cannot read grid file {}", grid_path.display()))?;
     let grid: GridFile =
         toml::from_str(&text).with_context(|| format!("grid file {}", grid_path.display()))?;

@@ -149,7 +149,7 @@ fn run(cli: Cli) -> Result<()> {
                 print!("{text}");
             } else {
                 let path = name.trim();
-                let text = std::fs::read_to_string(path)
+                let text = entrynav_loader::read_text(path)
                     .with_context(|| format!("cannot read scenario file {path}"))?;
                 print!("{text}");
             }

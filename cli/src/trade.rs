@@ -341,7 +341,7 @@ fn merge(
     check_outputs(json, csv_dir, plots)?;
     let mut parts = Vec::new();
     for p in shards {
-        let text = std::fs::read_to_string(p)
+        let text = entrynav_loader::read_text(p)
             .with_context(|| format!("cannot read shard {}", p.display()))?;
         let part: ShardResult = serde_json::from_str(&text)
             .with_context(|| format!("{} is not a shard file", p.display()))?;

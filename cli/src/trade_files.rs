@@ -51,7 +51,7 @@ pub fn write_summary(
 /// The block sums stored in the partial summary `path` (`--resume`).
 pub fn read_resume(path: &Path) -> Result<ShardResult> {
     let usage = |m: String| crate::exit::Usage(format!("--resume {}: {m}", path.display()));
-    let text = std::fs::read_to_string(path)
+    let text = entrynav_loader::read_text(path)
         .with_context(|| format!("--resume {}: cannot read", path.display()))?;
     let mut v: serde_json::Value =
         serde_json::from_str(&text).map_err(|e| usage(format!("not JSON: {e}")))?;

@@ -25,6 +25,7 @@ pub mod beacons;
 pub mod dynamics;
 pub mod estimation;
 pub mod files;
+pub mod fixed_len;
 pub mod frames;
 pub mod math;
 pub mod observability;

@@ -20,6 +20,7 @@ const LAYERS: &[(&str, u32)] = &[
     ("frames", 0),
     ("state_dim", 0),
     ("files", 0),
+    ("fixed_len", 0),
     ("pcrlb_recursion", 0),
     ("atmosphere", 1),
     ("dynamics", 2),

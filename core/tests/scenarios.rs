@@ -221,3 +221,44 @@ fn random_text_never_panics() {
         cut += 97;
     }
 }
+
+/// A 3-vector with 2, 4 or 10 000 numbers is refused naming the field and the count, never cut
+/// to 3 (the base result and fingerprint were what such a file gave before).
+#[test]
+fn a_fixed_length_array_of_another_length_is_refused() {
+    let orbiters = entrynav::scenario::builtin_toml("orbiters-3").unwrap();
+    let cases = [
+        (
+            orbiters,
+            "velocity_mps = [5775.31, 1124.27, 1175.48]",
+            "velocity_mps = [5775.31, 1124.27, 1175.48, 1.0]",
+            "4",
+        ),
+        (
+            orbiters,
+            "velocity_mps = [0.5, 0.5, 0.5]",
+            "velocity_mps = [0.5, 0.5]",
+            "2",
+        ),
+        (
+            entrynav::scenario::builtin_toml("four-beacon-fusion").unwrap(),
+            "bias_mps2 = [-0.03, -0.03, -0.03]",
+            &format!("bias_mps2 = [{}]", vec!["-0.03"; 10_000].join(", ")),
+            "10000",
+        ),
+    ];
+    for (text, from, to, count) in cases {
+        assert!(text.contains(from), "{from}");
+        let err = ScenarioConfig::from_toml_str(&text.replacen(from, to, 1), "edited.toml")
+            .map(|_| ())
+            .expect_err(to);
+        let err = err.to_string();
+        let field = from.split(' ').next().unwrap();
+        assert!(
+            err.contains(field)
+                && err.contains(&format!("invalid length {count}"))
+                && err.contains("exactly 3 numbers"),
+            "{err}"
+        );
+    }
+}

@@ -445,3 +445,28 @@ fn a_resumed_trade_is_exactly_the_uninterrupted_one() {
         "resumed study differs from the uninterrupted one"
     );
 }
+
+/// A scenario without measurements (a file cut before `[sensors]`) is refused before any run, naming what to add, instead of a study whose every statistic is "-".
+#[test]
+fn a_study_without_measurements_is_refused() {
+    let pressure = entrynav::scenario::builtin_toml("msl-pressure").unwrap();
+    let cut = &pressure[..pressure.find("[sensors.imu]").unwrap()];
+    // (Radios without beacons are refused by validation already.)
+    let cfg = ScenarioConfig::from_toml_str(cut, "cut.toml").unwrap();
+    let none = |p: &str| Err(entrynav::files::FileError::new(p, "none"));
+    let s = Scenario::build(cfg, &none).unwrap();
+    let opts = McOptions {
+        runs: 2,
+        seed: 1,
+        chunk: 1,
+        pcrlb: false,
+        cancel: None,
+    };
+    let err = run_trade(&s, &[FilterKind::Ekf], &opts, &|_| {})
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("no measurement channel") && err.contains("[sensors.imu]"),
+        "{err}"
+    );
+}

@@ -12,6 +12,9 @@ use entrynav::scenario::{BUILTIN_NAMES, Scenario, ScenarioConfig, ScenarioError}
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
+mod read;
+pub use read::{MAX_FILE_BYTES, read_bytes, read_text};
+
 /// Why a scenario could not be loaded.
 #[derive(Debug, Error)]
 pub enum LoadError {
@@ -138,7 +141,7 @@ pub fn resolve(name_or_file: &str, base: Base<'_>) -> Result<ScenarioSource, Loa
             });
         }
     };
-    let text = std::fs::read_to_string(&path).map_err(|source| LoadError::NotFound {
+    let text = read_text(&path).map_err(|source| LoadError::NotFound {
         name: name.to_string(),
         path: path.clone(),
         builtins: builtins(),
@@ -213,8 +216,7 @@ pub fn file_loader(dir: &Path) -> impl Fn(&str) -> Result<String, FileError> + u
         } else {
             dir.join(p)
         };
-        std::fs::read_to_string(&path)
-            .map_err(|e| FileError::new(path.display().to_string(), e.to_string()))
+        read_text(&path).map_err(|e| FileError::new(path.display().to_string(), e.to_string()))
     }
 }
 

@@ -109,7 +109,8 @@ pub(super) fn run_reference(a: &RunArgs) -> Result<()> {
     }
     let table = match &a.input {
         Some(p) => Table::parse(
-            &std::fs::read_to_string(p).with_context(|| format!("cannot read {}", p.display()))?,
+            &entrynav_loader::read_text(p)
+                .with_context(|| format!("cannot read {}", p.display()))?,
             vars,
         )?,
         None => Table::default(),

@@ -58,8 +58,8 @@ pub(super) fn load_candidates(
 
 /// The `sites` (`lat_deg`, `lon_deg`) of an `optimize ground --json` file.
 fn compare_sites(path: &Path) -> Result<Vec<Site>> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let text = entrynav_loader::read_text(path)
+        .with_context(|| format!("cannot read {}", path.display()))?;
     let v: Value =
         serde_json::from_str(&text).with_context(|| format!("{} is not JSON", path.display()))?;
     v["sites"]

@@ -42,7 +42,11 @@ pub struct SurfaceBeaconConfig {
     /// Unique name, used in reports and measurement channel names.
     pub name: String,
     /// Planet-fixed position \[km\].
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "crate::fixed_len::option_array"
+    )]
     pub position_km: Option<[f64; 3]>,
     /// Planetocentric latitude \[deg\], in [−90, 90].
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -71,10 +75,18 @@ pub struct OrbiterBeaconConfig {
     /// Unique name, used in reports and measurement channel names.
     pub name: String,
     /// Inertial position at t = 0 \[km\] (seed 000 Table 2).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "crate::fixed_len::option_array"
+    )]
     pub position_km: Option<[f64; 3]>,
     /// Inertial velocity at t = 0 [m/s].
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "crate::fixed_len::option_array"
+    )]
     pub velocity_mps: Option<[f64; 3]>,
     /// Circular orbit of seed 002 eq. 55–56.
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -107,10 +107,18 @@ pub struct StateConfig {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub heading_deg: Option<f64>,
     /// Inertial position \[km\].
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "crate::fixed_len::option_array"
+    )]
     pub position_km: Option<[f64; 3]>,
     /// Inertial velocity [m/s].
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "crate::fixed_len::option_array"
+    )]
     pub velocity_mps: Option<[f64; 3]>,
 }
 

@@ -18,6 +18,11 @@ pub const MAX_UPDATE_ITERATIONS: usize = 20;
 /// Longest `timing.truth_step_s` \[s\] (and never longer than the run).
 const MAX_TRUTH_STEP_S: f64 = 10.0;
 
+/// Most truth steps one run may take (`timing.duration_s / timing.truth_step_s`): the work a
+/// scenario implies is bounded before a run starts (the built-ins take 2400–7000). A million
+/// RK4 steps of the truth are a few seconds per run.
+pub const MAX_TRUTH_STEPS: f64 = 1e6;
+
 /// Is `period` an integer multiple of `step` (to 1e-9 relative)?
 pub fn is_multiple(period: f64, step: f64) -> bool {
     let n = (period / step).round();
@@ -61,13 +66,16 @@ impl TimingConfig {
         let duration = Range::gt(0.0).le(7200.0).unit("s");
         c.range("timing.duration_s", self.duration_s, duration)?;
         let step = self.truth_step_s;
-        let longest = Range::gt(0.0).unit("s");
-        let longest = if self.duration_s < MAX_TRUTH_STEP_S {
-            longest.le(named("timing.duration_s", self.duration_s))
+        let shortest = named("timing.duration_s / 1e6", self.duration_s / MAX_TRUTH_STEPS);
+        let range = Range::ge(shortest)
+            .unit("s")
+            .note("at most 1e6 truth steps per run");
+        let range = if self.duration_s < MAX_TRUTH_STEP_S {
+            range.le(named("timing.duration_s", self.duration_s))
         } else {
-            longest.le(MAX_TRUTH_STEP_S)
+            range.le(MAX_TRUTH_STEP_S)
         };
-        c.range("timing.truth_step_s", step, longest)?;
+        c.range("timing.truth_step_s", step, range)?;
         let filter_step = Range::gt(0.0).le(60.0).unit("s");
         c.range("timing.filter_step_s", self.filter_step_s, filter_step)?;
         if !is_multiple(self.filter_step_s, step) {

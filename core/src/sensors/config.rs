@@ -54,7 +54,7 @@ pub struct ImuConfig {
     /// White-noise 1σ per axis [m/s²].
     pub noise_sigma_mps2: f64,
     /// True constant bias per axis [m/s²] (seed 000: −0.03, not estimated by the filters).
-    #[serde(default)]
+    #[serde(default, with = "crate::fixed_len::array")]
     pub bias_mps2: [f64; 3],
 }
 

@@ -39,6 +39,17 @@ pub enum TradeError {
     /// Bad options or shard files.
     #[error("{0}")]
     Options(String),
+    /// The scenario gives the filters nothing to measure: every statistic would be empty.
+    #[error(
+        "scenario '{scenario}' has no measurement channel (no [sensors], or radios without \
+         [[beacons]]), so a filter has nothing to navigate with; give [sensors.imu], \
+         [sensors.dynamic_pressure], [sensors.heating], or [sensors.range] / \
+         [sensors.range_rate] with beacons"
+    )]
+    NoMeasurements {
+        /// The scenario's name.
+        scenario: String,
+    },
 }
 
 /// Monte Carlo options.
@@ -225,6 +236,11 @@ fn run_shard_from(
             "shard {}/{} does not exist",
             shard.index, shard.count
         )));
+    }
+    if scenario.channels.is_empty() {
+        return Err(TradeError::NoMeasurements {
+            scenario: scenario.config.name.clone(),
+        });
     }
     for f in filters {
         f.check_fits(&scenario.onboard)?;

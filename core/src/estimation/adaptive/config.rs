@@ -218,7 +218,7 @@ pub struct DensityTrainingConfig {
     #[serde(default = "d_val")]
     pub validation_fraction: f64,
     /// Altitude range \[km\] of the truth mean profile the least-squares exponential is fitted to.
-    #[serde(default = "d_fit_km")]
+    #[serde(default = "d_fit_km", with = "crate::fixed_len::array")]
     pub fit_altitude_km: [f64; 2],
     /// Band edges \[km\] for one network per altitude band (the multi-network extension of seed
     /// 001 §VI), e.g. `[0, 40, 70, 130]`; empty = one network trained on one exponential.

@@ -62,6 +62,7 @@ pub struct TrainingRecord {
     /// Final mean squared error of the normalised output, validation set.
     pub validation_mse: f64,
     /// Validation relative density error |ρ̂ − ρ|/ρ: median, 99th percentile, maximum.
+    #[serde(with = "crate::fixed_len::array")]
     pub validation_rel_err_p50_p99_max: [f64; 3],
     /// Fraction of validation samples with relative error below 1 % (seed 001 Fig. 5).
     pub validation_frac_below_1pct: f64,
@@ -74,8 +75,10 @@ pub struct TrainingRecord {
 #[serde(deny_unknown_fields)]
 pub struct NetworkRecord {
     /// Altitudes \[km\] of the band `[bottom, top)` this network serves.
+    #[serde(with = "crate::fixed_len::array")]
     pub altitude_band_km: [f64; 2],
     /// The exponential it was trained on: `[rho_ref_kgm3, ref_altitude_km, scale_height_km]`.
+    #[serde(with = "crate::fixed_len::array")]
     pub trained_on_exponential: [f64; 3],
     /// Normalisation and transform constants (seed 001 eq. 29–31).
     pub normalisation: Normalisation,

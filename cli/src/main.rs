@@ -30,6 +30,7 @@ mod simulate;
 mod threads;
 mod trade;
 mod trade_args;
+mod trade_checkpoint;
 mod trade_files;
 mod trade_tables;
 mod train;

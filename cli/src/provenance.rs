@@ -92,6 +92,9 @@ pub struct Summary<'a> {
     /// timings included), from which `trade --resume FILE` continues.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub resume: Option<&'a entrynav::sim::ShardResult>,
+    /// Only beside `resume`: its checksum (`trade_files::resume_checksum`), checked by `--resume`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub resume_checksum: Option<String>,
     /// Wall-clock timing.
     pub timing: Timing,
 }

@@ -12,6 +12,7 @@ use crate::progress::RunProgress;
 use crate::provenance::Provenance;
 use crate::threads::with_threads;
 pub use crate::trade_args::{TradeAction, TradeArgs};
+use crate::trade_checkpoint::{self, SummaryCheckpoints};
 use crate::trade_files::{check_outputs, read_resume, write_csv_dir, write_file, write_summary};
 use crate::trade_tables::print_tables;
 use anyhow::{Context, Result};
@@ -19,7 +20,7 @@ use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
 use entrynav::sim::shard::fold_partial;
 use entrynav::sim::{
-    McOptions, Shard, ShardResult, TradeReport, merge_shards, resume_shard, run_shard,
+    Checkpoint, McOptions, NoCheckpoint, Shard, ShardResult, TradeReport, merge_shards, run_shard,
 };
 use entrynav_loader as load;
 use std::path::{Path, PathBuf};
@@ -199,11 +200,16 @@ fn run_one_shard(args: &TradeArgs, shard: Shard, path: &Path) -> Result<()> {
 /// Run the study (or continue the interrupted one in `resume`), print its tables and write its
 /// outputs; an interrupted study writes its partial results and ends in [`Interrupted`].
 fn run_study(args: &TradeArgs, resume: Option<&Path>) -> Result<()> {
+    let every = checkpoint_interval(args)?;
     let setup = Setup::load(args)?;
     let previous = resume.map(read_resume).transpose()?;
     let opts = setup.options(args);
     let clock = std::time::Instant::now();
-    let (report, partial) = fly(args, &setup, &opts, previous)?;
+    let mut checkpoints: Box<dyn Checkpoint + Send> = match (every, args.json.as_deref()) {
+        (Some(s), Some(path)) => Box::new(SummaryCheckpoints::new(path, s, setup.provenance(args))),
+        _ => Box::new(NoCheckpoint),
+    };
+    let (report, partial) = fly(args, &setup, &opts, previous, checkpoints.as_mut())?;
     let elapsed = clock.elapsed().as_secs_f64();
     if !report.complete {
         eprintln!(
@@ -222,14 +228,35 @@ fn run_study(args: &TradeArgs, resume: Option<&Path>) -> Result<()> {
     Ok(())
 }
 
-/// Fly the study's runs on `--threads` workers, showing progress. A cancelled study's report
-/// folds the finished runs and comes with their block sums, which its summary keeps for
-/// `--resume`.
+/// The checkpoint interval of a study (s), `None` for none: `--checkpoint-every` (0: none),
+/// by default [`trade_checkpoint::DEFAULT_EVERY_S`] when the summary goes to a file.
+fn checkpoint_interval(args: &TradeArgs) -> Result<Option<f64>> {
+    let to_file = args.json.as_deref().is_some_and(|p| !is_stdout(p));
+    match args.checkpoint_every {
+        Some(s) => {
+            trade_checkpoint::check_every(s)?;
+            if !to_file && s > 0.0 {
+                return Err(crate::exit::Usage(format!(
+                    "--checkpoint-every {s} needs --json FILE (the checkpoint is the partial \
+                     summary written there)"
+                ))
+                .into());
+            }
+            Ok((s > 0.0).then_some(s))
+        }
+        None => Ok(to_file.then_some(trade_checkpoint::DEFAULT_EVERY_S)),
+    }
+}
+
+/// Fly the study's runs on `--threads` workers, showing progress and writing checkpoints. A
+/// cancelled study's report folds the finished runs and comes with their block sums, which its
+/// summary keeps for `--resume`.
 fn fly(
     args: &TradeArgs,
     setup: &Setup,
     opts: &McOptions,
     previous: Option<ShardResult>,
+    checkpoints: &mut (dyn Checkpoint + Send),
 ) -> Result<(TradeReport, Option<ShardResult>)> {
     let progress = RunProgress::new(
         setup.runs,
@@ -239,10 +266,14 @@ fn fly(
     let step = |done: usize| progress.set(done);
     let (scenario, filters) = (&setup.scenario, &setup.filters);
     let study = with_threads(args.threads, || {
-        Ok(match previous {
-            Some(prev) => resume_shard(scenario, filters, opts, prev, &step)?,
-            None => run_shard(scenario, filters, opts, Shard { index: 0, count: 1 }, &step)?,
-        })
+        Ok(entrynav::sim::run_study(
+            scenario,
+            filters,
+            opts,
+            previous,
+            &step,
+            checkpoints,
+        )?)
     })?;
     let folded = if study.complete {
         (merge_shards(vec![study])?, None)

@@ -73,6 +73,12 @@ pub struct TradeArgs {
     /// uninterrupted run.
     #[arg(long, value_name = "FILE", conflicts_with_all = ["shard", "grid", "replay_run"])]
     pub resume: Option<PathBuf>,
+    /// Write the study's resumable partial summary to --json before the first run and then
+    /// every S seconds (default 60; 0: never), atomically, so a study killed outright (SIGKILL,
+    /// power loss) loses at most S seconds of runs: `--resume FILE` continues it. Needs --json
+    /// FILE.
+    #[arg(long, value_name = "S", allow_negative_numbers = true, conflicts_with_all = ["shard", "grid", "replay_run"])]
+    pub checkpoint_every: Option<f64>,
     /// Skip the posterior Cramér–Rao lower bound (on by default: the `pcrlb` block of the
     /// summary, each filter's RMSE/PCRLB efficiency, the dashed PCRLB curve in the RMSE plots;
     /// it costs about one EKF's worth of work per run).

@@ -39,6 +39,7 @@ pub fn write_summary(
         provenance,
         report,
         resume,
+        resume_checksum: resume.map(resume_checksum),
         timing: Timing::of(report, wall_s),
     };
     write_file(path, |w| {
@@ -48,7 +49,9 @@ pub fn write_summary(
     })
 }
 
-/// The block sums stored in the partial summary `path` (`--resume`).
+/// The block sums stored in the partial summary `path` (`--resume`), refused unless they match
+/// the `resume_checksum` written beside them (an edited or corrupt block would otherwise move the
+/// resumed statistics silently).
 pub fn read_resume(path: &Path) -> Result<ShardResult> {
     let usage = |m: String| crate::exit::Usage(format!("--resume {}: {m}", path.display()));
     let text = entrynav_loader::read_text(path)
@@ -61,7 +64,39 @@ pub fn read_resume(path: &Path) -> Result<ShardResult> {
         .ok_or_else(|| {
             usage("no `resume` block: not the summary of an interrupted trade".into())
         })?;
-    Ok(serde_json::from_value(block).map_err(|e| usage(format!("corrupt `resume` block: {e}")))?)
+    let stored = v
+        .get("resume_checksum")
+        .and_then(serde_json::Value::as_str)
+        .map(str::to_owned);
+    let block: ShardResult =
+        serde_json::from_value(block).map_err(|e| usage(format!("corrupt `resume` block: {e}")))?;
+    let Some(stored) = stored else {
+        return Err(usage(
+            "the `resume` block has no `resume_checksum` (written by an older entrynav, or \
+             edited); run the study again"
+                .into(),
+        )
+        .into());
+    };
+    let actual = resume_checksum(&block);
+    if stored != actual {
+        return Err(usage(format!(
+            "the `resume` block does not match its checksum (resume_checksum {stored}, block \
+             {actual}): it was edited, corrupted or copied from another file; refusing to \
+             continue from it"
+        ))
+        .into());
+    }
+    Ok(block)
+}
+
+/// The checksum of a `resume` block: `fnv1a64:` and 16 hex digits of FNV-1a 64 over the block's
+/// compact JSON, which round-trips exactly (floats are written in their shortest exact form and
+/// read back exactly, serde_json's `float_roundtrip`). It catches a hand-edited, corrupt or
+/// pasted-in block; it is not a signature against a deliberate forger.
+pub fn resume_checksum(block: &ShardResult) -> String {
+    let text = serde_json::to_vec(block).unwrap_or_default();
+    format!("fnv1a64:{:016x}", entrynav::sim::shard::fnv1a64(text))
 }
 
 /// Write `path` (`-`: standard output), creating its directory.

@@ -94,6 +94,13 @@ impl Running {
         assert!(sent.success(), "kill -INT failed");
     }
 
+    /// Kill the process outright (SIGKILL, as a power loss or the OOM killer would) and reap it.
+    pub fn kill(mut self) -> String {
+        self.child.kill().expect("kill entrynav");
+        self.child.wait().expect("reap entrynav");
+        self.err
+    }
+
     /// Read the rest of standard error and wait for the process to end; panics (and kills it)
     /// if it is still running after `limit_s` seconds.
     pub fn finish(mut self, limit_s: u64) -> Finished {

@@ -17,6 +17,7 @@
 //! * [`density_eval`] — seed 001's density RMSPE (eq. 70) over a Monte Carlo;
 //! * [`training`] — seed 001 Algorithm 1's training trajectories and the whole offline training.
 
+pub mod checkpoint;
 pub mod consistency;
 pub mod density_eval;
 pub mod engine;
@@ -36,10 +37,11 @@ pub mod start;
 pub mod training;
 pub mod tuning;
 
+pub use checkpoint::{Checkpoint, NoCheckpoint};
 pub use engine::{SimError, StopReason, TruthSample};
 pub use metrics::nees_bounds_95;
 pub use monte_carlo::{
-    McOptions, TradeError, TradeReport, resume_shard, run_shard, run_trade, state_names,
+    McOptions, TradeError, TradeReport, resume_shard, run_shard, run_study, run_trade, state_names,
 };
 pub use pcrlb::NoBound;
 pub use pcrlb_sums::{PcrlbReport, pcrlb_study};

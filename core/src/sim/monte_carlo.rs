@@ -7,6 +7,7 @@
 //! run-index order, so 1 or N threads give bit-identical statistics, and memory is bounded by the
 //! chunk size, not the number of runs.
 
+use super::checkpoint::{Checkpoint, NoCheckpoint};
 use super::metrics::FilterAccumulator;
 use super::pcrlb::{BoundRun, bound_run};
 use super::pcrlb_sums::{BoundSums, PcrlbReport};
@@ -170,7 +171,16 @@ pub fn run_shard(
     shard: Shard,
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<ShardResult, TradeError> {
-    run_shard_from(scenario, filters, opts, shard, Vec::new(), progress)
+    let mut none = NoCheckpoint;
+    run_shard_from(
+        scenario,
+        filters,
+        opts,
+        shard,
+        Vec::new(),
+        progress,
+        &mut none,
+    )
 }
 
 /// Continue the cancelled single-process study `previous` (a [`ShardResult`] with
@@ -185,6 +195,42 @@ pub fn resume_shard(
     previous: ShardResult,
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<ShardResult, TradeError> {
+    run_study(
+        scenario,
+        filters,
+        opts,
+        Some(previous),
+        progress,
+        &mut NoCheckpoint,
+    )
+}
+
+/// The single-process study (shard `0/1`), new or continuing the cancelled `previous` (see
+/// [`resume_shard`]), handing its partial results to `checkpoint` whenever it asks for them:
+/// once before the first run and then after any chunk of runs. Each partial result is a
+/// `complete: false` [`ShardResult`] that [`resume_shard`] continues to exactly the
+/// uninterrupted result, so a study killed outright loses at most the runs since its last
+/// checkpoint.
+pub fn run_study(
+    scenario: &Scenario,
+    filters: &[FilterKind],
+    opts: &McOptions,
+    previous: Option<ShardResult>,
+    progress: &(dyn Fn(usize) + Sync),
+    checkpoint: &mut dyn Checkpoint,
+) -> Result<ShardResult, TradeError> {
+    let whole = Shard { index: 0, count: 1 };
+    let Some(previous) = previous else {
+        return run_shard_from(
+            scenario,
+            filters,
+            opts,
+            whole,
+            Vec::new(),
+            progress,
+            checkpoint,
+        );
+    };
     let names: Vec<String> = filters.iter().map(|k| k.name().to_string()).collect();
     let what = if previous.scenario_fingerprint != scenario_fingerprint(scenario) {
         Some(format!(
@@ -217,6 +263,7 @@ pub fn resume_shard(
         previous.shard,
         previous.blocks,
         progress,
+        checkpoint,
     )
 }
 
@@ -227,6 +274,7 @@ fn run_shard_from(
     shard: Shard,
     previous: Vec<BlockSums>,
     progress: &(dyn Fn(usize) + Sync),
+    checkpoint: &mut dyn Checkpoint,
 ) -> Result<ShardResult, TradeError> {
     if opts.runs == 0 {
         return Err(TradeError::Options("--runs must be at least 1".into()));
@@ -246,8 +294,7 @@ fn run_shard_from(
         f.check_fits(&scenario.onboard)?;
     }
     let shared = Arc::new(scenario.clone());
-    let (blocks, complete) = run_blocks(&shared, filters, opts, shard, previous, progress)?;
-    Ok(ShardResult {
+    let template = ShardResult {
         format: SHARD_FORMAT,
         scenario: scenario.config.name.clone(),
         scenario_fingerprint: scenario_fingerprint(scenario),
@@ -258,8 +305,23 @@ fn run_shard_from(
         channels: super::channel_names(scenario),
         atmosphere: scenario.truth_profiles.as_ref().map(|c| c.provenance()),
         shard,
+        blocks: Vec::new(),
+        complete: false,
+    };
+    let mut save = |blocks: &dyn Fn() -> Vec<BlockSums>| {
+        if checkpoint.due() {
+            checkpoint.save(&ShardResult {
+                blocks: blocks(),
+                ..template.clone()
+            });
+        }
+    };
+    let (blocks, complete) =
+        run_blocks(&shared, filters, opts, shard, previous, progress, &mut save)?;
+    Ok(ShardResult {
         blocks,
         complete,
+        ..template
     })
 }
 
@@ -270,8 +332,10 @@ fn run_blocks(
     shard: Shard,
     previous: Vec<BlockSums>,
     progress: &(dyn Fn(usize) + Sync),
+    save: &mut dyn FnMut(&dyn Fn() -> Vec<BlockSums>),
 ) -> Result<(Vec<BlockSums>, bool), TradeError> {
     let chunk = opts.chunk.max(1);
+    save(&|| previous.clone());
     let mut out = Vec::new();
     let mut done = 0;
     let mut previous = previous.into_iter().peekable();
@@ -329,6 +393,16 @@ fn run_blocks(
             }
             bounds.add_runs(&chunk_bounds);
             progress(done);
+            // The runs so far, as resumable blocks (built only when a checkpoint is due).
+            save(&|| {
+                let mut so_far = out.clone();
+                so_far.push(BlockSums {
+                    index: block,
+                    filters: accs.clone(),
+                    bounds: opts.pcrlb.then(|| bounds.clone()),
+                });
+                so_far
+            });
             if cut || opts.cancelled() {
                 cut = true;
                 break;

@@ -100,12 +100,17 @@ pub const SHARD_FORMAT: u32 = 3;
 
 /// FNV-1a 64 fingerprint of a scenario's canonical TOML.
 pub fn scenario_fingerprint(scenario: &Scenario) -> String {
+    format!("{:016x}", fnv1a64(scenario.config.to_toml_string().bytes()))
+}
+
+/// FNV-1a, 64 bits: the hash of fingerprints and checksums (fast, not cryptographic).
+pub fn fnv1a64(bytes: impl IntoIterator<Item = u8>) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in scenario.config.to_toml_string().bytes() {
+    for b in bytes {
         h ^= b as u64;
         h = h.wrapping_mul(0x0000_0100_0000_01b3);
     }
-    format!("{h:016x}")
+    h
 }
 
 /// Combine the shards of one study into its report. Refuses shards of different scenarios, seeds,

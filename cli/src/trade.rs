@@ -13,7 +13,10 @@ use crate::provenance::Provenance;
 use crate::threads::with_threads;
 pub use crate::trade_args::{TradeAction, TradeArgs};
 use crate::trade_checkpoint::{self, SummaryCheckpoints};
-use crate::trade_files::{check_outputs, read_resume, write_csv_dir, write_file, write_summary};
+use crate::trade_files::{
+    ShardFile, StudyProvenance, check_outputs, read_resume, read_shards, write_csv_dir, write_file,
+    write_summary,
+};
 use crate::trade_tables::print_tables;
 use anyhow::{Context, Result};
 use entrynav::estimation::nav::FilterKind;
@@ -185,7 +188,11 @@ fn run_one_shard(args: &TradeArgs, shard: Shard, path: &Path) -> Result<()> {
         ))
         .into());
     }
-    write_file(path, |w| Ok(serde_json::to_writer(&mut *w, &result)?))?;
+    let file = ShardFile {
+        shard: &result,
+        provenance: StudyProvenance::of(&setup.provenance(args)),
+    };
+    write_file(path, |w| Ok(serde_json::to_writer(&mut *w, &file)?))?;
     eprintln!(
         "wrote shard {}/{} ({} blocks) of {} runs to {}",
         shard.index,
@@ -361,8 +368,10 @@ impl Outputs {
     }
 }
 
-/// `trade merge`: combine the shard files into the study's report, print it and write the
-/// outputs asked for.
+/// `trade merge`: combine the shard files into the study's report, write the outputs asked for
+/// (first, so a closed standard output never costs one), then print the tables. The merged
+/// summary keeps the shards' `--set` overrides and atmosphere source; shards that differ in them
+/// are refused.
 fn merge(
     shards: &[PathBuf],
     json: Option<&Path>,
@@ -370,36 +379,36 @@ fn merge(
     plots: Option<&Path>,
 ) -> Result<()> {
     check_outputs(json, csv_dir, plots)?;
-    let mut parts = Vec::new();
-    for p in shards {
-        let text = entrynav_loader::read_text(p)
-            .with_context(|| format!("cannot read shard {}", p.display()))?;
-        let part: ShardResult = serde_json::from_str(&text)
-            .with_context(|| format!("{} is not a shard file", p.display()))?;
-        parts.push(part);
-    }
+    let (parts, study) = read_shards(shards)?;
     let fingerprint = parts
         .first()
         .map(|p| p.scenario_fingerprint.clone())
         .unwrap_or_default();
     let report = merge_shards(parts)?;
-    if !json.is_some_and(is_stdout) {
-        print_tables(&report, 0.0);
-    }
+    let to_stdout = json.is_some_and(is_stdout);
+    let mut outputs = Outputs::default();
     if let Some(path) = json {
         let provenance = Provenance {
             scenario_fingerprint: Some(fingerprint),
+            overrides: study.overrides,
+            atmosphere: study.atmosphere,
             ..Provenance::new(&[])
         };
-        write_summary(path, &provenance, &report, None, 0.0)?;
-        println!("wrote {}", path.display());
+        let done = write_summary(path, &provenance, &report, None, 0.0);
+        let note = (!to_stdout).then(|| format!("wrote {}", path.display()));
+        outputs.record(done.map(|()| note));
     }
     if let Some(dir) = csv_dir {
-        write_csv_dir(dir, &report)?;
+        let done = write_csv_dir(dir, &report);
+        outputs.record(done.map(|()| Some(format!("wrote CSV series to {}", dir.display()))));
     }
     let names = WeightNames::of_channels(&report.channels);
     if let Some(dir) = plots {
-        crate::plots::trade_plots(dir, &report, &names)?;
+        let done = crate::plots::trade_plots(dir, &report, &names);
+        outputs.record(done.map(|()| Some(format!("wrote plots to {}", dir.display()))));
     }
-    Ok(())
+    if !to_stdout {
+        print_tables(&report, 0.0);
+    }
+    outputs.finish(to_stdout)
 }

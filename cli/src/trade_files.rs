@@ -90,6 +90,88 @@ pub fn read_resume(path: &Path) -> Result<ShardResult> {
     Ok(block)
 }
 
+/// What a shard file says of its study beyond the shard's sums: the `--set` overrides and the
+/// truth atmosphere source, which the merged summary's provenance keeps.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct StudyProvenance {
+    /// The `--set PATH=VALUE` overrides, in the order given.
+    pub overrides: Vec<String>,
+    /// The truth atmosphere source ([`Provenance::atmosphere`]).
+    pub atmosphere: Option<serde_json::Value>,
+}
+
+impl StudyProvenance {
+    /// The part of `p` that every shard of one study shares.
+    pub fn of(p: &Provenance) -> StudyProvenance {
+        StudyProvenance {
+            overrides: p.overrides.clone(),
+            atmosphere: p.atmosphere.clone(),
+        }
+    }
+}
+
+/// A shard file as written by `trade --shard I/N --json FILE`: the shard's sums and its study's
+/// provenance.
+#[derive(serde::Serialize)]
+pub struct ShardFile<'a> {
+    /// The sums.
+    #[serde(flatten)]
+    pub shard: &'a ShardResult,
+    /// Overrides and atmosphere source.
+    pub provenance: StudyProvenance,
+}
+
+/// Read the shard files of `trade merge`: their sums, and the provenance they share. Refuses a
+/// file that is not a shard, one without provenance (an older entrynav), and shards whose
+/// overrides or atmosphere source differ (exit code 2, naming both files).
+pub fn read_shards(paths: &[std::path::PathBuf]) -> Result<(Vec<ShardResult>, StudyProvenance)> {
+    let mut parts = Vec::new();
+    let mut shared: Option<(StudyProvenance, &Path)> = None;
+    for p in paths {
+        let usage = |m: String| crate::exit::Usage(format!("shard {}: {m}", p.display()));
+        let text = entrynav_loader::read_text(p)
+            .with_context(|| format!("cannot read shard {}", p.display()))?;
+        let mut v: serde_json::Value = serde_json::from_str(&text)
+            .map_err(|e| usage(format!("not a shard file (not JSON: {e})")))?;
+        let provenance = v
+            .get_mut("provenance")
+            .map(serde_json::Value::take)
+            .ok_or_else(|| {
+                usage("no `provenance` (written by an older entrynav); run the shard again".into())
+            })?;
+        let provenance: StudyProvenance = serde_json::from_value(provenance)
+            .map_err(|e| usage(format!("corrupt `provenance`: {e}")))?;
+        let part: ShardResult =
+            serde_json::from_value(v).map_err(|e| usage(format!("not a shard file: {e}")))?;
+        match &shared {
+            None => shared = Some((provenance, p)),
+            Some((first, first_path)) if *first != provenance => {
+                return Err(crate::exit::Usage(format!(
+                    "cannot merge shards of different studies: {} has overrides {:?} and \
+                     atmosphere {}, {} has overrides {:?} and atmosphere {}",
+                    first_path.display(),
+                    first.overrides,
+                    json_or_null(&first.atmosphere),
+                    p.display(),
+                    provenance.overrides,
+                    json_or_null(&provenance.atmosphere),
+                ))
+                .into());
+            }
+            Some(_) => {}
+        }
+        parts.push(part);
+    }
+    let provenance = shared
+        .map(|(p, _)| p)
+        .ok_or_else(|| crate::exit::Usage("trade merge: no shard file given".into()))?;
+    Ok((parts, provenance))
+}
+
+fn json_or_null(v: &Option<serde_json::Value>) -> String {
+    v.as_ref().map_or_else(|| "null".into(), |v| v.to_string())
+}
+
 /// The checksum of a `resume` block: `fnv1a64:` and 16 hex digits of FNV-1a 64 over the block's
 /// compact JSON, which round-trips exactly (floats are written in their shortest exact form and
 /// read back exactly, serde_json's `float_roundtrip`). It catches a hand-edited, corrupt or

@@ -1,0 +1,129 @@
+//! `trade merge` keeps what the shards' study was (issue "Nothing lost, nothing silent"): the
+//! merged summary's provenance holds the shards' `--set` overrides and atmosphere source, as the
+//! single-process study's does; shards of different overrides are refused; the merged files are
+//! written before the tables, so a closed standard output never costs them.
+
+mod common;
+
+use common::{entrynav, scratch_dir};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+const SET: &str = "filter.update_iterations=1";
+
+fn read_json(path: &Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+/// Run shard `i/2` of the study with override `set` into `dir`; returns the shard file.
+fn shard(dir: &Path, i: usize, set: &str) -> PathBuf {
+    let out = dir.join(format!("shard{i}-{}.json", set.len()));
+    let spec = format!("{i}/2");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--filters",
+        "ekf",
+        "--runs",
+        "300",
+        "--seed",
+        "4",
+        "--set",
+        set,
+        "--shard",
+        &spec,
+        "--quiet",
+        "--json",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    out
+}
+
+#[test]
+fn merged_summary_keeps_the_overrides_and_atmosphere_of_the_study() {
+    let dir = scratch_dir("merge-provenance", "keeps");
+    let parts = [shard(&dir, 0, SET), shard(&dir, 1, SET)];
+    let merged = dir.join("merged.json");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "merge",
+        parts[0].to_str().unwrap(),
+        parts[1].to_str().unwrap(),
+        "--json",
+        merged.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let whole = dir.join("whole.json");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--filters",
+        "ekf",
+        "--runs",
+        "300",
+        "--seed",
+        "4",
+        "--set",
+        SET,
+        "--quiet",
+        "--json",
+        whole.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let (m, w) = (read_json(&merged), read_json(&whole));
+    assert_eq!(
+        m["provenance"]["overrides"],
+        serde_json::json!([SET]),
+        "{m}"
+    );
+    assert!(
+        m["provenance"]["atmosphere"].is_object(),
+        "{}",
+        m["provenance"]
+    );
+    assert_eq!(m["provenance"]["overrides"], w["provenance"]["overrides"]);
+    assert_eq!(m["provenance"]["atmosphere"], w["provenance"]["atmosphere"]);
+    assert_eq!(
+        m["provenance"]["scenario_fingerprint"],
+        w["provenance"]["scenario_fingerprint"]
+    );
+    assert!(m["filters"] == w["filters"], "merged != single-process");
+}
+
+#[test]
+fn shards_of_different_overrides_are_refused() {
+    let dir = scratch_dir("merge-provenance", "differ");
+    let a = shard(&dir, 0, SET);
+    let b = shard(&dir, 1, "filter.update_iterations=2");
+    let (code, _, err) = entrynav(&["trade", "merge", a.to_str().unwrap(), b.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("different studies"), "{err}");
+}
+
+#[test]
+fn merge_writes_its_files_even_when_standard_output_is_closed() {
+    let dir = scratch_dir("merge-provenance", "pipe");
+    let parts = [shard(&dir, 0, SET), shard(&dir, 1, SET)];
+    let (json, csv) = (dir.join("m.json"), dir.join("csv"));
+    let cmd = format!(
+        "'{}' trade merge '{}' '{}' --json '{}' --csv-dir '{}' | head -c 1 >/dev/null",
+        env!("CARGO_BIN_EXE_entrynav"),
+        parts[0].display(),
+        parts[1].display(),
+        json.display(),
+        csv.display()
+    );
+    let status = std::process::Command::new("sh")
+        .args(["-c", &cmd])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    assert_eq!(read_json(&json)["complete"], true);
+    assert!(
+        std::fs::read_dir(&csv).unwrap().count() > 0,
+        "no CSV written"
+    );
+}

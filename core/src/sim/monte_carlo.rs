@@ -325,6 +325,10 @@ fn run_shard_from(
     })
 }
 
+/// Hands the blocks so far (built by the argument, only when a checkpoint is due) to a
+/// [`Checkpoint`].
+type SaveIfDue<'a> = dyn FnMut(&dyn Fn() -> Vec<BlockSums>) + 'a;
+
 fn run_blocks(
     scenario: &Arc<Scenario>,
     filters: &[FilterKind],
@@ -332,7 +336,7 @@ fn run_blocks(
     shard: Shard,
     previous: Vec<BlockSums>,
     progress: &(dyn Fn(usize) + Sync),
-    save: &mut dyn FnMut(&dyn Fn() -> Vec<BlockSums>),
+    save: &mut SaveIfDue<'_>,
 ) -> Result<(Vec<BlockSums>, bool), TradeError> {
     let chunk = opts.chunk.max(1);
     save(&|| previous.clone());

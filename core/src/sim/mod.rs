@@ -25,6 +25,7 @@ pub mod judge;
 pub mod metrics;
 pub mod moments;
 pub mod monte_carlo;
+pub mod nominal_bound;
 pub mod pcrlb;
 mod pcrlb_epochs;
 pub mod pcrlb_sums;

@@ -85,7 +85,7 @@ pub type BoundRun = Result<BoundRunData, NoBound>;
 /// The truth model in the filter's state layout: the run's truth (dynamics, atmosphere
 /// realisation, vehicle) with the filter's augmented and consider states, arranged so that at the
 /// truth-equivalent state it reproduces the truth exactly (`scenario/truth_values.rs`).
-fn bound_model(
+pub(super) fn bound_model(
     scenario: &Scenario,
     draw: &TruthDraw,
 ) -> Result<EntryModel<AtmosphereModel>, NoBound> {
@@ -137,59 +137,14 @@ impl DimVisitor for RunVisitor<'_> {
     fn visit<const N: usize, const L: usize>(self) -> BoundRun {
         let (scenario, rec) = (self.scenario, self.rec);
         let model = bound_model(scenario, &rec.draw)?;
-        // The augmented states are the run's constants: their truth values once per run.
-        let template = {
-            let first = rec.truth.samples.first().ok_or(NoBound::EmptyRun)?;
-            let x = truth_in_filter_coords(scenario, &rec.draw, first, N);
-            if let Some(i) = x.iter().skip(KIN).position(|v| !v.is_finite()) {
-                let names = super::monte_carlo::state_names(scenario);
-                let i = KIN + i;
-                return Err(NoBound::NoTruthCounterpart(
-                    names.get(i).cloned().unwrap_or_else(|| format!("#{i}")),
-                ));
-            }
-            SVector::<f64, N>::from_column_slice(&x)
-        };
-        let truth_at = |sample: &TruthSample| {
-            let mut x = template;
-            let kin = kinematic_truth(scenario, &rec.draw, sample);
-            for (i, v) in kin.iter().enumerate().take(N.min(KIN)) {
-                x[i] = *v;
-            }
-            x
-        };
-        let step = scenario.onboard.filter_step_s;
+        let truth = TruthStates::<N>::new(scenario, rec)?;
         let bank = scenario.truth_bank;
         let first = rec.truth.samples.first().ok_or(NoBound::EmptyRun)?;
-        let (mut t_prev, mut x_prev) = (first.t, truth_at(first));
+        let (mut t_prev, mut x_prev) = (first.t, truth.at(first));
         let mut out = BoundRunData::with_capacity(N, rec.truth.epochs.len());
         for (epoch, sample) in rec.truth.epochs_with_truth() {
-            let dt = epoch.t - t_prev;
-            let mut phi = SMatrix::<f64, N, N>::identity();
-            if dt > 0.0 {
-                let subs = ((dt / step) - 1e-9).ceil().max(1.0) as usize;
-                let h = dt / subs as f64;
-                let mut x = x_prev;
-                for k in 0..subs {
-                    // The last sub-step's state is not needed: the next epoch starts from the
-                    // recorded truth.
-                    let f = if k + 1 == subs {
-                        model.linear_stm(&x, bank, h)
-                    } else {
-                        let (x_next, f) = model.step_with_linear_stm(&x, bank, h);
-                        x = x_next;
-                        f
-                    };
-                    phi = if k == 0 { f } else { f * phi };
-                }
-            }
-            let x = truth_at(sample);
-            if let Some(i) = x.iter().position(|v| !v.is_finite()) {
-                let names = super::monte_carlo::state_names(scenario);
-                return Err(NoBound::NoTruthCounterpart(
-                    names.get(i).cloned().unwrap_or_else(|| format!("#{i}")),
-                ));
-            }
+            let phi = transition(scenario, &model, &x_prev, epoch.t - t_prev);
+            let x = truth.checked_at(sample)?;
             let (info, (jp, jv)) = information(scenario, &model, &x, epoch, bank)?;
             out.push(
                 epoch.t,
@@ -204,9 +159,87 @@ impl DimVisitor for RunVisitor<'_> {
     }
 }
 
+/// The truth in the filter's state layout along one run: the augmented states are the run's
+/// constants (their truth values once per run), the kinematic ones follow the samples.
+pub(super) struct TruthStates<'a, const N: usize> {
+    scenario: &'a Scenario,
+    draw: &'a TruthDraw,
+    template: SVector<f64, N>,
+}
+
+impl<'a, const N: usize> TruthStates<'a, N> {
+    pub(super) fn new(scenario: &'a Scenario, rec: &'a RecordedRun) -> Result<Self, NoBound> {
+        let first = rec.truth.samples.first().ok_or(NoBound::EmptyRun)?;
+        let x = truth_in_filter_coords(scenario, &rec.draw, first, N);
+        if let Some(i) = x.iter().skip(KIN).position(|v| !v.is_finite()) {
+            return Err(no_counterpart(scenario, KIN + i));
+        }
+        Ok(TruthStates {
+            scenario,
+            draw: &rec.draw,
+            template: SVector::<f64, N>::from_column_slice(&x),
+        })
+    }
+
+    /// The truth state at `sample`.
+    pub(super) fn at(&self, sample: &TruthSample) -> SVector<f64, N> {
+        let mut x = self.template;
+        let kin = kinematic_truth(self.scenario, self.draw, sample);
+        for (i, v) in kin.iter().enumerate().take(N.min(KIN)) {
+            x[i] = *v;
+        }
+        x
+    }
+
+    /// [`Self::at`], refusing a non-finite state (a state without truth counterpart).
+    pub(super) fn checked_at(&self, sample: &TruthSample) -> Result<SVector<f64, N>, NoBound> {
+        let x = self.at(sample);
+        match x.iter().position(|v| !v.is_finite()) {
+            Some(i) => Err(no_counterpart(self.scenario, i)),
+            None => Ok(x),
+        }
+    }
+}
+
+fn no_counterpart(scenario: &Scenario, i: usize) -> NoBound {
+    let names = super::monte_carlo::state_names(scenario);
+    NoBound::NoTruthCounterpart(names.get(i).cloned().unwrap_or_else(|| format!("#{i}")))
+}
+
+/// F: the transition over `dt` from the truth state `x_prev`, by RK4 sub-steps of
+/// `timing.filter_step_s` with the linearised STM (identity for `dt = 0`).
+pub(super) fn transition<const N: usize>(
+    scenario: &Scenario,
+    model: &EntryModel<AtmosphereModel>,
+    x_prev: &SVector<f64, N>,
+    dt: f64,
+) -> SMatrix<f64, N, N> {
+    let mut phi = SMatrix::<f64, N, N>::identity();
+    if dt > 0.0 {
+        let step = scenario.onboard.filter_step_s;
+        let bank = scenario.truth_bank;
+        let subs = ((dt / step) - 1e-9).ceil().max(1.0) as usize;
+        let h = dt / subs as f64;
+        let mut x = *x_prev;
+        for k in 0..subs {
+            // The last sub-step's state is not needed: the next epoch starts from the recorded
+            // truth.
+            let f = if k + 1 == subs {
+                model.linear_stm(&x, bank, h)
+            } else {
+                let (x_next, f) = model.step_with_linear_stm(&x, bank, h);
+                x = x_next;
+                f
+            };
+            phi = if k == 0 { f } else { f * phi };
+        }
+    }
+    phi
+}
+
 /// The tables' position and velocity maps Jₚ, Jᵥ (3×[`KIN`]): planet-fixed for spherical states,
 /// inertial for Cartesian ones.
-type Maps = (SMatrix<f64, 3, KIN>, SMatrix<f64, 3, KIN>);
+pub(super) type Maps = (SMatrix<f64, 3, KIN>, SMatrix<f64, 3, KIN>);
 
 /// Σ_c ∇h_cᵀ∇h_c/σ_c² (+ the variance term of relative-noise channels) at the truth state `x`,
 /// with the tables' position and velocity maps there.
@@ -214,7 +247,7 @@ type Maps = (SMatrix<f64, 3, KIN>, SMatrix<f64, 3, KIN>);
 /// For spherical states the motion (planet-fixed, then inertial) is differentiated with respect
 /// to the six kinematic states only, on which it alone depends, and lifted to all N (the same
 /// information as N-variable AD, tested to 1e-12), and the planet-fixed gradients are the maps.
-fn information<const N: usize>(
+pub(super) fn information<const N: usize>(
     scenario: &Scenario,
     model: &EntryModel<AtmosphereModel>,
     x: &SVector<f64, N>,

@@ -1,0 +1,317 @@
+//! A fast position bound for beacon design: the PCRLB along the *nominal* trajectory, with the
+//! parts that do not depend on where the range beacons are computed once.
+//!
+//! **What it is.** The recursion of [`crate::pcrlb_recursion`] (Tichavský et al. 1998, eq. 21, in
+//! the covariance form for a truth without process noise, Ristic et al. 2004 §4.2) on a single
+//! truth run, the nominal one (no dispersions), with the prior P0 of the trade's bound
+//! ([`super::pcrlb`]). The truth does not depend on the beacons, so the transitions F_k, the
+//! information of every non-radio channel, the position map Jₚ and the vehicle position at each
+//! epoch are computed once ([`NominalBound::new`]); a candidate set of range beacons then costs
+//! only the recursion: per epoch P⁻ = F P Fᵀ, the non-radio information, and for each visible
+//! beacon the rank-one update with ∇h = Jₚᵀu (u the unit vector beacon → vehicle, seed 002
+//! eq. 36's line of sight), P ← P − P∇h ∇hᵀP / (∇hᵀP∇h + σ²) (Sherman–Morrison: the same
+//! (P⁻¹ + ∇h∇hᵀ/σ²)⁻¹ as the information form). The bound on the `pos_m` RMSE is √tr(Jₚ P Jₚᵀ),
+//! as in the trade's tables.
+//!
+//! **How it relates to the trade's bound.** For the scenario's own beacons it equals the trade's
+//! recursion run on the nominal truth alone (tested to 1e-6); the trade averages F and I over its
+//! dispersed Monte Carlo truths instead, so the two differ by the dispersion's effect on geometry
+//! (a few per cent on the built-ins). Range epochs are those of the range sensor; a beacon
+//! contributes where it sees the vehicle above its horizon (seed 002 eq. 52, the engine's rule).
+//! Only range beacons on the surface are placed here; range-rate channels are refused.
+
+use super::engine::SimError;
+use super::pcrlb::{NoBound, TruthStates, bound_model, information, transition};
+use super::record::{RecordedRun, simulate_truth};
+use crate::beacons::ground_visibility_margin;
+use crate::frames::{rotate_z, spherical_to_position};
+use crate::scenario::Scenario;
+use crate::sensors::Channel;
+use crate::state_dim::{DimVisitor, UnsupportedDimension, with_state_dim};
+use nalgebra::{SMatrix, SVector};
+use rand::SeedableRng;
+use thiserror::Error;
+
+/// Why the nominal bound cannot be formed.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum NominalBoundError {
+    /// The scenario has no PCRLB (see [`NoBound`]).
+    #[error(transparent)]
+    NoBound(#[from] NoBound),
+    /// The nominal truth could not be simulated.
+    #[error("the nominal truth failed: {0}")]
+    Truth(#[from] SimError),
+    /// The filter dimension is outside the supported range.
+    #[error(transparent)]
+    Dimension(#[from] UnsupportedDimension),
+    /// The scenario has no range sensor and beacon to give the range epochs.
+    #[error("scenario '{0}' has no range channel: give [sensors.range] and at least one beacon")]
+    NoRange(String),
+    /// Range-rate channels depend on the velocity map, which this bound does not place.
+    #[error("scenario '{0}' measures range rate; the nominal bound places range beacons only")]
+    RangeRate(String),
+    /// A site with a non-finite position or a σ that is not positive.
+    #[error("site {index}: position {position:?} m, sigma {sigma} m (finite, sigma > 0)")]
+    BadSite {
+        /// Site index.
+        index: usize,
+        /// Its planet-fixed position \[m\].
+        position: [f64; 3],
+        /// Its range 1σ \[m\].
+        sigma: f64,
+    },
+    /// The recursion lost positive definiteness or produced a non-finite bound.
+    #[error("the nominal bound became non-finite at t = {0} s")]
+    NonFinite(f64),
+}
+
+/// A range beacon on the planet: planet-fixed position \[m\] and range 1σ \[m\].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RangeSite {
+    /// Planet-fixed position \[m\].
+    pub position_m: [f64; 3],
+    /// Range noise 1σ \[m\].
+    pub sigma_m: f64,
+}
+
+/// The position bound per epoch for one set of sites.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NominalBoundSeries {
+    /// Epoch times \[s\].
+    pub times_s: Vec<f64>,
+    /// Bound on the position error 1σ \[m\] at each epoch.
+    pub pos_m: Vec<f64>,
+}
+
+impl NominalBoundSeries {
+    /// The bound averaged over epochs \[m\] (compare a trade's `rmse_time_avg.pos_m`).
+    pub fn time_avg(&self) -> f64 {
+        self.pos_m.iter().sum::<f64>() / self.pos_m.len().max(1) as f64
+    }
+
+    /// The bound at the last epoch \[m\] (compare `rmse_final.pos_m`).
+    pub fn final_value(&self) -> f64 {
+        self.pos_m.last().copied().unwrap_or(f64::NAN)
+    }
+}
+
+/// One epoch's beacon-independent data (matrices column-major, N the filter dimension).
+#[derive(Debug, Clone)]
+struct Epoch {
+    t: f64,
+    phi: Vec<f64>,
+    /// Information of the non-radio channels (`None`: none measured).
+    base: Option<Vec<f64>>,
+    /// 3×N position map.
+    jp: Vec<f64>,
+    /// Vehicle planet-fixed position \[m\].
+    vehicle_fixed: [f64; 3],
+    /// Rotation angle from the planet-fixed to the position map's frame (0 when the map is
+    /// planet-fixed, ωt for inertial Cartesian states).
+    angle: f64,
+    /// The range sensor samples at this epoch.
+    ranged: bool,
+}
+
+/// The beacon-independent part of the nominal-trajectory bound of a scenario.
+#[derive(Debug, Clone)]
+pub struct NominalBound {
+    n: usize,
+    p0_diag: Vec<f64>,
+    epochs: Vec<Epoch>,
+}
+
+impl NominalBound {
+    /// Fly the nominal truth of `scenario` (its beacons visible throughout, to find every range
+    /// epoch) and store what the bound needs at each epoch.
+    pub fn new(scenario: &Scenario) -> Result<NominalBound, NominalBoundError> {
+        let name = || scenario.config.name.clone();
+        let radio: Vec<Channel> = scenario.channels.iter().map(|c| c.channel).collect();
+        if radio.iter().any(|c| matches!(c, Channel::RangeRate(_))) {
+            return Err(NominalBoundError::RangeRate(name()));
+        }
+        if !radio.iter().any(|c| matches!(c, Channel::Range(_))) {
+            return Err(NominalBoundError::NoRange(name()));
+        }
+        let mut every_epoch = scenario.clone();
+        every_epoch.config.ignore_visibility = true;
+        let draw = every_epoch.nominal_truth();
+        // Noise values do not enter the bound (only which channels measure); any seed will do.
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(0);
+        let truth = simulate_truth(&every_epoch, &draw, &mut rng)?;
+        let rec = RecordedRun {
+            run: 0,
+            draw,
+            truth,
+            x0: Vec::new(),
+        };
+        let n = scenario.onboard.state_dim();
+        let epochs = with_state_dim(
+            n,
+            Collect {
+                scenario,
+                rec: &rec,
+            },
+        )??;
+        let p0 = &scenario.onboard.tuning.p0_diag;
+        Ok(NominalBound {
+            n,
+            p0_diag: (0..n).map(|i| p0.get(i).copied().unwrap_or(1.0)).collect(),
+            epochs,
+        })
+    }
+
+    /// Number of epochs.
+    pub fn epochs(&self) -> usize {
+        self.epochs.len()
+    }
+
+    /// The position bound with range beacons at `sites` (planet-fixed, each seen above its
+    /// horizon).
+    pub fn ground_sites(
+        &self,
+        sites: &[RangeSite],
+    ) -> Result<NominalBoundSeries, NominalBoundError> {
+        for (index, s) in sites.iter().enumerate() {
+            if !(s.position_m.iter().all(|v| v.is_finite())
+                && s.sigma_m.is_finite()
+                && s.sigma_m > 0.0)
+            {
+                return Err(NominalBoundError::BadSite {
+                    index,
+                    position: s.position_m,
+                    sigma: s.sigma_m,
+                });
+            }
+        }
+        with_state_dim(self.n, Evaluate { bound: self, sites })?
+    }
+}
+
+/// Collects the beacon-independent epochs (dimension N).
+struct Collect<'a> {
+    scenario: &'a Scenario,
+    rec: &'a RecordedRun,
+}
+
+impl DimVisitor for Collect<'_> {
+    type Output = Result<Vec<Epoch>, NominalBoundError>;
+
+    fn visit<const N: usize, const L: usize>(self) -> Self::Output {
+        let (scenario, rec) = (self.scenario, self.rec);
+        let model = bound_model(scenario, &rec.draw)?;
+        let truth = TruthStates::<N>::new(scenario, rec)?;
+        let first = rec.truth.samples.first().ok_or(NoBound::EmptyRun)?;
+        let (mut t_prev, mut x_prev) = (first.t, truth.at(first));
+        let omega = model.omega();
+        let cartesian = model.kind.is_cartesian();
+        let mut out = Vec::with_capacity(rec.truth.epochs.len());
+        for (epoch, sample) in rec.truth.epochs_with_truth() {
+            let phi = transition(scenario, &model, &x_prev, epoch.t - t_prev);
+            let x = truth.checked_at(sample)?;
+            let radio = |c: usize| scenario.channels[c].channel.beacon().is_some();
+            let ranged = (0..epoch.values.len()).any(|c| radio(c) && epoch.values[c].is_some());
+            let mut others = epoch.clone();
+            for (c, v) in others.values.iter_mut().enumerate() {
+                if radio(c) {
+                    *v = None;
+                }
+            }
+            let (base, (jp, _)) = information(scenario, &model, &x, &others, scenario.truth_bank)?;
+            let mut jp_n = SMatrix::<f64, 3, N>::zeros();
+            for i in 0..3 {
+                for j in 0..N.min(super::pcrlb_epochs::KIN) {
+                    jp_n[(i, j)] = jp[(i, j)];
+                }
+            }
+            let [r, lon, lat] = [
+                sample.spherical[0],
+                sample.spherical[1],
+                sample.spherical[2],
+            ];
+            out.push(Epoch {
+                t: epoch.t,
+                phi: phi.as_slice().to_vec(),
+                base: (base.iter().any(|v| *v != 0.0)).then(|| base.as_slice().to_vec()),
+                jp: jp_n.as_slice().to_vec(),
+                vehicle_fixed: spherical_to_position(r, lon, lat),
+                angle: if cartesian { omega * epoch.t } else { 0.0 },
+                ranged,
+            });
+            (t_prev, x_prev) = (epoch.t, x);
+        }
+        Ok(out)
+    }
+}
+
+/// Runs the recursion for one set of sites (dimension N).
+struct Evaluate<'a> {
+    bound: &'a NominalBound,
+    sites: &'a [RangeSite],
+}
+
+impl DimVisitor for Evaluate<'_> {
+    type Output = Result<NominalBoundSeries, NominalBoundError>;
+
+    fn visit<const N: usize, const L: usize>(self) -> Self::Output {
+        let b = self.bound;
+        let mut p = SMatrix::<f64, N, N>::from_diagonal(&SVector::from_column_slice(&b.p0_diag));
+        let mut series = NominalBoundSeries {
+            times_s: Vec::with_capacity(b.epochs.len()),
+            pos_m: Vec::with_capacity(b.epochs.len()),
+        };
+        for e in &b.epochs {
+            let phi = SMatrix::<f64, N, N>::from_column_slice(&e.phi);
+            p = phi * p * phi.transpose();
+            if let Some(info) = &e.base {
+                let info = SMatrix::<f64, N, N>::from_column_slice(info);
+                p = posterior(&p, &info).ok_or(NominalBoundError::NonFinite(e.t))?;
+            }
+            let jp = SMatrix::<f64, 3, N>::from_column_slice(&e.jp);
+            if e.ranged {
+                for s in self.sites {
+                    if ground_visibility_margin(&s.position_m, &e.vehicle_fixed) <= 0.0 {
+                        continue;
+                    }
+                    let d = [
+                        e.vehicle_fixed[0] - s.position_m[0],
+                        e.vehicle_fixed[1] - s.position_m[1],
+                        e.vehicle_fixed[2] - s.position_m[2],
+                    ];
+                    let u = rotate_z(&d, e.angle);
+                    let len = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
+                    let u = nalgebra::Vector3::new(u[0] / len, u[1] / len, u[2] / len);
+                    let g: SVector<f64, N> = jp.transpose() * u;
+                    let pg = p * g;
+                    let s2 = g.dot(&pg) + s.sigma_m * s.sigma_m;
+                    p -= pg * pg.transpose() / s2;
+                }
+            }
+            p = (p + p.transpose()) * 0.5;
+            let var = (jp * p * jp.transpose()).trace();
+            if !var.is_finite() {
+                return Err(NominalBoundError::NonFinite(e.t));
+            }
+            series.times_s.push(e.t);
+            series.pos_m.push(var.max(0.0).sqrt());
+        }
+        Ok(series)
+    }
+}
+
+/// (P⁻¹ + I)⁻¹ on the correlation scale of P (as [`crate::pcrlb_recursion`] does).
+fn posterior<const N: usize>(
+    prior: &SMatrix<f64, N, N>,
+    info: &SMatrix<f64, N, N>,
+) -> Option<SMatrix<f64, N, N>> {
+    let d = SVector::<f64, N>::from_fn(|i, _| prior[(i, i)].sqrt());
+    if d.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
+        return None;
+    }
+    let corr = SMatrix::<f64, N, N>::from_fn(|i, j| prior[(i, j)] / (d[i] * d[j]));
+    let info_scaled = SMatrix::<f64, N, N>::from_fn(|i, j| info[(i, j)] * d[i] * d[j]);
+    let corr_inv = corr.cholesky()?.inverse();
+    let inv = (corr_inv + info_scaled).cholesky()?.inverse();
+    let p = SMatrix::<f64, N, N>::from_fn(|i, j| inv[(i, j)] * d[i] * d[j]);
+    p.iter().all(|v| v.is_finite()).then_some(p)
+}

@@ -1,0 +1,103 @@
+//! The nominal-trajectory position bound for beacon design (`sim::nominal_bound`) against the
+//! trade's own PCRLB machinery run on the same nominal truth, and its basic properties.
+
+use entrynav::beacons::Beacon;
+use entrynav::scenario::{Scenario, ScenarioConfig};
+use entrynav::sim::monte_carlo::state_names;
+use entrynav::sim::nominal_bound::{NominalBound, NominalBoundError, RangeSite};
+use entrynav::sim::pcrlb::bound_run;
+use entrynav::sim::pcrlb_sums::BoundSums;
+use entrynav::sim::{RecordedRun, simulate_truth};
+use rand::SeedableRng;
+
+fn scenario(name: &str) -> Scenario {
+    Scenario::build(
+        ScenarioConfig::builtin(name).unwrap(),
+        &entrynav::files::no_files,
+    )
+    .unwrap()
+}
+
+/// The scenario's own surface beacons as range sites.
+fn own_sites(s: &Scenario, sigma: f64) -> Vec<RangeSite> {
+    s.beacons
+        .iter()
+        .map(|b| match b {
+            Beacon::Surface(b) => RangeSite {
+                position_m: b.position_at(0.0),
+                sigma_m: sigma,
+            },
+            Beacon::Orbiter(_) => panic!("not a surface beacon"),
+        })
+        .collect()
+}
+
+#[test]
+fn equals_the_trade_recursion_on_the_nominal_truth() {
+    // The trade's bound (bound_run + BoundSums + pcrlb_recursion) on one run, the nominal truth:
+    // the same quantity computed by another algebra (information form with Cholesky on the
+    // correlation scale, against sequential rank-one covariance updates).
+    let s = scenario("ground-beacons-3");
+    let draw = s.nominal_truth();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+    let truth = simulate_truth(&s, &draw, &mut rng).unwrap();
+    let rec = RecordedRun {
+        run: 0,
+        draw,
+        truth,
+        x0: Vec::new(),
+    };
+    let mut sums = BoundSums::new(&s);
+    sums.add_runs(&[bound_run(&s, &rec)]);
+    let trade = sums.report(&state_names(&s));
+    assert!(trade.available, "{:?}", trade.reason);
+    let want = &trade.series["pos_m"];
+
+    let nominal = NominalBound::new(&s).unwrap();
+    let got = nominal.ground_sites(&own_sites(&s, 100.0)).unwrap();
+    assert_eq!(got.times_s, trade.times_s);
+    assert_eq!(got.pos_m.len(), want.len());
+    for (k, (a, b)) in got.pos_m.iter().zip(want).enumerate() {
+        assert!((a - b).abs() <= 1e-6 * b, "epoch {k}: {a} vs {b}");
+    }
+    // The bound falls from the prior (1 km radius and 0.2 deg in angle) to tens of metres.
+    assert!(got.pos_m[0] > 500.0 && got.final_value() < 100.0, "{got:?}");
+}
+
+#[test]
+fn a_further_beacon_never_loosens_the_bound_and_none_leaves_the_prior_propagated() {
+    let s = scenario("ground-beacons-3");
+    let nominal = NominalBound::new(&s).unwrap();
+    let sites = own_sites(&s, 100.0);
+    let two = nominal.ground_sites(&sites[..2]).unwrap();
+    let three = nominal.ground_sites(&sites).unwrap();
+    for (a, b) in three.pos_m.iter().zip(&two.pos_m) {
+        assert!(*a <= b * (1.0 + 1e-9), "{a} > {b}");
+    }
+    assert!(three.time_avg() < two.time_avg());
+    let none = nominal.ground_sites(&[]).unwrap();
+    assert!(none.final_value() > 10.0 * three.final_value());
+    // A noisier beacon set is worse.
+    let noisy = nominal.ground_sites(&own_sites(&s, 300.0)).unwrap();
+    assert!(noisy.time_avg() > three.time_avg());
+}
+
+#[test]
+fn refuses_bad_sites_and_scenarios_without_ranges() {
+    let s = scenario("ground-beacons-3");
+    let nominal = NominalBound::new(&s).unwrap();
+    let mut sites = own_sites(&s, 100.0);
+    sites[1].sigma_m = 0.0;
+    assert!(matches!(
+        nominal.ground_sites(&sites),
+        Err(NominalBoundError::BadSite { index: 1, .. })
+    ));
+    sites[1].sigma_m = 100.0;
+    sites[2].position_m[0] = f64::NAN;
+    assert!(matches!(
+        nominal.ground_sites(&sites),
+        Err(NominalBoundError::BadSite { index: 2, .. })
+    ));
+    let err = NominalBound::new(&scenario("msl-airdata")).unwrap_err();
+    assert!(matches!(err, NominalBoundError::NoRange(_)), "{err}");
+}

@@ -79,6 +79,9 @@ pub enum OptimizerError {
     /// A beacon could not be built.
     #[error(transparent)]
     Beacon(#[from] BeaconError),
+    /// The nominal position bound could not be formed.
+    #[error(transparent)]
+    NominalBound(#[from] entrynav::sim::nominal_bound::NominalBoundError),
     /// argmin failed while running `what` (the particle swarm or a Nelder–Mead polish).
     #[error("solver failure: {what}")]
     Argmin {

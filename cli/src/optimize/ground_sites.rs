@@ -1,5 +1,11 @@
-//! `entrynav optimize ground`: surface-beacon sites visible during the whole entry (seed 002 §4.1).
+//! `entrynav optimize ground`: surface-beacon sites visible during the whole entry (seed 002 §4.1),
+//! by default those that minimise the nominal position bound relative to the input design, at
+//! least `--min-separation-deg` apart, and checked against the input by a Monte Carlo.
+//!
+//! Order: search, check, write every file asked for, then print (so a closed standard output
+//! never costs a file), and exit code 1 when the check finds the optimum worse.
 
+use super::design_check::{DesignCheck, check_designs};
 use super::*;
 use entrynav_optimizer::GroundSolution;
 
@@ -106,16 +112,58 @@ struct GroundAnswer {
     delta: DeltaStats,
     /// The scenario's own sites, when there are as many.
     reference: Option<(GroundEvaluation, DeltaStats)>,
+    /// Nominal position bound (time-averaged, final) \[m\] of the optimum and of the input's
+    /// own sites (any count).
+    bounds: Option<[(f64, f64); 2]>,
+    /// The optimum as a scenario (configuration and file text).
+    written: (ScenarioConfig, String),
+    /// The Monte Carlo check against the input design (`None` with `--no-check`).
+    check: Option<DesignCheck>,
 }
 
 pub(super) fn run_ground(a: &GroundArgs) -> Result<()> {
     let wall = Instant::now();
     let inputs = load_ground_inputs(a)?;
-    let answer = solve_ground(a, &inputs)?;
+    let mut answer = solve_ground(a, &inputs)?;
+    if !a.check.no_check {
+        let load = loader(&inputs.dir);
+        let input = entrynav::scenario::Scenario::build(inputs.cfg.clone(), &load)?;
+        let optimum = entrynav::scenario::Scenario::build(answer.written.0.clone(), &load)?;
+        answer.check = Some(check_designs(
+            &input,
+            &optimum,
+            inputs.objective.name(),
+            &a.check,
+        )?);
+    }
+    // Files first, each attempted; then the tables and what was written.
+    let notes = [
+        write_ground_scenario(a, &answer),
+        plot_ground(a, &inputs, &answer),
+        write_ground_json(a, &inputs, &answer, wall),
+    ];
     print_ground(a, &inputs, &answer, wall);
-    write_ground_scenario(a, &inputs, &answer)?;
-    plot_ground(a, &inputs, &answer)?;
-    write_ground_json(a, &inputs, &answer, wall)
+    let mut failures = Vec::new();
+    for n in notes {
+        match n {
+            Ok(Some(note)) => println!("{note}"),
+            Ok(None) => {}
+            Err(e) => failures.push(format!("{e:#}")),
+        }
+    }
+    if !failures.is_empty() {
+        return Err(crate::exit::Runtime(failures.join("; also: ")).into());
+    }
+    match &answer.check {
+        Some(c) if !c.worse.is_empty() => Err(crate::exit::Runtime(format!(
+            "the optimum is worse than the input design on {} (objective {}); its files are \
+             written for inspection",
+            c.worse.join(", "),
+            inputs.objective.name()
+        ))
+        .into()),
+        _ => Ok(()),
+    }
 }
 
 /// The scenario with its overrides, the beacon count (default: the scenario's surface beacons,
@@ -136,7 +184,9 @@ fn load_ground_inputs(a: &GroundArgs) -> Result<GroundInputs> {
         },
         GroundObjectiveArg::Logdet => GroundObjective::LogDet,
         GroundObjectiveArg::MinEig => GroundObjective::MinEig,
-        GroundObjectiveArg::Pcrlb => GroundObjective::Pcrlb,
+        GroundObjectiveArg::PcrlbAvg => GroundObjective::PcrlbAvg,
+        GroundObjectiveArg::PcrlbFinal => GroundObjective::PcrlbFinal,
+        GroundObjectiveArg::Nav => GroundObjective::Navigation,
     };
     Ok(GroundInputs {
         cfg,
@@ -155,8 +205,18 @@ fn solve_ground(a: &GroundArgs, inputs: &GroundInputs) -> Result<GroundAnswer> {
     let (cfg, count, objective) = (&inputs.cfg, inputs.count, inputs.objective);
     let load = loader(&inputs.dir);
     let min_el = a.min_elevation_deg.to_radians();
-    let search_problem = GroundProblem::new(cfg, &load, count, objective, a.search_step, min_el)?;
-    let report = GroundProblem::new(cfg, &load, count, objective, a.step, min_el)?;
+    let sep = a.min_separation_deg.to_radians();
+    let setup = |step: f64| -> Result<GroundProblem> {
+        let p = GroundProblem::new(cfg, &load, count, objective, step, min_el)?
+            .with_min_separation(sep)?;
+        Ok(if objective.is_bound() {
+            p.with_reference(&inputs.own)?
+        } else {
+            p
+        })
+    };
+    let search_problem = setup(a.search_step)?;
+    let report = setup(a.step)?;
     let opts = c.search(ground::default_search(c.seed));
     let bar = progress_bar(c.quiet, format!("{} ground x{count}", cfg.name));
     let progress = |done: usize, total: usize| {
@@ -178,6 +238,34 @@ fn solve_ground(a: &GroundArgs, inputs: &GroundInputs) -> Result<GroundAnswer> {
     } else {
         None
     };
+    // The nominal bound of both designs, whatever the objective (cheap; None where the scenario
+    // has no such bound, e.g. range rate).
+    let bounds = (|| -> Option<[(f64, f64); 2]> {
+        let pair = |s: &[Site]| {
+            report
+                .bound_series_of(s)
+                .ok()
+                .map(|b| (b.time_avg(), b.final_value()))
+        };
+        Some([pair(&sol.sites)?, pair(&inputs.own)?])
+    })();
+    let written = output::with_beacons(
+        &inputs.cfg,
+        output::surface_beacons(&sol.sites, &report.noise()),
+        &file_stem(
+            c.write_scenario
+                .as_deref()
+                .unwrap_or(Path::new("optimized")),
+        ),
+        &format!(
+            "Ground sites optimized by `entrynav optimize ground` ({}, seed {}, sites at least \
+             {} deg apart): value {}.",
+            objective.name(),
+            opts.seed,
+            a.min_separation_deg,
+            fmt_value(ev.value)
+        ),
+    )?;
     Ok(GroundAnswer {
         report,
         opts,
@@ -185,6 +273,9 @@ fn solve_ground(a: &GroundArgs, inputs: &GroundInputs) -> Result<GroundAnswer> {
         ev,
         delta,
         reference,
+        bounds,
+        written,
+        check: None,
     })
 }
 
@@ -212,8 +303,8 @@ fn print_ground(a: &GroundArgs, inputs: &GroundInputs, answer: &GroundAnswer, wa
     println!("scenario    {}", cfg.name);
     println!(
         "problem     {} ground beacons on the reference sphere, each visible during the whole \
-         entry (eq. 52, min elevation {:.3} deg)",
-        inputs.count, a.min_elevation_deg
+         entry (eq. 52, min elevation {:.3} deg), at least {} deg apart",
+        inputs.count, a.min_elevation_deg, a.min_separation_deg
     );
     println!("objective   {}: {}", objective.name(), objective.units());
     println!(
@@ -228,6 +319,10 @@ fn print_ground(a: &GroundArgs, inputs: &GroundInputs, answer: &GroundAnswer, wa
     );
     print_sites(&answer.sol.sites, Some(&answer.ev.min_elevation_rad));
     print_delta(inputs.method, &answer.delta);
+    if let Some(b) = &answer.bounds {
+        print_bound("optimum", b[0]);
+        print_bound("input  ", b[1]);
+    }
     if let Some((r, d)) = &answer.reference {
         println!();
         println!(
@@ -257,37 +352,36 @@ fn print_ground(a: &GroundArgs, inputs: &GroundInputs, answer: &GroundAnswer, wa
         scaling_note(&answer.report)
     );
     print_search(&answer.sol.search, answer.sol.elapsed_s, wall, &answer.opts);
+    match &answer.check {
+        Some(c) => c.print(),
+        None => {
+            println!("check       skipped (--no-check): the optimum is not compared with the input")
+        }
+    }
+}
+
+/// The nominal position bound line of a design.
+fn print_bound(label: &str, (avg, last): (f64, f64)) {
+    println!("  nominal position PCRLB, {label}: {avg:.2} m time-averaged, {last:.2} m final");
 }
 
 /// `--write-scenario`: the scenario with the optimum's sites.
-fn write_ground_scenario(
-    a: &GroundArgs,
-    inputs: &GroundInputs,
-    answer: &GroundAnswer,
-) -> Result<()> {
+fn write_ground_scenario(a: &GroundArgs, answer: &GroundAnswer) -> Result<Option<String>> {
     let Some(path) = &a.common.write_scenario else {
-        return Ok(());
+        return Ok(None);
     };
-    let (_, text) = output::with_beacons(
-        &inputs.cfg,
-        output::surface_beacons(&answer.sol.sites, &answer.report.noise()),
-        &file_stem(path),
-        &format!(
-            "Ground sites optimized by `entrynav optimize ground` ({}, seed {}): value {}.",
-            inputs.objective.name(),
-            answer.opts.seed,
-            fmt_value(answer.ev.value)
-        ),
-    )?;
-    write_text(path, &text)?;
-    println!("wrote {}", path.display());
-    Ok(())
+    write_text(path, &answer.written.1)?;
+    Ok(Some(format!("wrote {}", path.display())))
 }
 
 /// `--plot`: raw δ(t) of the optimum and of the scenario's sites.
-fn plot_ground(a: &GroundArgs, inputs: &GroundInputs, answer: &GroundAnswer) -> Result<()> {
+fn plot_ground(
+    a: &GroundArgs,
+    inputs: &GroundInputs,
+    answer: &GroundAnswer,
+) -> Result<Option<String>> {
     let Some(path) = &a.plot else {
-        return Ok(());
+        return Ok(None);
     };
     let pts = |d: &DegreeSeries| -> Vec<(f64, f64)> {
         d.times().into_iter().zip(d.deltas(false)).collect()
@@ -317,8 +411,7 @@ fn plot_ground(a: &GroundArgs, inputs: &GroundInputs, answer: &GroundAnswer) -> 
         true,
         &curves,
     )?;
-    println!("wrote {}", path.display());
-    Ok(())
+    Ok(Some(format!("wrote {}", path.display())))
 }
 
 /// `--json`: the optimum, its δ(t), the search and the scenario's own sites.
@@ -327,9 +420,9 @@ fn write_ground_json(
     inputs: &GroundInputs,
     answer: &GroundAnswer,
     wall: Instant,
-) -> Result<()> {
+) -> Result<Option<String>> {
     let Some(path) = &a.common.json else {
-        return Ok(());
+        return Ok(None);
     };
     let (cfg, objective, ev) = (&inputs.cfg, inputs.objective, &answer.ev);
     let degrees = |e: &[f64]| e.iter().map(|e| e.to_degrees()).collect::<Vec<_>>();
@@ -359,8 +452,16 @@ fn write_ground_json(
             "delta": d.json(),
         })),
         "paper_delta_range": (cfg.name == "ground-beacons-3").then(|| json!([1.413e-8, 2.945e-7])),
+        "min_separation_deg": a.min_separation_deg,
+        "closest_pair_deg": ev.closest_pair_rad.map(f64::to_degrees),
+        "nominal_bound": answer.bounds.map(|b| json!({
+            "optimum": {"time_avg_pos_m": b[0].0, "final_pos_m": b[0].1},
+            "input": {"time_avg_pos_m": b[1].0, "final_pos_m": b[1].1},
+        })),
+        "check": answer.check.as_ref().map(DesignCheck::json),
     });
-    write_json(path, &v)
+    write_text(path, &(serde_json::to_string_pretty(&v)? + "\n"))?;
+    Ok(Some(format!("wrote {}", path.display())))
 }
 
 fn scaling_note(p: &GroundProblem) -> String {

@@ -43,9 +43,16 @@ pub(super) enum GroundObjectiveArg {
     /// min over time of lambda_min(FIM).
     #[value(name = "min-eig")]
     MinEig,
-    /// The final position PCRLB (minimised).
-    #[value(name = "pcrlb")]
-    Pcrlb,
+    /// The time-averaged position PCRLB along the nominal trajectory (minimised).
+    #[value(name = "pcrlb-avg")]
+    PcrlbAvg,
+    /// The final position PCRLB along the nominal trajectory (minimised; alias `pcrlb`).
+    #[value(name = "pcrlb-final", alias = "pcrlb")]
+    PcrlbFinal,
+    /// Both position bounds relative to the input design's, 1/2 (avg/avg_in + final/final_in),
+    /// minimised (the default: it serves navigation over the whole entry and at its end).
+    #[value(name = "nav")]
+    Nav,
 }
 
 /// `--method` (names of [`Method::name`]).

@@ -97,23 +97,70 @@ impl GroundProblem {
                 .iter()
                 .map(|m| m.symmetric_eigenvalues().min().max(0.0))
                 .fold(f64::INFINITY, f64::min),
-            GroundObjective::Pcrlb => self.final_position_bound(sites)?,
+            GroundObjective::PcrlbAvg => self.bound_series(sites)?.time_avg(),
+            GroundObjective::PcrlbFinal => self.bound_series(sites)?.final_value(),
+            GroundObjective::Navigation => {
+                let (avg, last) = self.reference.ok_or_else(|| {
+                    OptimizerError::InvalidInput(
+                        "the navigation objective needs the input design (with_reference)".into(),
+                    )
+                })?;
+                let s = self.bound_series(sites)?;
+                0.5 * (s.time_avg() / avg + s.final_value() / last)
+            }
         })
     }
 
-    /// Final position PCRLB \[m\] of the working scenario with beacons at `sites` (one truth
-    /// run: seed 1, run 0, the first run of a `trade --seed 1`).
-    pub fn final_position_bound(&self, sites: &[Site]) -> Result<f64, OptimizerError> {
-        let mut cfg = self.scenario.config.clone();
-        cfg.beacons = surface_beacons(sites, &self.noise);
-        final_position_bound_of(cfg)
+    /// The nominal position bound with beacons at `sites` (the problem's count).
+    pub fn bound_series(&self, sites: &[Site]) -> Result<NominalBoundSeries, OptimizerError> {
+        self.check_count(sites)?;
+        self.bound_series_of(sites)
+    }
+
+    /// The nominal position bound with beacons at `sites` (any count), each with the problem's
+    /// range noise; available whatever the objective (set up on first use otherwise).
+    pub fn bound_series_of(&self, sites: &[Site]) -> Result<NominalBoundSeries, OptimizerError> {
+        let radius = self.trajectory.planet.radius;
+        let range: Vec<RangeSite> = sites
+            .iter()
+            .map(|s| RangeSite {
+                position_m: s.fixed_position(radius),
+                sigma_m: self.noise.range_sigma_m,
+            })
+            .collect();
+        let built;
+        let nominal = match &self.nominal {
+            Some(n) => n,
+            None => {
+                built = NominalBound::new(&self.scenario)?;
+                &built
+            }
+        };
+        Ok(nominal.ground_sites(&range)?)
+    }
+
+    /// The smallest great-circle separation between two of `sites` \[rad\].
+    fn closest_pair(sites: &[Site]) -> Option<f64> {
+        let mut best: Option<f64> = None;
+        for (i, a) in sites.iter().enumerate() {
+            for b in &sites[i + 1..] {
+                let pa = spherical_to_position(1.0, a.lon, a.lat);
+                let pb = spherical_to_position(1.0, b.lon, b.lat);
+                let d = entrynav::math::norm(&entrynav::math::cross(&pa, &pb))
+                    .atan2(entrynav::math::dot(&pa, &pb));
+                best = Some(best.map_or(d, |m: f64| m.min(d)));
+            }
+        }
+        best
     }
 
     fn cost_of_value(&self, v: f64) -> f64 {
         match self.objective {
             GroundObjective::MinDelta { .. } | GroundObjective::MinEig => -v.max(1e-300).log10(),
             GroundObjective::LogDet => -v / self.trajectory.duration(),
-            GroundObjective::Pcrlb => v.max(1e-300).log10(),
+            GroundObjective::PcrlbAvg
+            | GroundObjective::PcrlbFinal
+            | GroundObjective::Navigation => v.max(1e-300).log10(),
         }
     }
 
@@ -121,16 +168,27 @@ impl GroundProblem {
     pub fn evaluate(&self, sites: &[Site]) -> Result<GroundEvaluation, OptimizerError> {
         self.check_count(sites)?;
         let min_elevation_rad: Vec<f64> = sites.iter().map(|s| self.min_elevation_of(s)).collect();
-        let shortfall: f64 = min_elevation_rad
+        let mut shortfall: f64 = min_elevation_rad
             .iter()
             .map(|e| (self.min_elevation + 1e-9 - e).max(0.0))
             .sum();
+        let closest_pair_rad = Self::closest_pair(sites);
+        if self.min_separation > 0.0 {
+            let canon: Vec<Site> = sites.iter().map(Site::canonical).collect();
+            for (i, a) in canon.iter().enumerate() {
+                for b in &canon[i + 1..] {
+                    let d = Self::closest_pair(&[*a, *b]).unwrap_or(PI);
+                    shortfall += (self.min_separation - d).max(0.0);
+                }
+            }
+        }
         let feasible = shortfall == 0.0;
         if !feasible {
             return Ok(GroundEvaluation {
                 value: None,
                 cost: INFEASIBLE_COST + PENALTY_PER_RAD * shortfall,
                 min_elevation_rad,
+                closest_pair_rad,
                 feasible,
             });
         }
@@ -139,6 +197,7 @@ impl GroundProblem {
             value: Some(v),
             cost: self.cost_of_value(v),
             min_elevation_rad,
+            closest_pair_rad,
             feasible,
         })
     }

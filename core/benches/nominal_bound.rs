@@ -22,6 +22,7 @@ fn bench(c: &mut Criterion) {
             Beacon::Surface(b) => Some(RangeSite {
                 position_m: b.position_at(0.0),
                 sigma_m: 100.0,
+                elevation_mask_rad: 0.0,
             }),
             Beacon::Orbiter(_) => None,
         })

@@ -26,6 +26,7 @@ fn own_sites(s: &Scenario, sigma: f64) -> Vec<RangeSite> {
             Beacon::Surface(b) => RangeSite {
                 position_m: b.position_at(0.0),
                 sigma_m: sigma,
+                elevation_mask_rad: 0.0,
             },
             Beacon::Orbiter(_) => panic!("not a surface beacon"),
         })
@@ -100,4 +101,73 @@ fn refuses_bad_sites_and_scenarios_without_ranges() {
     ));
     let err = NominalBound::new(&scenario("msl-airdata")).unwrap_err();
     assert!(matches!(err, NominalBoundError::NoRange(_)), "{err}");
+}
+
+#[test]
+fn an_elevation_mask_removes_the_low_measurements_as_the_engine_does() {
+    // The trade's recursion on the nominal truth of the scenario with a 10 deg mask on every
+    // beacon (the engine drops the masked measurements) equals the nominal bound with masked sites.
+    let mut cfg = ScenarioConfig::builtin("ground-beacons-3").unwrap();
+    for b in &mut cfg.beacons {
+        if let entrynav::beacons::BeaconConfig::Surface(c) = b {
+            c.elevation_mask_deg = Some(10.0);
+        }
+    }
+    let s = Scenario::build(cfg, &entrynav::files::no_files).unwrap();
+    let draw = s.nominal_truth();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+    let truth = simulate_truth(&s, &draw, &mut rng).unwrap();
+    let measured = truth
+        .epochs
+        .iter()
+        .filter(|e| e.values.iter().any(Option::is_some))
+        .count();
+    assert!(
+        measured < truth.epochs.len(),
+        "the mask removed no measurement"
+    );
+    let rec = RecordedRun {
+        run: 0,
+        draw,
+        truth,
+        x0: Vec::new(),
+    };
+    let mut sums = BoundSums::new(&s);
+    sums.add_runs(&[bound_run(&s, &rec)]);
+    let trade = sums.report(&state_names(&s));
+    let nominal = NominalBound::new(&s).unwrap();
+    let mut sites = own_sites(&s, 100.0);
+    for site in &mut sites {
+        site.elevation_mask_rad = 10f64.to_radians();
+    }
+    let got = nominal.ground_sites(&sites).unwrap();
+    let want = &trade.series["pos_m"];
+    // The trade's epochs are those with a measurement; compare at those times.
+    for (t, b) in trade.times_s.iter().zip(want) {
+        let k = got.times_s.iter().position(|x| x == t).unwrap();
+        assert!(
+            (got.pos_m[k] - b).abs() <= 1e-6 * b,
+            "t = {t}: {} vs {b}",
+            got.pos_m[k]
+        );
+    }
+    let unmasked = nominal.ground_sites(&own_sites(&s, 100.0)).unwrap();
+    assert!(got.time_avg() > unmasked.time_avg());
+}
+
+#[test]
+fn an_elevation_mask_outside_0_to_90_deg_is_refused_naming_the_field() {
+    for bad in [-1.0, 90.0, f64::NAN] {
+        let mut cfg = ScenarioConfig::builtin("ground-beacons-3").unwrap();
+        if let entrynav::beacons::BeaconConfig::Surface(c) = &mut cfg.beacons[1] {
+            c.elevation_mask_deg = Some(bad);
+        }
+        let err = Scenario::build(cfg, &entrynav::files::no_files)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("beacons[1].elevation_mask_deg") && err.contains("[0, 90)"),
+            "{bad}: {err}"
+        );
+    }
 }

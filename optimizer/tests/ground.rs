@@ -242,7 +242,7 @@ fn navigation_objective_is_relative_to_the_input_and_keeps_sites_apart() {
     .unwrap()
     .with_min_separation(sep)
     .unwrap()
-    .with_reference(&hand_placed())
+    .with_reference(&hand_placed(), 0.0)
     .unwrap();
     // The input design is the unit of the objective.
     let own = p.evaluate(&hand_placed()).unwrap();
@@ -275,4 +275,40 @@ fn navigation_objective_is_relative_to_the_input_and_keeps_sites_apart() {
         b.time_avg() < avg && b.final_value() < last,
         "{b:?} vs {avg}, {last}"
     );
+}
+
+#[test]
+fn partial_visibility_admits_sites_that_see_part_of_the_entry_above_their_mask() {
+    // A site under the start of the entry sees it high above the horizon but loses the vehicle
+    // below the horizon before the end: infeasible by eq. 52, feasible with partial visibility,
+    // and then worth only the measurements its 10 deg mask leaves it.
+    let base =
+        GroundProblem::new(&config(), &no_files, 1, GroundObjective::PcrlbAvg, 5.0, 0.0).unwrap();
+    let start = base.trajectory().fixed_position(0);
+    let (_, lon, lat) = entrynav::frames::position_to_spherical(&start);
+    let under_start = [Site {
+        lat,
+        lon,
+        altitude_m: 0.0,
+    }];
+    let whole = base.evaluate(&under_start).unwrap();
+    assert!(!whole.feasible, "{whole:?}");
+    let partial = base
+        .clone()
+        .with_partial_visibility()
+        .with_elevation_mask(10f64.to_radians())
+        .unwrap();
+    let e = partial.evaluate(&under_start).unwrap();
+    assert!(e.feasible && e.value.is_some(), "{e:?}");
+    let unmasked = base.clone().with_partial_visibility();
+    let masked = partial.bound_series(&under_start).unwrap();
+    let open = unmasked.bound_series(&under_start).unwrap();
+    assert!(
+        masked.time_avg() > open.time_avg(),
+        "the mask removed nothing"
+    );
+    // The search box covers the site.
+    let (lo, hi) = partial.bounds().unwrap();
+    assert!(lo[0] <= lat && lat <= hi[0] && lo[1] <= lon && lon <= hi[1]);
+    assert!(partial.with_elevation_mask(1.6).is_err());
 }

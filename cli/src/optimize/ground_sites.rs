@@ -96,6 +96,8 @@ struct GroundInputs {
     dir: PathBuf,
     /// The scenario's surface beacons as sites.
     own: Vec<Site>,
+    /// Their elevation mask \[deg\] (the first surface beacon's; 0: the horizon).
+    own_mask_deg: f64,
     count: usize,
     method: Method,
     objective: GroundObjective,
@@ -188,10 +190,19 @@ fn load_ground_inputs(a: &GroundArgs) -> Result<GroundInputs> {
         GroundObjectiveArg::PcrlbFinal => GroundObjective::PcrlbFinal,
         GroundObjectiveArg::Nav => GroundObjective::Navigation,
     };
+    let own_mask_deg = cfg
+        .beacons
+        .iter()
+        .find_map(|b| match b {
+            BeaconConfig::Surface(c) => Some(c.elevation_mask_deg.unwrap_or(0.0)),
+            BeaconConfig::Orbiter(_) => None,
+        })
+        .unwrap_or(0.0);
     Ok(GroundInputs {
         cfg,
         dir,
         own,
+        own_mask_deg,
         count,
         method,
         objective,
@@ -204,13 +215,21 @@ fn solve_ground(a: &GroundArgs, inputs: &GroundInputs) -> Result<GroundAnswer> {
     let c = &a.common;
     let (cfg, count, objective) = (&inputs.cfg, inputs.count, inputs.objective);
     let load = loader(&inputs.dir);
+    let whole_entry = !a.partial_visibility;
     let min_el = a.min_elevation_deg.to_radians();
     let sep = a.min_separation_deg.to_radians();
+    let mask = a.elevation_mask_deg.to_radians();
     let setup = |step: f64| -> Result<GroundProblem> {
         let p = GroundProblem::new(cfg, &load, count, objective, step, min_el)?
-            .with_min_separation(sep)?;
+            .with_min_separation(sep)?
+            .with_elevation_mask(mask)?;
+        let p = if whole_entry {
+            p
+        } else {
+            p.with_partial_visibility()
+        };
         Ok(if objective.is_bound() {
-            p.with_reference(&inputs.own)?
+            p.with_reference(&inputs.own, inputs.own_mask_deg.to_radians())?
         } else {
             p
         })
@@ -241,17 +260,26 @@ fn solve_ground(a: &GroundArgs, inputs: &GroundInputs) -> Result<GroundAnswer> {
     // The nominal bound of both designs, whatever the objective (cheap; None where the scenario
     // has no such bound, e.g. range rate).
     let bounds = (|| -> Option<[(f64, f64); 2]> {
-        let pair = |s: &[Site]| {
+        let pair = |s: &[Site], mask_deg: f64| {
             report
-                .bound_series_of(s)
+                .bound_series_masked(s, mask_deg.to_radians())
                 .ok()
                 .map(|b| (b.time_avg(), b.final_value()))
         };
-        Some([pair(&sol.sites)?, pair(&inputs.own)?])
+        Some([
+            pair(&sol.sites, a.elevation_mask_deg)?,
+            pair(&inputs.own, inputs.own_mask_deg)?,
+        ])
     })();
+    let mut beacons = output::surface_beacons(&sol.sites, &report.noise());
+    for b in &mut beacons {
+        if let BeaconConfig::Surface(c) = b {
+            c.elevation_mask_deg = (a.elevation_mask_deg > 0.0).then_some(a.elevation_mask_deg);
+        }
+    }
     let written = output::with_beacons(
         &inputs.cfg,
-        output::surface_beacons(&sol.sites, &report.noise()),
+        beacons,
         &file_stem(
             c.write_scenario
                 .as_deref()
@@ -301,10 +329,18 @@ fn print_ground(a: &GroundArgs, inputs: &GroundInputs, answer: &GroundAnswer, wa
     let (cfg, objective) = (&inputs.cfg, inputs.objective);
     let paper = cfg.name == "ground-beacons-3";
     println!("scenario    {}", cfg.name);
+    let visibility = if answer.report.whole_entry() {
+        format!(
+            "each visible during the whole entry (eq. 52, min elevation {:.3} deg)",
+            answer.report.min_elevation().to_degrees()
+        )
+    } else {
+        "each seeing part of the entry".to_string()
+    };
     println!(
-        "problem     {} ground beacons on the reference sphere, each visible during the whole \
-         entry (eq. 52, min elevation {:.3} deg), at least {} deg apart",
-        inputs.count, a.min_elevation_deg, a.min_separation_deg
+        "problem     {} ground beacons on the reference sphere, {visibility}, at least {} deg \
+         apart, measuring above a {} deg elevation mask (input's sites: {} deg)",
+        inputs.count, a.min_separation_deg, a.elevation_mask_deg, inputs.own_mask_deg
     );
     println!("objective   {}: {}", objective.name(), objective.units());
     println!(
@@ -453,6 +489,9 @@ fn write_ground_json(
         })),
         "paper_delta_range": (cfg.name == "ground-beacons-3").then(|| json!([1.413e-8, 2.945e-7])),
         "min_separation_deg": a.min_separation_deg,
+        "whole_entry_visibility": answer.report.whole_entry(),
+        "elevation_mask_deg": a.elevation_mask_deg,
+        "input_elevation_mask_deg": inputs.own_mask_deg,
         "closest_pair_deg": ev.closest_pair_rad.map(f64::to_degrees),
         "nominal_bound": answer.bounds.map(|b| json!({
             "optimum": {"time_avg_pos_m": b[0].0, "final_pos_m": b[0].1},

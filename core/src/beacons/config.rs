@@ -66,6 +66,10 @@ pub struct SurfaceBeaconConfig {
     /// Half-open intervals `[t_start_s, t_end_s)` without measurements.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub outages: Vec<[f64; 2]>,
+    /// Elevation mask \[deg\] in [0, 90): the beacon measures only while the vehicle is at least
+    /// this high above its horizon (default 0: seed 002 eq. 52's horizon).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub elevation_mask_deg: Option<f64>,
 }
 
 /// An orbiter: `position_km` + `velocity_mps`, or `circular`, or `elements`.
@@ -270,6 +274,11 @@ impl BeaconConfig {
                     )
                     .map_err(|e| e.in_context(&format!("{p}.lat_deg/lon_deg/altitude_km")))
                 }
+                .and_then(|b| {
+                    let mask = c.elevation_mask_deg.unwrap_or(0.0);
+                    b.with_elevation_mask(mask.to_radians())
+                        .map_err(|e| e.in_context(&format!("{p}.elevation_mask_deg")))
+                })
                 .map(Beacon::Surface)
             }
             BeaconConfig::Orbiter(c) => {

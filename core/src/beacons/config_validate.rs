@@ -32,6 +32,14 @@ pub(super) fn choice(field: &str, message: String) -> BeaconError {
 
 impl SurfaceBeaconConfig {
     pub(super) fn validate_placement(&self, p: &str) -> Result<(), BeaconError> {
+        if let Some(m) = self.elevation_mask_deg {
+            check(
+                &format!("{p}.elevation_mask_deg"),
+                m,
+                (0.0..90.0).contains(&m),
+                "[0, 90) deg",
+            )?;
+        }
         let geo = [
             ("lat_deg", self.lat_deg),
             ("lon_deg", self.lon_deg),

@@ -22,6 +22,9 @@ pub struct SurfaceBeacon {
     position_fixed: [f64; 3],
     /// Planet rotation rate ω about +z [rad/s].
     rotation_rate: f64,
+    /// Elevation mask \[rad\]: the beacon measures only while the vehicle is at least this
+    /// high above its local horizon (0: eq. 52's horizon).
+    elevation_mask: f64,
 }
 
 impl SurfaceBeacon {
@@ -46,7 +49,28 @@ impl SurfaceBeacon {
         Ok(SurfaceBeacon {
             position_fixed,
             rotation_rate: planet.rotation_rate,
+            elevation_mask: 0.0,
         })
+    }
+
+    /// The same beacon with an elevation mask of `mask` \[rad\] ∈ [0, π/2): it sees the vehicle
+    /// only when the vehicle's elevation above its horizon exceeds the mask (terrain, multipath
+    /// and antenna limits keep real ground stations above 5–10°).
+    pub fn with_elevation_mask(mut self, mask: f64) -> Result<Self, BeaconError> {
+        if !(mask.is_finite() && (0.0..std::f64::consts::FRAC_PI_2).contains(&mask)) {
+            return Err(BeaconError::invalid(
+                "surface beacon elevation mask [rad]",
+                mask,
+                "[0, pi/2)",
+            ));
+        }
+        self.elevation_mask = mask;
+        Ok(self)
+    }
+
+    /// The elevation mask \[rad\] (0: the horizon).
+    pub fn elevation_mask(&self) -> f64 {
+        self.elevation_mask
     }
 
     /// A beacon at planetocentric latitude `lat` \[rad\] ∈ [−π/2, π/2], longitude `lon` \[rad\] and

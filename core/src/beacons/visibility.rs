@@ -94,8 +94,8 @@ impl Beacon {
     }
 
     /// Visibility margin \[rad\] from a vehicle at inertial position `vehicle_pos_inertial` \[m\] at
-    /// time `t` \[s\]: [`ground_visibility_margin`] for surface beacons,
-    /// [`orbiter_visibility_margin`] for orbiters. Positive = visible.
+    /// time `t` \[s\]: [`ground_visibility_margin`] less the beacon's elevation mask for surface
+    /// beacons, [`orbiter_visibility_margin`] for orbiters. Positive = visible.
     pub fn visibility_margin(
         &self,
         vehicle_pos_inertial: [f64; 3],
@@ -115,7 +115,9 @@ impl Beacon {
     ) -> f64 {
         let b = beacon_pos;
         match self {
-            Beacon::Surface(_) => ground_visibility_margin(b, &vehicle_pos_inertial),
+            Beacon::Surface(s) => {
+                ground_visibility_margin(b, &vehicle_pos_inertial) - s.elevation_mask()
+            }
             Beacon::Orbiter(_) => {
                 orbiter_visibility_margin(b, &vehicle_pos_inertial, planet_radius)
             }

@@ -17,7 +17,8 @@
 //! recursion run on the nominal truth alone (tested to 1e-6); the trade averages F and I over its
 //! dispersed Monte Carlo truths instead, so the two differ by the dispersion's effect on geometry
 //! (a few per cent on the built-ins). Range epochs are those of the range sensor; a beacon
-//! contributes where it sees the vehicle above its horizon (seed 002 eq. 52, the engine's rule).
+//! contributes where it sees the vehicle above its horizon (seed 002 eq. 52) and its elevation
+//! mask, the engine's rule.
 //! Only range beacons on the surface are placed here; range-rate channels are refused.
 
 use super::engine::SimError;
@@ -50,8 +51,11 @@ pub enum NominalBoundError {
     /// Range-rate channels depend on the velocity map, which this bound does not place.
     #[error("scenario '{0}' measures range rate; the nominal bound places range beacons only")]
     RangeRate(String),
-    /// A site with a non-finite position or a σ that is not positive.
-    #[error("site {index}: position {position:?} m, sigma {sigma} m (finite, sigma > 0)")]
+    /// A site with a non-finite position, a σ that is not positive or a mask outside [0, π/2).
+    #[error(
+        "site {index}: position {position:?} m, sigma {sigma} m (finite, sigma > 0, elevation \
+         mask in [0, 90) deg)"
+    )]
     BadSite {
         /// Site index.
         index: usize,
@@ -65,13 +69,15 @@ pub enum NominalBoundError {
     NonFinite(f64),
 }
 
-/// A range beacon on the planet: planet-fixed position \[m\] and range 1σ \[m\].
+/// A range beacon on the planet: planet-fixed position \[m\], range 1σ \[m\] and elevation mask.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RangeSite {
     /// Planet-fixed position \[m\].
     pub position_m: [f64; 3],
     /// Range noise 1σ \[m\].
     pub sigma_m: f64,
+    /// Elevation mask \[rad\]: the site measures only above it (0: the horizon, eq. 52).
+    pub elevation_mask_rad: f64,
 }
 
 /// The position bound per epoch for one set of sites.
@@ -175,7 +181,8 @@ impl NominalBound {
         for (index, s) in sites.iter().enumerate() {
             if !(s.position_m.iter().all(|v| v.is_finite())
                 && s.sigma_m.is_finite()
-                && s.sigma_m > 0.0)
+                && s.sigma_m > 0.0
+                && (0.0..std::f64::consts::FRAC_PI_2).contains(&s.elevation_mask_rad))
             {
                 return Err(NominalBoundError::BadSite {
                     index,
@@ -270,7 +277,8 @@ impl DimVisitor for Evaluate<'_> {
             let jp = SMatrix::<f64, 3, N>::from_column_slice(&e.jp);
             if e.ranged {
                 for s in self.sites {
-                    if ground_visibility_margin(&s.position_m, &e.vehicle_fixed) <= 0.0 {
+                    let margin = ground_visibility_margin(&s.position_m, &e.vehicle_fixed);
+                    if margin - s.elevation_mask_rad <= 0.0 {
                         continue;
                     }
                     let d = [

@@ -118,14 +118,25 @@ impl GroundProblem {
     }
 
     /// The nominal position bound with beacons at `sites` (any count), each with the problem's
-    /// range noise; available whatever the objective (set up on first use otherwise).
+    /// range noise and elevation mask; available whatever the objective (set up on first use
+    /// otherwise).
     pub fn bound_series_of(&self, sites: &[Site]) -> Result<NominalBoundSeries, OptimizerError> {
+        self.bound_series_masked(sites, self.elevation_mask)
+    }
+
+    /// [`Self::bound_series_of`] with elevation mask `mask_rad` (e.g. the input design's own).
+    pub fn bound_series_masked(
+        &self,
+        sites: &[Site],
+        mask_rad: f64,
+    ) -> Result<NominalBoundSeries, OptimizerError> {
         let radius = self.trajectory.planet.radius;
         let range: Vec<RangeSite> = sites
             .iter()
             .map(|s| RangeSite {
                 position_m: s.fixed_position(radius),
                 sigma_m: self.noise.range_sigma_m,
+                elevation_mask_rad: mask_rad,
             })
             .collect();
         let built;
@@ -168,10 +179,7 @@ impl GroundProblem {
     pub fn evaluate(&self, sites: &[Site]) -> Result<GroundEvaluation, OptimizerError> {
         self.check_count(sites)?;
         let min_elevation_rad: Vec<f64> = sites.iter().map(|s| self.min_elevation_of(s)).collect();
-        let mut shortfall: f64 = min_elevation_rad
-            .iter()
-            .map(|e| (self.min_elevation + 1e-9 - e).max(0.0))
-            .sum();
+        let mut shortfall: f64 = sites.iter().map(|s| self.visibility_shortfall(s)).sum();
         let closest_pair_rad = Self::closest_pair(sites);
         if self.min_separation > 0.0 {
             let canon: Vec<Site> = sites.iter().map(Site::canonical).collect();

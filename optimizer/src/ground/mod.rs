@@ -254,6 +254,10 @@ pub struct GroundProblem {
     scaling: Scaling,
     channels: ChannelSet,
     min_separation: f64,
+    /// Elevation mask of the placed sites \[rad\] (they measure only above it).
+    elevation_mask: f64,
+    /// Sites must see the whole entry (eq. 52) — else only some of it above the mask.
+    whole_entry: bool,
     /// The nominal bound's beacon-independent part (bound objectives only).
     nominal: Option<NominalBound>,
     /// The input design's (time-averaged, final) nominal bound \[m\].
@@ -322,6 +326,8 @@ impl GroundProblem {
             scaling,
             channels,
             min_separation: 0.0,
+            elevation_mask: 0.0,
+            whole_entry: true,
             nominal,
             reference: None,
         })
@@ -339,11 +345,49 @@ impl GroundProblem {
         Ok(self)
     }
 
+    /// Give the placed sites an elevation mask of `rad` ∈ [0, π/2): in the nominal bound (and in
+    /// the scenario written for them) they measure only while the vehicle is above it. It does
+    /// not change eq. 52's whole-entry visibility requirement (`min_elevation_rad`).
+    pub fn with_elevation_mask(mut self, rad: f64) -> Result<GroundProblem, OptimizerError> {
+        if !(rad.is_finite() && (0.0..FRAC_PI_2).contains(&rad)) {
+            return Err(OptimizerError::InvalidInput(format!(
+                "elevation mask {} deg must be in [0, 90)",
+                rad.to_degrees()
+            )));
+        }
+        self.elevation_mask = rad;
+        Ok(self)
+    }
+
+    /// The elevation mask of the placed sites \[rad\].
+    pub fn elevation_mask(&self) -> f64 {
+        self.elevation_mask
+    }
+
+    /// Drop eq. 52's whole-entry visibility: a site is feasible when it sees some of the
+    /// trajectory above its elevation mask, and the search box covers every such site. For the
+    /// bound objectives, which count each site's measurements where it has them: a site that
+    /// sees only the start or only the end of the entry can be worth more than one that sees all
+    /// of it low on the horizon.
+    pub fn with_partial_visibility(mut self) -> GroundProblem {
+        self.whole_entry = false;
+        self
+    }
+
+    /// Whether sites must see the whole entry (eq. 52).
+    pub fn whole_entry(&self) -> bool {
+        self.whole_entry
+    }
+
     /// The input design the [`GroundObjective::Navigation`] value is relative to: its nominal
     /// bound with `sites` (the scenario's own surface beacons, any number; none: the bound of the
-    /// other sensors alone).
-    pub fn with_reference(mut self, sites: &[Site]) -> Result<GroundProblem, OptimizerError> {
-        let series = self.bound_series_of(sites)?;
+    /// other sensors alone) and their elevation mask `mask_rad`.
+    pub fn with_reference(
+        mut self,
+        sites: &[Site],
+        mask_rad: f64,
+    ) -> Result<GroundProblem, OptimizerError> {
+        let series = self.bound_series_masked(sites, mask_rad)?;
         let (avg, last) = (series.time_avg(), series.final_value());
         if !(avg.is_finite() && avg > 0.0 && last.is_finite() && last > 0.0) {
             return Err(OptimizerError::InvalidInput(format!(

@@ -14,10 +14,61 @@ impl GroundProblem {
             .fold(f64::INFINITY, f64::min)
     }
 
-    /// Whether `site` meets the elevation requirement during the whole entry (a margin of
-    /// 1e-9 rad keeps the answer strictly inside eq. 52's open region).
+    /// Largest elevation \[rad\] of the vehicle above the local horizon of `site` over the
+    /// trajectory.
+    pub fn max_elevation_of(&self, site: &Site) -> f64 {
+        let b = site.fixed_position(self.trajectory.planet.radius);
+        self.fixed
+            .iter()
+            .map(|v| ground_visibility_margin(&b, v))
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// How far \[rad\] `site` falls short of the visibility requirement (0: feasible): eq. 52's
+    /// minimum elevation during the whole entry, or with partial visibility the elevation mask
+    /// at the site's best sample (a margin of 1e-9 rad keeps answers strictly inside).
+    pub fn visibility_shortfall(&self, site: &Site) -> f64 {
+        if self.whole_entry {
+            (self.min_elevation + 1e-9 - self.min_elevation_of(site)).max(0.0)
+        } else {
+            (self.elevation_mask + 1e-9 - self.max_elevation_of(site)).max(0.0)
+        }
+    }
+
+    /// Whether `site` meets the visibility requirement ([`Self::visibility_shortfall`] is 0).
     pub fn is_feasible(&self, site: &Site) -> bool {
-        self.min_elevation_of(site) >= self.min_elevation + 1e-9
+        self.visibility_shortfall(site) == 0.0
+    }
+
+    /// With partial visibility, the search box: every sample's ground point widened by the
+    /// ground angle at which the vehicle sits on the elevation mask,
+    /// θ = arccos(R_b cos e / r) − e, the box of their union widened by one degree.
+    fn partial_bounds(&self) -> (Vec<f64>, Vec<f64>) {
+        let r_b = self.trajectory.planet.radius + self.altitude_m;
+        let e = self.elevation_mask;
+        let (mut lat_lo, mut lat_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let (mut lon_lo, mut lon_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let lon_ref = position_to_spherical(&self.fixed[0]).1;
+        for v in &self.fixed {
+            let (r, lon, lat) = position_to_spherical(v);
+            let theta = ((r_b * e.cos() / r).clamp(-1.0, 1.0).acos() - e).max(0.0);
+            // Longitude unwrapped around the first sample's.
+            let lon = lon_ref + (lon - lon_ref + PI).rem_euclid(2.0 * PI) - PI;
+            let half_lon = (theta / lat.cos().max(1e-3)).min(PI);
+            lat_lo = lat_lo.min(lat - theta);
+            lat_hi = lat_hi.max(lat + theta);
+            lon_lo = lon_lo.min(lon - half_lon);
+            lon_hi = lon_hi.max(lon + half_lon);
+        }
+        let pad = 1f64.to_radians();
+        let (lat_lo, lat_hi) = (
+            (lat_lo - pad).max(-FRAC_PI_2),
+            (lat_hi + pad).min(FRAC_PI_2),
+        );
+        let (lon_lo, lon_hi) = (lon_lo - pad, lon_hi + pad);
+        let lower = (0..self.count).flat_map(|_| [lat_lo, lon_lo]).collect();
+        let upper = (0..self.count).flat_map(|_| [lat_hi, lon_hi]).collect();
+        (lower, upper)
     }
 
     /// Latitude/longitude of the centre of the smallest visibility cap (below the trajectory's
@@ -76,6 +127,14 @@ impl GroundProblem {
     }
 
     pub(super) fn no_site_error(&self) -> OptimizerError {
+        if !self.whole_entry {
+            return OptimizerError::Infeasible(format!(
+                "no site of scenario '{}' sees the vehicle above a {:.3} deg elevation mask at \
+                 any time of the entry",
+                self.scenario.config.name,
+                self.elevation_mask.to_degrees()
+            ));
+        }
         OptimizerError::Infeasible(format!(
             "no site is visible during the whole entry of scenario '{}' with a minimum elevation \
              of {:.3} deg (eq. 52: the vehicle must stay above every beacon's horizon from t = 0 \
@@ -89,6 +148,9 @@ impl GroundProblem {
     /// Search box `[lat, lon]` per site (radians, longitude unwrapped around the smallest cap):
     /// the bounding box of the feasible points of a fine lattice, widened by one cell.
     pub fn bounds(&self) -> Result<(Vec<f64>, Vec<f64>), OptimizerError> {
+        if !self.whole_entry {
+            return Ok(self.partial_bounds());
+        }
         let (lat_c, lon_c, theta) = self.smallest_cap();
         let n = 80;
         let cell = 2.0 * theta / n as f64;

@@ -128,3 +128,46 @@ fn optimize_writes_its_files_even_when_standard_output_is_closed() {
     assert_eq!(read_json(&j)["problem"], "ground");
     assert!(std::fs::read_to_string(&g).unwrap().contains("[[beacons]]"));
 }
+
+#[test]
+fn select_and_orbiters_check_their_answers_too() {
+    let dir = scratch_dir("optimize-check", "select-orbiters");
+    // The certified D-optimal selection keeps the default 2 deg separation, and its check says
+    // what it does to navigation (it is worse on ground-beacons-3: the time-averaged FIM
+    // criterion is not a navigation objective).
+    let j = dir.join("select.json");
+    let (code, out, err) = entrynav(&[
+        "optimize",
+        "select",
+        "--scenario",
+        "ground-beacons-3",
+        "--k",
+        "3",
+        "--grid-deg",
+        "1",
+        "--exact",
+        "--quiet",
+        "--json",
+        j.to_str().unwrap(),
+    ]);
+    let v = read_json(&j);
+    assert_eq!(v["constraints"]["min_separation_deg"], 2.0, "{out}");
+    let verdict = v["check"]["verdict"].as_str().unwrap();
+    assert_eq!(code, if verdict == "worse" { 1 } else { 0 }, "{err}");
+    assert!(v["check"]["input"]["rmse_time_avg_pos_m"].as_f64().unwrap() > 0.0);
+    // Orbiters: the paper's Table 6 elements are the input.
+    let j = dir.join("orbiters.json");
+    let (code, _, err) = entrynav(&[
+        "optimize",
+        "orbiters",
+        "--scenario",
+        "orbiters-3",
+        "--quiet",
+        "--json",
+        j.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v = read_json(&j);
+    assert_eq!(v["check"]["verdict"], "not worse", "{}", v["check"]);
+    assert_eq!(v["check"]["runs"], 200);
+}

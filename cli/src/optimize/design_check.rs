@@ -4,10 +4,11 @@
 //!
 //! Headline figures: time-averaged and final position RMSE \[m\] (lower is better) and the
 //! filter's ANEES/dof (closer to 1 is better; worse when it leaves the χ² band of the runs).
-//! A figure is *worse* when the optimum's value is higher than the input's (for ANEES/dof: when
-//! it is outside [`ANEES_BAND`] and further from 1 than the input's); the verdict names every
-//! worse figure and the objective that produced the design, and `optimize` then ends with exit
-//! code 1 after writing its files.
+//! A figure is *worse* when the optimum's RMSE is higher by more than the Monte Carlo noise (the
+//! 95 % interval of the change excludes 0), when its ANEES/dof is outside [`ANEES_BAND`] and
+//! further from 1 than the input's, or when more runs fail; the verdict names every worse figure
+//! and the objective that produced the design, and `optimize` then ends with exit code 1 after
+//! writing its files.
 
 use crate::compare_stats::{Difference, Estimate, se_anees, se_rmse_bound};
 use anyhow::Result;
@@ -100,6 +101,48 @@ pub struct DesignCheck {
     pub worse: Vec<String>,
 }
 
+/// The check of the design `optimum` (a scenario configuration) against the input `input`, both
+/// built with files from `dir`; `None` with `--no-check`.
+pub fn check_configs(
+    input: &entrynav::scenario::ScenarioConfig,
+    optimum: &entrynav::scenario::ScenarioConfig,
+    dir: &std::path::Path,
+    objective: &str,
+    args: &CheckArgs,
+) -> Result<Option<DesignCheck>> {
+    if args.no_check {
+        return Ok(None);
+    }
+    let load = entrynav_loader::file_loader(dir);
+    let a = Scenario::build(input.clone(), &load)?;
+    let b = Scenario::build(optimum.clone(), &load)?;
+    Ok(Some(check_designs(&a, &b, objective, args)?))
+}
+
+/// Print the check (or that it was skipped).
+pub fn print_check(check: Option<&DesignCheck>) {
+    match check {
+        Some(c) => c.print(),
+        None => {
+            println!("check       skipped (--no-check): the optimum is not compared with the input")
+        }
+    }
+}
+
+/// Exit code 1 (after everything is written) when the check found the optimum worse.
+pub fn verdict(check: Option<&DesignCheck>) -> Result<()> {
+    match check {
+        Some(c) if !c.worse.is_empty() => Err(crate::exit::Runtime(format!(
+            "the optimum is worse than the input design on {} (objective {}); its files are \
+             written for inspection",
+            c.worse.join(", "),
+            c.objective
+        ))
+        .into()),
+        _ => Ok(()),
+    }
+}
+
 /// Fly `args.check_filter` over `args.check_runs` runs of both designs (same seed: the same
 /// truths where the designs share them) and compare the headline figures.
 pub fn check_designs(
@@ -122,35 +165,47 @@ pub fn check_designs(
         Ok(run_trade(s, filters, &opts, &|_| {})?)
     };
     let (a, b) = (Figures::of(&trade(input)?), Figures::of(&trade(optimum)?));
-    let mut worse = Vec::new();
-    for (name, x, y) in [
-        ("time-averaged position RMSE", a.rmse_avg(), b.rmse_avg()),
-        ("final position RMSE", a.rmse_final(), b.rmse_final()),
-    ] {
-        if let (Some(x), Some(y)) = (x, y)
-            && y > x
-        {
-            worse.push(name.to_string());
-        }
-    }
-    if let (Some(x), Some(y)) = (a.anees_dof(), b.anees_dof()) {
-        let outside = !(ANEES_BAND[0]..=ANEES_BAND[1]).contains(&y);
-        if outside && (y.ln().abs() > x.ln().abs()) {
-            worse.push("ANEES/dof".to_string());
-        }
-    }
-    if b.report.failed + b.report.diverged > a.report.failed + a.report.diverged {
-        worse.push("failed or diverged runs".to_string());
-    }
-    Ok(DesignCheck {
+    let mut check = DesignCheck {
         filter: args.check_filter.clone(),
         runs: args.check_runs,
         seed: args.check_seed,
         objective: objective.to_string(),
         input: a,
         optimum: b,
-        worse,
-    })
+        worse: Vec::new(),
+    };
+    check.worse = check.worse_figures();
+    Ok(check)
+}
+
+impl DesignCheck {
+    /// The headline figures on which the optimum is worse: a position RMSE higher by a
+    /// significant margin (its 95 % interval excludes 0; a difference within the Monte Carlo
+    /// noise is not a verdict), an ANEES/dof outside [`ANEES_BAND`] and further from 1 than the
+    /// input's, or more failed and diverged runs.
+    fn worse_figures(&self) -> Vec<String> {
+        let (a, b) = (&self.input, &self.optimum);
+        let diffs = self.differences();
+        let mut worse = Vec::new();
+        for (name, d) in [
+            ("time-averaged position RMSE", diffs[0].1),
+            ("final position RMSE", diffs[1].1),
+        ] {
+            if d.is_some_and(|d| d.diff > 0.0 && d.significant) {
+                worse.push(name.to_string());
+            }
+        }
+        if let (Some(x), Some(y)) = (a.anees_dof(), b.anees_dof()) {
+            let outside = !(ANEES_BAND[0]..=ANEES_BAND[1]).contains(&y);
+            if outside && (y.ln().abs() > x.ln().abs()) {
+                worse.push("ANEES/dof".to_string());
+            }
+        }
+        if b.report.failed + b.report.diverged > a.report.failed + a.report.diverged {
+            worse.push("failed or diverged runs".to_string());
+        }
+        worse
+    }
 }
 
 impl DesignCheck {
@@ -242,7 +297,10 @@ impl DesignCheck {
         }
         println!("  (* the interval excludes 0; ANEES/dof band {ANEES_BAND:?})");
         if self.worse.is_empty() {
-            println!("  verdict: the optimum is at least as good as the input on every figure");
+            println!(
+                "  verdict: the optimum is not worse than the input on any figure (beyond the \
+                 Monte Carlo noise)"
+            );
         } else {
             eprintln!(
                 "warning: the optimum of objective {} is WORSE than the input design on {} \

@@ -5,7 +5,7 @@
 //! Order: search, check, write every file asked for, then print (so a closed standard output
 //! never costs a file), and exit code 1 when the check finds the optimum worse.
 
-use super::design_check::{DesignCheck, check_designs};
+use super::design_check::{DesignCheck, check_configs, print_check, verdict};
 use super::*;
 use entrynav_optimizer::GroundSolution;
 
@@ -127,17 +127,13 @@ pub(super) fn run_ground(a: &GroundArgs) -> Result<()> {
     let wall = Instant::now();
     let inputs = load_ground_inputs(a)?;
     let mut answer = solve_ground(a, &inputs)?;
-    if !a.check.no_check {
-        let load = loader(&inputs.dir);
-        let input = entrynav::scenario::Scenario::build(inputs.cfg.clone(), &load)?;
-        let optimum = entrynav::scenario::Scenario::build(answer.written.0.clone(), &load)?;
-        answer.check = Some(check_designs(
-            &input,
-            &optimum,
-            inputs.objective.name(),
-            &a.check,
-        )?);
-    }
+    answer.check = check_configs(
+        &inputs.cfg,
+        &answer.written.0,
+        &inputs.dir,
+        inputs.objective.name(),
+        &a.check,
+    )?;
     // Files first, each attempted; then the tables and what was written.
     let notes = [
         write_ground_scenario(a, &answer),
@@ -156,16 +152,7 @@ pub(super) fn run_ground(a: &GroundArgs) -> Result<()> {
     if !failures.is_empty() {
         return Err(crate::exit::Runtime(failures.join("; also: ")).into());
     }
-    match &answer.check {
-        Some(c) if !c.worse.is_empty() => Err(crate::exit::Runtime(format!(
-            "the optimum is worse than the input design on {} (objective {}); its files are \
-             written for inspection",
-            c.worse.join(", "),
-            inputs.objective.name()
-        ))
-        .into()),
-        _ => Ok(()),
-    }
+    verdict(answer.check.as_ref())
 }
 
 /// The scenario with its overrides, the beacon count (default: the scenario's surface beacons,
@@ -388,12 +375,7 @@ fn print_ground(a: &GroundArgs, inputs: &GroundInputs, answer: &GroundAnswer, wa
         scaling_note(&answer.report)
     );
     print_search(&answer.sol.search, answer.sol.elapsed_s, wall, &answer.opts);
-    match &answer.check {
-        Some(c) => c.print(),
-        None => {
-            println!("check       skipped (--no-check): the optimum is not compared with the input")
-        }
-    }
+    print_check(answer.check.as_ref());
 }
 
 /// The nominal position bound line of a design.

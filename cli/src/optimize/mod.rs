@@ -137,6 +137,8 @@ pub struct OrbitersArgs {
     /// scripts/bench_orbiters_vs_scipy.py).
     #[arg(long)]
     export_trajectory: Option<PathBuf>,
+    #[command(flatten)]
+    check: design_check::CheckArgs,
 }
 
 /// Arguments of `entrynav optimize ground`.
@@ -238,9 +240,10 @@ pub struct SelectArgs {
     #[arg(long)]
     solver_verbose: bool,
     /// Minimum great-circle separation between chosen sites [deg] (a linear constraint
-    /// z_i + z_j <= 1 of the relaxation for every closer pair).
-    #[arg(long, value_name = "DEG")]
-    min_separation_deg: Option<f64>,
+    /// z_i + z_j <= 1 of the relaxation for every closer pair; default 2, 0 for none: closer
+    /// sites see the vehicle along nearly parallel lines).
+    #[arg(long, value_name = "DEG", default_value_t = 2.0)]
+    min_separation_deg: f64,
     /// Keep only candidates inside this latitude/longitude box [deg].
     #[arg(
         long,
@@ -273,6 +276,8 @@ pub struct SelectArgs {
     threads: Option<usize>,
     #[arg(long, help = crate::QUIET_HELP)]
     quiet: bool,
+    #[command(flatten)]
+    check: design_check::CheckArgs,
 }
 
 /// Run the command.

@@ -1,8 +1,7 @@
 //! `entrynav optimize orbiters`: orbiter elements (Ω, i, f) on circular orbits (seed 002 §4.2).
 
-use super::orbit_files::{
-    export_trajectory, plot_orbiters, write_orbiter_json, write_orbiter_scenario,
-};
+use super::design_check::{check_configs, print_check, verdict};
+use super::orbit_files::{export_trajectory, orbiter_scenario, plot_orbiters, write_orbiter_json};
 use super::*;
 use entrynav_optimizer::output::BeaconNoise;
 use entrynav_optimizer::{OrbiterBoundSolution, OrbiterSolution};
@@ -73,11 +72,23 @@ pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
     let wall = Instant::now();
     let inputs = load_orbiter_inputs(a)?;
     let answer = solve_orbiters(a, &inputs)?;
+    let written = orbiter_scenario(a, &inputs, &answer)?;
+    let objective = if answer.bound.is_some() {
+        "pcrlb"
+    } else {
+        answer.problem.objective().name()
+    };
+    let check = check_configs(&inputs.cfg, &written.0, &inputs.dir, objective, &a.check)?;
     print_orbiters(&inputs, &answer, wall);
+    print_check(check.as_ref());
     export_trajectory(a, &inputs, &answer)?;
-    write_orbiter_scenario(a, &inputs, &answer)?;
+    if let Some(path) = &a.common.write_scenario {
+        write_text(path, &written.1)?;
+        println!("wrote {}", path.display());
+    }
     plot_orbiters(a, &inputs, &answer)?;
-    write_orbiter_json(a, &inputs, &answer, wall)
+    write_orbiter_json(a, &inputs, &answer, check.as_ref(), wall)?;
+    verdict(check.as_ref())
 }
 
 /// The scenario with its overrides, the orbiter count (default: the scenario's, at least 3) and

@@ -31,15 +31,18 @@ pub(super) fn export_trajectory(
     Ok(())
 }
 
-/// `--write-scenario`: the scenario with the best orbiters (the PCRLB polish's, if any).
-pub(super) fn write_orbiter_scenario(
+/// The scenario with the best orbiters (the PCRLB polish's, if any): configuration and the
+/// text `--write-scenario` writes.
+pub(super) fn orbiter_scenario(
     a: &OrbitersArgs,
     inputs: &OrbiterInputs,
     answer: &OrbiterAnswer,
-) -> Result<()> {
-    let Some(path) = &a.common.write_scenario else {
-        return Ok(());
-    };
+) -> Result<(ScenarioConfig, String)> {
+    let stem = a
+        .common
+        .write_scenario
+        .as_deref()
+        .map_or_else(|| "optimized".to_string(), file_stem);
     let (problem, opts) = (&answer.problem, &answer.opts);
     let note = match &answer.bound {
         Some(b) => format!(
@@ -57,15 +60,12 @@ pub(super) fn write_orbiter_scenario(
             answer.sol.evaluation.value
         ),
     };
-    let (_, text) = output::with_beacons(
+    Ok(output::with_beacons(
         &inputs.cfg,
         output::orbiter_beacons(answer.best_elements(), inputs.altitude_m, &answer.noise),
-        &file_stem(path),
+        &stem,
         &note,
-    )?;
-    write_text(path, &text)?;
-    println!("wrote {}", path.display());
-    Ok(())
+    )?)
 }
 
 /// `--plot`: the integrand along the entry, optimum against the scenario's orbiters.
@@ -122,6 +122,7 @@ pub(super) fn write_orbiter_json(
     a: &OrbitersArgs,
     inputs: &OrbiterInputs,
     answer: &OrbiterAnswer,
+    check: Option<&super::design_check::DesignCheck>,
     wall: Instant,
 ) -> Result<()> {
     let Some(path) = &a.common.json else {
@@ -153,6 +154,7 @@ pub(super) fn write_orbiter_json(
             "rule": "trapezoid",
         },
         "reference": answer.reference.as_ref().map(|(el, r)| reference_json(cfg, el, r)),
+        "check": check.map(super::design_check::DesignCheck::json),
     });
     if let Some(b) = &answer.bound {
         v["pcrlb"] = json!({

@@ -2,6 +2,7 @@
 //! bound with clarabel, then local search; `--exact`: branch and bound, in
 //! [`exact_selection`](super::exact_selection)).
 
+use super::design_check::{DesignCheck, check_configs, print_check, verdict};
 use super::exact_selection::{exact_json, finish_exact_only, print_proof, run_exact};
 use super::ground_sites::sites_json;
 use super::site_candidates::{Candidates, load_candidates};
@@ -29,6 +30,8 @@ struct Selected {
     exact: Option<BranchBoundReport>,
     /// Each answer to certify, labelled.
     certified: Vec<(String, Selection)>,
+    /// The answer's check against the input design (`None`: not run).
+    check: Option<DesignCheck>,
 }
 
 impl Selected {
@@ -83,10 +86,9 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
         }
         Err(e) => return Err(e.into()),
     };
-    let selected = certify(a, &problem, &candidates, report)?;
-    print_select(a, &cfg, &problem, &candidates, pairs, &selected, wall);
+    let mut selected = certify(a, &problem, &candidates, report)?;
     let answer = selected.answer();
-    write_selected(
+    let (chosen_cfg, text) = selected_scenario(
         a,
         &cfg,
         &candidates.sites,
@@ -95,7 +97,15 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
         selected.bound(),
         selected.exact.as_ref(),
     )?;
-    write_select_json(a, &cfg, &problem, &candidates, pairs, &selected, wall)
+    selected.check = check_configs(&cfg, &chosen_cfg, &dir, criterion.name(), &a.check)?;
+    print_select(a, &cfg, &problem, &candidates, pairs, &selected, wall);
+    print_check(selected.check.as_ref());
+    if let Some(path) = &a.write_scenario {
+        write_text(path, &text)?;
+        println!("wrote {}", path.display());
+    }
+    write_select_json(a, &cfg, &problem, &candidates, pairs, &selected, wall)?;
+    verdict(selected.check.as_ref())
 }
 
 /// The information blocks of the candidates and the spacing constraints (with the number of
@@ -107,9 +117,10 @@ fn selection_problem(
     sites: &[Site],
 ) -> Result<(SelectionProblem, usize)> {
     let blocks = site_information(ground, sites, a.eig_epochs)?;
-    let spacing = match a.min_separation_deg {
-        Some(d) => separation_constraints(sites, d.to_radians())?,
-        None => Vec::new(),
+    let spacing = if a.min_separation_deg > 0.0 {
+        separation_constraints(sites, a.min_separation_deg.to_radians())?
+    } else {
+        Vec::new()
     };
     let pairs = spacing.len();
     let problem = SelectionProblem::new(blocks, a.k, criterion)?
@@ -148,6 +159,7 @@ fn certify(
         brute,
         exact,
         certified,
+        check: None,
     })
 }
 
@@ -204,12 +216,15 @@ fn print_select(
             String::new()
         }
     );
-    if a.min_separation_deg.is_some() || a.region.is_some() {
+    if a.min_separation_deg > 0.0 || a.region.is_some() {
+        let d = a.min_separation_deg;
         println!(
             "constraints {}{}",
-            a.min_separation_deg.map_or(String::new(), |d| format!(
-                "sites at least {d} deg apart ({pairs} closer pairs, z_i + z_j <= 1); "
-            )),
+            if d > 0.0 {
+                format!("sites at least {d} deg apart ({pairs} closer pairs, z_i + z_j <= 1); ")
+            } else {
+                String::new()
+            },
             a.region.as_ref().map_or(String::new(), |b| format!(
                 "candidates inside lat [{}, {}], lon [{}, {}] deg",
                 b[0], b[1], b[2], b[3]
@@ -339,13 +354,14 @@ fn write_select_json(
         }).collect::<Vec<_>>(),
         "constraints": constraints_json(a, pairs),
         "exact": exact.as_ref().map(|e| exact_json(a, e, sites)),
+        "check": selected.check.as_ref().map(DesignCheck::json),
     });
     write_json(path, &v)
 }
 
 pub(super) fn constraints_json(a: &SelectArgs, pairs: usize) -> Value {
     json!({
-        "min_separation_deg": a.min_separation_deg,
+        "min_separation_deg": (a.min_separation_deg > 0.0).then_some(a.min_separation_deg),
         "close_pairs": pairs,
         "region_deg": a.region,
     })
@@ -364,12 +380,32 @@ pub(super) fn write_selected(
     let Some(path) = &a.write_scenario else {
         return Ok(());
     };
+    let (_, text) = selected_scenario(a, cfg, sites, criterion, answer, bound, exact)?;
+    write_text(path, &text)?;
+    println!("wrote {}", path.display());
+    Ok(())
+}
+
+/// The scenario with the answer's sites as its beacons (configuration and file text).
+fn selected_scenario(
+    a: &SelectArgs,
+    cfg: &ScenarioConfig,
+    sites: &[Site],
+    criterion: SelectionCriterion,
+    answer: &Selection,
+    bound: f64,
+    exact: Option<&BranchBoundReport>,
+) -> Result<(ScenarioConfig, String)> {
     let noise = template_noise(cfg, false)?;
     let chosen: Vec<Site> = answer.indices.iter().map(|&i| sites[i]).collect();
-    let (_, text) = output::with_beacons(
+    let stem = a
+        .write_scenario
+        .as_deref()
+        .map_or_else(|| "selected".to_string(), file_stem);
+    Ok(output::with_beacons(
         cfg,
         output::surface_beacons(&chosen, &noise),
-        &file_stem(path),
+        &stem,
         &format!(
             "Sites chosen by `entrynav optimize select` ({}, k = {}, grid {} deg{}): value {:.6}, certified gap {:.3e}.",
             criterion.name(),
@@ -382,8 +418,5 @@ pub(super) fn write_selected(
             answer.value,
             (bound - answer.value).max(0.0)
         ),
-    )?;
-    write_text(path, &text)?;
-    println!("wrote {}", path.display());
-    Ok(())
+    )?)
 }

@@ -3,7 +3,7 @@
 use anyhow::{Context, Result};
 use clap::Args;
 use entrynav::scenario::Scenario;
-use entrynav::sim::{TruthRun, simulate_truth};
+use entrynav::sim::{Peaks, TruthRun, simulate_truth_with_peaks};
 use entrynav_loader as load;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -47,7 +47,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
             model: scenario.truth_model.clone(),
         }
     };
-    let run = simulate_truth(&scenario, &draw, &mut rng)?;
+    let (run, peaks) = simulate_truth_with_peaks(&scenario, &draw, &mut rng)?;
     if let Some(path) = args.out.as_deref().filter(|p| crate::exit::is_stdout(p)) {
         let mut w = crate::csv_file::writer(std::io::stdout().lock());
         write_csv(&mut w, &scenario, &run)
@@ -58,7 +58,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     if let Some(path) = &args.out {
         crate::csv_file::write(path, |w| Ok(write_csv(w, &scenario, &run)?))?;
     }
-    print_summary(&scenario, &run, args);
+    print_summary(&scenario, &run, &peaks, args);
     Ok(())
 }
 
@@ -127,23 +127,16 @@ fn write_csv<W: Write>(
     Ok(())
 }
 
-fn print_summary(scenario: &Scenario, run: &TruthRun, args: &SimulateArgs) {
+/// The summary; the peak loads are over every truth integration step (`timing.truth_step_s`),
+/// not only the sampled rows of the CSV.
+fn print_summary(scenario: &Scenario, run: &TruthRun, peaks: &Peaks, args: &SimulateArgs) {
     let last = run
         .samples
         .last()
         .expect("a run has at least its initial sample");
-    let peak = |f: &dyn Fn(&entrynav::sim::TruthSample) -> f64| {
-        run.samples
-            .iter()
-            .map(|s| (f(s), s.t))
-            .fold(
-                (f64::NEG_INFINITY, 0.0),
-                |a, b| if b.0 > a.0 { b } else { a },
-            )
-    };
-    let (acc, t_acc) = peak(&|s| s.aero_accel);
-    let (q, t_q) = peak(&|s| s.dynamic_pressure);
-    let (h, t_h) = peak(&|s| s.heating);
+    let (acc, t_acc) = (peaks.aero_accel.value, peaks.aero_accel.t);
+    let (q, t_q) = (peaks.dynamic_pressure.value, peaks.dynamic_pressure.t);
+    let (h, t_h) = (peaks.heating.value, peaks.heating.t);
     println!(
         "scenario        {} ({})",
         scenario.config.name,

@@ -47,7 +47,8 @@ pub use monte_carlo::{
 pub use pcrlb::NoBound;
 pub use pcrlb_sums::{PcrlbReport, pcrlb_study};
 pub use record::{
-    RecordedRun, RunError, TruthRun, channel_names, is_radio, record_run, simulate_truth,
+    Peak, Peaks, RecordedRun, RunError, TruthRun, channel_names, is_radio, record_run,
+    simulate_truth, simulate_truth_with_peaks,
 };
 pub use report::{Ellipse, FilterReport, Series};
 pub use shard::{Shard, ShardResult, merge_shards};

@@ -22,6 +22,81 @@ pub struct TruthRun {
     pub stop: StopReason,
 }
 
+/// The largest value over a run of one load and when it happened.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Peak {
+    /// The value (units of the sample's field).
+    pub value: f64,
+    /// Its time \[s\].
+    pub t: f64,
+}
+
+/// Peak loads over *every truth integration step* of a run (not only the measurement epochs,
+/// which may be seconds apart or absent): aerodynamic deceleration \[m/s²\], dynamic pressure
+/// \[Pa\] and heating rate \[W/m²\] of the samples ([`TruthSample`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Peaks {
+    /// Aerodynamic (sensed) deceleration.
+    pub aero_accel: Peak,
+    /// Dynamic pressure.
+    pub dynamic_pressure: Peak,
+    /// Stagnation-point heating rate.
+    pub heating: Peak,
+}
+
+impl Peaks {
+    fn start(s: &TruthSample) -> Peaks {
+        let at = |value: f64| Peak { value, t: s.t };
+        Peaks {
+            aero_accel: at(s.aero_accel),
+            dynamic_pressure: at(s.dynamic_pressure),
+            heating: at(s.heating),
+        }
+    }
+
+    fn see(&mut self, s: &TruthSample) {
+        for (p, v) in [
+            (&mut self.aero_accel, s.aero_accel),
+            (&mut self.dynamic_pressure, s.dynamic_pressure),
+            (&mut self.heating, s.heating),
+        ] {
+            if v > p.value {
+                *p = Peak { value: v, t: s.t };
+            }
+        }
+    }
+}
+
+/// [`simulate_truth`] and the run's [`Peaks`] over every truth step (costs one truth sample per
+/// integration step, which the Monte Carlo does not pay).
+pub fn simulate_truth_with_peaks<R: Rng>(
+    scenario: &Scenario,
+    draw: &TruthDraw,
+    rng: &mut R,
+) -> Result<(TruthRun, Peaks), SimError> {
+    let mut truth = TruthSensors::with_draw(scenario, draw.clone(), rng);
+    let first = truth.outputs().sample.clone();
+    let mut peaks = Peaks::start(&first);
+    let mut samples = vec![first];
+    let mut epochs = Vec::new();
+    let ended_on_epoch = truth.run_to_end_seeing_steps(
+        |e, s| {
+            epochs.push(e.clone());
+            samples.push(s.clone());
+        },
+        Some(|s: &TruthSample| peaks.see(s)),
+    )?;
+    if !ended_on_epoch {
+        samples.push(truth.outputs().sample.clone());
+    }
+    let run = TruthRun {
+        samples,
+        epochs,
+        stop: truth.stop().unwrap_or(StopReason::Duration),
+    };
+    Ok((run, peaks))
+}
+
 impl TruthRun {
     /// Every epoch with the truth sample at its time, in order.
     pub fn epochs_with_truth(&self) -> impl Iterator<Item = (&MeasurementEpoch, &TruthSample)> {

@@ -177,17 +177,23 @@ impl<R: Rng, S: Deref<Target = Scenario>> TruthSensors<R, S> {
         bank: f64,
         beacon_available: &[bool],
         on_epoch: &mut impl FnMut(&MeasurementEpoch, &TruthSample),
+        every_step: Option<&mut dyn FnMut(&TruthSample)>,
     ) -> Result<Option<Option<TruthSample>>, SimError> {
         let model = &self.draw.model;
         let Some(step) = self.propagator.step(model, bank)? else {
             return Ok(None);
         };
         let k = step.k;
-        if !self.periods.iter().any(|p| k % p == 0) {
-            return Ok(Some(None));
-        }
+        let due = self.periods.iter().any(|p| k % p == 0);
         let sc = &self.scenario;
-        let s = truth_sample(sc, &self.draw, step.t, &step.x, bank);
+        let sample = (due || every_step.is_some())
+            .then(|| truth_sample(sc, &self.draw, step.t, &step.x, bank));
+        if let (Some(f), Some(s)) = (every_step, &sample) {
+            f(s);
+        }
+        let Some(s) = sample.filter(|_| due) else {
+            return Ok(Some(None));
+        };
         let periods = &self.periods;
         let truth = TruthAtEpoch {
             model,
@@ -230,7 +236,7 @@ impl<R: Rng, S: Deref<Target = Scenario>> TruthSensors<R, S> {
         self.last_epoch = None;
         let mut last_sample = None;
         while self.propagator.steps() < k_end {
-            let Some(sample) = self.truth_step(bank, beacon_available, &mut on_epoch)? else {
+            let Some(sample) = self.truth_step(bank, beacon_available, &mut on_epoch, None)? else {
                 break;
             };
             report.truth_steps += 1;
@@ -262,12 +268,29 @@ impl<R: Rng, S: Deref<Target = Scenario>> TruthSensors<R, S> {
     /// returns whether the last integration step produced an epoch.
     pub fn run_to_end(
         &mut self,
+        on_epoch: impl FnMut(&MeasurementEpoch, &TruthSample),
+    ) -> Result<bool, SimError> {
+        self.run_to_end_seeing_steps(on_epoch, None::<fn(&TruthSample)>)
+    }
+
+    /// [`TruthSensors::run_to_end`], handing the truth sample of every integration step (not
+    /// only of the epochs) to `every_step` when given (e.g. for the peak loads of `simulate`).
+    pub fn run_to_end_seeing_steps(
+        &mut self,
         mut on_epoch: impl FnMut(&MeasurementEpoch, &TruthSample),
+        mut every_step: Option<impl FnMut(&TruthSample)>,
     ) -> Result<bool, SimError> {
         let bank = self.scenario.truth_bank;
         let mut last_sample = None;
         let mut stepped = false;
-        while let Some(sample) = self.truth_step(bank, &[], &mut on_epoch)? {
+        while let Some(sample) = self.truth_step(
+            bank,
+            &[],
+            &mut on_epoch,
+            every_step
+                .as_mut()
+                .map(|f| f as &mut dyn FnMut(&TruthSample)),
+        )? {
             stepped = true;
             last_sample = sample;
         }

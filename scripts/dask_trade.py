@@ -83,18 +83,44 @@ MASK64 = (1 << 64) - 1
 # CLI mode
 
 
+def _die_with_parent(parent):
+    """preexec_fn of a shard's `entrynav`: on Linux, ask the kernel to SIGKILL it when the thread
+    that started it dies (PR_SET_PDEATHSIG), so a worker that is killed (OOM, `kill -9`, a lost
+    nanny) leaves no orphan computing on. The Dask task thread that starts the child waits for it
+    (communicate), so it outlives the child in every normal run; a child whose parent died before
+    the request took effect exits at once."""
+    try:
+        import ctypes
+        import signal
+        libc = ctypes.CDLL("libc.so.6", use_errno=True)
+        pr_set_pdeathsig = 1
+        libc.prctl(pr_set_pdeathsig, int(signal.SIGKILL), 0, 0, 0)
+    except OSError:  # not Linux/glibc: no such guard
+        return
+    if os.getppid() != parent:
+        os._exit(1)
+
+
 def run_shard(entrynav, scenario, filters, runs, seed, index, count, sets):
-    """Dask task: run one shard with the CLI and return the shard file's text."""
-    with tempfile.TemporaryDirectory() as tmp:
-        out = Path(tmp) / f"shard{index}.json"
-        cmd = [entrynav, "trade", "--scenario", scenario, "--filters", filters, "--runs", str(runs),
-               "--seed", str(seed), "--shard", f"{index}/{count}", "--json", str(out), "--quiet"]
-        for s in sets:
-            cmd += ["--set", s]
-        res = subprocess.run(cmd, capture_output=True, text=True, timeout=24 * 3600)
-        if res.returncode != 0:
-            raise RuntimeError(f"shard {index}/{count} failed: {res.stderr.strip()}")
-        return out.read_text()
+    """Dask task: run one shard with the CLI and return the shard file's text.
+
+    The shard goes to the child's standard output (`--json -`), not to a temporary file, so a
+    killed worker leaves no file behind; the child dies with the task (see _die_with_parent)."""
+    cmd = [entrynav, "trade", "--scenario", scenario, "--filters", filters, "--runs", str(runs),
+           "--seed", str(seed), "--shard", f"{index}/{count}", "--json", "-", "--quiet"]
+    for s in sets:
+        cmd += ["--set", s]
+    parent = os.getpid()
+    with subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                          preexec_fn=lambda: _die_with_parent(parent)) as child:
+        try:
+            out, err = child.communicate(timeout=24 * 3600)
+        except BaseException:
+            child.kill()
+            raise
+    if child.returncode != 0:
+        raise RuntimeError(f"shard {index}/{count} failed: {err.strip()}")
+    return out
 
 
 def cli_study(a, client):

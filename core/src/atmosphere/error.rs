@@ -138,6 +138,25 @@ pub enum AtmosphereError {
         /// The density read.
         value: f64,
     },
+    /// A density outside the physical envelope [`super::parse::DENSITY_ENVELOPE_KGM3`].
+    #[error(
+        "{source_name}: line {line}: column {column}: density {value} kg/m³ is outside the \
+         physical envelope [{min:e}, {max}] kg/m³ (is the column a density in kg/m³?)"
+    )]
+    DensityOutOfRange {
+        /// Source (file) name.
+        source_name: String,
+        /// Line of the row.
+        line: usize,
+        /// Header name of the density column.
+        column: String,
+        /// The density read.
+        value: f64,
+        /// Smallest accepted density.
+        min: f64,
+        /// Largest accepted density.
+        max: f64,
+    },
     /// Two rows repeat an altitude or break the monotonic order of the altitudes.
     #[error(
         "{source_name}: lines {first_line} and {second_line}: altitude {second_value} after {first_value} {problem}"

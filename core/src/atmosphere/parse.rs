@@ -66,6 +66,14 @@ impl TableFormat {
     }
 }
 
+/// The densities a table may hold \[kg/m³\]. Above: 1 kg/m³ is 50 times Mars's densest surface
+/// air (≈ 0.02 kg/m³) and close to Earth's sea level; a value above it is a unit mistake or a
+/// wrong column (a `Radius` column read as density holds ≈ 3396) and would decelerate the entry
+/// at hundreds of g (1e3 kg/m³ at 50 km: 528 g). Below: 1e-20 kg/m³ is far thinner than Mars's
+/// exosphere at 500 km (≈ 1e-14); smaller (subnormal) values lose precision in ln ρ and the
+/// spline and made the truth non-finite.
+pub const DENSITY_ENVELOPE_KGM3: [f64; 2] = [1e-20, 1.0];
+
 /// One data row as read: the line, height (m, as given, before any datum shift), density and
 /// planet-centred radius (m) when the table has a radius column.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -239,6 +247,17 @@ pub fn read_table(
                 line,
                 column: d_name.clone(),
                 value: density,
+            });
+        }
+        let [min, max] = DENSITY_ENVELOPE_KGM3;
+        if !(min..=max).contains(&density) {
+            return Err(AtmosphereError::DensityOutOfRange {
+                source_name: src(),
+                line,
+                column: d_name.clone(),
+                value: density,
+                min,
+                max,
             });
         }
         let radius_m = match (ri, &r_name) {

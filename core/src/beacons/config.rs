@@ -35,6 +35,11 @@ pub enum BeaconConfig {
     Orbiter(OrbiterBeaconConfig),
 }
 
+/// Largest accepted 1σ range noise \[m\] (100 km).
+pub const MAX_RANGE_SIGMA_M: f64 = 1e5;
+/// Largest accepted 1σ range-rate noise [m/s] (1 km/s).
+pub const MAX_RANGE_RATE_SIGMA_MPS: f64 = 1e3;
+
 /// A planet-fixed beacon: `position_km`, or all of `lat_deg`, `lon_deg`, `altitude_km`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
@@ -210,17 +215,26 @@ impl BeaconConfig {
                 "a non-empty name",
             ));
         }
+        // Physical envelopes: a 1σ above MAX_RANGE_SIGMA_M (MAX_RANGE_RATE_SIGMA_MPS) carries no
+        // information about an entry (beacon ranges are at most a few thousand km, entry speeds
+        // below 8 km/s) and overflows the squared noise of the filters (1e308 m made `simulate`
+        // write ±inf).
         if let Some(s) = self.range_sigma_m() {
             check(
                 &format!("{p}.range_sigma_m"),
                 s,
-                s > 0.0,
-                "finite and > 0 m",
+                s > 0.0 && s <= MAX_RANGE_SIGMA_M,
+                &format!("> 0 and <= {MAX_RANGE_SIGMA_M} m"),
             )?;
         }
         if let Some(s) = self.range_rate_sigma_mps() {
             let f = format!("{p}.range_rate_sigma_mps");
-            check(&f, s, s > 0.0, "finite and > 0 m/s")?;
+            check(
+                &f,
+                s,
+                s > 0.0 && s <= MAX_RANGE_RATE_SIGMA_MPS,
+                &format!("> 0 and <= {MAX_RANGE_RATE_SIGMA_MPS} m/s"),
+            )?;
         }
         for (k, &[t0, t1]) in self.outages().iter().enumerate() {
             let f = format!("{p}.outages[{k}]");

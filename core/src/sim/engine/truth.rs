@@ -18,12 +18,20 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum SimError {
     /// The state became NaN or infinite.
-    #[error("truth state became non-finite at t = {t_s} s (state {state:?})")]
+    #[error(
+        "truth state became non-finite at t = {t_s} s (state {state:?}); one step earlier the \
+         vehicle was at altitude {altitude_m:.1} m in a density of {density_kgm3:e} kg/m³: check \
+         the truth atmosphere (its table file and rows there) and the vehicle (truth.vehicle)"
+    )]
     NonFinite {
         /// Time of failure \[s\].
         t_s: f64,
         /// Offending state.
         state: [f64; 6],
+        /// Altitude of the last finite state \[m\].
+        altitude_m: f64,
+        /// The truth atmosphere's density there \[kg/m³\] (the usual culprit).
+        density_kgm3: f64,
     },
 }
 
@@ -207,6 +215,8 @@ impl TruthPropagator {
             return Err(SimError::NonFinite {
                 t_s: t,
                 state: [x[0], x[1], x[2], x[3], x[4], x[5]],
+                altitude_m: model.altitude(&self.x),
+                density_kgm3: model.density(&self.x),
             });
         }
         self.x = x;

@@ -1,0 +1,96 @@
+//! No absurd input accepted in silence (issue "Nothing lost, nothing silent"): measurement noise
+//! and table densities outside their physical envelopes are refused at load, naming the field,
+//! or the file, line and column; a table that would have made the truth non-finite (truncated
+//! mid-number, subnormal densities, a radius column read as density) is refused the same way.
+
+mod common;
+
+use common::{entrynav, scratch_dir};
+use std::path::Path;
+
+const AVERAGED: &str = include_str!("../../core/tests/data/gram/averaged.txt");
+
+/// `atmosphere inspect` of `text` written to `dir/name`, with extra arguments.
+fn inspect(dir: &Path, name: &str, text: &str, extra: &[&str]) -> (i32, String) {
+    let f = dir.join(name);
+    std::fs::write(&f, text).unwrap();
+    let mut args = vec!["atmosphere", "inspect", f.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    let (code, _, err) = entrynav(&args);
+    (code, err)
+}
+
+/// The averaged Mars-GRAM table with data line `line` (1-based) edited by `edit`.
+fn edited(line: usize, edit: impl Fn(&str) -> String) -> String {
+    AVERAGED
+        .lines()
+        .enumerate()
+        .map(|(i, l)| {
+            if i + 1 == line {
+                edit(l)
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn table_densities_outside_the_physical_envelope_are_refused_with_file_and_line() {
+    let d = scratch_dir("envelopes", "tables");
+    let (code, err) = inspect(&d, "ok.txt", AVERAGED, &[]);
+    assert_eq!(code, 0, "{err}");
+    // 1.0E+03 kg/m3 on one row (528 g at 50 km) and 1e300.
+    for (name, value) in [("big.txt", "1.000E+03"), ("huge.txt", "1.000E+300")] {
+        let text = edited(4, |l| l.replacen("6.689E-03", value, 2));
+        let (code, err) = inspect(&d, name, &text, &[]);
+        assert_eq!(code, 2, "{name}: {err}");
+        assert!(
+            err.contains(name) && err.contains("line 4") && err.contains("DENSTOT"),
+            "{err}"
+        );
+        assert!(err.contains("physical envelope"), "{err}");
+    }
+    // A subnormal density.
+    let text = edited(4, |l| l.replacen("6.689E-03", "1.0E-310", 2));
+    let (code, err) = inspect(&d, "subnormal.txt", &text, &[]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("line 4") && err.contains("physical envelope"),
+        "{err}"
+    );
+    // The radius column read as density.
+    let (code, err) = inspect(
+        &d,
+        "radius.txt",
+        AVERAGED,
+        &["--atmosphere-density-column", "Radius"],
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("radius.txt") && err.contains("Radius") && err.contains("line 2"),
+        "{err}"
+    );
+    // Truncated in the middle of a number: the cut number is malformed or out of the envelope.
+    let cut = AVERAGED.find("1.166E-02").unwrap() + 3;
+    let (code, err) = inspect(&d, "cut.txt", &AVERAGED[..cut], &[]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("cut.txt") && err.contains("line 3"), "{err}");
+}
+
+#[test]
+fn beacon_noise_outside_its_envelope_is_refused_naming_the_field() {
+    let d = scratch_dir("envelopes", "noise");
+    let text = entrynav::scenario::builtin_toml("ground-beacons-3").unwrap();
+    assert!(text.contains("range_sigma_m = 100.0"));
+    let text = text.replacen("range_sigma_m = 100.0", "range_sigma_m = 1e308", 1);
+    let f = d.join("s.toml");
+    std::fs::write(&f, text).unwrap();
+    let (code, _, err) = entrynav(&["simulate", "--scenario", f.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("beacons[0].range_sigma_m") && err.contains("<= 100000 m"),
+        "{err}"
+    );
+}

@@ -22,6 +22,9 @@ echo "== the shipped density network is reproduced bit for bit by retraining (se
 # (--workspace keeps the feature set of the run above, so nothing is recompiled)
 cargo test --workspace --release --test density_adaptation -- --ignored
 
+echo "== input fuzzer, long mode: 2000 mutated scenarios and atmosphere tables (no panic, hang or silent refusal)"
+ENTRYNAV_FUZZ_VARIANTS=2000 cargo test --workspace --release --test fuzz_inputs
+
 echo "== benchmarks compile"
 cargo bench --workspace --no-run
 

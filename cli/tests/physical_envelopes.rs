@@ -8,7 +8,15 @@ mod common;
 use common::{entrynav, scratch_dir};
 use std::path::Path;
 
-const AVERAGED: &str = include_str!("../../core/tests/data/gram/averaged.txt");
+/// The averaged Mars-GRAM table of the core's tests (read at run time: a crate embeds only its
+/// own files).
+fn averaged() -> String {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../core/tests/data/gram/averaged.txt"
+    );
+    std::fs::read_to_string(path).expect("core/tests/data/gram/averaged.txt")
+}
 
 /// `atmosphere inspect` of `text` written to `dir/name`, with extra arguments.
 fn inspect(dir: &Path, name: &str, text: &str, extra: &[&str]) -> (i32, String) {
@@ -22,7 +30,7 @@ fn inspect(dir: &Path, name: &str, text: &str, extra: &[&str]) -> (i32, String) 
 
 /// The averaged Mars-GRAM table with data line `line` (1-based) edited by `edit`.
 fn edited(line: usize, edit: impl Fn(&str) -> String) -> String {
-    AVERAGED
+    averaged()
         .lines()
         .enumerate()
         .map(|(i, l)| {
@@ -39,7 +47,8 @@ fn edited(line: usize, edit: impl Fn(&str) -> String) -> String {
 #[test]
 fn table_densities_outside_the_physical_envelope_are_refused_with_file_and_line() {
     let d = scratch_dir("envelopes", "tables");
-    let (code, err) = inspect(&d, "ok.txt", AVERAGED, &[]);
+    let table = averaged();
+    let (code, err) = inspect(&d, "ok.txt", &table, &[]);
     assert_eq!(code, 0, "{err}");
     // 1.0E+03 kg/m3 on one row (528 g at 50 km) and 1e300.
     for (name, value) in [("big.txt", "1.000E+03"), ("huge.txt", "1.000E+300")] {
@@ -64,7 +73,7 @@ fn table_densities_outside_the_physical_envelope_are_refused_with_file_and_line(
     let (code, err) = inspect(
         &d,
         "radius.txt",
-        AVERAGED,
+        &table,
         &["--atmosphere-density-column", "Radius"],
     );
     assert_eq!(code, 2, "{err}");
@@ -73,8 +82,8 @@ fn table_densities_outside_the_physical_envelope_are_refused_with_file_and_line(
         "{err}"
     );
     // Truncated in the middle of a number: the cut number is malformed or out of the envelope.
-    let cut = AVERAGED.find("1.166E-02").unwrap() + 3;
-    let (code, err) = inspect(&d, "cut.txt", &AVERAGED[..cut], &[]);
+    let cut = table.find("1.166E-02").unwrap() + 3;
+    let (code, err) = inspect(&d, "cut.txt", &table[..cut], &[]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("cut.txt") && err.contains("line 3"), "{err}");
 }

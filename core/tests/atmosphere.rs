@@ -646,10 +646,16 @@ fn config_builds_every_model() {
     let m = t.build(&planet, &load).unwrap();
     assert!(rel(m.density(60e3_f64), 2.567e-5) < 1e-14);
 
+    // The named column is the one read: a temperature column as density is picked, and then
+    // refused by the physical density envelope, naming the file, line and column.
     let t = atm("model = 'table'\nfile = 'p.csv'\nformat = 'csv'\nheight_column = 'height'\ndensity_column = 'temp'\nheight_unit = 'km'").unwrap();
     let load = |_: &str| Ok(CSV_FIXTURE.to_string());
-    let m = t.build(&planet, &load).unwrap();
-    assert!(rel(m.density(0.0_f64), 195.0) < 1e-14);
+    let err = t.build(&planet, &load).unwrap_err().to_string();
+    assert!(
+        err.contains("p.csv") && err.contains("Temp(K)") && err.contains("195"),
+        "{err}"
+    );
+    assert!(err.contains("physical envelope"), "{err}");
 }
 
 #[test]

@@ -113,6 +113,7 @@ def run_entrynav(exe: Path, scenario: str, seed: int, out: Path):
     traj, js = out / f"traj-{seed}.csv", out / f"ours-{seed}.json"
     t0 = time.perf_counter()
     subprocess.run([str(exe), "optimize", "orbiters", "--scenario", scenario, "--seed", str(seed),
+                    "--objective", "det-n3", "--no-check",
                     "--quiet", "--json", str(js), "--export-trajectory", str(traj)],
                    check=True, stdout=subprocess.DEVNULL)
     wall = time.perf_counter() - t0

@@ -168,6 +168,16 @@ fn select_and_orbiters_check_their_answers_too() {
     ]);
     assert_eq!(code, 0, "{err}");
     let v = read_json(&j);
+    assert_eq!(v["objective"], "nav");
+    let nav = &v["navigation"];
+    assert!(
+        nav["time_avg_pos_m"].as_f64() < nav["input_time_avg_pos_m"].as_f64(),
+        "{nav}"
+    );
+    assert!(
+        nav["final_pos_m"].as_f64() < nav["input_final_pos_m"].as_f64(),
+        "{nav}"
+    );
     assert_eq!(v["check"]["verdict"], "not worse", "{}", v["check"]);
     assert_eq!(v["check"]["runs"], 200);
 }

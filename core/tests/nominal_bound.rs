@@ -171,3 +171,47 @@ fn an_elevation_mask_outside_0_to_90_deg_is_refused_naming_the_field() {
         );
     }
 }
+
+#[test]
+fn moving_sites_equal_the_trade_recursion_for_the_orbiters() {
+    // orbiters-3: the scenario's three orbiters as moving sites, against the trade's recursion
+    // on the nominal truth (line of sight by eq. 58-60 in both).
+    let s = scenario("orbiters-3");
+    let draw = s.nominal_truth();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+    let truth = simulate_truth(&s, &draw, &mut rng).unwrap();
+    let rec = RecordedRun {
+        run: 0,
+        draw,
+        truth,
+        x0: Vec::new(),
+    };
+    let mut sums = BoundSums::new(&s);
+    sums.add_runs(&[bound_run(&s, &rec)]);
+    let trade = sums.report(&state_names(&s));
+    let nominal = NominalBound::new(&s).unwrap();
+    let times = nominal.epoch_times();
+    let positions: Vec<Vec<[f64; 3]>> = s
+        .beacons
+        .iter()
+        .map(|b| times.iter().map(|t| b.position_at(*t)).collect())
+        .collect();
+    let sigma: Vec<f64> = s
+        .config
+        .beacons
+        .iter()
+        .map(|b| b.range_sigma_m().unwrap())
+        .collect();
+    let got = nominal.moving_sites(&sigma, &positions).unwrap();
+    let want = &trade.series["pos_m"];
+    for (t, b) in trade.times_s.iter().zip(want) {
+        let k = got.times_s.iter().position(|x| x == t).unwrap();
+        assert!(
+            (got.pos_m[k] - b).abs() <= 1e-6 * b,
+            "t = {t}: {} vs {b}",
+            got.pos_m[k]
+        );
+    }
+    // A wrong number of positions is refused.
+    assert!(nominal.moving_sites(&sigma, &positions[..2]).is_err());
+}

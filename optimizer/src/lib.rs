@@ -39,6 +39,7 @@ pub mod free;
 pub mod ground;
 pub mod orbiters;
 pub mod orbiters_bound;
+pub mod orbiters_nav;
 pub mod output;
 pub mod search;
 pub mod select;
@@ -48,6 +49,7 @@ pub mod tune;
 pub use ground::{GroundObjective, GroundProblem, GroundSolution, Site};
 pub use orbiters::{OrbitElements, OrbiterObjective, OrbiterProblem, OrbiterSolution};
 pub use orbiters_bound::{OrbiterBoundProblem, OrbiterBoundSolution};
+pub use orbiters_nav::{BoundFigure, OrbiterNavProblem, OrbiterNavSolution};
 pub use search::{SearchOptions, SearchResult, minimize, polish_from};
 pub use select::{
     AtMost, BranchBoundOptions, BranchBoundReport, ProofStatus, Selection, SelectionCriterion,

@@ -202,3 +202,47 @@ fn pcrlb_objective_lowers_the_final_position_bound_below_the_geometric_optimum()
         "reported bound is the bound of the reported elements"
     );
 }
+
+#[test]
+fn the_nominal_bound_objective_equals_the_core_bound_and_improves_on_table_6() {
+    use entrynav_optimizer::{BoundFigure, OrbiterNavProblem};
+    let s = Scenario::build(
+        ScenarioConfig::builtin("orbiters-3").unwrap(),
+        &entrynav::files::no_files,
+    )
+    .unwrap();
+    let geometry = OrbiterProblem::new(trajectory(), 3, 725e3, None).unwrap();
+    let p = OrbiterNavProblem::new(geometry, &s, 50.0, BoundFigure::Navigation)
+        .unwrap()
+        .with_reference(&table6())
+        .unwrap();
+    // The input is the unit of the objective, and the problem's circular orbits reproduce the
+    // scenario's own orbiters in the core's bound.
+    assert!((p.value(&table6()).unwrap() - 1.0).abs() < 1e-12);
+    let bound = entrynav::sim::nominal_bound::NominalBound::new(&s).unwrap();
+    let times = bound.epoch_times();
+    let positions: Vec<Vec<[f64; 3]>> = s
+        .beacons
+        .iter()
+        .map(|b| times.iter().map(|t| b.position_at(*t)).collect())
+        .collect();
+    let core = bound.moving_sites(&[50.0; 3], &positions).unwrap();
+    let mine = p.series(&table6()).unwrap();
+    for (a, b) in mine.pos_m.iter().zip(&core.pos_m) {
+        assert!((a - b).abs() <= 1e-6 * b, "{a} vs {b}");
+    }
+    let opts = SearchOptions {
+        seed: 1,
+        starts: 2,
+        particles: 16,
+        iterations: 20,
+        polish_iterations: 100,
+        polish_step: 0.02,
+    };
+    let sol = p.optimize(&opts, &|_, _| {}).unwrap();
+    assert!(
+        sol.value < 0.97,
+        "nav {} not below the input's 1",
+        sol.value
+    );
+}

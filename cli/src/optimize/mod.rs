@@ -122,8 +122,10 @@ pub struct OrbitersArgs {
     /// orbiter).
     #[arg(long, allow_negative_numbers = true)]
     altitude_km: Option<f64>,
-    /// Objective: det-n3 (seed 002 eq. 57, 3 orbiters) or logdet (any n >= 3); default det-n3
-    /// for 3 orbiters, else logdet.
+    /// Objective: nav (both nominal position bounds relative to the scenario's own orbiters;
+    /// the default, pcrlb-avg when the scenario has no comparable orbiters), pcrlb-avg,
+    /// pcrlb-final, or seed 002's det-n3 (eq. 57, 3 orbiters) and logdet (any n >= 3); pcrlb
+    /// polishes the geometric optimum on Monte Carlo run 0's final bound.
     #[arg(long, value_enum)]
     objective: Option<OrbiterObjectiveArg>,
     /// Seconds between trajectory samples of the time integral (trapezoid rule).

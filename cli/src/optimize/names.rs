@@ -15,18 +15,41 @@ pub(super) enum OrbiterObjectiveArg {
     /// The integral of ln det of the FIM.
     #[value(name = "logdet")]
     Logdet,
-    /// The final position PCRLB (minimised; polished from the geometric optimum).
+    /// The final position PCRLB of Monte Carlo run 0 (minimised; polished from the geometric
+    /// optimum).
     #[value(name = "pcrlb")]
     Pcrlb,
+    /// The time-averaged nominal position bound (minimised, full global search).
+    #[value(name = "pcrlb-avg")]
+    PcrlbAvg,
+    /// The final nominal position bound (minimised, full global search).
+    #[value(name = "pcrlb-final")]
+    PcrlbFinal,
+    /// Both nominal position bounds relative to the scenario's own orbiters,
+    /// 1/2 (avg/avg_in + final/final_in), minimised.
+    #[value(name = "nav")]
+    Nav,
 }
 
 impl OrbiterObjectiveArg {
-    /// The geometric objective this names (`None` for `pcrlb`, which polishes the default one).
+    /// The geometric objective this names (`None` for the bound objectives: `pcrlb` polishes
+    /// the default one, the nominal-bound ones use it for the search box only).
     pub(super) fn geometric(self) -> Option<OrbiterObjective> {
         match self {
             OrbiterObjectiveArg::DetN3 => Some(OrbiterObjective::DetN3),
             OrbiterObjectiveArg::Logdet => Some(OrbiterObjective::LogDet),
-            OrbiterObjectiveArg::Pcrlb => None,
+            _ => None,
+        }
+    }
+
+    /// The nominal-bound figure this names, if any.
+    pub(super) fn bound_figure(self) -> Option<entrynav_optimizer::BoundFigure> {
+        use entrynav_optimizer::BoundFigure;
+        match self {
+            OrbiterObjectiveArg::PcrlbAvg => Some(BoundFigure::Average),
+            OrbiterObjectiveArg::PcrlbFinal => Some(BoundFigure::Final),
+            OrbiterObjectiveArg::Nav => Some(BoundFigure::Navigation),
+            _ => None,
         }
     }
 }

@@ -156,6 +156,21 @@ pub(super) fn write_orbiter_json(
         "reference": answer.reference.as_ref().map(|(el, r)| reference_json(cfg, el, r)),
         "check": check.map(super::design_check::DesignCheck::json),
     });
+    if let Some(n) = &answer.nav {
+        v["objective"] = json!(n.objective);
+        v["geometric_objective"] = json!(problem.objective().name());
+        v["navigation"] = json!({
+            "objective": n.objective,
+            "value": n.solution.value,
+            "definition": "nominal-trajectory position PCRLB [m] (entrynav::sim::nominal_bound); nav = 1/2 (avg/avg_input + final/final_input)",
+            "time_avg_pos_m": n.solution.series.time_avg(),
+            "final_pos_m": n.solution.series.final_value(),
+            "input_time_avg_pos_m": n.own.map(|o| o.0),
+            "input_final_pos_m": n.own.map(|o| o.1),
+            "times_s": n.solution.series.times_s,
+            "pos_m": n.solution.series.pos_m,
+        });
+    }
     if let Some(b) = &answer.bound {
         v["pcrlb"] = json!({
             "objective": "final position PCRLB [m] (run 0 of seed 1), minimised by a Nelder-Mead polish from the geometric optimum",

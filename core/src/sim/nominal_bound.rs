@@ -19,12 +19,14 @@
 //! (a few per cent on the built-ins). Range epochs are those of the range sensor; a beacon
 //! contributes where it sees the vehicle above its horizon (seed 002 eq. 52) and its elevation
 //! mask, the engine's rule.
-//! Only range beacons on the surface are placed here; range-rate channels are refused.
+//! Range beacons are placed on the surface ([`NominalBound::ground_sites`]) or moving, e.g. on
+//! orbits ([`NominalBound::moving_sites`], line of sight by eq. 58–60); range-rate channels are
+//! refused.
 
 use super::engine::SimError;
 use super::pcrlb::{NoBound, TruthStates, bound_model, information, transition};
 use super::record::{RecordedRun, simulate_truth};
-use crate::beacons::ground_visibility_margin;
+use crate::beacons::{ground_visibility_margin, orbiter_visibility_margin};
 use crate::frames::{rotate_z, spherical_to_position};
 use crate::scenario::Scenario;
 use crate::sensors::Channel;
@@ -125,6 +127,77 @@ pub struct NominalBound {
     n: usize,
     p0_diag: Vec<f64>,
     epochs: Vec<Epoch>,
+    /// Planet rotation rate of the truth \[rad/s\] (planet-fixed ↔ inertial).
+    omega: f64,
+    /// Reference radius \[m\] (orbiter line of sight, seed 002 eq. 58–60).
+    planet_radius: f64,
+}
+
+/// Range sites for the recursion: how many, their noise, and the unit vector site → vehicle
+/// (planet-fixed) at an epoch where the site sees the vehicle.
+trait Sites {
+    fn len(&self) -> usize;
+    fn sigma(&self, i: usize) -> f64;
+    fn line_of_sight(&self, i: usize, k: usize, e: &Epoch, b: &NominalBound) -> Option<[f64; 3]>;
+}
+
+fn unit(d: [f64; 3]) -> Option<[f64; 3]> {
+    let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    (len > 0.0).then(|| [d[0] / len, d[1] / len, d[2] / len])
+}
+
+impl Sites for [RangeSite] {
+    fn len(&self) -> usize {
+        <[RangeSite]>::len(self)
+    }
+
+    fn sigma(&self, i: usize) -> f64 {
+        self[i].sigma_m
+    }
+
+    fn line_of_sight(&self, i: usize, _: usize, e: &Epoch, _: &NominalBound) -> Option<[f64; 3]> {
+        let s = &self[i];
+        let margin = ground_visibility_margin(&s.position_m, &e.vehicle_fixed);
+        if margin - s.elevation_mask_rad <= 0.0 {
+            return None;
+        }
+        unit([
+            e.vehicle_fixed[0] - s.position_m[0],
+            e.vehicle_fixed[1] - s.position_m[1],
+            e.vehicle_fixed[2] - s.position_m[2],
+        ])
+    }
+}
+
+/// Moving sites (orbiters): inertial positions per site and epoch, with one range noise each.
+struct Moving<'a> {
+    sigma_m: &'a [f64],
+    /// `positions[i][k]`: inertial position of site i at epoch k \[m\].
+    positions: &'a [Vec<[f64; 3]>],
+}
+
+impl Sites for Moving<'_> {
+    fn len(&self) -> usize {
+        self.sigma_m.len()
+    }
+
+    fn sigma(&self, i: usize) -> f64 {
+        self.sigma_m[i]
+    }
+
+    fn line_of_sight(&self, i: usize, k: usize, e: &Epoch, b: &NominalBound) -> Option<[f64; 3]> {
+        let site = self.positions[i][k];
+        let vehicle = rotate_z(&e.vehicle_fixed, b.omega * e.t);
+        if orbiter_visibility_margin(&site, &vehicle, b.planet_radius) <= 0.0 {
+            return None;
+        }
+        let d = [
+            vehicle[0] - site[0],
+            vehicle[1] - site[1],
+            vehicle[2] - site[2],
+        ];
+        unit(rotate_z(&d, -b.omega * e.t))
+    }
 }
 
 impl NominalBound {
@@ -160,11 +233,55 @@ impl NominalBound {
             },
         )??;
         let p0 = &scenario.onboard.tuning.p0_diag;
+        let truth = &rec.draw.model;
         Ok(NominalBound {
             n,
             p0_diag: (0..n).map(|i| p0.get(i).copied().unwrap_or(1.0)).collect(),
             epochs,
+            omega: truth.omega(),
+            planet_radius: truth.planet.radius,
         })
+    }
+
+    /// The epoch times \[s\] (where [`Self::moving_sites`] wants the sites' positions).
+    pub fn epoch_times(&self) -> Vec<f64> {
+        self.epochs.iter().map(|e| e.t).collect()
+    }
+
+    /// The position bound with moving range beacons (orbiters): `positions[i][k]` is beacon i's
+    /// inertial position \[m\] at epoch k of [`Self::epoch_times`], `sigma_m[i]` its range 1σ; a
+    /// beacon contributes where the line to the vehicle clears the reference sphere (seed 002
+    /// eq. 58–60, the engine's rule for orbiters).
+    pub fn moving_sites(
+        &self,
+        sigma_m: &[f64],
+        positions: &[Vec<[f64; 3]>],
+    ) -> Result<NominalBoundSeries, NominalBoundError> {
+        if sigma_m.len() != positions.len() {
+            return Err(NominalBoundError::BadSite {
+                index: sigma_m.len().min(positions.len()),
+                position: [f64::NAN; 3],
+                sigma: f64::NAN,
+            });
+        }
+        for (index, (s, p)) in sigma_m.iter().zip(positions).enumerate() {
+            let finite = p.iter().all(|x| x.iter().all(|v| v.is_finite()));
+            if !(s.is_finite() && *s > 0.0 && finite && p.len() == self.epochs.len()) {
+                return Err(NominalBoundError::BadSite {
+                    index,
+                    position: p.first().copied().unwrap_or([f64::NAN; 3]),
+                    sigma: *s,
+                });
+            }
+        }
+        let sites = Moving { sigma_m, positions };
+        with_state_dim(
+            self.n,
+            Evaluate {
+                bound: self,
+                sites: &sites,
+            },
+        )?
     }
 
     /// Number of epochs.
@@ -252,12 +369,12 @@ impl DimVisitor for Collect<'_> {
 }
 
 /// Runs the recursion for one set of sites (dimension N).
-struct Evaluate<'a> {
+struct Evaluate<'a, S: Sites + ?Sized> {
     bound: &'a NominalBound,
-    sites: &'a [RangeSite],
+    sites: &'a S,
 }
 
-impl DimVisitor for Evaluate<'_> {
+impl<S: Sites + ?Sized> DimVisitor for Evaluate<'_, S> {
     type Output = Result<NominalBoundSeries, NominalBoundError>;
 
     fn visit<const N: usize, const L: usize>(self) -> Self::Output {
@@ -267,7 +384,7 @@ impl DimVisitor for Evaluate<'_> {
             times_s: Vec::with_capacity(b.epochs.len()),
             pos_m: Vec::with_capacity(b.epochs.len()),
         };
-        for e in &b.epochs {
+        for (k, e) in b.epochs.iter().enumerate() {
             let phi = SMatrix::<f64, N, N>::from_column_slice(&e.phi);
             p = phi * p * phi.transpose();
             if let Some(info) = &e.base {
@@ -276,22 +393,16 @@ impl DimVisitor for Evaluate<'_> {
             }
             let jp = SMatrix::<f64, 3, N>::from_column_slice(&e.jp);
             if e.ranged {
-                for s in self.sites {
-                    let margin = ground_visibility_margin(&s.position_m, &e.vehicle_fixed);
-                    if margin - s.elevation_mask_rad <= 0.0 {
+                for i in 0..self.sites.len() {
+                    let Some(u) = self.sites.line_of_sight(i, k, e, b) else {
                         continue;
-                    }
-                    let d = [
-                        e.vehicle_fixed[0] - s.position_m[0],
-                        e.vehicle_fixed[1] - s.position_m[1],
-                        e.vehicle_fixed[2] - s.position_m[2],
-                    ];
-                    let u = rotate_z(&d, e.angle);
-                    let len = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
-                    let u = nalgebra::Vector3::new(u[0] / len, u[1] / len, u[2] / len);
+                    };
+                    let u = rotate_z(&u, e.angle);
+                    let u = nalgebra::Vector3::new(u[0], u[1], u[2]);
                     let g: SVector<f64, N> = jp.transpose() * u;
                     let pg = p * g;
-                    let s2 = g.dot(&pg) + s.sigma_m * s.sigma_m;
+                    let sigma = self.sites.sigma(i);
+                    let s2 = g.dot(&pg) + sigma * sigma;
                     p -= pg * pg.transpose() / s2;
                 }
             }

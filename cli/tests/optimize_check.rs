@@ -181,3 +181,45 @@ fn select_and_orbiters_check_their_answers_too() {
     assert_eq!(v["check"]["verdict"], "not worse", "{}", v["check"]);
     assert_eq!(v["check"]["runs"], 200);
 }
+
+#[test]
+fn select_on_the_nominal_bound_navigates_better_than_the_hand_placed_sites() {
+    let dir = scratch_dir("optimize-check", "select-nav");
+    let j = dir.join("s.json");
+    let (code, out, err) = entrynav(&[
+        "optimize",
+        "select",
+        "--scenario",
+        "ground-beacons-3",
+        "--k",
+        "3",
+        "--grid-deg",
+        "1",
+        "--objective",
+        "nav",
+        "--quiet",
+        "--json",
+        j.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}\n{out}");
+    assert!(out.contains("no certificate"), "{out}");
+    let v = read_json(&j);
+    assert!(v["value"].as_f64().unwrap() < 1.0, "{}", v["value"]);
+    let b = &v["nominal_bound"];
+    assert!(b["optimum"]["time_avg_pos_m"].as_f64() < b["input"]["time_avg_pos_m"].as_f64());
+    assert!(b["optimum"]["final_pos_m"].as_f64() < b["input"]["final_pos_m"].as_f64());
+    assert_eq!(v["check"]["verdict"], "not worse", "{}", v["check"]);
+    // No certificate to give: --exact is refused with the objective.
+    let (code, _, err) = entrynav(&[
+        "optimize",
+        "select",
+        "--scenario",
+        "ground-beacons-3",
+        "--k",
+        "3",
+        "--objective",
+        "nav",
+        "--exact",
+    ]);
+    assert_eq!(code, 2, "{err}");
+}

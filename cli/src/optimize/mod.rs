@@ -29,6 +29,7 @@ use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+mod bound_selection;
 mod design_check;
 mod exact_selection;
 mod ground_sites;
@@ -212,9 +213,15 @@ pub struct SelectArgs {
     /// Candidate grid spacing in latitude and longitude [deg].
     #[arg(long, default_value_t = 0.5)]
     grid_deg: f64,
-    /// Criterion: logdet (D-optimal) or min-eig (E-optimal).
+    /// Criterion: logdet (D-optimal) or min-eig (E-optimal), certified by the convex
+    /// relaxation.
     #[arg(long, value_enum, default_value_t = CriterionArg::Logdet)]
     criterion: CriterionArg,
+    /// Choose on the nominal position bound instead (nav, pcrlb-avg, pcrlb-final): greedy +
+    /// exchanges, a local optimum without certificate (the bound is not concave in the
+    /// selection).
+    #[arg(long, value_enum, conflicts_with_all = ["criterion", "exact", "eig_epochs"])]
+    objective: Option<names::SelectObjectiveArg>,
     /// With min-eig: maximise the minimum over epochs this many seconds apart of lambda_min of
     /// the instantaneous FIM (max-min over time) instead of lambda_min of the time-averaged FIM.
     #[arg(long, value_name = "SECONDS")]
@@ -291,7 +298,10 @@ pub fn run(args: &OptimizeArgs) -> Result<()> {
         OptimizeProblem::Ground(a) => {
             with_threads(a.common.threads, || ground_sites::run_ground(a))
         }
-        OptimizeProblem::Select(a) => with_threads(a.threads, || site_selection::run_select(a)),
+        OptimizeProblem::Select(a) => with_threads(a.threads, || match a.objective {
+            Some(o) => bound_selection::run_select_on_bound(a, o),
+            None => site_selection::run_select(a),
+        }),
     }
 }
 

@@ -121,3 +121,34 @@ impl From<CriterionArg> for SelectionCriterion {
         }
     }
 }
+
+/// `--objective` of `optimize select` (the nominal-bound objectives; without it, `--criterion`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(super) enum SelectObjectiveArg {
+    /// Both nominal position bounds relative to the input design.
+    #[value(name = "nav")]
+    Nav,
+    /// The time-averaged nominal position bound.
+    #[value(name = "pcrlb-avg")]
+    PcrlbAvg,
+    /// The final nominal position bound.
+    #[value(name = "pcrlb-final")]
+    PcrlbFinal,
+}
+
+impl SelectObjectiveArg {
+    /// The ground objective it names.
+    pub(super) fn ground(self) -> entrynav_optimizer::GroundObjective {
+        use entrynav_optimizer::GroundObjective;
+        match self {
+            SelectObjectiveArg::Nav => GroundObjective::Navigation,
+            SelectObjectiveArg::PcrlbAvg => GroundObjective::PcrlbAvg,
+            SelectObjectiveArg::PcrlbFinal => GroundObjective::PcrlbFinal,
+        }
+    }
+
+    /// Its name.
+    pub(super) fn name(self) -> &'static str {
+        self.ground().name()
+    }
+}

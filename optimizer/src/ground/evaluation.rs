@@ -151,7 +151,7 @@ impl GroundProblem {
     }
 
     /// The smallest great-circle separation between two of `sites` \[rad\].
-    fn closest_pair(sites: &[Site]) -> Option<f64> {
+    pub(super) fn closest_pair(sites: &[Site]) -> Option<f64> {
         let mut best: Option<f64> = None;
         for (i, a) in sites.iter().enumerate() {
             for b in &sites[i + 1..] {

@@ -55,8 +55,11 @@ use nalgebra::{Matrix3, Vector3};
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::time::Instant;
 
+mod bound_selection;
 mod evaluation;
 mod visibility;
+
+pub use bound_selection::BoundSelection;
 
 /// Base cost of an infeasible configuration (above every feasible cost).
 pub const INFEASIBLE_COST: f64 = 1e4;

@@ -35,6 +35,7 @@ mod trade_files;
 mod trade_tables;
 mod train;
 mod tune;
+mod tune_verdict;
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};

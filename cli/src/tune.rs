@@ -50,6 +50,10 @@ pub struct TuneArgs {
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = crate::exit::parse_threads)]
     threads: Option<usize>,
+    /// Write the tuned file even when it makes a filter worse than the input on the fresh
+    /// validation runs (band fraction or position RMSE by more than 10 %).
+    #[arg(long)]
+    force: bool,
     #[arg(long, help = crate::QUIET_HELP)]
     quiet: bool,
 }
@@ -104,7 +108,7 @@ fn run_tuning(args: &TuneArgs) -> Result<()> {
     };
     let result = tune(&problem, &opts, &|done, _, best| {
         bar.set_position(done as u64);
-        bar.set_message(format!("best J {best:.4}"));
+        bar.set_message(format!("best J {best:.3e}"));
     })?;
     bar.finish_and_clear();
     let search_s = clock.elapsed().as_secs_f64();
@@ -138,9 +142,37 @@ fn run_tuning(args: &TuneArgs) -> Result<()> {
     for w in &warnings {
         println!("  NOTE: {w}");
     }
+    println!(
+        "  objective J: {:.3e} before, {:.3e} after (tuning runs; 0 = ANEES/dof and ANIS/dof both 1)",
+        entrynav_optimizer::tune::objective(&result.initial, opts.objective),
+        result.cost
+    );
+    let worse = crate::tune_verdict::worse_figures(&before, &after);
+    if !worse.is_empty() && !args.force {
+        for w in &worse {
+            eprintln!("warning: worse than the input on fresh runs: {w}");
+        }
+        return Err(crate::exit::Runtime(format!(
+            "{} not written: the tuning makes a filter worse than the input on the {} fresh \
+             validation runs ({}); --force writes it anyway",
+            args.out.display(),
+            args.validation_runs,
+            worse.join("; ")
+        ))
+        .into());
+    }
     let tuned = problem.tuned_config(&cfg, &result.theta);
-    let header = header_comment(args, &problem, &result, &before, &after, &warnings);
-    let text = format!("{header}{}", tuned.to_toml_string());
+    let mut notes = warnings;
+    notes.extend(
+        worse
+            .iter()
+            .map(|w| format!("written with --force although worse: {w}")),
+    );
+    let header = header_comment(args, &problem, &result, &before, &after, &notes);
+    let text = format!(
+        "{header}{}",
+        crate::tune_verdict::compact_numbers(&tuned.to_toml_string())
+    );
     crate::atomic_file::write(&args.out, text)?;
     println!("wrote {}", args.out.display());
     Ok(())
@@ -159,18 +191,32 @@ fn per_dof(r: &FilterReport) -> Option<f64> {
 fn print_comparison(title: &str, before: &[FilterReport], after: &[FilterReport]) {
     println!("  {title}:");
     println!(
-        "    {:<10} {:>7} {:>14} {:>14} {:>16} {:>16} {:>12}",
-        "filter", "", "ANEES/dof", "ANIS/dof", "pos RMSE avg m", "vel RMSE avg m/s", "failed/div"
+        "    {:<10} {:>7} {:>10} {:>9} {:>9} {:>15} {:>15} {:>16} {:>11}",
+        "filter",
+        "",
+        "ANEES/dof",
+        "in band",
+        "ANIS/dof",
+        "pos RMSE avg m",
+        "pos RMSE fin m",
+        "vel RMSE avg m/s",
+        "failed/div"
     );
     for (b, a) in before.iter().zip(after) {
         for (label, r) in [("before", b), ("after", a)] {
+            let band = r
+                .consistency
+                .nees_in_bounds_frac
+                .map_or("-".into(), |f| format!("{:.1} %", 100.0 * f));
             println!(
-                "    {:<10} {:>7} {:>14} {:>14} {:>16} {:>16} {:>12}",
+                "    {:<10} {:>7} {:>10} {:>9} {:>9} {:>15} {:>15} {:>16} {:>11}",
                 r.name,
                 label,
                 fmt(per_dof(r)),
+                band,
                 fmt(r.consistency.anis_per_dof),
-                fmt(r.rmse_time_avg.get("pos_m").copied().flatten()),
+                fmt(crate::tune_verdict::rmse_avg(r)),
+                fmt(crate::tune_verdict::rmse_final(r)),
                 fmt(r.rmse_time_avg.get("vel_mps").copied().flatten()),
                 format!("{}/{}", r.failed, r.diverged)
             );

@@ -36,6 +36,7 @@ mod trade_tables;
 mod train;
 mod tune;
 mod tune_verdict;
+mod tuned_file;
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};

@@ -1,14 +1,18 @@
 //! `entrynav tune`: the process-noise diagonal (and optionally the assumed measurement noise) that
-//! makes a scenario's filters consistent, validated on fresh runs, written as a scenario file.
+//! makes each of a scenario's filters consistent, filter by filter, validated on fresh runs with
+//! the file as written, and written as the input scenario's own text with one
+//! `[filter.tuned.<name>]` table per filter (`crate::tuned_file`).
 
+use crate::tuned_file::{self, Retune};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use entrynav::estimation::nav::FilterKind;
+use entrynav::scenario::{FilterRetuneConfig, ScenarioConfig, builtin_toml};
 use entrynav::sim::report::FilterReport;
 use entrynav::sim::tuning::TuningRuns;
 use entrynav_loader as load;
 use entrynav_optimizer::tune::{
-    EntryTuning, TuneObjective, TuneOptions, TuningProblem, entry::measured, tune,
+    EntryTuning, THETA_BOUND, TuneObjective, TuneOptions, TuneResult, objective, tune,
 };
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -22,11 +26,12 @@ pub struct TuneArgs {
     /// Override a scenario field before tuning: PATH=VALUE in TOML syntax (repeatable).
     #[arg(long = "set", value_name = "PATH=VALUE")]
     sets: Vec<String>,
-    /// Filter(s) to make consistent, comma-separated (one Q serves them all: the objective is
-    /// their mean).
+    /// Filter(s) to make consistent, comma-separated: each is tuned on its own and gets its own
+    /// `[filter.tuned.<name>]` in the written file.
     #[arg(long, default_value = "ekf")]
     filter: String,
-    /// Write the scenario with the tuned values here.
+    /// Write the scenario here: the input's text with its comments and layout, plus one
+    /// `[filter.tuned.<name>]` table per tuned filter.
     #[arg(long, value_name = "TUNED.toml")]
     out: PathBuf,
     /// Monte Carlo runs of the tuning set (common random numbers: every evaluation sees them).
@@ -58,6 +63,10 @@ pub struct TuneArgs {
     quiet: bool,
 }
 
+/// Smallest relative drop of the objective for which a tuning is written: below it the
+/// factors only fit the tuning runs' noise.
+const MIN_GAIN: f64 = 0.10;
+
 /// Seed of the validation runs: a different study than the tuning runs.
 fn validation_seed(seed: u64) -> u64 {
     seed.wrapping_add(0x5EED_0000_0000_0001)
@@ -66,6 +75,30 @@ fn validation_seed(seed: u64) -> u64 {
 /// Run the command.
 pub fn run(args: &TuneArgs) -> Result<()> {
     crate::threads::with_threads(args.threads, || run_tuning(args))
+}
+
+/// One filter's tuning.
+struct Tuned {
+    kind: FilterKind,
+    factors: Vec<(String, f64)>,
+    result: TuneResult,
+    search_s: f64,
+    /// What the file holds for it (six significant digits).
+    retune: FilterRetuneConfig,
+    /// Why its tuning is kept as it was (no table written), if it is.
+    kept: Option<String>,
+}
+
+/// The scenario's TOML text as the user wrote it (the built-in's text for a built-in).
+fn source_text(origin: &load::Origin) -> Result<String> {
+    match origin {
+        load::Origin::Builtin(name) => builtin_toml(name)
+            .map(str::to_string)
+            .ok_or_else(|| anyhow::anyhow!("no text for built-in scenario {name}")),
+        load::Origin::File(path) => {
+            load::read_text(path).with_context(|| format!("cannot read {}", path.display()))
+        }
+    }
 }
 
 fn run_tuning(args: &TuneArgs) -> Result<()> {
@@ -80,23 +113,15 @@ fn run_tuning(args: &TuneArgs) -> Result<()> {
         std::fs::create_dir_all(parent)
             .with_context(|| format!("cannot create {}", parent.display()))?;
     }
-    let (cfg, dir) = load::resolve(&args.scenario, load::Base::CurrentDir)?.into_parts();
+    let src = load::resolve(&args.scenario, load::Base::CurrentDir)?;
+    let source = source_text(&src.origin)?;
+    let (cfg, dir) = src.into_parts();
     let cfg = load::apply_overrides(cfg, &args.sets)?;
     let scenario = load::build(cfg.clone(), &dir)?;
     let kinds = FilterKind::parse_list(&args.filter, &scenario.onboard)?;
     let clock = std::time::Instant::now();
     let runs = TuningRuns::record(&scenario, args.seed, args.runs)?;
-    let problem = EntryTuning::new(&runs, &kinds, args.tune_noise)?;
-    let bar = if args.quiet {
-        ProgressBar::hidden()
-    } else {
-        ProgressBar::new(args.max_evaluations as u64)
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{spinner} tuning [{bar:40}] {pos}/{len} evaluations, {msg}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar())
-            .progress_chars("=> "),
-    );
+    let fresh = TuningRuns::record(&scenario, validation_seed(args.seed), args.validation_runs)?;
     let opts = TuneOptions {
         objective: if args.nis_only {
             TuneObjective::NisOnly
@@ -106,49 +131,41 @@ fn run_tuning(args: &TuneArgs) -> Result<()> {
         max_evaluations: args.max_evaluations,
         ..Default::default()
     };
-    let result = tune(&problem, &opts, &|done, _, best| {
-        bar.set_position(done as u64);
-        bar.set_message(format!("best J {best:.3e}"));
-    })?;
-    bar.finish_and_clear();
-    let search_s = clock.elapsed().as_secs_f64();
-    let fresh = TuningRuns::record(&scenario, validation_seed(args.seed), args.validation_runs)?;
-    let zero = vec![0.0; problem.dim()];
-    let before = problem.reports(&zero, &fresh)?;
-    let after = problem.reports(&result.theta, &fresh)?;
-    let tuning_before = problem.reports(&zero, &runs)?;
-    let tuning_after = problem.reports(&result.theta, &runs)?;
+    let mut tuned = Vec::new();
+    for &kind in &kinds {
+        tuned.push(tune_one(args, &opts, &runs, &cfg, kind)?);
+    }
+
+    // What the written file does: the scenario built from its own text, on both run sets.
+    let plain: Vec<Retune<'_>> = tuned
+        .iter()
+        .filter(|t| t.kept.is_none())
+        .map(|t| Retune {
+            name: t.kind.name(),
+            config: &t.retune,
+            comment: &[],
+        })
+        .collect();
+    let text = tuned_file::edit(&source, &args.sets, &plain)?;
+    let written = check_written(&text, &cfg, &tuned)?;
+    let tuned_scenario = load::build(written.clone(), &dir)?;
+    let (old, new) = (&scenario.onboard, &tuned_scenario.onboard);
+    let tuning_before = runs.evaluate(old, &kinds)?;
+    let tuning_after = runs.evaluate(new, &kinds)?;
+    let before = fresh.evaluate(old, &kinds)?;
+    let after = fresh.evaluate(new, &kinds)?;
     let wall_s = clock.elapsed().as_secs_f64();
 
-    println!(
-        "tuned {} on {} ({} tuning runs, seed {}; {} evaluations, {search_s:.1} s search, {wall_s:.1} s in all)",
-        args.filter, scenario.config.name, args.runs, args.seed, result.evaluations
-    );
-    println!("  factors (x base value):");
-    for (g, t) in problem.groups().iter().zip(&result.theta) {
-        println!("    {:<40} {:>12.4e}", g.name(), 10f64.powf(*t));
-    }
-    print_comparison("tuning runs", &tuning_before, &tuning_after);
-    print_comparison(
-        &format!(
-            "validation: {} fresh runs (seed {})",
-            args.validation_runs,
-            validation_seed(args.seed)
-        ),
-        &before,
-        &after,
-    );
-    let warnings = rmse_warnings(&before, &after);
-    for w in &warnings {
-        println!("  NOTE: {w}");
-    }
-    println!(
-        "  objective J: {:.3e} before, {:.3e} after (tuning runs; 0 = ANEES/dof and ANIS/dof both 1)",
-        entrynav_optimizer::tune::objective(&result.initial, opts.objective),
-        result.cost
-    );
     let worse = crate::tune_verdict::worse_figures(&before, &after);
+    let summary = Summary {
+        name: &scenario.config.name,
+        wall_s,
+        tuned: &tuned,
+        tuning: (&tuning_before, &tuning_after),
+        fresh: (&before, &after),
+    };
     if !worse.is_empty() && !args.force {
+        print_summary(args, &opts, &summary);
         for w in &worse {
             eprintln!("warning: worse than the input on fresh runs: {w}");
         }
@@ -161,21 +178,193 @@ fn run_tuning(args: &TuneArgs) -> Result<()> {
         ))
         .into());
     }
-    let tuned = problem.tuned_config(&cfg, &result.theta);
-    let mut notes = warnings;
-    notes.extend(
-        worse
-            .iter()
-            .map(|w| format!("written with --force although worse: {w}")),
-    );
-    let header = header_comment(args, &problem, &result, &before, &after, &notes);
-    let text = format!(
-        "{header}{}",
-        crate::tune_verdict::compact_numbers(&tuned.to_toml_string())
-    );
+    let comments: Vec<Vec<String>> = tuned
+        .iter()
+        .zip(before.iter().zip(&after))
+        .filter(|(t, _)| t.kept.is_none())
+        .map(|(t, (b, a))| {
+            let mut lines = comment_lines(args, &opts, t, b, a);
+            let name = format!("{}:", t.kind.name());
+            lines.extend(
+                worse
+                    .iter()
+                    .filter(|w| w.starts_with(&name))
+                    .map(|w| format!("NOTE: written with --force although worse: {w}")),
+            );
+            lines
+        })
+        .collect();
+    let with_comments: Vec<Retune<'_>> = tuned
+        .iter()
+        .filter(|t| t.kept.is_none())
+        .zip(&comments)
+        .map(|(t, c)| Retune {
+            name: t.kind.name(),
+            config: &t.retune,
+            comment: c,
+        })
+        .collect();
+    let text = tuned_file::edit(&source, &args.sets, &with_comments)?;
+    if check_written(&text, &cfg, &tuned)? != written {
+        bail!("internal error: the commented tuned file differs from the one validated");
+    }
+    // The file first: a closed standard output (`| head`) must not cost it.
     crate::atomic_file::write(&args.out, text)?;
+    print_summary(args, &opts, &summary);
     println!("wrote {}", args.out.display());
     Ok(())
+}
+
+/// What `tune` prints.
+struct Summary<'a> {
+    name: &'a str,
+    wall_s: f64,
+    tuned: &'a [Tuned],
+    tuning: (&'a [FilterReport], &'a [FilterReport]),
+    fresh: (&'a [FilterReport], &'a [FilterReport]),
+}
+
+fn print_summary(args: &TuneArgs, opts: &TuneOptions, s: &Summary<'_>) {
+    let (scenario_name, wall_s, tuned) = (s.name, s.wall_s, s.tuned);
+    let (tuning_before, tuning_after) = s.tuning;
+    let (before, after) = s.fresh;
+    println!(
+        "tuned {} on {} ({} tuning runs, seed {}; {wall_s:.1} s in all): each filter its own Q",
+        args.filter, scenario_name, args.runs, args.seed
+    );
+    for t in tuned {
+        if let Some(why) = &t.kept {
+            println!(
+                "  {}: {why}; its tuning is kept and no table is written for it",
+                t.kind.name()
+            );
+            continue;
+        }
+        println!(
+            "  {}: {} evaluations, {:.1} s; objective J {} -> {} on the tuning runs (0 = {})",
+            t.kind.name(),
+            t.result.evaluations,
+            t.search_s,
+            sig3(objective(&t.result.initial, opts.objective)),
+            sig3(t.result.cost),
+            objective_zero(args.nis_only)
+        );
+        for (name, f) in &t.factors {
+            let bound = if f.log10().abs() >= THETA_BOUND - 1e-9 {
+                "  (at the search bound)"
+            } else {
+                ""
+            };
+            println!("    {name:<40} x {}{bound}", tuned_file::six_digits(*f));
+        }
+    }
+    print_comparison("tuning runs", tuning_before, tuning_after);
+    print_comparison(
+        &format!(
+            "validation: {} fresh runs (seed {})",
+            args.validation_runs,
+            validation_seed(args.seed)
+        ),
+        before,
+        after,
+    );
+}
+
+/// Tune filter `kind` from its current tuning.
+fn tune_one(
+    args: &TuneArgs,
+    opts: &TuneOptions,
+    runs: &TuningRuns,
+    cfg: &ScenarioConfig,
+    kind: FilterKind,
+) -> Result<Tuned> {
+    let clock = std::time::Instant::now();
+    let problem = EntryTuning::new(runs, kind, args.tune_noise)?;
+    let bar = if args.quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new(args.max_evaluations as u64)
+    };
+    bar.set_style(
+        ProgressStyle::with_template(&format!(
+            "{{spinner}} tuning {} [{{bar:40}}] {{pos}}/{{len}} evaluations, {{msg}}",
+            kind.name()
+        ))
+        .unwrap_or_else(|_| ProgressStyle::default_bar())
+        .progress_chars("=> "),
+    );
+    let result = tune(&problem, opts, &|done, _, best| {
+        bar.set_position(done as u64);
+        bar.set_message(format!("best J {best:.3e}"));
+    })?;
+    bar.finish_and_clear();
+    let factors = problem
+        .groups()
+        .iter()
+        .zip(&result.theta)
+        .map(|(g, t)| (g.name().to_string(), 10f64.powf(*t)))
+        .collect();
+    let retune = tuned_file::rounded(&problem.retune_config(cfg, &result.theta));
+    let initial_j = objective(&result.initial, opts.objective);
+    let kept = if result.already_consistent {
+        Some(format!(
+            "already consistent on the tuning runs (ANEES/dof {}, ANIS/dof {}, within {} %, no \
+             failure)",
+            fmt(result.initial.anees_per_dof),
+            fmt(result.initial.anis_per_dof),
+            100.0 * opts.consistent_within
+        ))
+    } else if result.cost > (1.0 - MIN_GAIN) * initial_j {
+        Some(format!(
+            "no factor lowered J by {:.0} % ({} evaluations, J {} -> {}): Q does not limit this \
+             filter's consistency (try --tune-noise)",
+            100.0 * MIN_GAIN,
+            result.evaluations,
+            sig3(initial_j),
+            sig3(result.cost)
+        ))
+    } else {
+        None
+    };
+    Ok(Tuned {
+        kind,
+        factors,
+        result,
+        search_s: clock.elapsed().as_secs_f64(),
+        retune,
+        kept,
+    })
+}
+
+/// The configuration `text` holds, checked to be `cfg` with exactly the tunings in `tuned`.
+fn check_written(text: &str, cfg: &ScenarioConfig, tuned: &[Tuned]) -> Result<ScenarioConfig> {
+    let written = ScenarioConfig::from_toml_str(text, "the tuned scenario")?;
+    let mut expected = cfg.clone();
+    for t in tuned.iter().filter(|t| t.kept.is_none()) {
+        expected
+            .filter
+            .tuned
+            .insert(t.kind.name().to_string(), t.retune.clone());
+    }
+    if written != expected {
+        bail!(
+            "internal error: the tuned file does not read back as the tuned scenario (the --set \
+             overrides or the [filter.tuned] tables were not written as applied)"
+        );
+    }
+    Ok(written)
+}
+
+fn sig3(x: f64) -> String {
+    format!("{x:.2e}")
+}
+
+fn objective_zero(nis_only: bool) -> &'static str {
+    if nis_only {
+        "ANIS/dof 1"
+    } else {
+        "ANEES/dof and ANIS/dof both 1"
+    }
 }
 
 fn fmt(v: Option<f64>) -> String {
@@ -224,78 +413,76 @@ fn print_comparison(title: &str, before: &[FilterReport], after: &[FilterReport]
     }
 }
 
-/// Tuned filters whose validation position RMSE is more than 10 % worse than untuned.
-fn rmse_warnings(before: &[FilterReport], after: &[FilterReport]) -> Vec<String> {
-    before
-        .iter()
-        .zip(after)
-        .filter_map(|(b, a)| {
-            let get = |r: &FilterReport| r.rmse_time_avg.get("pos_m").copied().flatten();
-            let (rb, ra) = (get(b)?, get(a)?);
-            (ra > 1.1 * rb).then(|| {
-                format!(
-                    "{}: the tuned filter's time-averaged position RMSE is {:.0} % worse ({ra:.4} m vs {rb:.4} m): consistency costs accuracy here (the untuned filter was overconfident)",
-                    a.name,
-                    100.0 * (ra / rb - 1.0)
-                )
-            })
-        })
-        .collect()
-}
-
-fn header_comment(
+/// The comment above a filter's `[filter.tuned.<name>]` table: how it was tuned and what it does.
+fn comment_lines(
     args: &TuneArgs,
-    problem: &EntryTuning<'_>,
-    result: &entrynav_optimizer::tune::TuneResult,
-    before: &[FilterReport],
-    after: &[FilterReport],
-    warnings: &[String],
-) -> String {
-    let mut h = String::new();
-    h.push_str(&format!(
-        "# Tuned by `entrynav tune --scenario {} --filter {}{}{} --runs {} --seed {}`\n",
-        args.scenario,
-        args.filter,
-        if args.nis_only { " --nis-only" } else { "" },
-        if args.tune_noise { " --tune-noise" } else { "" },
-        args.runs,
-        args.seed
-    ));
+    opts: &TuneOptions,
+    t: &Tuned,
+    before: &FilterReport,
+    after: &FilterReport,
+) -> Vec<String> {
+    let mut flags = String::new();
+    if args.nis_only {
+        flags.push_str(" --nis-only");
+    }
+    if args.tune_noise {
+        flags.push_str(" --tune-noise");
+    }
     for s in &args.sets {
-        h.push_str(&format!("#   with --set {s}\n"));
+        flags.push_str(&format!(" --set {s}"));
     }
-    h.push_str(&format!(
-        "# Nelder-Mead over log10 factors on filter.q_diag groups{}: minimise ln^2(ANEES/dof) + \
-         ln^2(ANIS/dof) + 25 x (failed or diverged fraction) on {} runs with common random numbers \
-         ({} evaluations).\n",
-        if args.tune_noise {
-            " and on the assumed noise per channel kind (filter.noise_inflation)"
-        } else {
-            ""
-        },
-        args.runs,
-        result.evaluations
-    ));
-    h.push_str("# Factors found:\n");
-    for (g, t) in problem.groups().iter().zip(&result.theta) {
-        h.push_str(&format!("#   {} x {:.4e}\n", g.name(), 10f64.powf(*t)));
-    }
-    let (mb, ma) = (measured(before), measured(after));
-    h.push_str(&format!(
-        "# Validation on {} fresh runs (seed {}): ANEES/dof {} -> {}, ANIS/dof {} -> {}, \
-         failed or diverged {:.1} % -> {:.1} %.\n",
-        args.validation_runs,
-        validation_seed(args.seed),
-        fmt(mb.anees_per_dof),
-        fmt(ma.anees_per_dof),
-        fmt(mb.anis_per_dof),
-        fmt(ma.anis_per_dof),
-        100.0 * mb.bad_fraction,
-        100.0 * ma.bad_fraction
-    ));
-    for w in warnings {
-        h.push_str(&format!("# NOTE: {w}\n"));
-    }
-    h.push('\n');
-    h
+    let factors: Vec<String> = t
+        .factors
+        .iter()
+        .map(|(n, f)| format!("{n} x {}", tuned_file::six_digits(*f)))
+        .collect();
+    let pct = |r: &FilterReport| {
+        r.consistency
+            .nees_in_bounds_frac
+            .map_or("-".into(), |f| format!("{:.1} %", 100.0 * f))
+    };
+    vec![
+        format!(
+            "{}: its own tuning, by `entrynav tune --scenario {} --filter {}{flags} --runs {} --seed {}`",
+            t.kind.name(),
+            args.scenario,
+            args.filter,
+            args.runs,
+            args.seed
+        ),
+        format!(
+            "Nelder-Mead over log10 factors from the previous tuning, {} evaluations, J {} -> {} with",
+            t.result.evaluations,
+            sig3(objective(&t.result.initial, opts.objective)),
+            sig3(t.result.cost)
+        ),
+        format!(
+            "  J = {}",
+            match opts.objective {
+                TuneObjective::NeesAndNis =>
+                    "ln^2(ANEES/dof) + ln^2(ANIS/dof) + 25 x (failed or diverged fraction)",
+                TuneObjective::NisOnly => "ln^2(ANIS/dof) + 25 x (failed or diverged fraction)",
+            }
+        ),
+        format!("factors: {}", factors.join(", ")),
+        format!(
+            "fresh validation, {} runs (seed {}): ANEES/dof {} -> {}, epochs in the NEES band {} -> {}, \
+             ANIS/dof {} -> {},",
+            args.validation_runs,
+            validation_seed(args.seed),
+            fmt(per_dof(before)),
+            fmt(per_dof(after)),
+            pct(before),
+            pct(after),
+            fmt(before.consistency.anis_per_dof),
+            fmt(after.consistency.anis_per_dof),
+        ),
+        format!(
+            "  position RMSE time-averaged {} -> {} m, final {} -> {} m",
+            fmt(crate::tune_verdict::rmse_avg(before)),
+            fmt(crate::tune_verdict::rmse_avg(after)),
+            fmt(crate::tune_verdict::rmse_final(before)),
+            fmt(crate::tune_verdict::rmse_final(after)),
+        ),
+    ]
 }

@@ -67,6 +67,12 @@ const TUNED: &[&str] = &[
     "filter.noise_inflation.range=2.0",
 ];
 
+/// The EKF's own tuning (`[filter.tuned.ekf]`, four-beacon-fusion's 11 states).
+const PER_FILTER: &[&str] = &[
+    "filter.tuned.ekf.q_diag=[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]",
+    "filter.tuned.ekf.noise_inflation.range=2.0",
+];
+
 /// A Cartesian filter start (orbiters-3 has none).
 const CARTESIAN_START: &[&str] = &[
     "filter.initial.position_km=[-3.92, -3103.37, -1665.41]",
@@ -127,6 +133,12 @@ const CASES: &[Case] = &[
     case("filter.noise_inflation.heating", FUSION, TUNED, "must be > 0 and <= 1000 (a factor on the assumed 1-sigma noise)"),
     case("filter.noise_inflation.range", FUSION, TUNED, "must be > 0 and <= 1000 (a factor on the assumed 1-sigma noise)"),
     case("filter.noise_inflation.range_rate", FUSION, TUNED, "must be > 0 and <= 1000 (a factor on the assumed 1-sigma noise)"),
+    case("filter.tuned.ekf.q_diag[0]", FUSION, PER_FILTER, "must be >= 0 and finite (a variance)"),
+    case("filter.tuned.ekf.noise_inflation.accel", FUSION, PER_FILTER, "must be > 0 and <= 1000 (a factor on the assumed 1-sigma noise)"),
+    case("filter.tuned.ekf.noise_inflation.dynamic_pressure", FUSION, PER_FILTER, "must be > 0 and <= 1000 (a factor on the assumed 1-sigma noise)"),
+    case("filter.tuned.ekf.noise_inflation.heating", FUSION, PER_FILTER, "must be > 0 and <= 1000 (a factor on the assumed 1-sigma noise)"),
+    case("filter.tuned.ekf.noise_inflation.range", FUSION, PER_FILTER, "must be > 0 and <= 1000 (a factor on the assumed 1-sigma noise)"),
+    case("filter.tuned.ekf.noise_inflation.range_rate", FUSION, PER_FILTER, "must be > 0 and <= 1000 (a factor on the assumed 1-sigma noise)"),
     case("filter.accel_bias_tau_s", FUSION, TUNED, "must be > 0 s and finite (the Gauss-Markov time constant)"),
     case("filter.ukf.alpha", AIR, &[], "must be > 0 and <= 1"),
     case("filter.ukf.beta", AIR, &[], "must be >= 0 and < 10"),

@@ -16,6 +16,8 @@ const R_TRUE: f64 = 4.0;
 struct Linear {
     /// Per run: true states and measurements (common random numbers).
     runs: Vec<Vec<(Vector2<f64>, f64)>>,
+    /// The filter's q and r before tuning, as factors of the true ones.
+    mistune: (f64, f64),
 }
 
 impl Linear {
@@ -35,7 +37,10 @@ impl Linear {
                     .collect()
             })
             .collect();
-        Linear { runs }
+        Linear {
+            runs,
+            mistune: (1e-2, 10.0),
+        }
     }
 }
 
@@ -54,8 +59,8 @@ impl TuningProblem for Linear {
 
     fn evaluate(&self, theta: &[f64]) -> Result<Measured, OptimizerError> {
         // The mistuned filter: q/100 and 10 r, times the factors being tuned.
-        let qf = Q_TRUE * 1e-2 * 10f64.powf(theta[0]);
-        let rf = R_TRUE * 10.0 * 10f64.powf(theta[1]);
+        let qf = Q_TRUE * self.mistune.0 * 10f64.powf(theta[0]);
+        let rf = R_TRUE * self.mistune.1 * 10f64.powf(theta[1]);
         let (phi, q) = model(qf);
         let (mut nees, mut nis, mut count) = (0.0, 0.0, 0usize);
         let h = Vector2::new(1.0, 0.0);
@@ -116,4 +121,19 @@ fn tune_makes_a_mistuned_linear_filter_consistent() {
         (0.9..1.1).contains(&r2.tuned.anis_per_dof.unwrap()),
         "{r2:?}"
     );
+}
+
+#[test]
+fn a_consistent_filter_is_left_as_it_is() {
+    // The filter with the true q and r: consistent, so no search moves its tuning to fit noise.
+    let mut problem = Linear::new(60, 150, 7);
+    problem.mistune = (1.0, 1.0);
+    let r = tune(&problem, &TuneOptions::default(), &|_, _, _| {}).unwrap();
+    assert!(r.already_consistent, "{r:?}");
+    assert_eq!(r.theta, vec![0.0, 0.0]);
+    assert_eq!(r.evaluations, 1);
+    // The mistuned one is searched.
+    problem.mistune = (1e-2, 10.0);
+    let r = tune(&problem, &TuneOptions::default(), &|_, _, _| {}).unwrap();
+    assert!(!r.already_consistent && r.evaluations > 10, "{r:?}");
 }

@@ -24,7 +24,7 @@ pub mod onboard;
 pub mod ukf;
 pub mod unscented;
 
-pub use onboard::{FilterTuning, FusionCovariance, Onboard, OnboardChannel};
+pub use onboard::{FilterRetune, FilterTuning, FusionCovariance, Onboard, OnboardChannel};
 
 use nalgebra::SMatrix;
 use thiserror::Error;

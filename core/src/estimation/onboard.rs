@@ -11,6 +11,7 @@
 //! the scenario or the simulation.
 
 use super::adaptive::{DensityFilterConfig, DensityNetworkSet};
+use super::nav::FilterKind;
 use super::ukf::UkfParams;
 use crate::atmosphere::AtmosphereModel;
 use crate::beacons::{Beacon, BeaconState, EphemerisTable};
@@ -111,6 +112,21 @@ pub struct Onboard {
     pub density_networks: Option<DensityNetworkSet>,
     /// Tuning.
     pub tuning: FilterTuning,
+    /// Filters with their own tuning in place of [`Onboard::tuning`]'s Q and the channels' assumed
+    /// noise (`[filter.tuned.<name>]`); [`Onboard::for_filter`] applies them.
+    pub per_filter: Vec<FilterRetune>,
+}
+
+/// One filter's own tuning: its process-noise diagonal and a factor on the assumed noise of each
+/// channel (relative to [`Onboard::channels`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FilterRetune {
+    /// The filter.
+    pub kind: FilterKind,
+    /// Its process-noise diagonal per filter step (SI, rad).
+    pub q_diag: Vec<f64>,
+    /// Factor on channel `c`'s assumed 1σ noise (missing factors are 1).
+    pub noise_factor: Vec<f64>,
 }
 
 impl Onboard {
@@ -126,9 +142,11 @@ impl Onboard {
     }
 
     /// The same onboard view with process-noise diagonal `q_diag` and the assumed measurement noise
-    /// of channel `c` times `noise_factor[c]` (missing factors are 1): a re-tuned filter.
+    /// of channel `c` times `noise_factor[c]` (missing factors are 1): a re-tuned filter. Its
+    /// tuning serves every filter (per-filter tunings are dropped).
     pub fn with_tuning(&self, q_diag: &[f64], noise_factor: &[f64]) -> Onboard {
         let mut out = self.clone();
+        out.per_filter.clear();
         out.tuning.q_diag = q_diag.to_vec();
         for (c, ch) in out.channels.iter_mut().enumerate() {
             if let Some(&f) = noise_factor.get(c) {
@@ -136,6 +154,15 @@ impl Onboard {
             }
         }
         out
+    }
+
+    /// The onboard view filter `kind` is built from: this one, or with the filter's own tuning
+    /// (`[filter.tuned.<name>]`) when it has one.
+    pub fn for_filter(self: &Arc<Self>, kind: FilterKind) -> Arc<Onboard> {
+        match self.per_filter.iter().find(|r| r.kind == kind) {
+            Some(r) => Arc::new(self.with_tuning(&r.q_diag, &r.noise_factor)),
+            None => Arc::clone(self),
+        }
     }
 
     /// Indices of the beacons that have at least one radio channel.

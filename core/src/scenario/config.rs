@@ -12,6 +12,7 @@ pub use crate::estimation::adaptive::{DensityFilterConfig, DensityTrainingConfig
 use crate::frames::HeadingConvention;
 use crate::sensors::SensorsConfig;
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 
 /// A complete scenario: truth world, onboard filter model, sensors, beacons, dispersions, timing.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -248,6 +249,24 @@ pub struct FilterConfig {
     /// Settings of the density-adaptation filters `ukf-cm`, `ukf-ac`, `uskf-nn` (seed 001).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub density: Option<DensityFilterConfig>,
+    /// One filter's own tuning in place of the shared `q_diag` and `noise_inflation`
+    /// (`[filter.tuned.<filter name>]`, e.g. `[filter.tuned.ukf]`; `entrynav tune` writes them).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub tuned: BTreeMap<String, FilterRetuneConfig>,
+}
+
+/// A filter's own tuning (`[filter.tuned.<filter name>]`): each field present replaces the shared
+/// one of `[filter]` for that filter only; an absent field keeps the shared value.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct FilterRetuneConfig {
+    /// Process-noise diagonal per filter step Q_k of this filter (SI, rad), in state order.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub q_diag: Option<Vec<f64>>,
+    /// Factors on the assumed measurement noise of this filter, per channel kind (in place of
+    /// `filter.noise_inflation`, not on top of it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub noise_inflation: Option<NoiseInflation>,
 }
 
 /// Monte Carlo dispersions (1σ) of the truth.

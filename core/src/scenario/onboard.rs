@@ -11,8 +11,9 @@ use super::config::ScenarioConfig;
 use crate::atmosphere::AtmosphereModel;
 use crate::beacons::{Beacon, EphemerisTable};
 use crate::dynamics::EntryModel;
+use crate::estimation::nav::FilterKind;
 use crate::estimation::ukf::UkfParams;
-use crate::estimation::{FilterTuning, Onboard, OnboardChannel};
+use crate::estimation::{FilterRetune, FilterTuning, Onboard, OnboardChannel};
 use crate::sensors::MeasurementModel;
 use std::sync::Arc;
 
@@ -64,5 +65,32 @@ pub(super) fn onboard_view(p: OnboardParts<'_>) -> Onboard {
             fusion_covariance: f.fusion_covariance,
             density: f.density.clone(),
         },
+        per_filter: per_filter_tuning(p.config, p.channels),
     }
+}
+
+/// `[filter.tuned.<name>]` as onboard re-tunings: the filter's Q (or the shared one) and, per
+/// channel, its noise factor relative to the shared `filter.noise_inflation`. Names are checked
+/// by validation; an unknown one is skipped here.
+fn per_filter_tuning(config: &ScenarioConfig, channels: &[ChannelSpec]) -> Vec<FilterRetune> {
+    let f = &config.filter;
+    let shared = f.noise_inflation.unwrap_or_default();
+    f.tuned
+        .iter()
+        .filter_map(|(name, t)| {
+            let kind = FilterKind::parse(name).ok()?;
+            let noise_factor = channels
+                .iter()
+                .map(|c| match &t.noise_inflation {
+                    Some(own) => own.factor(c.channel) / shared.factor(c.channel),
+                    None => 1.0,
+                })
+                .collect();
+            Some(FilterRetune {
+                kind,
+                q_diag: t.q_diag.clone().unwrap_or_else(|| f.q_diag.clone()),
+                noise_factor,
+            })
+        })
+        .collect()
 }

@@ -1,12 +1,13 @@
 //! Checks of the `[filter]` section: its state layout (augmented and consider states, P0, Q and
 //! start values) and its tuning (iterations, noise factors, UKF parameters, model bank).
 
-use super::config::{FilterConfig, ScenarioConfig};
+use super::config::{FilterConfig, NoiseInflation, ScenarioConfig};
 use super::error::ScenarioError;
 use super::validate::{MAX_UPDATE_ITERATIONS, R};
 use super::validate_range::{Checker, Range};
 use super::validate_state::{cd_s_over_m_range, lift_to_drag_range};
 use crate::dynamics::AugmentedParam;
+use crate::estimation::nav::FilterKind;
 use crate::planet::Planet;
 
 /// Allowed density biases Δ (ρ = ρ_model (1 + Δ)).
@@ -32,6 +33,7 @@ impl ScenarioConfig {
             ));
         }
         f.check_tuning(c)?;
+        f.check_per_filter_tuning(c)?;
         if let Some(d) = &f.density {
             d.check("filter.density", c)?;
         }
@@ -121,9 +123,33 @@ impl FilterConfig {
             let range = Range::gt(0.0).note("a variance");
             c.range(format!("filter.p0_diag[{k}]"), *p, range)?;
         }
-        for (k, q) in self.q_diag.iter().enumerate() {
-            let range = Range::ge(0.0).note("a variance");
-            c.range(format!("filter.q_diag[{k}]"), *q, range)?;
+        check_q_diag("filter.q_diag", &self.q_diag, c)
+    }
+
+    /// `[filter.tuned.<name>]`: a known filter name, a full Q diagonal, valid noise factors.
+    fn check_per_filter_tuning(&self, c: &mut Checker) -> R {
+        let n = self.state_dim();
+        for (name, t) in &self.tuned {
+            let field = format!("filter.tuned.{name}");
+            if let Err(e) = FilterKind::parse(name) {
+                return Err(ScenarioError::invalid(field, e.to_string()));
+            }
+            if let Some(q) = &t.q_diag {
+                let field = format!("{field}.q_diag");
+                if q.len() != n {
+                    return Err(ScenarioError::invalid(
+                        field,
+                        format!(
+                            "has {} entries but the filter state has {n} (as filter.q_diag)",
+                            q.len()
+                        ),
+                    ));
+                }
+                check_q_diag(&field, q, c)?;
+            }
+            if let Some(inf) = &t.noise_inflation {
+                check_inflation(&format!("{field}.noise_inflation"), inf, c)?;
+            }
         }
         Ok(())
     }
@@ -142,18 +168,7 @@ impl FilterConfig {
             c.range("filter.imu_sigma_mps2", s, range)?;
         }
         if let Some(n) = &self.noise_inflation {
-            for (name, v) in [
-                ("accel", n.accel),
-                ("dynamic_pressure", n.dynamic_pressure),
-                ("heating", n.heating),
-                ("range", n.range),
-                ("range_rate", n.range_rate),
-            ] {
-                let range = Range::gt(0.0)
-                    .le(1e3)
-                    .note("a factor on the assumed 1-sigma noise");
-                c.range(format!("filter.noise_inflation.{name}"), v, range)?;
-            }
+            check_inflation("filter.noise_inflation", n, c)?;
         }
         if let Some(tau) = self.accel_bias_tau_s {
             let range = Range::gt(0.0)
@@ -186,4 +201,30 @@ fn start_value_range(a: AugmentedParam) -> Range {
             Range::within(10.0).unit("m/s²").of("an accelerometer bias")
         }
     }
+}
+
+/// Every entry of a process-noise diagonal is a variance (≥ 0).
+fn check_q_diag(field: &str, q: &[f64], c: &mut Checker) -> R {
+    for (k, v) in q.iter().enumerate() {
+        let range = Range::ge(0.0).note("a variance");
+        c.range(format!("{field}[{k}]"), *v, range)?;
+    }
+    Ok(())
+}
+
+/// Every factor on an assumed noise lies in (0, 1000].
+fn check_inflation(field: &str, n: &NoiseInflation, c: &mut Checker) -> R {
+    for (name, v) in [
+        ("accel", n.accel),
+        ("dynamic_pressure", n.dynamic_pressure),
+        ("heating", n.heating),
+        ("range", n.range),
+        ("range_rate", n.range_rate),
+    ] {
+        let range = Range::gt(0.0)
+            .le(1e3)
+            .note("a factor on the assumed 1-sigma noise");
+        c.range(format!("{field}.{name}"), v, range)?;
+    }
+    Ok(())
 }

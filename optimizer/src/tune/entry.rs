@@ -7,11 +7,16 @@
 //! scenario's proportions inside a group. An entry whose base value is zero cannot be scaled
 //! and is not tuned (consider parameters never are). With measurement-noise tuning, one factor
 //! per channel kind multiplies the 1σ the filter assumes (`filter.noise_inflation`).
+//!
+//! One filter is tuned at a time, from the tuning it flies with now (its own
+//! `[filter.tuned.<name>]` if the scenario has one, else the shared `[filter]` values), and the
+//! result is written as that filter's own tuning: tuning the UKF never changes the EKF.
 
 use super::{Measured, TuningProblem};
 use crate::OptimizerError;
+use entrynav::estimation::Onboard;
 use entrynav::estimation::nav::FilterKind;
-use entrynav::scenario::{NoiseInflation, ScenarioConfig};
+use entrynav::scenario::{FilterRetuneConfig, ScenarioConfig};
 use entrynav::sensors::Channel;
 use entrynav::sim::report::FilterReport;
 use entrynav::sim::tuning::TuningRuns;
@@ -45,10 +50,12 @@ impl ParameterGroup {
     }
 }
 
-/// The entry filters `kinds` of the scenario of `runs`, tuned by group factors.
+/// The entry filter `kind` of the scenario of `runs`, tuned by group factors.
 pub struct EntryTuning<'a> {
     runs: &'a TuningRuns,
-    kinds: Vec<FilterKind>,
+    kind: FilterKind,
+    /// The onboard view the filter flies with before tuning (its own tuning applied).
+    base: Arc<Onboard>,
     groups: Vec<ParameterGroup>,
 }
 
@@ -57,17 +64,15 @@ fn same_kind(a: Channel, b: Channel) -> bool {
 }
 
 impl<'a> EntryTuning<'a> {
-    /// Tune `kinds` over `runs`; with `tune_noise`, the assumed measurement noise too.
+    /// Tune `kind` over `runs`; with `tune_noise`, the assumed measurement noise too.
     pub fn new(
         runs: &'a TuningRuns,
-        kinds: &[FilterKind],
+        kind: FilterKind,
         tune_noise: bool,
     ) -> Result<Self, OptimizerError> {
-        if kinds.is_empty() {
-            return Err(OptimizerError::InvalidInput("no filter to tune".into()));
-        }
         let sc = runs.scenario();
-        let onboard = &sc.onboard;
+        let base = sc.onboard.for_filter(kind);
+        let onboard = &base;
         let names = entrynav::sim::state_names(sc);
         let q = &onboard.tuning.q_diag;
         let n_est = onboard.state_dim() - onboard.tuning.n_consider;
@@ -112,9 +117,15 @@ impl<'a> EntryTuning<'a> {
         }
         Ok(EntryTuning {
             runs,
-            kinds: kinds.to_vec(),
+            kind,
+            base,
             groups,
         })
+    }
+
+    /// The filter tuned.
+    pub fn kind(&self) -> FilterKind {
+        self.kind
     }
 
     /// The tuned factors, in θ order.
@@ -124,7 +135,7 @@ impl<'a> EntryTuning<'a> {
 
     /// The process-noise diagonal and per-channel noise factors of θ.
     fn tuning(&self, theta: &[f64]) -> (Vec<f64>, Vec<f64>) {
-        let onboard = &self.runs.scenario().onboard;
+        let onboard = &self.base;
         let mut q = onboard.tuning.q_diag.clone();
         let mut noise = vec![1.0; onboard.channels.len()];
         for (g, t) in self.groups.iter().zip(theta) {
@@ -147,25 +158,28 @@ impl<'a> EntryTuning<'a> {
         (q, noise)
     }
 
-    /// Reports of the filters tuned by θ over `runs` (the tuning runs or fresh ones of the same
-    /// scenario).
-    pub fn reports(
-        &self,
-        theta: &[f64],
-        runs: &TuningRuns,
-    ) -> Result<Vec<FilterReport>, OptimizerError> {
+    /// The report of the filter tuned by θ over `runs` (the tuning runs or fresh ones of the
+    /// same scenario).
+    pub fn report(&self, theta: &[f64], runs: &TuningRuns) -> Result<FilterReport, OptimizerError> {
         let (q, noise) = self.tuning(theta);
-        let onboard = Arc::new(runs.scenario().onboard.with_tuning(&q, &noise));
-        Ok(runs.evaluate(&onboard, &self.kinds)?)
+        let onboard = Arc::new(self.base.with_tuning(&q, &noise));
+        let mut reports = runs.evaluate(&onboard, &[self.kind])?;
+        reports.pop().ok_or_else(|| {
+            OptimizerError::InvalidInput(format!("no report for filter {}", self.kind.name()))
+        })
     }
 
-    /// The scenario configuration `base` with the tuning θ written in: `filter.q_diag` scaled and
-    /// `filter.noise_inflation` multiplied.
-    pub fn tuned_config(&self, base: &ScenarioConfig, theta: &[f64]) -> ScenarioConfig {
+    /// The filter's own tuning under θ, as written to `[filter.tuned.<name>]` of the scenario
+    /// configuration `base` (the one the runs were built from): the full Q diagonal, and with
+    /// measurement-noise tuning the noise factors (the filter's current ones times the tuned
+    /// factors).
+    pub fn retune_config(&self, base: &ScenarioConfig, theta: &[f64]) -> FilterRetuneConfig {
         let (q, _) = self.tuning(theta);
-        let mut cfg = base.clone();
-        cfg.filter.q_diag = q;
-        let mut inflation = cfg.filter.noise_inflation.unwrap_or_default();
+        let current = base.filter.tuned.get(self.kind.name());
+        let mut inflation = current
+            .and_then(|c| c.noise_inflation)
+            .or(base.filter.noise_inflation)
+            .unwrap_or_default();
         let mut changed = false;
         for (g, t) in self.groups.iter().zip(theta) {
             if let ParameterGroup::Noise { kind, .. } = g {
@@ -173,9 +187,24 @@ impl<'a> EntryTuning<'a> {
                 changed = true;
             }
         }
-        if changed && inflation != NoiseInflation::default() {
-            cfg.filter.noise_inflation = Some(inflation);
+        FilterRetuneConfig {
+            q_diag: Some(q),
+            noise_inflation: if changed {
+                Some(inflation)
+            } else {
+                current.and_then(|c| c.noise_inflation)
+            },
         }
+    }
+
+    /// The scenario configuration `base` with the tuning θ written in as the filter's own
+    /// `[filter.tuned.<name>]`.
+    pub fn tuned_config(&self, base: &ScenarioConfig, theta: &[f64]) -> ScenarioConfig {
+        let mut cfg = base.clone();
+        cfg.filter.tuned.insert(
+            self.kind.name().to_string(),
+            self.retune_config(base, theta),
+        );
         cfg
     }
 }
@@ -218,6 +247,6 @@ impl TuningProblem for EntryTuning<'_> {
     }
 
     fn evaluate(&self, theta: &[f64]) -> Result<Measured, OptimizerError> {
-        Ok(measured(&self.reports(theta, self.runs)?))
+        Ok(measured(&[self.report(theta, self.runs)?]))
     }
 }

@@ -10,6 +10,9 @@
 //! ```
 //!
 //! (`--nis-only`: the NEES term dropped), each factor 10^θ_k bounded to 10^±[`THETA_BOUND`].
+//! A filter already consistent within [`TuneOptions::consistent_within`] (5 %) is left as it is:
+//! the objective is then flat to within the Monte Carlo noise, and a search would only move Q by
+//! decades to fit that noise.
 //!
 //! The search has two phases. The overall scale of Q is usually off by decades (a paper's Q
 //! covers unmodelled errors the simulation does not have), so a scan of one common factor over
@@ -76,6 +79,10 @@ pub struct TuneOptions {
     pub max_evaluations: usize,
     /// Initial simplex edge in log₁₀ units (1: factors of 10).
     pub initial_step: f64,
+    /// A filter whose ratios (ANEES/dof and ANIS/dof, or ANIS/dof alone) already lie within
+    /// 1 ± this, with no failed or diverged run, is consistent as it is and is not searched: a
+    /// search would only fit the tuning runs' noise (default 0.05).
+    pub consistent_within: f64,
 }
 
 impl Default for TuneOptions {
@@ -84,6 +91,7 @@ impl Default for TuneOptions {
             objective: TuneObjective::NeesAndNis,
             max_evaluations: 150,
             initial_step: 1.0,
+            consistent_within: 0.05,
         }
     }
 }
@@ -101,6 +109,16 @@ pub struct TuneResult {
     pub tuned: Measured,
     /// Evaluations used.
     pub evaluations: usize,
+    /// The filter was consistent as given ([`TuneOptions::consistent_within`]): θ = 0, no search.
+    pub already_consistent: bool,
+}
+
+/// Whether `m` is consistent within `1 ± within` for `objective`, with no failed or diverged run.
+pub fn is_consistent(m: &Measured, objective: TuneObjective, within: f64) -> bool {
+    let near = |v: Option<f64>| v.is_some_and(|r| (r - 1.0).abs() <= within);
+    m.bad_fraction == 0.0
+        && near(m.anis_per_dof)
+        && (objective == TuneObjective::NisOnly || near(m.anees_per_dof))
 }
 
 /// The objective J of a measured consistency (see the module documentation).
@@ -209,6 +227,17 @@ pub fn tune(
         )));
     }
     let initial = problem.evaluate(&vec![0.0; n])?;
+    if is_consistent(&initial, opts.objective, opts.consistent_within) {
+        progress(1, opts.max_evaluations, objective(&initial, opts.objective));
+        return Ok(TuneResult {
+            theta: vec![0.0; n],
+            cost: objective(&initial, opts.objective),
+            initial,
+            tuned: initial,
+            evaluations: 1,
+            already_consistent: true,
+        });
+    }
     let cost = Cost {
         problem,
         objective: opts.objective,
@@ -265,5 +294,6 @@ pub fn tune(
         initial,
         tuned,
         evaluations,
+        already_consistent: false,
     })
 }

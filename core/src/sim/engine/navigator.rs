@@ -72,12 +72,14 @@ impl Navigator {
         Self::new_checked(onboard, kind, x0)
     }
 
-    /// [`Navigator::new`] for a filter already checked to fit (a Monte Carlo checks once).
+    /// [`Navigator::new`] for a filter already checked to fit (a Monte Carlo checks once). The
+    /// filter is built from `onboard.for_filter(kind)`: with its own tuning when it has one.
     pub(crate) fn new_checked(
         onboard: Arc<Onboard>,
         kind: FilterKind,
         x0: &[f64],
     ) -> Result<Self, EngineError> {
+        let onboard = onboard.for_filter(kind);
         let filter = build_erased(kind, &onboard, x0)?;
         let estimate = filter.estimate(0.0, StepInfo::default());
         Ok(Navigator {

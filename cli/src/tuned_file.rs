@@ -1,0 +1,226 @@
+//! The scenario file `entrynav tune` writes: the user's own text, edited in place with
+//! `toml_edit` so that every comment, blank line and key order survives, with the `--set`
+//! overrides the tuning ran with written in, and one `[filter.tuned.<name>]` table per tuned
+//! filter (replaced when the file already has one), its provenance in the comment above it and
+//! its numbers at six significant digits.
+
+use anyhow::{Context, Result, anyhow, bail};
+use entrynav::scenario::{FilterRetuneConfig, NoiseInflation};
+use toml_edit::{Array, DocumentMut, Item, Table, Value};
+
+/// One filter's tuning to write.
+pub struct Retune<'a> {
+    /// Filter name (the table key).
+    pub name: &'a str,
+    /// What to write.
+    pub config: &'a FilterRetuneConfig,
+    /// Comment lines above the table (without `# `).
+    pub comment: &'a [String],
+}
+
+/// `value` rounded to six significant digits, as TOML text (exponent form below 1e-4 and from
+/// 1e6): `2.0556425029701622e-14` becomes `2.05564e-14`.
+pub fn six_digits(value: f64) -> String {
+    if !value.is_finite() || value == 0.0 {
+        return format!("{value:?}");
+    }
+    let sci = format!("{value:.5e}");
+    let (mantissa, exp) = sci.split_once('e').unwrap_or((&sci, "0"));
+    let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+    let exp: i32 = exp.parse().unwrap_or(0);
+    if !(-4..6).contains(&exp) {
+        return format!("{mantissa}e{exp}");
+    }
+    let v: f64 = format!("{mantissa}e{exp}").parse().unwrap_or(value);
+    let s = format!("{v}");
+    if s.contains('.') { s } else { format!("{s}.0") }
+}
+
+/// `value` rounded to six significant digits.
+pub fn round6(value: f64) -> f64 {
+    six_digits(value).parse().unwrap_or(value)
+}
+
+/// The retune with every number rounded to six significant digits: what the file will hold.
+pub fn rounded(config: &FilterRetuneConfig) -> FilterRetuneConfig {
+    let r = |n: &NoiseInflation| NoiseInflation {
+        accel: round6(n.accel),
+        dynamic_pressure: round6(n.dynamic_pressure),
+        heating: round6(n.heating),
+        range: round6(n.range),
+        range_rate: round6(n.range_rate),
+    };
+    FilterRetuneConfig {
+        q_diag: config
+            .q_diag
+            .as_ref()
+            .map(|q| q.iter().copied().map(round6).collect()),
+        noise_inflation: config.noise_inflation.as_ref().map(r),
+    }
+}
+
+fn number(value: f64) -> Result<Value> {
+    six_digits(value)
+        .parse::<Value>()
+        .map_err(|e| anyhow!("cannot write {value} as TOML: {e}"))
+}
+
+/// `source` (a scenario's TOML text) with the `sets` (`PATH=VALUE`, as `--set` takes them) and
+/// the `retunes` written in.
+pub fn edit(source: &str, sets: &[String], retunes: &[Retune<'_>]) -> Result<String> {
+    let mut doc: DocumentMut = source
+        .parse()
+        .context("the scenario text is not TOML that can be edited")?;
+    for set in sets {
+        apply_set(&mut doc, set).with_context(|| format!("--set {set}"))?;
+    }
+    let filter = doc
+        .get_mut("filter")
+        .and_then(Item::as_table_mut)
+        .ok_or_else(|| anyhow!("the scenario has no [filter] table to tune"))?;
+    let tuned = filter.entry("tuned").or_insert_with(|| {
+        let mut t = Table::new();
+        t.set_implicit(true);
+        Item::Table(t)
+    });
+    let tuned = tuned
+        .as_table_mut()
+        .ok_or_else(|| anyhow!("filter.tuned is not a table"))?;
+    for r in retunes {
+        let mut table = match tuned.remove(r.name) {
+            Some(Item::Table(t)) => t,
+            _ => Table::new(),
+        };
+        if let Some(q) = &r.config.q_diag {
+            let mut array = Array::new();
+            for v in q {
+                array.push_formatted(number(*v)?.decorated("\n    ", ""));
+            }
+            array.set_trailing_comma(true);
+            array.set_trailing("\n");
+            table.insert("q_diag", toml_edit::value(array));
+        }
+        match &r.config.noise_inflation {
+            Some(n) => {
+                let mut inline = toml_edit::InlineTable::new();
+                let d = NoiseInflation::default();
+                for (key, v, one) in [
+                    ("accel", n.accel, d.accel),
+                    ("dynamic_pressure", n.dynamic_pressure, d.dynamic_pressure),
+                    ("heating", n.heating, d.heating),
+                    ("range", n.range, d.range),
+                    ("range_rate", n.range_rate, d.range_rate),
+                ] {
+                    if v != one {
+                        inline.insert(key, number(v)?);
+                    }
+                }
+                table.insert("noise_inflation", toml_edit::value(inline));
+            }
+            None => {
+                table.remove("noise_inflation");
+            }
+        }
+        let comment: String = r.comment.iter().map(|l| format!("# {l}\n")).collect();
+        table.decor_mut().set_prefix(format!("\n{comment}"));
+        table.set_position(None);
+        tuned.insert(r.name, Item::Table(table));
+    }
+    Ok(doc.to_string())
+}
+
+/// Write one `PATH=VALUE` override into the document (tables along the path are created; a value
+/// that is not TOML is a string, as `--set` reads it).
+fn apply_set(doc: &mut DocumentMut, set: &str) -> Result<()> {
+    let (path, value) = set
+        .split_once('=')
+        .ok_or_else(|| anyhow!("expected PATH=VALUE"))?;
+    let value: Value = value
+        .trim()
+        .parse()
+        .unwrap_or_else(|_| Value::from(value.to_string()));
+    let keys: Vec<&str> = path.trim().split('.').collect();
+    let (last, parents) = keys.split_last().ok_or_else(|| anyhow!("empty path"))?;
+    let mut table: &mut dyn toml_edit::TableLike = doc.as_table_mut();
+    for k in parents {
+        if table.get(k).is_none() {
+            table.insert(k, Item::Table(Table::new()));
+        }
+        table = table
+            .get_mut(k)
+            .and_then(Item::as_table_like_mut)
+            .ok_or_else(|| anyhow!("'{k}' is not a table"))?;
+    }
+    match table.get_mut(last) {
+        // Keep the decoration (comments beside the value) of an existing entry.
+        Some(Item::Value(old)) => {
+            let decor = old.decor().clone();
+            *old = value;
+            *old.decor_mut() = decor;
+        }
+        _ => {
+            if table.is_empty() && parents.is_empty() {
+                bail!("nothing to set");
+            }
+            table.insert(last, Item::Value(value));
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_have_six_significant_digits() {
+        assert_eq!(six_digits(2.0556425029701622e-14), "2.05564e-14");
+        assert_eq!(six_digits(1234567.891), "1.23457e6");
+        assert_eq!(six_digits(100.0), "100.0");
+        assert_eq!(six_digits(0.25), "0.25");
+        assert!((round6(2.0556425029701622e-14) / 2.0556425029701622e-14 - 1.0).abs() < 5e-6);
+    }
+
+    #[test]
+    fn comments_layout_and_sets_survive() {
+        let source = "# my study\nname = \"x\" # keep\n\n[filter]\n# shared Q\nq_diag = [1.0, 2.0]\n\n[truth]\nbank_deg = 30.0 # flown\n";
+        let retune = FilterRetuneConfig {
+            q_diag: Some(vec![0.1234567891, 2e-14]),
+            noise_inflation: None,
+        };
+        let comment = vec!["tuned".to_string()];
+        let out = edit(
+            source,
+            &["truth.bank_deg=45.0".to_string()],
+            &[Retune {
+                name: "ekf",
+                config: &retune,
+                comment: &comment,
+            }],
+        )
+        .unwrap();
+        assert!(
+            out.starts_with(
+                "# my study\nname = \"x\" # keep\n\n[filter]\n# shared Q\nq_diag = [1.0, 2.0]\n"
+            ),
+            "{out}"
+        );
+        assert!(out.contains("bank_deg = 45.0 # flown"), "{out}");
+        assert!(
+            out.contains("# tuned\n[filter.tuned.ekf]\nq_diag = [\n    0.123457,\n    2e-14,\n]"),
+            "{out}"
+        );
+        // Re-tuning replaces the table instead of adding a second one.
+        let again = edit(
+            &out,
+            &[],
+            &[Retune {
+                name: "ekf",
+                config: &retune,
+                comment: &comment,
+            }],
+        )
+        .unwrap();
+        assert_eq!(again.matches("[filter.tuned.ekf]").count(), 1, "{again}");
+    }
+}

@@ -19,12 +19,32 @@ pub(super) fn check_bank(t: f64) -> f64 {
     }
 }
 
+/// Beacon availability of the check runs: beacon 2 (slot 1) out from 120 s to 180 s.
+pub(super) fn check_available(t: f64) -> [bool; MAX_BEACONS] {
+    std::array::from_fn(|b| !(b == 1 && (120.0..180.0).contains(&t)))
+}
+
+/// The bank input of a check run's row at `t` with communication step `h`: the command of the
+/// step from `t`, except for the filter FMU, which is told the bank its measurements were flown
+/// with — the previous step's, like the measurements (one step late; fmu/README "Split pair").
+pub(super) fn bank_input(model: Model, t: f64, h: f64) -> f64 {
+    match model {
+        Model::Filter => check_bank((t - h).max(0.0)),
+        _ => check_bank(t),
+    }
+}
+
+/// The inputs of a check run's row at `t` (communication step `h`); the filter FMU's
+/// measurements are the last epoch of `truth`.
 pub(super) fn check_inputs(
+    model: Model,
     vars: &[Var],
     t: f64,
+    h: f64,
     truth: Option<&TruthSensors>,
 ) -> Vec<(usize, Value)> {
-    let bank = check_bank(t);
+    let bank = bank_input(model, t, h);
+    let available = check_available(t);
     let epoch = truth.and_then(|ts| ts.last_epoch());
     let slot_value = |s: Slot| -> Option<f64> {
         let (ts, e) = (truth?, epoch?);
@@ -41,7 +61,9 @@ pub(super) fn check_inputs(
         .map(|(i, v)| {
             let val = match v.key {
                 Key::Bank => Value::Real(bank),
-                Key::BeaconAvailable(b) => Value::Boolean(!(b == 1 && (120.0..180.0).contains(&t))),
+                Key::BeaconAvailable(b) => {
+                    Value::Boolean(available.get(b).copied().unwrap_or(true))
+                }
                 Key::MeasEpoch => Value::Boolean(epoch.is_some()),
                 Key::MeasTime => Value::Real(epoch.map(|e| e.t).unwrap_or(0.0)),
                 Key::Meas(s) => Value::Real(slot_value(s).unwrap_or(0.0)),
@@ -203,7 +225,7 @@ pub(super) fn check(a: &CheckArgs) -> Result<()> {
     let mut warnings = 0;
     for k in 0..n_steps {
         let t = k as f64 * h;
-        for (i, v) in check_inputs(&vars, t, feeder.as_ref()) {
+        for (i, v) in check_inputs(spec.model(), &vars, t, h, feeder.as_ref()) {
             ensure!(
                 slave.set(&vars[i], &v) == 0,
                 "set {}: {:?}",
@@ -226,8 +248,9 @@ pub(super) fn check(a: &CheckArgs) -> Result<()> {
         );
         warnings += (st == 1) as usize;
         if let Some(ts) = feeder.as_mut() {
-            // The measurements of the truth flying the bank the filter is told.
-            ts.do_step(t, h, check_bank(t), &[true; MAX_BEACONS])?;
+            // The measurements the combined FMU's truth makes on this step (its bank and
+            // beacon availability); the filter is told this bank with them, one step late.
+            ts.do_step(t, h, check_bank(t), &check_available(t))?;
         }
         check_eq(
             k + 1,

@@ -10,7 +10,7 @@
 
 #![allow(non_snake_case)]
 
-use super::check::{check_inputs, load_scenario};
+use super::check::{check_available, check_bank, check_inputs, load_scenario};
 use super::run::run_in_process;
 use super::table::{Table, csv, fmt_value};
 use super::*;
@@ -96,8 +96,10 @@ fn reference_outputs(spec: &ModelSpec) -> Vec<String> {
     names
 }
 
-/// The input table of a cross-check run: the `fmu check` inputs at every communication point
-/// (for the filter FMU, the measurements of a truth run with the FMU's default seed).
+/// The input table of a cross-check run: the `fmu check` inputs at every communication point.
+/// For the filter FMU, row t holds the measurements of a truth run with the FMU's default seed
+/// that flew the combined FMU's inputs (bank, beacon availability) over the step ending at t, and
+/// the bank of that step: the filter fed from it reproduces the combined FMU one step late.
 fn input_table(spec: &ModelSpec, resources: &Path, stop: f64, step: f64) -> Result<Table> {
     let vars = spec.vars();
     let inputs: Vec<Var> = vars
@@ -117,10 +119,12 @@ fn input_table(spec: &ModelSpec, resources: &Path, stop: f64, step: f64) -> Resu
     let mut rows = Vec::with_capacity(n + 1);
     for k in 0..=n {
         let t = k as f64 * step;
-        let vals = check_inputs(vars, t, feeder.as_ref());
+        let vals = check_inputs(spec.model(), vars, t, step, feeder.as_ref());
         rows.push((t, vals.into_iter().map(|(_, v)| v).collect()));
         if let Some(ts) = feeder.as_mut() {
-            ts.do_step(t, step, super::check::check_bank(t), &[true; MAX_BEACONS])?;
+            // What the combined FMU's truth flies on this step (bank, beacon availability): the
+            // filter gets these measurements and this bank in the next row, one step late.
+            ts.do_step(t, step, check_bank(t), &check_available(t))?;
         }
     }
     Ok(Table {

@@ -95,6 +95,9 @@ pub struct Instance {
     /// [`crate::limits::MAX_STATE_BYTES`]); fmi2GetFMUstate refuses from then on.
     log_full_at: Option<f64>,
     slot_channel: HashMap<Slot, usize>,
+    /// Whether a step spanning several sensor epochs was already reported at warning level (later
+    /// ones are logged under `logEvents`).
+    multi_epoch_reported: bool,
 }
 
 impl std::fmt::Debug for Instance {
@@ -184,6 +187,7 @@ impl Instance {
             steps: StepLog::default(),
             log_full_at: None,
             slot_channel: HashMap::new(),
+            multi_epoch_reported: false,
         };
         inst.info(&format!(
             "instantiated {} ({})",
@@ -229,7 +233,7 @@ impl Instance {
         (self.log)(Status::Warning, "logStatusWarning", msg);
     }
 
-    fn info(&self, msg: &str) {
+    pub(super) fn info(&self, msg: &str) {
         if self.logging_on
             && (self.enabled.is_empty()
                 || self

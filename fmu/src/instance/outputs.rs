@@ -10,12 +10,17 @@ use entrynav::sim::StopReason;
 use entrynav::sim::engine::Navigator;
 
 impl Instance {
+    /// The value of output `key`. No output is ever NaN (system masters such as OMSimulator reject
+    /// a NaN and drop the step's whole result row): a value that is not defined yet or not at all
+    /// reads 0, and the output that says why is beside it — `n_meas` = 0 for `nis`, `nees_dof` = 0
+    /// for `nees`, a filter without density state for `est_density`, a state without truth
+    /// counterpart for `truth_x_*`/`err_*`, no engine before initialisation ends.
     pub(super) fn output(&self, key: Key) -> Value {
         let Some(engine) = &self.engine else {
-            return Value::Real(f64::NAN);
+            return self.undefined(key);
         };
-        let nan = f64::NAN;
-        let real = Value::Real;
+        let undefined = 0.0;
+        let real = |x: f64| Value::Real(if x.is_finite() { x } else { undefined });
         if let Some(ts) = engine.truth() {
             let o = ts.outputs();
             let nb = ts.scenario().beacons.len();
@@ -83,8 +88,8 @@ impl Instance {
                     };
                     return real(s[k]);
                 }
-                Key::EstDensity => return real(est.density.unwrap_or(nan)),
-                Key::Nis => return real(est.info.nis.unwrap_or(nan)),
+                Key::EstDensity => return real(est.density.unwrap_or(undefined)),
+                Key::Nis => return real(est.info.nis.unwrap_or(undefined)),
                 Key::NMeas => return Value::Integer(est.info.n_meas as i32),
                 Key::Weight(i) => {
                     return real(
@@ -109,17 +114,22 @@ impl Instance {
             match key {
                 Key::TruthX(i) => return slot(&j.truth, i),
                 Key::Err(i) => return slot(&j.err, i),
-                Key::Nees => return real(j.nees.map(|x| x.0).unwrap_or(nan)),
+                Key::Nees => return real(j.nees.map(|x| x.0).unwrap_or(undefined)),
                 Key::NeesDof => return Value::Integer(j.nees.map(|x| x.1 as i32).unwrap_or(0)),
                 Key::NavTruthDensity => return real(j.density_true),
                 _ => {}
             }
         }
+        self.undefined(key)
+    }
+
+    /// The value of an output that is not defined: 0, false or the empty string by type.
+    fn undefined(&self, key: Key) -> Value {
         match self.vars.iter().find(|v| v.key == key).map(|v| v.ty) {
             Some(Type::Integer) => Value::Integer(0),
             Some(Type::Boolean) => Value::Boolean(false),
             Some(Type::String) => Value::String(String::new()),
-            _ => real(nan),
+            _ => Value::Real(0.0),
         }
     }
 }

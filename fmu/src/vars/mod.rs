@@ -3,9 +3,11 @@
 //!
 //! The generic layout is fixed whatever the scenario: filter states in slots 1..=12 (slots past the
 //! scenario's state dimension read 0), beacons in slots 1..=6 (past the scenario's beacon count:
-//! 0 / false), fusion weights or model probabilities in slots 1..=8. Values that exist but are not
-//! known read NaN (the truth of ρ0 when the truth atmosphere is not exponential, the NEES before it
-//! is defined, the density estimate of a filter that does not estimate density). A
+//! 0 / false), fusion weights or model probabilities in slots 1..=8. No output is ever NaN (system
+//! masters such as OMSimulator reject a NaN and drop the whole result row): values that are not
+//! defined read 0 beside the output that says so (the NIS while `n_meas` = 0, the NEES while
+//! `nees_dof` = 0, the truth of a state without truth counterpart such as ρ0 under a
+//! non-exponential truth atmosphere, the density estimate of a filter without one). A
 //! scenario-specific FMU ([`ModelSpec::for_scenario`]) names its state outputs after the scenario's
 //! states instead (`est.r` in m, `est.lon` in rad, …) and has one beacon slot per beacon.
 
@@ -30,10 +32,13 @@ pub const MAX_WEIGHTS: usize = 8;
 /// 3: `allow_external_files`; Enumeration types for `nav_status` and `truth_stop` (with Integer
 /// twins `nav_status_code`, `truth_stop_code`); estimate outputs `discrete`; dimensionless units;
 /// no input feeds through (`dependencies`).
-pub const TABLE_VERSION: u32 = 3;
+/// 4: no output is NaN: undefined values (NIS before the first update, NEES without truth, the
+/// density estimate of a filter without one, the truth of a state without truth counterpart)
+/// read 0.
+pub const TABLE_VERSION: u32 = 4;
 /// `generationDateAndTime` of every description of [`TABLE_VERSION`]: the description is a pure
 /// function of the table, so it carries the table's date and is reproducible byte for byte.
-pub const TABLE_DATE: &str = "2026-12-01T00:00:00Z";
+pub const TABLE_DATE: &str = "2026-12-04T00:00:00Z";
 
 /// FMI base type (how a value crosses the C API: Enumerations go through fmi2Get/SetInteger).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -189,14 +189,14 @@ pub(super) fn nav_outputs(b: &mut Builder, specific: Option<&Specific>) {
         "est_density",
         Real,
         Some("kg/m3"),
-        "Filter's density estimate (NaN when the filter does not estimate density)",
+        "Filter's density estimate (0 when the filter does not estimate density)",
         Key::EstDensity,
     );
     b.out(
         "nis",
         Real,
         Some("1"),
-        "Normalised innovation squared of the last update (NaN when no measurement was used)",
+        "Normalised innovation squared of the last update (0 while n_meas = 0: no measurement used yet)",
         Key::Nis,
     );
     b.out(
@@ -238,7 +238,7 @@ pub(super) fn judgement_outputs(b: &mut Builder, specific: Option<&Specific>) {
                     Real,
                     None,
                     format!(
-                        "Truth of filter state {} at the estimate's epoch (NaN without a truth counterpart)",
+                        "Truth of filter state {} at the estimate's epoch (0 without a truth counterpart)",
                         i + 1
                     ),
                     Key::TruthX(i),
@@ -264,7 +264,7 @@ pub(super) fn judgement_outputs(b: &mut Builder, specific: Option<&Specific>) {
                     Real,
                     Some(st.unit),
                     format!(
-                        "True {} at the estimate's epoch (NaN without a truth counterpart)",
+                        "True {} at the estimate's epoch (0 without a truth counterpart)",
                         st.description
                     ),
                     Key::TruthX(i),
@@ -288,7 +288,7 @@ pub(super) fn judgement_outputs(b: &mut Builder, specific: Option<&Specific>) {
         "nees",
         Real,
         Some("1"),
-        "Normalised estimation error squared over the states with a truth value",
+        "Normalised estimation error squared over the states with a truth value (0 while nees_dof = 0)",
         Key::Nees,
     );
     b.out(

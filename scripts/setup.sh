@@ -67,4 +67,13 @@ if ! .venv/bin/python -c "import fmpy, libcosimpy, pytest, numpy, scipy, fmu_man
   .venv/bin/pip install --quiet --disable-pip-version-check \
     "fmpy==0.3.32" "fmu-manipulation-toolbox==2.0" "libcosimpy==0.0.6" pytest numpy scipy distributed
 fi
-echo "setup: toolchain ready ($(cargo --version)); python tools in .venv"
+# OMSimulator 3 (OpenModelica's FMI/SSP engine) is not installable from PyPI here (its sdist downloads
+# a binary from elsewhere); a wheel built from source may sit in ../shared/tools (ENTRYNAV_TOOLS
+# overrides the folder). tests/python/test_omsimulator.py runs our FMUs in it, and skips without it.
+tools="${ENTRYNAV_TOOLS:-../shared/tools}"
+oms_wheel=$(ls "$tools"/omsimulator-*.whl 2>/dev/null | head -n 1 || true)
+if [ -n "$oms_wheel" ] && ! .venv/bin/python -c "import OMSimulator" >/dev/null 2>&1; then
+  .venv/bin/pip install --quiet --disable-pip-version-check "$oms_wheel" lxml requests
+fi
+oms_note=$(.venv/bin/python -c "import OMSimulator" >/dev/null 2>&1 && echo ", OMSimulator" || echo ", no OMSimulator (its tests skip)")
+echo "setup: toolchain ready ($(cargo --version)); python tools in .venv$oms_note"

@@ -3,7 +3,10 @@ and a crash must not take pytest down).
 
 argv[1] is a JSON spec: {"components": {name: {"fmu": path, "params": {var: value}}},
 "connections": [["truth.meas_epoch", "filter.meas_epoch"], ...], "step": h, "stop": T,
-"observe": {name: [var, ...]}, "result": csv path}. The system is stepped one communication step
+"observe": {name: [var, ...]}, "result": csv path}, or, for an SSP package, {"ssp": path,
+"system": name, "inputs": {connector: [[t_from, value], ...]}, ...}: the system's input
+connectors follow the piecewise-constant schedules (the value of the last t_from <= the step's
+start holds over the step). The system is stepped one communication step
 at a time with stepUntil; after initialisation and after every step the observed variables are read
 through the C API (exact doubles, unlike the result file's 12 digits). Prints one JSON line:
 {"times": [...], "series": {name: [[value per variable] per point]}}."""
@@ -26,8 +29,9 @@ _capi.capi.setString = _set_string
 
 def main():
     spec = json.loads(sys.argv[1])
-    model = SSP()
-    for name, c in spec["components"].items():
+    root = spec.get("system", "default")
+    model = SSP(spec["ssp"]) if "ssp" in spec else SSP()
+    for name, c in spec.get("components", {}).items():
         model.addResource(c["fmu"], new_name=f"resources/{name}.fmu")
         model.addComponent(CRef("default", name), f"resources/{name}.fmu")
         for var, value in c.get("params", {}).items():
@@ -46,12 +50,18 @@ def main():
     def grab(t):
         times.append(t)
         for name, names in observe.items():
-            series[name].append([inst.getValue(CRef("default", name, v)) for v in names])
+            series[name].append([inst.getValue(CRef(root, name, v)) for v in names])
+
+    def apply_inputs(t):
+        for connector, schedule in spec.get("inputs", {}).items():
+            value = [v for t_from, v in schedule if t_from <= t + 1e-9][-1]
+            inst.setValue(CRef(root, connector), value)
 
     grab(0.0)
     n = round(spec["stop"] / spec["step"])
     for k in range(1, n + 1):
         t = k * spec["step"]
+        apply_inputs(t - spec["step"])
         inst.stepUntil(t)
         grab(t)
     inst.terminate()

@@ -6,7 +6,10 @@ output (it drops the step's whole result row) and stops on fmi2Warning from a st
   after every step bitwise equal to the in-process library (`entrynav fmu run`);
 * the truth FMU with a 2 s step (longer than its 1 s sensors) runs to the end, bitwise equal;
 * the split pair connected in OMSimulator (truth measurements into the filter) beside the combined
-  FMU: the filter's estimate is the combined FMU's one step late, bitwise."""
+  FMU: the filter's estimate is the combined FMU's one step late, bitwise;
+* the SSP packages of `entrynav fmu pack --ssp` (valid against the SSP 1.0 schemas OMSimulator
+  ships): the split system, flown with a bank profile and a beacon outage through its system
+  inputs, is the combined system one step late, bitwise."""
 
 import csv
 import json
@@ -117,3 +120,55 @@ def test_the_split_pair_is_the_combined_fmu_one_step_late(fmus, tmp_path):
     assert filt[-1, EST.index("n_meas")] > 0, "the filter never received a measurement"
     assert np.array_equal(filt[1:], comb[:-1]), "the split filter is not the combined FMU one step late"
     print(f"split pair: {len(meas)} connections, {filt[1:].size} values equal one step late")
+
+
+@pytest.fixture(scope="module")
+def ssps(tmp_path_factory):
+    out = tmp_path_factory.mktemp("ssp")
+    r = run([ENTRYNAV, "fmu", "pack", "--out", out, "--ssp"], timeout=300)
+    assert r.returncode == 0, r.stdout + r.stderr
+    return {"split": out / "MarsEntrySplit.ssp", "combined": out / "MarsEntryNav.ssp"}
+
+
+def test_ssp_packages_are_valid_ssp_1_0(ssps):
+    import zipfile
+
+    from lxml import etree
+
+    schema_dir = Path(OMSimulator.__file__).parent / "schema" / "ssp"
+    ssd_schema = etree.XMLSchema(etree.parse(str(schema_dir / "SystemStructureDescription.xsd")))
+    ssv_schema = etree.XMLSchema(etree.parse(str(schema_dir / "SystemStructureParameterValues.xsd")))
+    for name, path in ssps.items():
+        with zipfile.ZipFile(path) as z:
+            names = z.namelist()
+            ssd = etree.fromstring(z.read("SystemStructure.ssd"))
+            assert ssd_schema.validate(ssd), (name, ssd_schema.error_log)
+            ssv_files = [n for n in names if n.endswith(".ssv")]
+            assert len(ssv_files) == 1, names
+            ssv = etree.fromstring(z.read(ssv_files[0]))
+            assert ssv_schema.validate(ssv), (name, ssv_schema.error_log)
+            for comp in ssd.iter("{http://ssp-standard.org/SSP1/SystemStructureDescription}Component"):
+                assert comp.get("source") in names, (name, comp.get("source"))
+        print(name, names)
+
+
+BANK = [[0.0, 0.0], [100.0, 0.35], [200.0, -0.2]]
+OUTAGE = [[0.0, True], [120.0, False], [180.0, True]]
+
+
+def test_the_ssp_split_system_is_the_combined_system_one_step_late(ssps, tmp_path):
+    inputs = {"bank_angle": BANK, "beacon_available_2": OUTAGE}
+    split = oms({"ssp": str(ssps["split"]), "system": "MarsEntrySplit", "inputs": inputs, "step": 1.0,
+                 "stop": 300.0, "observe": {"navfilter": EST, "truth": ["truth_bank_angle", "truth_r"]}}, tmp_path)
+    comb = oms({"ssp": str(ssps["combined"]), "system": "MarsEntryNav", "inputs": inputs, "step": 1.0,
+                "stop": 300.0, "observe": {"nav": EST + ["truth_r"]}}, tmp_path)
+    assert split["result_times"] == [float(k) for k in range(301)]
+    f = np.array(split["series"]["navfilter"], dtype=np.float64)
+    t = np.array(split["series"]["truth"], dtype=np.float64)
+    c = np.array(comb["series"]["nav"], dtype=np.float64)
+    # The truth flew the bank profile (truth_bank_angle after the step from t is BANK at t).
+    assert t[101, 0] == 0.35 and t[201, 0] == -0.2 and t[100, 0] == 0.0
+    assert np.array_equal(t[:, 1], c[:, -1]), "the split truth is not the combined truth"
+    assert f[-1, EST.index("n_meas")] > 0
+    assert np.array_equal(f[1:], c[:-1, :-1]), "the SSP split filter is not the combined system one step late"
+    print(f"SSP split vs combined: {f[1:].size} values equal one step late across the bank switches and the outage")

@@ -14,6 +14,7 @@ mod fuzz;
 mod library;
 mod pack;
 mod run;
+mod ssp;
 mod table;
 
 use check::check;

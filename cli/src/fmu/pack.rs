@@ -32,6 +32,11 @@ pub(super) struct PackArgs {
     /// else the first filter that does).
     #[arg(long, requires = "scenario")]
     filter: Option<String>,
+    /// Also write SSP 1.0 packages of the generic FMUs: `MarsEntrySplit.ssp` (truth -> filter,
+    /// the filter one step late) and `MarsEntryNav.ssp` (the combined FMU), each with its
+    /// parameters in an .ssv.
+    #[arg(long, conflicts_with = "scenario")]
+    ssp: bool,
     /// Ship the library with its symbols and debug information (by default it is stripped with
     /// binutils' `strip --strip-all`).
     #[arg(long)]
@@ -211,6 +216,12 @@ pub(super) fn pack(a: &PackArgs) -> Result<()> {
                 " (stripped)"
             }
         );
+    }
+    if a.ssp {
+        let (_, stop, _) = ModelSpec::generic(Model::Combined).default_experiment();
+        for path in super::ssp::write_ssps(&a.out, stop)? {
+            println!("{}  SSP 1.0 system", path.display());
+        }
     }
     Ok(())
 }

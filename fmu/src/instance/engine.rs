@@ -253,6 +253,9 @@ impl Instance {
             Engine::Filter { nav, .. } => nav.do_step(t, h, bank, epoch.as_ref()),
         }?;
         let mut status = Status::Ok;
+        if self.model.has_truth() {
+            self.flown_bank = Some(bank);
+        }
         if self.model == Model::Truth && report.epochs > 1 {
             // Not a failure: system masters (OMSimulator) often step longer than a sensor period
             // and stop on fmi2Warning. The step succeeds; the outputs are the last epoch's.

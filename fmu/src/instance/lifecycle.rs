@@ -148,6 +148,7 @@ impl Instance {
         self.engine = None;
         self.steps.clear();
         self.log_full_at = None;
+        self.flown_bank = None;
         Status::Ok
     }
 

@@ -98,6 +98,8 @@ pub struct Instance {
     /// Whether a step spanning several sensor epochs was already reported at warning level (later
     /// ones are logged under `logEvents`).
     multi_epoch_reported: bool,
+    /// The bank the truth flew over the last step (`truth_bank_angle`).
+    flown_bank: Option<f64>,
 }
 
 impl std::fmt::Debug for Instance {
@@ -188,6 +190,7 @@ impl Instance {
             log_full_at: None,
             slot_channel: HashMap::new(),
             multi_epoch_reported: false,
+            flown_bank: None,
         };
         inst.info(&format!(
             "instantiated {} ({})",

@@ -45,6 +45,7 @@ impl Instance {
                     });
                 }
                 Key::NBeacons => return Value::Integer(nb as i32),
+                Key::TruthBankFlown => return real(self.flown_bank.unwrap_or(0.0)),
                 Key::MeasEpoch => return Value::Boolean(ts.last_epoch().is_some()),
                 Key::MeasTime => return real(ts.last_epoch().map(|e| e.t).unwrap_or(0.0)),
                 Key::Meas(s) | Key::MeasValid(s) => {

@@ -70,6 +70,7 @@ impl Instance {
         self.engine = None;
         self.steps.clear();
         self.log_full_at = None;
+        self.flown_bank = None;
         self.start_time = s.start_time;
         self.stop_time = s.stop_time;
         self.values = s.values.clone();

@@ -128,6 +128,8 @@ pub enum Key {
     BeaconVisible(usize),
     /// Why the truth stopped.
     TruthStop,
+    /// The bank angle the truth flew over its last step (0 before the first step).
+    TruthBankFlown,
     /// [`Key::TruthStop`] as a plain Integer.
     TruthStopCode,
     /// Number of beacons.

@@ -92,6 +92,13 @@ pub(super) fn truth_outputs(b: &mut Builder, n_beacons: usize) {
         Key::TruthStopCode,
     );
     b.out(
+        "truth_bank_angle",
+        Real,
+        Some("rad"),
+        "Bank angle the truth flew over its last step (0 before the first step): connected to MarsEntryNavFilter's bank_angle, it reaches the filter one step late with the measurements of that step",
+        Key::TruthBankFlown,
+    );
+    b.out(
         "n_beacons",
         Integer,
         None,

@@ -1,0 +1,269 @@
+//! `entrynav fmu pack --ssp`: System Structure and Parameterization (SSP 1.0) packages of the
+//! packed FMUs, the form in which systems of FMUs travel between tools:
+//!
+//! * `MarsEntrySplit.ssp` — the split pair: `truth` (MarsEntryTruth) flies the system inputs
+//!   `bank_angle` and `beacon_available_*`; its measurement outputs and `truth_bank_angle` (the
+//!   bank it flew over its last step) feed `navfilter` (MarsEntryNavFilter). A master transfers them
+//!   after each step, so the filter receives each step's measurements with the bank they were flown
+//!   with, one step late, and its estimate is the combined FMU's one step late.
+//! * `MarsEntryNav.ssp` — the combined FMU alone with the same system inputs.
+//!
+//! Each holds `SystemStructure.ssd`, the FMUs under `resources/`, and the parameters (scenario,
+//! seed, dispersion, filter; the FMUs' defaults) in `resources/<system>.ssv`, bound at system
+//! level with names `<component>.<variable>`, so a user sets a study in one file. The truth and the
+//! filter must share seed and dispersion (the filter's start is drawn from the truth's seed).
+
+use super::*;
+use mars_entry_nav::vars::{MAX_BEACONS, Var, variables};
+use std::fmt::Write as _;
+
+const SSD_NS: &str = r#"xmlns:ssc="http://ssp-standard.org/SSP1/SystemStructureCommon" xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription""#;
+const SSV_NS: &str = r#"xmlns:ssv="http://ssp-standard.org/SSP1/SystemStructureParameterValues""#;
+
+/// The filter's component name. Not `filter`: OMSimulator 3 cannot resolve a component named
+/// like one of its own variables (the filter FMU has a `filter` parameter) and crashes.
+const FILTER: &str = "navfilter";
+
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// One component of a system.
+struct Element {
+    name: &'static str,
+    model: Model,
+}
+
+/// A system: its components and the connections between them (start element, connector, end
+/// element, connector; `None` is the system itself).
+struct SystemSpec {
+    name: &'static str,
+    description: &'static str,
+    elements: Vec<Element>,
+    connections: Vec<(Option<&'static str>, String, Option<&'static str>, String)>,
+}
+
+fn ssc_type(v: &Var) -> &'static str {
+    match v.ty {
+        Type::Real => "<ssc:Real/>",
+        Type::Integer => "<ssc:Integer/>",
+        Type::Boolean => "<ssc:Boolean/>",
+        Type::String => "<ssc:String/>",
+    }
+}
+
+fn kind(v: &Var) -> &'static str {
+    match v.causality {
+        Causality::Input => "input",
+        Causality::Output => "output",
+        Causality::Parameter => "parameter",
+    }
+}
+
+/// The system inputs every system has: the bank command and the beacon availability.
+fn system_inputs() -> Vec<String> {
+    std::iter::once("bank_angle".to_string())
+        .chain((1..=MAX_BEACONS).map(|i| format!("beacon_available_{i}")))
+        .collect()
+}
+
+fn split_system() -> SystemSpec {
+    let truth = variables(Model::Truth);
+    let mut connections: Vec<_> = system_inputs()
+        .into_iter()
+        .map(|n| (None, n.clone(), Some("truth"), n))
+        .collect();
+    for v in variables(Model::Filter)
+        .iter()
+        .filter(|v| v.causality == Causality::Input && v.name.starts_with("meas_"))
+    {
+        if truth
+            .iter()
+            .any(|t| t.name == v.name && t.causality == Causality::Output)
+        {
+            connections.push((Some("truth"), v.name.clone(), Some(FILTER), v.name.clone()));
+        }
+    }
+    connections.push((
+        Some("truth"),
+        "truth_bank_angle".into(),
+        Some(FILTER),
+        "bank_angle".into(),
+    ));
+    SystemSpec {
+        name: "MarsEntrySplit",
+        description: "Mars entry truth and navigation filter as two FMUs: the filter receives the truth's measurements and flown bank angle one step late",
+        elements: vec![
+            Element {
+                name: "truth",
+                model: Model::Truth,
+            },
+            Element {
+                name: FILTER,
+                model: Model::Filter,
+            },
+        ],
+        connections,
+    }
+}
+
+fn combined_system() -> SystemSpec {
+    SystemSpec {
+        name: "MarsEntryNav",
+        description: "Mars entry truth and navigation filter in one FMU",
+        elements: vec![Element {
+            name: "nav",
+            model: Model::Combined,
+        }],
+        connections: system_inputs()
+            .into_iter()
+            .map(|n| (None, n.clone(), Some("nav"), n))
+            .collect(),
+    }
+}
+
+/// `SystemStructure.ssd` of `sys` (stop time `stop` s).
+fn ssd(sys: &SystemSpec, stop: f64) -> String {
+    let mut x = String::new();
+    let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
+    let _ = writeln!(
+        x,
+        r#"<ssd:SystemStructureDescription {SSD_NS} version="1.0" name="{}" description="{}" generationTool="entrynav {}">"#,
+        sys.name,
+        esc(sys.description),
+        env!("CARGO_PKG_VERSION")
+    );
+    let _ = writeln!(x, r#"  <ssd:System name="{}">"#, sys.name);
+    let _ = writeln!(x, "    <ssd:Connectors>");
+    for n in system_inputs() {
+        let ty = if n == "bank_angle" {
+            "<ssc:Real/>"
+        } else {
+            "<ssc:Boolean/>"
+        };
+        let _ = writeln!(
+            x,
+            r#"      <ssd:Connector name="{n}" kind="input">{ty}</ssd:Connector>"#
+        );
+    }
+    let _ = writeln!(x, "    </ssd:Connectors>");
+    let _ = writeln!(x, "    <ssd:ParameterBindings>");
+    let _ = writeln!(
+        x,
+        r#"      <ssd:ParameterBinding source="resources/{}.ssv"/>"#,
+        sys.name
+    );
+    let _ = writeln!(x, "    </ssd:ParameterBindings>");
+    let _ = writeln!(x, "    <ssd:Elements>");
+    for e in &sys.elements {
+        let _ = writeln!(
+            x,
+            r#"      <ssd:Component name="{}" type="application/x-fmu-sharedlibrary" source="resources/{}.fmu">"#,
+            e.name,
+            e.model.identifier()
+        );
+        let _ = writeln!(x, "        <ssd:Connectors>");
+        for v in variables(e.model) {
+            let _ = writeln!(
+                x,
+                r#"          <ssd:Connector name="{}" kind="{}">{}</ssd:Connector>"#,
+                esc(&v.name),
+                kind(&v),
+                ssc_type(&v)
+            );
+        }
+        let _ = writeln!(x, "        </ssd:Connectors>");
+        let _ = writeln!(x, "      </ssd:Component>");
+    }
+    let _ = writeln!(x, "    </ssd:Elements>");
+    let _ = writeln!(x, "    <ssd:Connections>");
+    for (se, sc, ee, ec) in &sys.connections {
+        let start = se
+            .map(|s| format!(r#" startElement="{s}""#))
+            .unwrap_or_default();
+        let end = ee
+            .map(|s| format!(r#" endElement="{s}""#))
+            .unwrap_or_default();
+        let _ = writeln!(
+            x,
+            r#"      <ssd:Connection{start} startConnector="{}"{end} endConnector="{}"/>"#,
+            esc(sc),
+            esc(ec)
+        );
+    }
+    let _ = writeln!(x, "    </ssd:Connections>");
+    let _ = writeln!(x, "  </ssd:System>");
+    let _ = writeln!(
+        x,
+        r#"  <ssd:DefaultExperiment startTime="0.0" stopTime="{stop:?}"/>"#
+    );
+    let _ = writeln!(x, "</ssd:SystemStructureDescription>");
+    x
+}
+
+/// `<system>.ssv`: every parameter of every component at the FMU's default.
+fn ssv(sys: &SystemSpec) -> String {
+    let mut x = String::new();
+    let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
+    let _ = writeln!(
+        x,
+        r#"<ssv:ParameterSet {SSV_NS} version="1.0" name="{}">"#,
+        sys.name
+    );
+    let _ = writeln!(x, "  <ssv:Parameters>");
+    for e in &sys.elements {
+        for v in variables(e.model)
+            .iter()
+            .filter(|v| v.causality == Causality::Parameter && v.name != "allow_external_files")
+        {
+            let value = match &v.start {
+                Some(Value::Real(r)) => format!(r#"<ssv:Real value="{r:?}"/>"#),
+                Some(Value::Integer(i)) => format!(r#"<ssv:Integer value="{i}"/>"#),
+                Some(Value::Boolean(b)) => format!(r#"<ssv:Boolean value="{b}"/>"#),
+                Some(Value::String(s)) => format!(r#"<ssv:String value="{}"/>"#, esc(s)),
+                None => continue,
+            };
+            let _ = writeln!(
+                x,
+                r#"    <ssv:Parameter name="{}.{}">{value}</ssv:Parameter>"#,
+                e.name,
+                esc(&v.name)
+            );
+        }
+    }
+    let _ = writeln!(x, "  </ssv:Parameters>");
+    let _ = writeln!(x, "</ssv:ParameterSet>");
+    x
+}
+
+/// Write `<out>/<system>.ssp` for the split pair and the combined FMU from the packed `.fmu`
+/// files in `out`; `stop` is the default experiment's stop time.
+pub(super) fn write_ssps(out: &Path, stop: f64) -> Result<Vec<PathBuf>> {
+    let mut written = Vec::new();
+    for sys in [split_system(), combined_system()] {
+        let path = out.join(format!("{}.ssp", sys.name));
+        let file = crate::atomic_file::AtomicFile::create(&path)?;
+        let mut zip = zip::ZipWriter::new(file);
+        let opts = zip::write::SimpleFileOptions::default()
+            .compression_method(zip::CompressionMethod::Deflated)
+            .unix_permissions(0o644);
+        zip.start_file("SystemStructure.ssd", opts)?;
+        zip.write_all(ssd(&sys, stop).as_bytes())?;
+        zip.add_directory("resources/", opts)?;
+        zip.start_file(format!("resources/{}.ssv", sys.name), opts)?;
+        zip.write_all(ssv(&sys).as_bytes())?;
+        for e in &sys.elements {
+            let fmu = out.join(format!("{}.fmu", e.model.identifier()));
+            let bytes =
+                std::fs::read(&fmu).with_context(|| format!("cannot read {}", fmu.display()))?;
+            zip.start_file(format!("resources/{}.fmu", e.model.identifier()), opts)?;
+            zip.write_all(&bytes)?;
+        }
+        zip.finish()?.commit()?;
+        written.push(path);
+    }
+    Ok(written)
+}

@@ -59,6 +59,14 @@ fi
 # Headless Chromium renders the HTML report in scripts/check_report.sh (test.sh).
 command -v chromium >/dev/null 2>&1 || command -v chromium-browser >/dev/null 2>&1 || apt_install chromium
 
+# Independent FMI importers that are not in the registries may sit in ../shared/tools
+# (ENTRYNAV_TOOLS overrides the folder); the tests use them when present and skip otherwise.
+tools="${ENTRYNAV_TOOLS:-../shared/tools}"
+# Reference-FMUs fmusim (FMI 2.0/3.0 reference importer) needs these libraries.
+if [ -x "$tools/fmusim" ] && ! "$tools/fmusim" --version >/dev/null 2>&1; then
+  apt_install libxml2 libminizip1 libsundials-cvode6
+fi
+
 # Python tools for the FMU and benchmark tests, pinned.
 if [ ! -x .venv/bin/python ]; then
   python3 -m venv .venv
@@ -70,7 +78,6 @@ fi
 # OMSimulator 3 (OpenModelica's FMI/SSP engine) is not installable from PyPI here (its sdist downloads
 # a binary from elsewhere); a wheel built from source may sit in ../shared/tools (ENTRYNAV_TOOLS
 # overrides the folder). tests/python/test_omsimulator.py runs our FMUs in it, and skips without it.
-tools="${ENTRYNAV_TOOLS:-../shared/tools}"
 oms_wheel=$(ls "$tools"/omsimulator-*.whl 2>/dev/null | head -n 1 || true)
 if [ -n "$oms_wheel" ] && ! .venv/bin/python -c "import OMSimulator" >/dev/null 2>&1; then
   .venv/bin/pip install --quiet --disable-pip-version-check "$oms_wheel" lxml requests

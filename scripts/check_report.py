@@ -90,6 +90,13 @@ def main():
     words = len(text.split())
     if words < 200:
         problems.append(f"only {words} words of text outside the figures")
+    # Phrases the caller expects on the page (CHECK_REPORT_EXPECT, separated by "|"), e.g. the
+    # recommendation line and a diverged filter's verdict.
+    import os
+
+    for phrase in filter(None, os.environ.get("CHECK_REPORT_EXPECT", "").split("|")):
+        if phrase not in " ".join(text.split()):
+            problems.append(f"the rendered page lacks '{phrase}'")
     ink = ink_fraction(png)
     if ink < 0.02:
         problems.append(f"screenshot is blank ({100 * ink:.2f} % non-white pixels)")

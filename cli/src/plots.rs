@@ -131,20 +131,24 @@ pub fn trade_figures(report: &TradeReport, names: &WeightNames) -> Result<Vec<Fi
         let svg = line_chart(&frame(&title, &y, true, WIDE), &curves)?;
         out.push(format!("rmse_{st}"), Kind::Rmse, svg);
     }
-    // Errors against 3σ envelopes, per filter and state.
+    // Errors against 3σ envelopes, per filter and state: |error| and σ on a log axis, so that an
+    // error of 1000 m at the start and one of 0.3 m late in the flight are both readable.
     for f in &report.filters {
         for (i, st) in report.states.iter().enumerate() {
             let s = &f.series;
-            let sig = |k: usize, m: f64| s.sigma_mean[k][i].map(|v| m * v);
+            let sig = |k: usize| s.sigma_mean[k][i].map(|v| 3.0 * v);
             let curves = vec![
                 curve("RMSE", series_points(f, &|k| s.rmse[k][i]), false),
-                curve("mean error", series_points(f, &|k| s.bias[k][i]), false),
-                curve("+3σ (mean σ)", series_points(f, &|k| sig(k, 3.0)), true),
-                curve("−3σ (mean σ)", series_points(f, &|k| sig(k, -3.0)), true),
+                curve(
+                    "|mean error|",
+                    series_points(f, &|k| s.bias[k][i].map(f64::abs)),
+                    false,
+                ),
+                curve("3σ (mean σ)", series_points(f, &|k| sig(k)), true),
             ];
             let title = format!("{}: {}", f.name, quantity(st).0);
-            let y = axis(st, "error");
-            let svg = line_chart(&frame(&title, &y, false, SMALL), &curves)?;
+            let y = axis(st, "|error|");
+            let svg = line_chart(&frame(&title, &y, true, SMALL), &curves)?;
             out.push(
                 format!("{}_err3s_{st}", f.name),
                 Kind::ErrorSigma(f.name.clone()),

@@ -52,6 +52,11 @@ pub fn print_tables(report: &TradeReport, elapsed: f64) {
         print_consistency(f);
     }
     print_pcrlb(report);
+    println!();
+    println!(
+        "recommendation: {}",
+        crate::report::summary::recommendation(report)
+    );
 }
 
 /// The scenario's PCRLB and each filter's efficiency RMSE / PCRLB (1 = the best any estimator

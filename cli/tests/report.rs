@@ -79,6 +79,25 @@ fn trade_report_is_one_self_contained_page_with_every_section() {
     ] {
         assert!(html.contains(text), "page lacks {text}");
     }
+    // A decision at the top: the recommendation names the most accurate consistent filter.
+    let rec = html
+        .split("<p class=\"recommendation\">")
+        .nth(1)
+        .and_then(|s| s.split("</p>").next())
+        .expect("no recommendation line");
+    assert!(
+        rec.contains("ekf: consistent, lowest position RMSE") && rec.contains("dcifaif consistent"),
+        "{rec}"
+    );
+    assert!(
+        html.find("recommendation").unwrap() < html.find("<table").unwrap(),
+        "the recommendation is not at the top"
+    );
+    // Fractions inside ±3σ with one decimal (99.5 % must not read 100 %).
+    assert!(
+        html.contains("99.") && html.contains(" %</td>"),
+        "no one-decimal ±3σ fraction"
+    );
     // The provenance block is the summary's.
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
@@ -187,4 +206,40 @@ fn grid_report_shows_cells_as_categories() {
         assert!(html.contains(text), "grid page lacks {text}");
     }
     assert!(html.matches("<svg").count() >= 4);
+}
+
+#[test]
+fn a_diverged_filter_is_marked_diverged_and_never_recommended() {
+    let dir = tmpdir("diverged");
+    let html_path = dir.join("r.html");
+    let (code, out, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "four-beacon-fusion",
+        "--filters",
+        "ci,ekf",
+        "--runs",
+        "6",
+        "--quiet",
+        "--report",
+        html_path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    // The CLI prints the same line after its tables.
+    let line = out
+        .lines()
+        .find(|l| l.starts_with("recommendation: "))
+        .expect("no recommendation line");
+    assert!(
+        line.contains("recommendation: ekf: consistent")
+            && line.contains("ci diverged in 6/6 runs"),
+        "{line}"
+    );
+    let html = std::fs::read_to_string(&html_path).unwrap();
+    // Every verdict cell of CI says it diverged (not "optimistic").
+    assert_eq!(
+        html.matches("diverged in 6/6 runs</td>").count(),
+        3,
+        "CI's three verdict cells"
+    );
 }

@@ -47,6 +47,111 @@ fn pct(v: Option<f64>) -> String {
     v.map_or("–".into(), |v| format!("{:.0} %", 100.0 * v))
 }
 
+/// A fraction with one decimal: 99.5 % must not read as 100 %.
+fn pct1(v: Option<f64>) -> String {
+    v.map_or("–".into(), |v| format!("{:.1} %", 100.0 * v))
+}
+
+/// The verdict cell of a filter's average `value` against `band`: "diverged" (with the count)
+/// when any run diverged or failed, whatever the average says.
+fn verdict_cell(f: &FilterReport, value: Option<f64>, band: [f64; 2]) -> Cell {
+    let bad = f.diverged + f.failed;
+    if bad > 0 {
+        return Cell {
+            text: format!("diverged in {bad}/{} runs", f.runs),
+            class: "bad",
+        };
+    }
+    Verdict::of(value, band).cell()
+}
+
+/// Whether a filter has no failed or diverged run and its ANEES has verdict `v`.
+fn sound(f: &FilterReport, v: Verdict) -> bool {
+    f.failed + f.diverged == 0
+        && Verdict::of(f.consistency.anees, f.consistency.nees_bounds_95) == v
+}
+
+/// `x` with four significant digits (no exponent): 5.867, 1467, 0.3012.
+fn sig4(x: f64) -> String {
+    let digits = if x == 0.0 || !x.is_finite() {
+        0
+    } else {
+        (3 - x.abs().log10().floor() as i32).clamp(0, 12) as usize
+    };
+    format!("{x:.digits$}")
+}
+
+fn pos(f: &FilterReport) -> (Option<f64>, Option<f64>) {
+    (get(&f.rmse_time_avg, "pos_m"), get(&f.rmse_final, "pos_m"))
+}
+
+/// The one-line recommendation at the top of a trade report (and after the CLI's tables): the
+/// filter with the lowest time-averaged position RMSE among those with no failed or diverged run
+/// and ANEES inside its χ² band; failing that, among those whose σ exceeds their errors
+/// (conservative, said so); never an optimistic or diverging one. Then what each other filter is.
+pub fn recommendation(report: &TradeReport) -> String {
+    let key = |f: &&FilterReport| pos(f).0.unwrap_or(f64::INFINITY);
+    let pick = |v: Verdict| {
+        report
+            .filters
+            .iter()
+            .filter(|f| sound(f, v))
+            .min_by(|a, b| key(a).total_cmp(&key(b)))
+    };
+    let consistent = pick(Verdict::Consistent);
+    let best = consistent.or_else(|| pick(Verdict::Pessimistic));
+    let m = |v: Option<f64>| v.map_or("–".to_string(), |x| format!("{} m", sig4(x)));
+    let mut parts = Vec::new();
+    match best {
+        Some(b) => {
+            let (avg, fin) = pos(b);
+            let c = &b.consistency;
+            let how = if consistent.is_some() {
+                "consistent".to_string()
+            } else {
+                format!(
+                    "no filter is consistent; this one is conservative (σ exceeds its errors, \
+                     ANEES/dof {:.2}) and does not diverge",
+                    c.anees.unwrap_or(f64::NAN) / c.nees_dof.max(1) as f64
+                )
+            };
+            parts.push(format!(
+                "{}: {how}, lowest position RMSE ({} time-averaged, {} final)",
+                b.name,
+                m(avg),
+                m(fin)
+            ));
+        }
+        None => {
+            parts.push("none: every filter diverges or is optimistic (errors exceed σ)".to_string())
+        }
+    }
+    for f in &report.filters {
+        if best.is_some_and(|b| std::ptr::eq(b, f)) {
+            continue;
+        }
+        let bad = f.failed + f.diverged;
+        let text = if bad > 0 {
+            format!("{} diverged in {bad}/{} runs", f.name, f.runs)
+        } else {
+            let verdict = match Verdict::of(f.consistency.anees, f.consistency.nees_bounds_95) {
+                Verdict::Consistent => "consistent",
+                Verdict::Optimistic => "optimistic (errors exceed σ)",
+                Verdict::Pessimistic => "pessimistic (σ exceeds errors)",
+                Verdict::Unknown => "no NEES",
+            };
+            match (best.and_then(|b| pos(b).0), pos(f).0) {
+                (Some(b), Some(x)) if b > 0.0 => {
+                    format!("{} {verdict}, {:.2}× the position RMSE", f.name, x / b)
+                }
+                _ => format!("{} {verdict}, position RMSE {}", f.name, m(pos(f).0)),
+            }
+        };
+        parts.push(text);
+    }
+    parts.join("; ")
+}
+
 fn band(b: [f64; 2]) -> String {
     format!("[{}, {}]", num(Some(b[0])), num(Some(b[1])))
 }
@@ -64,12 +169,12 @@ pub fn consistency_table(report: &TradeReport) -> String {
                 Cell::num(c.nees_dof.to_string()),
                 Cell::num(band(c.nees_bounds_95)),
                 Cell::num(pct(c.nees_in_bounds_frac)),
-                Verdict::of(c.anees, c.nees_bounds_95).cell(),
+                verdict_cell(f, c.anees, c.nees_bounds_95),
                 Cell::num(num(c.anees_kinematic)),
-                Verdict::of(c.anees_kinematic, c.nees_kinematic_bounds_95).cell(),
+                verdict_cell(f, c.anees_kinematic, c.nees_kinematic_bounds_95),
                 Cell::num(num(c.anis)),
                 Cell::num(band(c.nis_bounds_95)),
-                Verdict::of(c.anis, c.nis_bounds_95).cell(),
+                verdict_cell(f, c.anis, c.nis_bounds_95),
             ]
         })
         .collect();
@@ -157,7 +262,7 @@ pub fn state_table(report: &TradeReport, f: &FilterReport) -> String {
                 Cell::num(num(get(&f.rmse_time_avg, s))),
                 Cell::num(num(get(&f.rmse_final, s))),
                 Cell::num(num(get(&f.final_error_mean, s))),
-                Cell::num(pct(get(&f.within_3sigma_frac, s))),
+                Cell::num(pct1(get(&f.within_3sigma_frac, s))),
             ]
         })
         .collect();

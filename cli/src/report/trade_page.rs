@@ -40,6 +40,10 @@ impl TradePage<'_> {
         };
         let filters: Vec<&str> = r.filters.iter().map(|f| f.name.as_str()).collect();
         let mut s = format!(
+            "<p class=\"recommendation\"><b>Recommendation:</b> {}</p>\n",
+            escape(&summary::recommendation(r))
+        );
+        s += &format!(
             "<p>Scenario <b>{}</b>, filters <b>{}</b>, {}, seed {}, {:.2} s wall.</p>\n",
             escape(&r.scenario),
             escape(&filters.join(", ")),

@@ -65,6 +65,23 @@ pub fn parse_threads(text: &str) -> Result<usize, String> {
     }
 }
 
+/// Largest Monte Carlo run count a flag accepts (`--runs`, `--validation-runs`, `--check-runs`):
+/// ten million runs bound the work of one command.
+pub const MAX_RUNS: usize = 10_000_000;
+
+/// Parse a run count: 1 to [`MAX_RUNS`], with a message naming the value (a negative count
+/// included: the flag is declared with `allow_hyphen_values`, so `--runs -5` reaches this instead
+/// of reading as an unknown option).
+pub fn parse_runs(text: &str) -> Result<usize, String> {
+    match text.trim().parse::<i128>() {
+        Ok(n) if n >= 1 && n <= MAX_RUNS as i128 => Ok(n as usize),
+        Ok(n) => Err(format!("{n} is not a run count: give 1 to {MAX_RUNS}")),
+        Err(_) => Err(format!(
+            "'{text}' is not a run count: give a whole number from 1 to {MAX_RUNS}"
+        )),
+    }
+}
+
 /// Largest `--threads`.
 pub const MAX_THREADS: usize = 1024;
 

@@ -45,7 +45,7 @@ pub struct ObserveArgs {
     #[arg(long)]
     pub pcrlb: bool,
     /// With --pcrlb: number of Monte Carlo truth runs the bound averages over.
-    #[arg(long, default_value_t = 100)]
+    #[arg(long, default_value_t = 100, allow_hyphen_values = true, value_parser = crate::exit::parse_runs)]
     pub runs: usize,
     /// With --pcrlb: master seed of the truth runs (the runs a `trade` with this seed flies).
     #[arg(long, default_value_t = 1)]

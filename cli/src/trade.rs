@@ -59,6 +59,7 @@ impl<'a> Mode<'a> {
                 json,
                 csv_dir,
                 plots,
+                quiet: _,
             }) => {
                 return Ok(Mode::Merge {
                     shards,
@@ -172,6 +173,7 @@ fn run_grid(args: &TradeArgs, grid: &Path) -> Result<()> {
 fn run_one_shard(args: &TradeArgs, shard: Shard, path: &Path) -> Result<()> {
     let setup = Setup::load(args)?;
     let opts = setup.options(args);
+    let clock = std::time::Instant::now();
     let result = with_threads(args.threads, || {
         Ok(run_shard(
             &setup.scenario,
@@ -191,6 +193,7 @@ fn run_one_shard(args: &TradeArgs, shard: Shard, path: &Path) -> Result<()> {
     let file = ShardFile {
         shard: &result,
         provenance: StudyProvenance::of(&setup.provenance(args)),
+        wall_s: clock.elapsed().as_secs_f64(),
     };
     write_file(path, |w| Ok(serde_json::to_writer(&mut *w, &file)?))?;
     eprintln!(
@@ -325,7 +328,7 @@ fn write_results(
         outputs.record(done.map(|s| Some(format!("wrote report {} in {s:.3} s", path.display()))));
     }
     if !to_stdout {
-        print_tables(report, elapsed);
+        print_tables(report, &format!("{elapsed:.2} s wall"));
     }
     outputs.finish(to_stdout)
 }
@@ -379,7 +382,8 @@ fn merge(
     plots: Option<&Path>,
 ) -> Result<()> {
     check_outputs(json, csv_dir, plots)?;
-    let (parts, study) = read_shards(shards)?;
+    let (parts, study, wall_s) = read_shards(shards)?;
+    let n_shards = parts.len();
     let fingerprint = parts
         .first()
         .map(|p| p.scenario_fingerprint.clone())
@@ -394,7 +398,7 @@ fn merge(
             atmosphere: study.atmosphere,
             ..Provenance::new(&[])
         };
-        let done = write_summary(path, &provenance, &report, None, 0.0);
+        let done = write_summary(path, &provenance, &report, None, wall_s);
         let note = (!to_stdout).then(|| format!("wrote {}", path.display()));
         outputs.record(done.map(|()| note));
     }
@@ -408,7 +412,10 @@ fn merge(
         outputs.record(done.map(|()| Some(format!("wrote plots to {}", dir.display()))));
     }
     if !to_stdout {
-        print_tables(&report, 0.0);
+        print_tables(
+            &report,
+            &format!("{wall_s:.2} s wall summed over the {n_shards} shards"),
+        );
     }
     outputs.finish(to_stdout)
 }

@@ -21,7 +21,7 @@ pub struct TradeArgs {
     #[arg(long, default_value = "ekf")]
     pub filters: String,
     /// Monte Carlo runs (default: the scenario's monte_carlo.runs).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::exit::parse_runs)]
     pub runs: Option<usize>,
     /// Master seed; the same seed gives the same statistics on any thread count.
     #[arg(long, default_value_t = 1)]
@@ -106,5 +106,8 @@ pub enum TradeAction {
         /// Write SVG plots into this directory.
         #[arg(long)]
         plots: Option<PathBuf>,
+        /// Accepted as `trade` accepts it (a merge shows no progress to silence).
+        #[arg(long, help = crate::QUIET_HELP)]
+        quiet: bool,
     },
 }

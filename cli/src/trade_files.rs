@@ -119,13 +119,19 @@ pub struct ShardFile<'a> {
     pub shard: &'a ShardResult,
     /// Overrides and atmosphere source.
     pub provenance: StudyProvenance,
+    /// Wall time of the shard's runs \[s\] (`trade merge` reports their sum).
+    pub wall_s: f64,
 }
 
 /// Read the shard files of `trade merge`: their sums, and the provenance they share. Refuses a
 /// file that is not a shard, one without provenance (an older entrynav), and shards whose
-/// overrides or atmosphere source differ (exit code 2, naming both files).
-pub fn read_shards(paths: &[std::path::PathBuf]) -> Result<(Vec<ShardResult>, StudyProvenance)> {
+/// overrides or atmosphere source differ (exit code 2, naming both files). Also the sum of the
+/// shards' wall times (0 for a shard file without one).
+pub fn read_shards(
+    paths: &[std::path::PathBuf],
+) -> Result<(Vec<ShardResult>, StudyProvenance, f64)> {
     let mut parts = Vec::new();
+    let mut wall_s = 0.0;
     let mut shared: Option<(StudyProvenance, &Path)> = None;
     for p in paths {
         let usage = |m: String| crate::exit::Usage(format!("shard {}: {m}", p.display()));
@@ -141,6 +147,14 @@ pub fn read_shards(paths: &[std::path::PathBuf]) -> Result<(Vec<ShardResult>, St
             })?;
         let provenance: StudyProvenance = serde_json::from_value(provenance)
             .map_err(|e| usage(format!("corrupt `provenance`: {e}")))?;
+        if let Some(w) = v
+            .as_object_mut()
+            .and_then(|o| o.remove("wall_s"))
+            .and_then(|w| w.as_f64())
+            .filter(|w| w.is_finite() && *w >= 0.0)
+        {
+            wall_s += w;
+        }
         let part: ShardResult =
             serde_json::from_value(v).map_err(|e| usage(format!("not a shard file: {e}")))?;
         match &shared {
@@ -165,7 +179,7 @@ pub fn read_shards(paths: &[std::path::PathBuf]) -> Result<(Vec<ShardResult>, St
     let provenance = shared
         .map(|(p, _)| p)
         .ok_or_else(|| crate::exit::Usage("trade merge: no shard file given".into()))?;
-    Ok((parts, provenance))
+    Ok((parts, provenance, wall_s))
 }
 
 fn json_or_null(v: &Option<serde_json::Value>) -> String {

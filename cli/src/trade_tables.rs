@@ -14,14 +14,14 @@ fn fmt(v: Option<f64>) -> String {
 }
 
 /// Print the tables of `report` (`elapsed`: the study's wall time in seconds).
-pub fn print_tables(report: &TradeReport, elapsed: f64) {
+pub fn print_tables(report: &TradeReport, wall: &str) {
     let partial = if report.complete {
         String::new()
     } else {
         format!(" of {} asked (interrupted)", report.runs)
     };
     println!(
-        "scenario {}  runs {}{partial}  seed {}  ({elapsed:.2} s wall)",
+        "scenario {}  runs {}{partial}  seed {}  ({wall})",
         report.scenario, report.runs_completed, report.seed
     );
     for f in &report.filters {

@@ -28,20 +28,20 @@ pub struct TuneArgs {
     sets: Vec<String>,
     /// Filter(s) to make consistent, comma-separated: each is tuned on its own and gets its own
     /// `[filter.tuned.<name>]` in the written file.
-    #[arg(long, default_value = "ekf")]
+    #[arg(long, visible_alias = "filters", default_value = "ekf")]
     filter: String,
     /// Write the scenario here: the input's text with its comments and layout, plus one
     /// `[filter.tuned.<name>]` table per tuned filter.
     #[arg(long, value_name = "TUNED.toml")]
     out: PathBuf,
     /// Monte Carlo runs of the tuning set (common random numbers: every evaluation sees them).
-    #[arg(long, default_value_t = 24)]
+    #[arg(long, default_value_t = 24, allow_hyphen_values = true, value_parser = crate::exit::parse_runs)]
     runs: usize,
     /// Master seed of the tuning runs (the validation runs use a different one).
     #[arg(long, default_value_t = 1)]
     seed: u64,
     /// Runs of the fresh validation set.
-    #[arg(long, default_value_t = 100)]
+    #[arg(long, default_value_t = 100, allow_hyphen_values = true, value_parser = crate::exit::parse_runs)]
     validation_runs: usize,
     /// Tune on innovations alone (ANIS/dof -> 1): what a flight team has without the truth.
     #[arg(long)]

@@ -408,7 +408,10 @@ fn observe_pcrlb_bounds_the_scenario_without_a_filter() {
     let a = args("0");
     let (code, _, err) = entrynav(&a.iter().map(String::as_str).collect::<Vec<_>>());
     assert_ne!(code, 0);
-    assert!(err.contains("--runs 0"), "{err}");
+    assert!(
+        err.contains("invalid value '0' for '--runs") && err.contains("1 to 10000000"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -1287,4 +1290,51 @@ fn a_file_that_cannot_be_read_is_named_with_the_reason() {
             && err.contains("No such file"),
         "{err}"
     );
+}
+
+#[test]
+fn run_counts_are_checked_by_value_negative_included() {
+    for (flag, cmd) in [
+        ("--runs", "trade"),
+        ("--validation-runs", "tune"),
+        ("--runs", "observe"),
+    ] {
+        for bad in ["-5", "0", "10000001", "1e3"] {
+            let mut args = vec![cmd, "--scenario", "orbiters-3", flag, bad];
+            if cmd == "tune" {
+                args.extend(["--out", "/nonexistent/never.toml"]);
+            }
+            let (code, _, err) = common::entrynav(&args);
+            assert_eq!(code, 2, "{cmd} {flag} {bad}: {err}");
+            assert!(
+                err.contains(&format!("invalid value '{bad}' for '{flag}"))
+                    && err.contains("1 to 10000000"),
+                "{cmd} {flag} {bad}: {err}"
+            );
+        }
+    }
+}
+
+#[test]
+fn tune_accepts_filters_as_trade_does() {
+    let dir = common::scratch_dir("cli", "tune_filters");
+    let out = dir.join("t.toml");
+    let (code, stdout, err) = common::entrynav(&[
+        "tune",
+        "--scenario",
+        "orbiters-3",
+        "--filters",
+        "ekf,ukf",
+        "--runs",
+        "4",
+        "--validation-runs",
+        "4",
+        "--max-evaluations",
+        "10",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("tuned ekf,ukf on orbiters-3"), "{stdout}");
 }

@@ -127,3 +127,36 @@ fn merge_writes_its_files_even_when_standard_output_is_closed() {
         "no CSV written"
     );
 }
+
+#[test]
+fn merge_reports_the_shards_summed_wall_time_and_accepts_quiet() {
+    let dir = scratch_dir("merge", "wall");
+    let (a, b) = (shard(&dir, 0, SET), shard(&dir, 1, SET));
+    let walls: f64 = [&a, &b]
+        .iter()
+        .map(|p| {
+            read_json(p)["wall_s"]
+                .as_f64()
+                .expect("shard without wall_s")
+        })
+        .sum();
+    assert!(walls > 0.0);
+    let json = dir.join("wall.json");
+    let (code, out, err) = entrynav(&[
+        "trade",
+        "merge",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "--quiet",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let first = out.lines().next().unwrap();
+    assert!(
+        first.ends_with("s wall summed over the 2 shards)") && !first.contains("(0.00 s"),
+        "{first}"
+    );
+    let merged = read_json(&json)["timing"]["wall_s"].as_f64().unwrap();
+    assert!((merged - walls).abs() < 1e-9, "{merged} vs {walls}");
+}

@@ -26,7 +26,7 @@ pub const ANEES_BAND: [f64; 2] = [0.7, 1.5];
 pub struct CheckArgs {
     /// Monte Carlo runs of the check of the optimum against the input design (each design; 10
     /// to 100000).
-    #[arg(long, default_value_t = 200)]
+    #[arg(long, default_value_t = 200, allow_hyphen_values = true, value_parser = crate::exit::parse_runs)]
     pub check_runs: usize,
     /// Filter flown in the check (any the scenario supports).
     #[arg(long, default_value = "ekf")]

@@ -26,6 +26,7 @@ mod progress;
 mod provenance;
 mod replay;
 mod report;
+mod scenarios;
 mod simulate;
 mod threads;
 mod trade;
@@ -135,13 +136,7 @@ fn main() {
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
-        Command::Scenarios => {
-            for name in entrynav::scenario::BUILTIN_NAMES {
-                let cfg = entrynav::scenario::ScenarioConfig::builtin(name)?;
-                println!("{name:<26} {}", cfg.reference);
-            }
-            Ok(())
-        }
+        Command::Scenarios => scenarios::list(),
         Command::Scenario {
             action: ScenarioAction::Show { name, resolved },
         } => {

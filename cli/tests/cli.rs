@@ -26,6 +26,40 @@ fn scenarios_lists_the_seven_builtins() {
             "{name} missing from:\n{out}"
         );
     }
+    // One line each on what the scenario is, its paper by name (not "seed 000", which reads like
+    // the RNG seed) and why line of sight is ignored where it is.
+    let line = |n: &str| {
+        out.lines()
+            .find(|l| l.split_whitespace().next() == Some(n))
+            .unwrap_or_else(|| panic!("{n} missing"))
+            .to_string()
+    };
+    let fusion = line("four-beacon-fusion");
+    for part in [
+        "[P0]",
+        "11 spherical states",
+        "IMU + 4 range",
+        "2 surface beacons + 2 orbiters",
+        "300 s",
+        "line of sight ignored",
+    ] {
+        assert!(fusion.contains(part), "{part}: {fusion}");
+    }
+    assert!(line("orbiters-3").contains("6 Cartesian states; 3 range; 3 orbiters; 240 s"));
+    assert!(line("msl-airdata").contains("IMU + dynamic pressure + heating; no beacons"));
+    assert!(!line("ground-beacons-3").contains("line of sight ignored"));
+    assert!(
+        !out.contains("seed 00") && !out.contains("SPEC.md"),
+        "{out}"
+    );
+    let refs = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../docs/references.md"
+    ))
+    .expect("docs/references.md");
+    for p in ["[P0]", "[P1]", "[P2]", "[P3]", "10.5772/intechopen.73605"] {
+        assert!(refs.contains(p), "docs/references.md lacks {p}");
+    }
 }
 
 #[test]

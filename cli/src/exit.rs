@@ -65,6 +65,14 @@ pub fn parse_threads(text: &str) -> Result<usize, String> {
     }
 }
 
+/// Warn on standard error about every value of `cfg` that passes validation but no Mars entry has
+/// (a speed in km/s, a flight-path angle in radians: `ScenarioConfig::implausible`).
+pub fn warn_implausible(cfg: &entrynav::scenario::ScenarioConfig) {
+    for w in cfg.implausible() {
+        eprintln!("warning: {w}");
+    }
+}
+
 /// Largest Monte Carlo run count a flag accepts (`--runs`, `--validation-runs`, `--check-runs`):
 /// ten million runs bound the work of one command.
 pub const MAX_RUNS: usize = 10_000_000;

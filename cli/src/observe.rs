@@ -64,6 +64,7 @@ pub(crate) const RAW_NOTE: &str = "raw SI: delta = sigma_min/sigma_max of O with
 pub fn run(args: &ObserveArgs) -> Result<()> {
     let method = args.method;
     let (cfg, dir) = load::resolve(&args.scenario, load::Base::CurrentDir)?.into_parts();
+    crate::exit::warn_implausible(&cfg);
     let scenario = load::build(cfg, &dir)?;
     let points = analysis_points(&scenario, args.step)?;
     let scaling = Scaling::characteristic(scenario.filter_model());

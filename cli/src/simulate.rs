@@ -37,6 +37,7 @@ pub struct SimulateArgs {
 pub fn run(args: &SimulateArgs) -> Result<()> {
     let (cfg, dir) = load::resolve(&args.scenario, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &args.sets)?;
+    crate::exit::warn_implausible(&cfg);
     let scenario = load::build(cfg, &dir)?;
     let mut rng = ChaCha8Rng::seed_from_u64(args.seed);
     let draw = if args.dispersed {

@@ -132,6 +132,7 @@ impl Setup {
         let scenario_name = args.scenario.as_deref().context("--scenario is required")?;
         let (cfg, dir) = load::resolve(scenario_name, load::Base::CurrentDir)?.into_parts();
         let cfg = load::apply_overrides(cfg, &args.sets)?;
+        crate::exit::warn_implausible(&cfg);
         let cfg = truth_atmosphere(cfg, &args.atmosphere, args.no_perturbation)?;
         let scenario = load::build(cfg, &dir)?;
         report_truth_table(&scenario);

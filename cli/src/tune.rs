@@ -117,6 +117,7 @@ fn run_tuning(args: &TuneArgs) -> Result<()> {
     let source = source_text(&src.origin)?;
     let (cfg, dir) = src.into_parts();
     let cfg = load::apply_overrides(cfg, &args.sets)?;
+    crate::exit::warn_implausible(&cfg);
     let scenario = load::build(cfg.clone(), &dir)?;
     let kinds = FilterKind::parse_list(&args.filter, &scenario.onboard)?;
     let clock = std::time::Instant::now();

@@ -103,3 +103,39 @@ fn beacon_noise_outside_its_envelope_is_refused_naming_the_field() {
         "{err}"
     );
 }
+
+#[test]
+fn implausible_entry_values_are_warned_with_the_likely_slip() {
+    let base = [
+        "simulate",
+        "--scenario",
+        "four-beacon-fusion",
+        "--out",
+        "/dev/null",
+    ];
+    // A built-in: no warning.
+    let (code, _, err) = entrynav(&base);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("warning:"), "{err}");
+    // A speed in km/s and a flight-path angle in radians: accepted (a study may mean them), but
+    // each named with its plausible range and the slip.
+    let mut args = base.to_vec();
+    args.extend([
+        "--set",
+        "truth.initial.speed_mps=5.6",
+        "--set",
+        "filter.initial.fpa_deg=-0.21",
+    ]);
+    let (_, _, err) = entrynav(&args);
+    assert!(
+        err.contains(
+            "warning: truth.initial.speed_mps = 5.6 is outside what a Mars entry plausibly has"
+        ) && err.contains("km/s? 5.6 km/s = 5600 m/s"),
+        "{err}"
+    );
+    assert!(
+        err.contains("warning: filter.initial.fpa_deg = -0.21")
+            && err.contains("radians? -0.21 rad = -12.0°"),
+        "{err}"
+    );
+}

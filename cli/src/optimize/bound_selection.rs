@@ -21,6 +21,7 @@ pub(super) fn run_select_on_bound(a: &SelectArgs, objective: SelectObjectiveArg)
     }
     let (cfg, dir) = load::resolve(&a.scenario, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &a.sets)?;
+    crate::exit::warn_implausible(&cfg);
     let own = scenario_sites(&cfg);
     let own_mask = cfg
         .beacons

@@ -161,6 +161,7 @@ fn load_ground_inputs(a: &GroundArgs) -> Result<GroundInputs> {
     let c = &a.common;
     let (cfg, dir) = load::resolve(&c.scenario, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &c.sets)?;
+    crate::exit::warn_implausible(&cfg);
     let own = scenario_sites(&cfg);
     let count = a
         .beacons

@@ -111,6 +111,7 @@ fn load_orbiter_inputs(a: &OrbitersArgs) -> Result<OrbiterInputs> {
     let c = &a.common;
     let (cfg, dir) = load::resolve(&c.scenario, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &c.sets)?;
+    crate::exit::warn_implausible(&cfg);
     let own = scenario_orbits(&cfg);
     let count = a.orbiters.unwrap_or_else(|| {
         cfg.beacons

@@ -54,6 +54,7 @@ pub(super) fn run_select(a: &SelectArgs) -> Result<()> {
     let wall = Instant::now();
     let (cfg, dir) = load::resolve(&a.scenario, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &a.sets)?;
+    crate::exit::warn_implausible(&cfg);
     let criterion = SelectionCriterion::from(a.criterion);
     if a.eig_epochs.is_some() && criterion != SelectionCriterion::MinEig {
         bail!("--eig-epochs applies to --criterion min-eig only");

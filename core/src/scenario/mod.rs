@@ -11,6 +11,7 @@ pub mod config;
 pub mod draw;
 pub mod error;
 mod onboard;
+pub mod plausibility;
 mod truth_values;
 pub mod validate;
 mod validate_density;

@@ -9,7 +9,7 @@ use crate::compare_paired::{self, FinalErrors};
 use crate::compare_stats::{
     Difference, Estimate, se_anees, se_fraction, se_rmse_bound, se_rmse_with_mean,
 };
-use crate::exit::{Usage, check_output_file, is_stdout};
+use crate::exit::{check_output_file, is_stdout};
 use anyhow::Result;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -24,9 +24,9 @@ pub struct CompareArgs {
     /// Write the comparison as JSON (`-`: to standard output, and no table).
     #[arg(long)]
     pub json: Option<PathBuf>,
-    /// Compare summaries of different scenarios (different `provenance.scenario_fingerprint`,
-    /// e.g. two `--set` tunings of one scenario) instead of refusing.
-    #[arg(long)]
+    /// Accepted for older scripts: different scenarios (a moved beacon, a tuned file) are
+    /// compared, and what differs between them is printed.
+    #[arg(long, hide = true)]
     pub allow_different_scenarios: bool,
     /// The per-run final errors of A and B (`{scenario}_final_errors.csv` from the same
     /// studies' `--csv-dir`): adds `rmse_final_paired` rows, paired by run index, with sample
@@ -116,6 +116,9 @@ pub struct Comparison {
     pub confidence: f64,
     /// How the standard errors were obtained, and what the pairing of runs means.
     pub notes: Vec<String>,
+    /// What differs between the two resolved scenarios (`path: A -> B`), when they differ and
+    /// both summaries carry them.
+    pub scenario_differences: Vec<String>,
     /// Filters in both summaries.
     pub filters: Vec<FilterComparison>,
     /// Filters only in A.
@@ -135,7 +138,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         [fa, fb] => Some((FinalErrors::read(fa)?, FinalErrors::read(fb)?)),
         _ => None,
     };
-    let mut cmp = compare(&args.a, &a, &args.b, &b, args.allow_different_scenarios)?;
+    let mut cmp = compare(&args.a, &a, &args.b, &b)?;
     if let Some((fa, fb)) = &finals {
         add_paired(&mut cmp, fa, fb, &args.final_errors);
     }
@@ -211,14 +214,8 @@ fn describe(s: &Source) -> String {
     )
 }
 
-/// Compare summary `b` against `a`; refuses different scenarios unless `allow_different`.
-fn compare(
-    pa: &Path,
-    a: &SummaryIn,
-    pb: &Path,
-    b: &SummaryIn,
-    allow_different: bool,
-) -> Result<Comparison> {
+/// Compare summary `b` against `a` (of the same scenario or not: what differs is listed).
+fn compare(pa: &Path, a: &SummaryIn, pb: &Path, b: &SummaryIn) -> Result<Comparison> {
     let (sa, sb) = (source(pa, a), source(pb, b));
     let mut notes = Vec::new();
     let same_scenario = match (&sa.scenario_fingerprint, &sb.scenario_fingerprint) {
@@ -230,20 +227,27 @@ fn compare(
             sa.scenario == sb.scenario
         }
     };
+    let mut scenario_differences = Vec::new();
     if !same_scenario {
-        if !allow_different {
-            return Err(Usage(format!(
-                "refusing to compare different scenarios: {}; {}. Pass --allow-different-scenarios to compare them anyway",
+        let resolved = |s: &SummaryIn| s.provenance.as_ref().and_then(|p| p.scenario.clone());
+        match (resolved(a), resolved(b)) {
+            (Some(x), Some(y)) => {
+                scenario_differences = crate::compare_scenarios::differences(&x, &y);
+                notes.push(format!(
+                    "different scenarios: {}; {}; they differ in {} field(s), listed under \
+                     scenario_differences",
+                    describe(&sa),
+                    describe(&sb),
+                    scenario_differences.len()
+                ));
+            }
+            _ => notes.push(format!(
+                "different scenarios: {}; {} (a summary from an older entrynav does not carry its \
+                 resolved scenario: what differs cannot be listed)",
                 describe(&sa),
                 describe(&sb)
-            ))
-            .into());
+            )),
         }
-        notes.push(format!(
-            "different scenarios compared (--allow-different-scenarios): {}; {}",
-            describe(&sa),
-            describe(&sb)
-        ));
     }
     let shared = a.runs_completed.min(b.runs_completed);
     let same_runs = if a.runs_completed == b.runs_completed {
@@ -301,6 +305,7 @@ fn compare(
         b: sb,
         confidence: 0.95,
         notes,
+        scenario_differences,
         filters,
     })
 }
@@ -310,6 +315,9 @@ fn used_runs(f: &FilterIn) -> u64 {
     f.runs.saturating_sub(f.failed).max(1)
 }
 
+/// The rows a reader looks at first.
+const HEADLINE: [&str; 5] = ["pos_m", "vel_mps", "downrange_m", "crossrange_m", "up_m"];
+
 fn compare_filter(fa: &FilterIn, fb: &FilterIn) -> FilterComparison {
     let (na, nb) = (used_runs(fa), used_runs(fb));
     let mut rows = Vec::new();
@@ -318,7 +326,13 @@ fn compare_filter(fa: &FilterIn, fb: &FilterIn) -> FilterComparison {
         ("rmse_final", |f| &f.rmse_final),
     ];
     for (metric, pick) in pairs {
-        for (state, va) in pick(fa) {
+        // The headline rows first (position, velocity, local frame), then the states.
+        let map = pick(fa);
+        let order = HEADLINE
+            .iter()
+            .filter_map(|h| map.get_key_value(*h))
+            .chain(map.iter().filter(|(k, _)| !HEADLINE.contains(&k.as_str())));
+        for (state, va) in order {
             let (Some(va), Some(vb)) = (*va, pick(fb).get(state).copied().flatten()) else {
                 continue;
             };

@@ -32,6 +32,9 @@ pub(crate) struct ProvenanceIn {
     pub(crate) scenario_fingerprint: Option<String>,
     #[serde(default)]
     pub(crate) overrides: Vec<String>,
+    /// The resolved scenario (written since the summaries carry it).
+    #[serde(default)]
+    pub(crate) scenario: Option<serde_json::Value>,
 }
 
 /// One filter's statistics (the fields of `sim::FilterReport` a comparison uses).

@@ -28,6 +28,12 @@ pub fn print(c: &Comparison) {
     for n in &c.notes {
         println!("note: {n}");
     }
+    if !c.scenario_differences.is_empty() {
+        println!("scenario differences (A -> B):");
+        for d in &c.scenario_differences {
+            println!("  {d}");
+        }
+    }
     for f in &c.filters {
         println!();
         println!(

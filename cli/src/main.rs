@@ -7,6 +7,7 @@ mod atomic_file;
 mod compare;
 mod compare_input;
 mod compare_paired;
+mod compare_scenarios;
 mod compare_stats;
 mod compare_table;
 mod csv_file;

@@ -25,6 +25,10 @@ pub struct Provenance {
     /// The truth atmosphere: `--atmosphere-file` if given, the scenario's truth model, and
     /// whether the per-run perturbation is on.
     pub atmosphere: Option<serde_json::Value>,
+    /// The resolved scenario (every field, after overrides), so that `trade compare` can say what
+    /// differs between two studies; absent where several scenarios contribute (grids).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scenario: Option<serde_json::Value>,
 }
 
 impl Provenance {
@@ -37,6 +41,7 @@ impl Provenance {
             overrides: overrides.to_vec(),
             scenario_fingerprint: None,
             atmosphere: None,
+            scenario: None,
         }
     }
 
@@ -47,6 +52,7 @@ impl Provenance {
         atmosphere_file: Option<&std::path::Path>,
     ) -> Provenance {
         self.scenario_fingerprint = Some(entrynav::sim::shard::scenario_fingerprint(scenario));
+        self.scenario = serde_json::to_value(&scenario.config).ok();
         let truth = &scenario.config.truth;
         self.atmosphere = Some(serde_json::json!({
             "file": atmosphere_file.map(|p| p.display().to_string()),

@@ -124,25 +124,45 @@ fn identical_summaries_differ_by_zero_and_nothing_is_significant() {
 }
 
 #[test]
-fn different_scenarios_are_refused_unless_allowed() {
+fn different_scenarios_are_compared_and_their_differences_listed() {
     let dir = tmpdir("different");
     let a = summary(&dir, "a.json", "four-beacon-fusion", "ekf", "1");
     let b = summary(&dir, "b.json", "four-beacon-fusion-fault", "ekf", "1");
     let (code, out, err) = entrynav(&["trade", "compare", &a, &b]);
-    assert_eq!(code, 2, "{out}{err}");
-    assert!(out.is_empty(), "no table for a refused comparison: {out}");
+    assert_eq!(code, 0, "{out}{err}");
     assert!(
-        err.contains("`four-beacon-fusion`") && err.contains("`four-beacon-fusion-fault`"),
-        "both scenarios named: {err}"
+        out.contains("`four-beacon-fusion`") && out.contains("`four-beacon-fusion-fault`"),
+        "both scenarios named: {out}"
     );
-    assert!(err.contains("--allow-different-scenarios"), "{err}");
-    let v = compare_json(&a, &b, &["--allow-different-scenarios"]);
+    // What differs, as --set paths, before the table; the headline rows lead each filter.
+    let listed = out
+        .split("scenario differences (A -> B):")
+        .nth(1)
+        .expect("no differences listed");
     assert!(
-        v["notes"]
-            .to_string()
-            .contains("different scenarios compared")
+        listed.contains("name: \"four-beacon-fusion\" -> \"four-beacon-fusion-fault\""),
+        "{listed}"
     );
-    assert!(!rows(&v, "ekf").is_empty());
+    assert!(
+        listed.contains("beacons[3]."),
+        "the silent orbiter: {listed}"
+    );
+    let v = compare_json(&a, &b, &[]);
+    let diffs = v["scenario_differences"].as_array().unwrap();
+    assert!(!diffs.is_empty() && diffs.len() < 20, "{diffs:?}");
+    let r = rows(&v, "ekf");
+    let first: Vec<&str> = r
+        .iter()
+        .take(5)
+        .map(|r| r["state"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        first,
+        ["pos_m", "vel_mps", "downrange_m", "crossrange_m", "up_m"]
+    );
+    // The old flag is still accepted.
+    let v2 = compare_json(&a, &b, &["--allow-different-scenarios"]);
+    assert_eq!(v2["scenario_differences"], v["scenario_differences"]);
 }
 
 #[test]

@@ -1,5 +1,5 @@
 //! What differs between two resolved scenarios (`provenance.scenario` of two trade summaries),
-//! as `path: A -> B` lines with the paths `--set` takes (`beacons[0].position_km[1]`), for
+//! as `path: A -> B` lines with the paths `--set` takes (`beacons.0.position_km.1`), for
 //! `trade compare`.
 
 use serde_json::Value;
@@ -42,7 +42,7 @@ fn walk(path: &str, a: Option<&Value>, b: Option<&Value>, out: &mut Vec<String>)
         }
         (Some(Value::Array(x)), Some(Value::Array(y))) if x.len() == y.len() => {
             for (i, (u, v)) in x.iter().zip(y).enumerate() {
-                walk(&format!("{path}[{i}]"), Some(u), Some(v), out);
+                walk(&format!("{path}.{i}"), Some(u), Some(v), out);
             }
         }
         _ if a == b => {}
@@ -75,7 +75,7 @@ mod tests {
         assert_eq!(
             differences(&a, &b),
             vec![
-                "beacons[0].position_km[1]: 2.0 -> 3.0",
+                "beacons.0.position_km.1: 2.0 -> 3.0",
                 "name: \"a\" -> \"b\"",
                 "x.z: (absent) -> true",
             ]

@@ -129,8 +129,9 @@ pub fn edit(source: &str, sets: &[String], retunes: &[Retune<'_>]) -> Result<Str
     Ok(doc.to_string())
 }
 
-/// Write one `PATH=VALUE` override into the document (tables along the path are created; a value
-/// that is not TOML is a string, as `--set` reads it).
+/// Write one `PATH=VALUE` override into the document as `--set` reads it: tables along the path
+/// are created, a numeric key indexes an array (`beacons.0.lat_deg`), a value that is not TOML is
+/// a string; the comment beside a replaced value is kept.
 fn apply_set(doc: &mut DocumentMut, set: &str) -> Result<()> {
     let (path, value) = set
         .split_once('=')
@@ -140,32 +141,74 @@ fn apply_set(doc: &mut DocumentMut, set: &str) -> Result<()> {
         .parse()
         .unwrap_or_else(|_| Value::from(value.to_string()));
     let keys: Vec<&str> = path.trim().split('.').collect();
-    let (last, parents) = keys.split_last().ok_or_else(|| anyhow!("empty path"))?;
-    let mut table: &mut dyn toml_edit::TableLike = doc.as_table_mut();
-    for k in parents {
-        if table.get(k).is_none() {
-            table.insert(k, Item::Table(Table::new()));
-        }
-        table = table
-            .get_mut(k)
-            .and_then(Item::as_table_like_mut)
-            .ok_or_else(|| anyhow!("'{k}' is not a table"))?;
+    if keys.iter().any(|k| k.is_empty()) {
+        bail!("empty key in the path");
     }
-    match table.get_mut(last) {
-        // Keep the decoration (comments beside the value) of an existing entry.
-        Some(Item::Value(old)) => {
-            let decor = old.decor().clone();
-            *old = value;
-            *old.decor_mut() = decor;
-        }
-        _ => {
-            if table.is_empty() && parents.is_empty() {
-                bail!("nothing to set");
+    set_in_table(doc.as_table_mut(), &keys, value)
+}
+
+fn index(k: &str, n: usize) -> Result<usize> {
+    k.parse::<usize>()
+        .ok()
+        .filter(|&i| i < n)
+        .ok_or_else(|| anyhow!("'{k}' is not an index of an array of {n} entries"))
+}
+
+fn replace_keeping_decor(old: &mut Value, new: Value) {
+    let decor = old.decor().clone();
+    *old = new;
+    *old.decor_mut() = decor;
+}
+
+fn set_in_table(t: &mut dyn toml_edit::TableLike, keys: &[&str], value: Value) -> Result<()> {
+    let (k, rest) = keys.split_first().ok_or_else(|| anyhow!("empty path"))?;
+    if rest.is_empty() {
+        match t.get_mut(k) {
+            Some(Item::Value(old)) => replace_keeping_decor(old, value),
+            _ => {
+                t.insert(k, Item::Value(value));
             }
-            table.insert(last, Item::Value(value));
         }
+        return Ok(());
     }
-    Ok(())
+    if t.get(k).is_none() {
+        t.insert(k, Item::Table(Table::new()));
+    }
+    match t.get_mut(k) {
+        Some(Item::ArrayOfTables(a)) => {
+            let i = index(rest[0], a.len())?;
+            let inner = a.get_mut(i).ok_or_else(|| anyhow!("no entry {i}"))?;
+            if rest.len() == 1 {
+                bail!("'{k}.{i}' is a table: set one of its fields");
+            }
+            set_in_table(inner, &rest[1..], value)
+        }
+        Some(Item::Value(v)) => set_in_value(v, rest, value),
+        Some(item) => {
+            let inner = item
+                .as_table_like_mut()
+                .ok_or_else(|| anyhow!("'{k}' is not a table"))?;
+            set_in_table(inner, rest, value)
+        }
+        None => bail!("cannot create '{k}'"),
+    }
+}
+
+fn set_in_value(v: &mut Value, keys: &[&str], value: Value) -> Result<()> {
+    match v {
+        Value::Array(arr) => {
+            let i = index(keys[0], arr.len())?;
+            let el = arr.get_mut(i).ok_or_else(|| anyhow!("no entry {i}"))?;
+            if keys.len() == 1 {
+                replace_keeping_decor(el, value);
+                Ok(())
+            } else {
+                set_in_value(el, &keys[1..], value)
+            }
+        }
+        Value::InlineTable(t) => set_in_table(t, keys, value),
+        _ => bail!("cannot reach '{}': its parent is a value", keys[0]),
+    }
 }
 
 #[cfg(test)]
@@ -179,6 +222,23 @@ mod tests {
         assert_eq!(six_digits(100.0), "100.0");
         assert_eq!(six_digits(0.25), "0.25");
         assert!((round6(2.0556425029701622e-14) / 2.0556425029701622e-14 - 1.0).abs() < 5e-6);
+    }
+
+    #[test]
+    fn sets_index_arrays_as_the_loader_does() {
+        let source = "[filter]\nq_diag = [1.0, 2.0] # Q\n\n[[beacons]]\nname = \"a\"\nlat_deg = 1.0\n\n[[beacons]]\nname = \"b\"\nlat_deg = 2.0 # north\n";
+        let out = edit(
+            source,
+            &[
+                "beacons.1.lat_deg=5.5".to_string(),
+                "filter.q_diag.0=3.0".to_string(),
+            ],
+            &[],
+        )
+        .unwrap();
+        assert!(out.contains("lat_deg = 5.5 # north"), "{out}");
+        assert!(out.contains("q_diag = [3.0, 2.0] # Q"), "{out}");
+        assert!(edit(source, &["beacons.2.lat_deg=1".to_string()], &[]).is_err());
     }
 
     #[test]

@@ -144,7 +144,7 @@ fn different_scenarios_are_compared_and_their_differences_listed() {
         "{listed}"
     );
     assert!(
-        listed.contains("beacons[3]."),
+        listed.contains("beacons.3."),
         "the silent orbiter: {listed}"
     );
     let v = compare_json(&a, &b, &[]);

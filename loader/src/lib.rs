@@ -160,7 +160,8 @@ pub fn resolve(name_or_file: &str, base: Base<'_>) -> Result<ScenarioSource, Loa
 }
 
 /// Apply `--set path=value` overrides (TOML dotted path, TOML value syntax) to a scenario and
-/// re-validate it, e.g. `truth.density_bias=0.095` or `dispersions.density_bias=0`. A value that
+/// re-validate it, e.g. `truth.density_bias=0.095` or `dispersions.density_bias=0`; a numeric
+/// key indexes an array: `beacons.0.lat_deg=3.0`, `filter.q_diag.3=1e-6`. A value that
 /// is not valid TOML is taken as a string.
 pub fn apply_overrides(cfg: ScenarioConfig, sets: &[String]) -> Result<ScenarioConfig, LoadError> {
     if sets.is_empty() {
@@ -186,15 +187,40 @@ pub fn apply_overrides(cfg: ScenarioConfig, sets: &[String]) -> Result<ScenarioC
             Err(_) => toml::Value::String(value.to_string()),
         };
         let keys: Vec<&str> = path.trim().split('.').collect();
-        let mut table = &mut doc;
-        for k in &keys[..keys.len() - 1] {
-            table = table
-                .entry(k.to_string())
+        let (last, parents) = keys
+            .split_last()
+            .ok_or_else(|| bad("empty path".to_string()))?;
+        // A numeric key indexes an array (`beacons.0.lat_deg`, `filter.q_diag.3`).
+        let mut slot: &mut toml::Value = {
+            let first = parents.first().copied().unwrap_or(last);
+            if parents.is_empty() {
+                doc.insert(last.to_string(), value);
+                continue;
+            }
+            doc.entry(first.to_string())
                 .or_insert_with(|| toml::Value::Table(toml::Table::new()))
-                .as_table_mut()
-                .ok_or_else(|| bad(format!("'{k}' is not a table")))?;
+        };
+        for k in parents.iter().skip(1).chain(std::iter::once(last)) {
+            slot = match slot {
+                toml::Value::Array(items) => {
+                    let n = items.len();
+                    let i: usize = k.parse().map_err(|_| {
+                        bad(format!("'{k}' is not an index of an array of {n} entries"))
+                    })?;
+                    items.get_mut(i).ok_or_else(|| {
+                        bad(format!(
+                            "index {i} is past the array's {n} entries (0 to {})",
+                            n.saturating_sub(1)
+                        ))
+                    })?
+                }
+                toml::Value::Table(t) => t
+                    .entry(k.to_string())
+                    .or_insert_with(|| toml::Value::Table(toml::Table::new())),
+                _ => return Err(bad(format!("cannot reach '{k}': its parent is a value"))),
+            };
         }
-        table.insert(keys[keys.len() - 1].to_string(), value);
+        *slot = value;
     }
     let text = toml::to_string(&doc).map_err(|source| LoadError::OverrideWrite {
         sets: sets.join(" "),
@@ -287,5 +313,26 @@ mod tests {
         );
         assert!(!text.contains(&io.to_string()), "{text}");
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn numeric_keys_index_arrays() {
+        let cfg = ScenarioConfig::builtin("ground-beacons-3").unwrap();
+        let sets = [
+            "beacons.1.lat_deg=-28.0".to_string(),
+            "filter.q_diag.3=2e-7".to_string(),
+        ];
+        let out = apply_overrides(cfg, &sets).unwrap();
+        assert_eq!(out.filter.q_diag[3], 2e-7);
+        let text = out.to_toml_string();
+        assert!(text.contains("lat_deg = -28.0"), "{text}");
+        let cfg = ScenarioConfig::builtin("ground-beacons-3").unwrap();
+        let err = apply_overrides(cfg, &["beacons.3.lat_deg=1".to_string()])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("index 3 is past the array's 3 entries"),
+            "{err}"
+        );
     }
 }

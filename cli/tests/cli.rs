@@ -1372,3 +1372,31 @@ fn tune_accepts_filters_as_trade_does() {
     assert_eq!(code, 0, "{err}");
     assert!(stdout.contains("tuned ekf,ukf on orbiters-3"), "{stdout}");
 }
+
+#[test]
+fn a_bad_set_is_blamed_on_its_argument_not_a_line_of_a_generated_document() {
+    for (set, why) in [
+        ("truth.initial.velocity_mps=abc", "expected a sequence"),
+        ("timing.duration_s=\"x\"", "expected f64"),
+        ("truth.bogus=1", "unknown field `bogus`"),
+    ] {
+        let (code, _, err) = entrynav(&[
+            "trade",
+            "--scenario",
+            "orbiters-3",
+            "--set",
+            set,
+            "--runs",
+            "2",
+        ]);
+        assert_eq!(code, 2, "{set}: {err}");
+        assert!(
+            err.contains(&format!("--set '{set}'")) && err.contains(why),
+            "{set}: {err}"
+        );
+        assert!(
+            !err.contains("line ") && !err.contains("column"),
+            "{set}: {err}"
+        );
+    }
+}

@@ -191,36 +191,39 @@ pub fn apply_overrides(cfg: ScenarioConfig, sets: &[String]) -> Result<ScenarioC
             .split_last()
             .ok_or_else(|| bad("empty path".to_string()))?;
         // A numeric key indexes an array (`beacons.0.lat_deg`, `filter.q_diag.3`).
-        let mut slot: &mut toml::Value = {
-            let first = parents.first().copied().unwrap_or(last);
-            if parents.is_empty() {
-                doc.insert(last.to_string(), value);
-                continue;
+        if let Some((first, rest)) = parents.split_first() {
+            let mut slot: &mut toml::Value = doc
+                .entry(first.to_string())
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            for k in rest.iter().chain(std::iter::once(last)) {
+                slot = match slot {
+                    toml::Value::Array(items) => {
+                        let n = items.len();
+                        let i: usize = k.parse().map_err(|_| {
+                            bad(format!("'{k}' is not an index of an array of {n} entries"))
+                        })?;
+                        items.get_mut(i).ok_or_else(|| {
+                            bad(format!(
+                                "index {i} is past the array's {n} entries (0 to {})",
+                                n.saturating_sub(1)
+                            ))
+                        })?
+                    }
+                    toml::Value::Table(t) => t
+                        .entry(k.to_string())
+                        .or_insert_with(|| toml::Value::Table(toml::Table::new())),
+                    _ => return Err(bad(format!("cannot reach '{k}': its parent is a value"))),
+                };
             }
-            doc.entry(first.to_string())
-                .or_insert_with(|| toml::Value::Table(toml::Table::new()))
-        };
-        for k in parents.iter().skip(1).chain(std::iter::once(last)) {
-            slot = match slot {
-                toml::Value::Array(items) => {
-                    let n = items.len();
-                    let i: usize = k.parse().map_err(|_| {
-                        bad(format!("'{k}' is not an index of an array of {n} entries"))
-                    })?;
-                    items.get_mut(i).ok_or_else(|| {
-                        bad(format!(
-                            "index {i} is past the array's {n} entries (0 to {})",
-                            n.saturating_sub(1)
-                        ))
-                    })?
-                }
-                toml::Value::Table(t) => t
-                    .entry(k.to_string())
-                    .or_insert_with(|| toml::Value::Table(toml::Table::new())),
-                _ => return Err(bad(format!("cannot reach '{k}': its parent is a value"))),
-            };
+            *slot = value;
+        } else {
+            doc.insert(last.to_string(), value);
         }
-        *slot = value;
+        // A value of the wrong type or an unknown field is this argument's fault: say so, not
+        // "line 96, column 16" of a document the user never wrote.
+        if let Err(e) = toml::Value::Table(doc.clone()).try_into::<ScenarioConfig>() {
+            return Err(bad(e.message().trim_end().to_string()));
+        }
     }
     let text = toml::to_string(&doc).map_err(|source| LoadError::OverrideWrite {
         sets: sets.join(" "),

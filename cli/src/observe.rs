@@ -246,15 +246,60 @@ pub(crate) fn scaling_note(scaling: &Scaling) -> String {
     )
 }
 
+/// The lines that summarise the per-epoch FIM table before it: beacons in view, the extremes of
+/// det F and of the bound trF^-1 (with their times), the time-averaged geometry index I.
+fn fim_summary(fim: &[FimEpoch]) -> Vec<String> {
+    let (Some(first), Some(last)) = (fim.first(), fim.last()) else {
+        return vec!["summary: no epochs".into()];
+    };
+    let by = |key: fn(&FimEpoch) -> Option<f64>, max: bool| {
+        fim.iter()
+            .filter_map(|e| key(e).filter(|v| v.is_finite()).map(|v| (v, e.t)))
+            .reduce(|a, b| if (b.0 > a.0) == max { b } else { a })
+    };
+    let fmt =
+        |x: Option<(f64, f64)>| x.map_or("-".to_string(), |(v, t)| format!("{v:.4e} at {t:.1} s"));
+    let counts = (
+        fim.iter().map(|e| e.summary.count).min().unwrap_or(0),
+        fim.iter().map(|e| e.summary.count).max().unwrap_or(0),
+    );
+    let singular = fim
+        .iter()
+        .filter(|e| e.summary.trace_inverse.is_none())
+        .count();
+    let mean_i = fim.iter().map(|e| e.geometry_index).sum::<f64>() / fim.len() as f64;
+    vec![
+        format!(
+            "summary over {} epochs ({:.1} .. {:.1} s): beacons in view {}..{}; F singular (position \
+             not determined by the ranges alone) at {singular} epochs",
+            fim.len(),
+            first.t,
+            last.t,
+            counts.0,
+            counts.1
+        ),
+        format!(
+            "det F min {}, max {}; trF^-1 (bound on tr P) best {}, worst {}; mean I {mean_i:.5}",
+            fmt(by(|e| Some(e.summary.det), false)),
+            fmt(by(|e| Some(e.summary.det), true)),
+            fmt(by(|e| e.summary.trace_inverse, false)),
+            fmt(by(|e| e.summary.trace_inverse, true)),
+        ),
+    ]
+}
+
 fn print_fim(fim: &[FimEpoch], beacons: Option<usize>) {
     println!();
     println!(
-        "Range Fisher information of the vehicle position (seed 002 eq. 36; unit vectors beacon->vehicle)"
+        "Range Fisher information of the vehicle position ([P2] eq. 36; unit vectors beacon->vehicle)"
     );
     println!(
         "  det F [m^-6], tr F [m^-2]; 3/trF (eq. 28) and trF^-1 (eq. 27) are lower bounds on tr P [m^2];"
     );
     println!("  det<= is eq. 38, detmax is eq. 40 for this many beacons; I is eq. 54");
+    for line in fim_summary(fim) {
+        println!("  {line}");
+    }
     println!(
         "{:>7} {:>3} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11} {:>8}",
         "t [s]", "N", "det F", "tr F", "3/trF", "trF^-1", "det<=", "detmax", "I"
@@ -281,7 +326,7 @@ fn print_fim(fim: &[FimEpoch], beacons: Option<usize>) {
     if n >= 3 {
         let best = max_det_directions(n, 8, 1);
         println!(
-            "best geometry of {n} free beacons (seed 002 Table 1): max det(sum n n^T) = {:.6} \
+            "best geometry of {n} free beacons ([P2] Table 1): max det(sum n n^T) = {:.6} \
              (projected gradient ascent) vs (N/3)^3 = {:.6}; I = det(sum n n^T) for unit sigma, \
              so I <= (N/3)^3",
             best.det,

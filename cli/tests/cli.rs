@@ -1400,3 +1400,13 @@ fn a_bad_set_is_blamed_on_its_argument_not_a_line_of_a_generated_document() {
         );
     }
 }
+
+#[test]
+fn observe_fim_summarises_before_its_rows() {
+    let (code, out, err) = entrynav(&["observe", "--scenario", "ground-beacons-3", "--fim"]);
+    assert_eq!(code, 0, "{err}");
+    let summary = out.find("summary over 241 epochs").expect("no summary");
+    let first_row = out.find("\n    0.0   3 ").expect("no first row");
+    assert!(summary < first_row, "the summary comes after the rows");
+    assert!(out.contains("beacons in view 3..3") && out.contains("trF^-1 (bound on tr P) best"));
+}

@@ -79,3 +79,48 @@ fn train_density_quiet_drops_the_epoch_and_run_logs_but_not_the_results() {
         "{out}\n---\n{loud}"
     );
 }
+
+#[test]
+fn progress_reaches_a_log_file_as_timed_lines_when_stderr_is_not_a_terminal() {
+    // The bar would be invisible in a log: a line every ENTRYNAV_PROGRESS_INTERVAL_S instead.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_entrynav"))
+        .args([
+            "trade",
+            "--scenario",
+            "four-beacon-fusion",
+            "--filters",
+            "ekf,dcifaif",
+        ])
+        .args(["--runs", "400", "--threads", "1", "--no-pcrlb"])
+        .env("ENTRYNAV_PROGRESS_INTERVAL_S", "0.05")
+        .env_remove("ENTRYNAV_PROGRESS")
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    let lines: Vec<&str> = err
+        .lines()
+        .filter(|l| l.starts_with("progress: "))
+        .collect();
+    assert!(lines.len() >= 2, "{err}");
+    assert!(
+        lines
+            .iter()
+            .all(|l| l.contains("/400 runs (") && l.contains(" s, eta ")),
+        "{err}"
+    );
+    // --quiet still means nothing.
+    let quiet = std::process::Command::new(env!("CARGO_BIN_EXE_entrynav"))
+        .args([
+            "trade",
+            "--scenario",
+            "four-beacon-fusion",
+            "--filters",
+            "ekf",
+        ])
+        .args(["--runs", "100", "--quiet", "--no-pcrlb"])
+        .env("ENTRYNAV_PROGRESS_INTERVAL_S", "0.01")
+        .output()
+        .unwrap();
+    assert!(quiet.stderr.is_empty());
+}

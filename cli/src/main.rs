@@ -119,6 +119,9 @@ enum ScenarioAction {
         #[arg(long)]
         resolved: bool,
     },
+    /// Print the reference of every scenario field (type, default, allowed range, meaning) as
+    /// Markdown, generated from the configuration types: docs/scenario-reference.md.
+    Schema,
 }
 
 fn main() {
@@ -138,6 +141,12 @@ fn main() {
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Scenarios => scenarios::list(),
+        Command::Scenario {
+            action: ScenarioAction::Schema,
+        } => {
+            print!("{}", entrynav::scenario::reference::markdown());
+            Ok(())
+        }
         Command::Scenario {
             action: ScenarioAction::Show { name, resolved },
         } => {

@@ -14,7 +14,9 @@ use crate::math::{Real, V3, add, cross, dot, norm, scale};
 use serde::{Deserialize, Serialize};
 
 /// Which way a scenario's heading numbers are measured.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, schemars::JsonSchema,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum HeadingConvention {
     /// ψ = 0 due north, 90° due east (seeds 000 and 001); the internal convention.
@@ -83,7 +85,7 @@ pub fn rotate_z<T: Real>(a: &V3<T>, angle: T) -> V3<T> {
 }
 
 /// A spherical entry state `[r, lon, lat, v, fpa, heading]` in SI units (internal heading convention).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct SphericalState {
     /// Radius from the planet centre \[m\].
     pub r: f64,

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 ///
 /// Defaults are Mars as settled in SPEC.md: μ = 4.2828e13 m³/s², mean radius 3396.2 km,
 /// rotation rate 7.0882e-5 rad/s. Seed 000 uses μ = 4.282829e13; a scenario may override any value.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Planet {
     /// Gravitational parameter μ [m³/s²].
     pub mu: f64,

@@ -3,7 +3,9 @@
 use serde::{Deserialize, Serialize};
 
 /// Unit of the height column of a table.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum HeightUnit {
     /// Kilometres (Mars-GRAM's `Height(km)` / `Hgtkm` / `Var_X` / `HgtMOLA`).

@@ -24,7 +24,7 @@ use crate::planet::Planet;
 /// scale_height_km = 7.5
 /// ```
 /// Unknown keys are rejected.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "model", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum AtmosphereConfig {
     /// Exponential model, seed 000 eq. 3 / seed 001 eq. 16 in radius form (seeds 000/002/003:
@@ -269,7 +269,7 @@ fn default_grid_step_km() -> f64 {
 /// grid_step_km = 1.0     # AR(1) grid spacing
 /// envelope = [[0, 0.02], [40, 0.05], [60, 0.085], [80, 0.175], [100, 0.30]]  # [km, 1σ fraction]
 /// ```
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PerturbationConfig {
     /// Multiplier of the envelope (default 1).

@@ -30,7 +30,7 @@ use super::columns::{declared_unit, find_column};
 pub const MAX_TABLE_ROWS: usize = 1_000_000;
 
 /// Text format of a density table file.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum TableFormat {
     /// Comma-separated values with a header line ([`parse_csv`]).

@@ -44,7 +44,7 @@ pub fn areoid_radius_m(latitude_rad: f64) -> f64 {
 }
 
 /// What the height column of a table is measured from, when it has no radius column.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Datum {
     /// Heights are altitudes above our reference sphere.
@@ -292,7 +292,7 @@ impl ProfileChoice {
 }
 
 /// The truth atmosphere file of a study, as recorded in trade reports.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct ProfileProvenance {
     /// Source file.
     pub file: String,

@@ -26,7 +26,7 @@ use crate::planet::Planet;
 use serde::{Deserialize, Serialize};
 
 /// One beacon of a scenario, tagged by `kind = "surface" | "orbiter"`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
 pub enum BeaconConfig {
     /// A planet-fixed beacon.
@@ -41,7 +41,7 @@ pub const MAX_RANGE_SIGMA_M: f64 = 1e5;
 pub const MAX_RANGE_RATE_SIGMA_MPS: f64 = 1e3;
 
 /// A planet-fixed beacon: `position_km`, or all of `lat_deg`, `lon_deg`, `altitude_km`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SurfaceBeaconConfig {
     /// Unique name, used in reports and measurement channel names.
@@ -52,6 +52,7 @@ pub struct SurfaceBeaconConfig {
         skip_serializing_if = "Option::is_none",
         with = "crate::fixed_len::option_array"
     )]
+    #[schemars(with = "Option<[f64; 3]>")]
     pub position_km: Option<[f64; 3]>,
     /// Planetocentric latitude \[deg\], in [−90, 90].
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -78,7 +79,7 @@ pub struct SurfaceBeaconConfig {
 }
 
 /// An orbiter: `position_km` + `velocity_mps`, or `circular`, or `elements`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OrbiterBeaconConfig {
     /// Unique name, used in reports and measurement channel names.
@@ -89,6 +90,7 @@ pub struct OrbiterBeaconConfig {
         skip_serializing_if = "Option::is_none",
         with = "crate::fixed_len::option_array"
     )]
+    #[schemars(with = "Option<[f64; 3]>")]
     pub position_km: Option<[f64; 3]>,
     /// Inertial velocity at t = 0 [m/s].
     #[serde(
@@ -96,6 +98,7 @@ pub struct OrbiterBeaconConfig {
         skip_serializing_if = "Option::is_none",
         with = "crate::fixed_len::option_array"
     )]
+    #[schemars(with = "Option<[f64; 3]>")]
     pub velocity_mps: Option<[f64; 3]>,
     /// Circular orbit of seed 002 eq. 55–56.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -115,7 +118,7 @@ pub struct OrbiterBeaconConfig {
 }
 
 /// Circular orbit in scenario units (seed 002 eq. 55–56).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CircularConfig {
     /// Altitude above the reference sphere \[km\], > 0.
@@ -129,7 +132,7 @@ pub struct CircularConfig {
 }
 
 /// Classical elements of an elliptic orbit in scenario units.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ElementsConfig {
     /// Semi-major axis \[km\], > 0.

@@ -24,7 +24,7 @@ pub use integrator::{rk4_integrate, rk4_step, rk4_step_generic};
 pub use spherical::spherical_rhs;
 
 /// Which equations of motion a model uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum DynamicsKind {
     /// Spherical state, non-rotating planet (seed 000 eq. 1 and 7).
@@ -44,7 +44,7 @@ impl DynamicsKind {
 
 /// A parameter appended to the state vector: zero dynamics (a random constant; a random walk
 /// with the filter's process noise), except accelerometer biases under a Gauss–Markov model.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum AugmentedParam {
     /// Reference density ρ0 [kg/m³] of the exponential model (seed 000 state 7).
@@ -102,7 +102,7 @@ impl AugmentedParam {
 }
 
 /// The aerodynamic constants of a vehicle.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Vehicle {
     /// C_D·S/m [m²/kg]; the inverse of the ballistic coefficient m/(C_D S).
     pub cd_s_over_m: f64,

@@ -36,7 +36,7 @@ type Mat<const N: usize> = SMatrix<f64, N, N>;
 type Vect<const N: usize> = SVector<f64, N>;
 
 /// How the CI weights ω are chosen.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 pub enum CiWeighting {
     /// Minimise the *normalised* trace `tr(D P_CI D) = Σ_k (P_CI)_kk / p̄_k` (see the module
     /// doc for `D`, `p̄`), i.e. the sum of fused variances relative to the mean local variances.

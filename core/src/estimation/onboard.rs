@@ -34,7 +34,17 @@ pub struct OnboardChannel {
 }
 
 /// How DCIFAIF's fused covariance is formed and fed back (`filter.fusion_covariance`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum FusionCovariance {
     /// The exact covariance of the CI-weighted estimate, fed back to every local filter

@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 /// A complete scenario: truth world, onboard filter model, sensors, beacons, dispersions, timing.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ScenarioConfig {
     /// Short identifier, e.g. `four-beacon-fusion`.
@@ -54,7 +54,7 @@ pub struct ScenarioConfig {
 }
 
 /// Optional planet-constant overrides.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PlanetConfig {
     /// μ [m³/s²].
@@ -69,7 +69,7 @@ pub struct PlanetConfig {
 }
 
 /// Durations and integration steps.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct TimingConfig {
     /// Length of the entry simulated \[s\].
@@ -86,7 +86,7 @@ pub struct TimingConfig {
 /// An initial state, either spherical (planet-relative velocity) or Cartesian inertial.
 ///
 /// Exactly one form must be complete. Also used for 1σ dispersions, with the same units.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct StateConfig {
     /// Radius \[km\].
@@ -113,6 +113,7 @@ pub struct StateConfig {
         skip_serializing_if = "Option::is_none",
         with = "crate::fixed_len::option_array"
     )]
+    #[schemars(with = "Option<[f64; 3]>")]
     pub position_km: Option<[f64; 3]>,
     /// Inertial velocity [m/s].
     #[serde(
@@ -120,11 +121,12 @@ pub struct StateConfig {
         skip_serializing_if = "Option::is_none",
         with = "crate::fixed_len::option_array"
     )]
+    #[schemars(with = "Option<[f64; 3]>")]
     pub velocity_mps: Option<[f64; 3]>,
 }
 
 /// Vehicle aerodynamics: give either `cd_s_over_m_m2kg` or `ballistic_coefficient_kgm2`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct VehicleConfig {
     /// C_D·S/m [m²/kg] (seed 000 "CdS/m", seed 001 "B").
@@ -138,7 +140,7 @@ pub struct VehicleConfig {
 }
 
 /// The simulated world.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct TruthConfig {
     /// Equations of motion.
@@ -161,7 +163,7 @@ pub struct TruthConfig {
 }
 
 /// UKF sigma-point constants (seed 001 eq. 41–50).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct UkfConfig {
     /// Spread α.
@@ -185,7 +187,7 @@ impl Default for UkfConfig {
 
 /// The onboard navigation model. Covariances are in SI units and radians, in state order
 /// `[r|x, lon|y, lat|z, v|vx, fpa|vy, heading|vz, augmented…]`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FilterConfig {
     /// Equations of motion of the filter.
@@ -257,7 +259,7 @@ pub struct FilterConfig {
 
 /// A filter's own tuning (`[filter.tuned.<filter name>]`): each field present replaces the shared
 /// one of `[filter]` for that filter only; an absent field keeps the shared value.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FilterRetuneConfig {
     /// Process-noise diagonal per filter step Q_k of this filter (SI, rad), in state order.
@@ -270,7 +272,7 @@ pub struct FilterRetuneConfig {
 }
 
 /// Monte Carlo dispersions (1σ) of the truth.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DispersionConfig {
     /// 1σ of the initial state, same form and units as `truth.initial`.
@@ -295,7 +297,7 @@ fn default_runs() -> usize {
 }
 
 /// Monte Carlo defaults.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MonteCarloConfig {
     /// Number of runs when none is given on the command line.
@@ -341,7 +343,7 @@ fn is_one_iteration(n: &usize) -> bool {
 
 /// Factors on the 1σ measurement noise the filter assumes, per channel kind
 /// (`[filter.noise_inflation]`; every key defaults to 1).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct NoiseInflation {
     /// Accelerometers (on top of `filter.imu_sigma_mps2`).

@@ -12,6 +12,7 @@ pub mod draw;
 pub mod error;
 mod onboard;
 pub mod plausibility;
+pub mod reference;
 mod truth_values;
 pub mod validate;
 mod validate_density;

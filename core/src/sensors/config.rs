@@ -42,7 +42,7 @@ fn check_rate(field: &str, rate: f64) -> Result<(), SensorError> {
 }
 
 /// Accelerometer triad.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ImuConfig {
     /// Sample rate \[Hz\].
@@ -55,11 +55,12 @@ pub struct ImuConfig {
     pub noise_sigma_mps2: f64,
     /// True constant bias per axis [m/s²] (seed 000: −0.03, not estimated by the filters).
     #[serde(default, with = "crate::fixed_len::array")]
+    #[schemars(with = "[f64; 3]")]
     pub bias_mps2: [f64; 3],
 }
 
 /// Dynamic-pressure sensor (seed 001 eq. 14, seed 003 eq. 11).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct AirDataConfig {
     /// Sample rate \[Hz\].
@@ -73,7 +74,7 @@ fn default_k() -> f64 {
 }
 
 /// Convective-heating sensor (seed 001 eq. 15).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct HeatingConfig {
     /// Sample rate \[Hz\].
@@ -88,7 +89,7 @@ pub struct HeatingConfig {
 }
 
 /// A radio measurement type taken from every beacon that has a noise level for it.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RadioConfig {
     /// Sample rate \[Hz\].
@@ -96,7 +97,7 @@ pub struct RadioConfig {
 }
 
 /// The onboard sensor suite; absent sections are sensors the vehicle does not carry.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SensorsConfig {
     /// Accelerometers.

@@ -4,7 +4,7 @@ use crate::math::{Real, V3};
 use serde::{Deserialize, Serialize};
 
 /// Frame in which the accelerometer reports specific force.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "frame", rename_all = "kebab-case")]
 pub enum ImuFrame {
     /// Velocity (wind) frame: `[−D, −L sinσ, L cosσ]` (seed 000 eq. 5, seed 003 eq. 7).

@@ -56,7 +56,7 @@ fn d_window() -> usize {
 /// Settings of the density-adaptation filters of seed 001 (`[filter.density]`); every key is
 /// optional and defaults to the paper's value (§V.B, Table 4) or, where the paper gives none,
 /// to ours (documented per field).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DensityFilterConfig {
     /// UKF-CM: Myers–Tapley batch size in filter steps (seed 001: 10).
@@ -184,7 +184,7 @@ fn d_fit_km() -> [f64; 2] {
 }
 
 /// Offline training of the density network (seed 001 Algorithm 1, §IV.A.1), `[filter.density.training]`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DensityTrainingConfig {
     /// Seed of the trajectories, the split and the initial weights.
@@ -219,6 +219,7 @@ pub struct DensityTrainingConfig {
     pub validation_fraction: f64,
     /// Altitude range \[km\] of the truth mean profile the least-squares exponential is fitted to.
     #[serde(default = "d_fit_km", with = "crate::fixed_len::array")]
+    #[schemars(with = "[f64; 2]")]
     pub fit_altitude_km: [f64; 2],
     /// Band edges \[km\] for one network per altitude band (the multi-network extension of seed
     /// 001 §VI), e.g. `[0, 40, 70, 130]`; empty = one network trained on one exponential.

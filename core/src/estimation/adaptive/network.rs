@@ -40,7 +40,7 @@ pub fn builtin_network_toml(name: &str) -> Option<&'static str> {
 pub const BUILTIN_NETWORKS: [&str; 2] = [MSL_AIRDATA_NETWORK, MSL_AIRDATA_BAND_NETWORKS];
 
 /// How a network was trained (informative; written by `entrynav train-density`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct TrainingRecord {
     /// Scenario the data was generated from.
@@ -63,6 +63,7 @@ pub struct TrainingRecord {
     pub validation_mse: f64,
     /// Validation relative density error |ρ̂ − ρ|/ρ: median, 99th percentile, maximum.
     #[serde(with = "crate::fixed_len::array")]
+    #[schemars(with = "[f64; 3]")]
     pub validation_rel_err_p50_p99_max: [f64; 3],
     /// Fraction of validation samples with relative error below 1 % (seed 001 Fig. 5).
     pub validation_frac_below_1pct: f64,
@@ -71,14 +72,16 @@ pub struct TrainingRecord {
 }
 
 /// One trained network in a file, with the band it covers and the model it was trained on.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct NetworkRecord {
     /// Altitudes \[km\] of the band `[bottom, top)` this network serves.
     #[serde(with = "crate::fixed_len::array")]
+    #[schemars(with = "[f64; 2]")]
     pub altitude_band_km: [f64; 2],
     /// The exponential it was trained on: `[rho_ref_kgm3, ref_altitude_km, scale_height_km]`.
     #[serde(with = "crate::fixed_len::array")]
+    #[schemars(with = "[f64; 3]")]
     pub trained_on_exponential: [f64; 3],
     /// Normalisation and transform constants (seed 001 eq. 29–31).
     pub normalisation: Normalisation,
@@ -96,7 +99,7 @@ pub struct NetworkRecord {
 }
 
 /// A network file: a format tag, a description and one network per altitude band.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct NetworkFile {
     /// [`NETWORK_FORMAT`].

@@ -99,7 +99,7 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// Normalisation and output transform of a network (seed 001 eq. 29–31).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Normalisation {
     /// Mean r̄ of the training radii \[m\] (eq. 30).

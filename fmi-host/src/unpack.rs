@@ -9,6 +9,7 @@ use mars_entry_nav::binding::{Binding, read_library};
 use mars_entry_nav::instance::resolve_spec;
 use mars_entry_nav::vars::{Model, ModelSpec};
 use mars_entry_nav::xml::description_of;
+use mars_entry_nav::xml3::description3_of;
 use quick_xml::events::Event;
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -26,6 +27,10 @@ pub struct Unpacked {
     pub binding: Option<Binding>,
     /// Size of the shared library in bytes.
     pub library_bytes: u64,
+    /// The FMI version of the description: 2 or 3 (the library exports both interfaces).
+    pub fmi_version: u8,
+    /// The unpacked library.
+    pub library: PathBuf,
     /// Its fmi2 functions.
     pub api: Api,
 }
@@ -55,6 +60,23 @@ fn model_identifier(xml: &str) -> std::result::Result<Option<String>, quick_xml:
 }
 
 /// Whether `id` can name the library file: non-empty, letters, digits and `_` only.
+/// The `fmiVersion` attribute of the description's root element.
+fn fmi_version(xml: &str) -> std::result::Result<Option<String>, quick_xml::Error> {
+    let mut reader = quick_xml::Reader::from_str(xml);
+    loop {
+        match reader.read_event()? {
+            Event::Start(e) | Event::Empty(e) if e.name().as_ref() == b"fmiModelDescription" => {
+                return match e.try_get_attribute("fmiVersion")? {
+                    Some(a) => Ok(Some(a.unescape_value()?.into_owned())),
+                    None => Ok(None),
+                };
+            }
+            Event::Eof => return Ok(None),
+            _ => {}
+        }
+    }
+}
+
 fn usable_identifier(id: &str) -> bool {
     !id.is_empty() && id.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
@@ -89,6 +111,22 @@ pub fn unpack(file: &Path) -> Result<Unpacked> {
         })?
         .filter(|id| usable_identifier(id))
         .ok_or_else(|| HostError::ModelIdentifier { path: path() })?;
+    let version = match fmi_version(&xml)
+        .map_err(|source| HostError::Xml {
+            path: path(),
+            source,
+        })?
+        .as_deref()
+    {
+        Some("2.0") => 2u8,
+        Some("3.0") => 3u8,
+        _ => return Err(HostError::StaleModelDescription(id)),
+    };
+    let platform = if version == 3 {
+        "x86_64-linux"
+    } else {
+        "linux64"
+    };
     let dir = std::env::temp_dir().join(format!(
         "entrynav fmu check {} {id} {}",
         std::process::id(),
@@ -100,9 +138,9 @@ pub fn unpack(file: &Path) -> Result<Unpacked> {
     std::fs::create_dir_all(&dir).map_err(io("cannot create", &dir))?;
     zip.extract(&dir)
         .map_err(archive("cannot extract to the temporary folder"))?;
-    let so = dir.join("binaries/linux64").join(format!("{id}.so"));
+    let so = dir.join("binaries").join(platform).join(format!("{id}.so"));
     let bytes = std::fs::read(&so)
-        .map_err(|_| HostError::MissingFile(format!("binaries/linux64/{id}.so")))?;
+        .map_err(|_| HostError::MissingFile(format!("binaries/{platform}/{id}.so")))?;
     let binding = read_library(&bytes)?;
     let spec = match &binding {
         Some(b) => resolve_spec(Some(b), &b.guid, Some(&file_uri(&dir.join("resources"))))?,
@@ -111,7 +149,11 @@ pub fn unpack(file: &Path) -> Result<Unpacked> {
                 .ok_or_else(|| HostError::StaleModelDescription(id.clone()))?,
         )),
     };
-    if description_of(&spec) != xml {
+    let expected = match version {
+        3 => description3_of(&spec),
+        _ => description_of(&spec),
+    };
+    if expected != xml {
         return Err(HostError::StaleModelDescription(id));
     }
     if spec.specific().is_none() {
@@ -128,6 +170,8 @@ pub fn unpack(file: &Path) -> Result<Unpacked> {
         spec,
         binding,
         library_bytes: bytes.len() as u64,
+        fmi_version: version,
+        library: so,
         api,
     })
 }

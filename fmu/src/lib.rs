@@ -1,4 +1,4 @@
-//! FMI 2.0 co-simulation FMUs of entrynav.
+//! FMI 2.0 and FMI 3.0 co-simulation FMUs of entrynav.
 //!
 //! One shared library serves every model; `entrynav fmu pack` binds each packed copy to its own
 //! model ([`binding`]), so a `.fmu` accepts only its model's GUID:
@@ -12,8 +12,9 @@
 //! Layers: [`vars`] (the variable table, shared with the XML generator, and the GUID), [`xml`]
 //! (`modelDescription.xml`), [`state`] (FMU state snapshots and their byte format), [`limits`]
 //! (the bound on everything from outside), [`instance`] (a safe instance with the FMI state
-//! machine over `entrynav::sim::engine`, and its allowed-state table), and [`ffi`] (the 34
-//! exported `fmi2*` functions and the registry of live instances, the only unsafe code). The
+//! machine over `entrynav::sim::engine`, and its allowed-state table), [`xml3`] (the FMI 3.0
+//! description of the same table plus [`vars::fmi3`]), and [`ffi`] (the 34 exported `fmi2*` and
+//! 75 `fmi3*` functions and the registry of live instances, the only unsafe code). The
 //! other side of the C ABI, our own FMI importer used by `entrynav fmu check` and `fuzz`, is the
 //! `entrynav-fmi-host` crate, so this library carries only the FMU.
 #![warn(missing_docs)]
@@ -26,6 +27,8 @@ pub mod state;
 pub mod uri;
 pub mod vars;
 pub mod xml;
+pub mod xml3;
 
 pub use vars::{Model, ModelSpec, guid_of};
 pub use xml::{description_of, model_description};
+pub use xml3::description3_of;

@@ -26,7 +26,7 @@ pub const LOG_CATEGORIES: [(&str, &str); 5] = [
     ("logAll", "Every message"),
 ];
 
-fn fmt_f64(v: f64) -> String {
+pub(crate) fn fmt_f64(v: f64) -> String {
     format!("{v:?}")
 }
 
@@ -80,30 +80,7 @@ fn write(spec: &ModelSpec) -> io::Result<String> {
                 .with_attribute(("canSerializeFMUstate", "true"))
                 .with_attribute(("providesDirectionalDerivative", "false"))
                 .write_empty()?;
-            w.create_element("UnitDefinitions")
-                .write_inner_content(|w| {
-                    for (name, exps, display) in UNITS {
-                        w.create_element("Unit")
-                            .with_attribute(("name", name))
-                            .write_inner_content(|w| {
-                                let mut base = w.create_element("BaseUnit");
-                                for (k, e) in ["kg", "m", "s", "rad"].iter().zip(exps) {
-                                    if e != 0 {
-                                        base = base.with_attribute((*k, e.to_string().as_str()));
-                                    }
-                                }
-                                base.write_empty()?;
-                                if let Some((dn, factor)) = display {
-                                    w.create_element("DisplayUnit")
-                                        .with_attribute(("name", dn))
-                                        .with_attribute(("factor", fmt_f64(factor).as_str()))
-                                        .write_empty()?;
-                                }
-                                Ok(())
-                            })?;
-                    }
-                    Ok(())
-                })?;
+            write_units(w)?;
             w.create_element("TypeDefinitions")
                 .write_inner_content(|w| {
                     for e in &used_enums {
@@ -126,15 +103,7 @@ fn write(spec: &ModelSpec) -> io::Result<String> {
                     }
                     Ok(())
                 })?;
-            w.create_element("LogCategories").write_inner_content(|w| {
-                for (name, d) in LOG_CATEGORIES {
-                    w.create_element("Category")
-                        .with_attribute(("name", name))
-                        .with_attribute(("description", d))
-                        .write_empty()?;
-                }
-                Ok(())
-            })?;
+            write_log_categories(w)?;
             let (start, stop, step) = spec.default_experiment();
             w.create_element("DefaultExperiment")
                 .with_attribute(("startTime", fmt_f64(start).as_str()))
@@ -186,6 +155,49 @@ fn write(spec: &ModelSpec) -> io::Result<String> {
     let mut text = String::from_utf8(w.into_inner()).map_err(io::Error::other)?;
     text.push('\n');
     Ok(text)
+}
+
+/// `UnitDefinitions` (the same in FMI 2.0 and 3.0).
+pub(crate) fn write_units(w: &mut Writer<Vec<u8>>) -> io::Result<()> {
+    w.create_element("UnitDefinitions")
+        .write_inner_content(|w| {
+            for (name, exps, display) in UNITS {
+                w.create_element("Unit")
+                    .with_attribute(("name", name))
+                    .write_inner_content(|w| {
+                        let mut base = w.create_element("BaseUnit");
+                        for (k, e) in ["kg", "m", "s", "rad"].iter().zip(exps) {
+                            if e != 0 {
+                                base = base.with_attribute((*k, e.to_string().as_str()));
+                            }
+                        }
+                        base.write_empty()?;
+                        if let Some((dn, factor)) = display {
+                            w.create_element("DisplayUnit")
+                                .with_attribute(("name", dn))
+                                .with_attribute(("factor", fmt_f64(factor).as_str()))
+                                .write_empty()?;
+                        }
+                        Ok(())
+                    })?;
+            }
+            Ok(())
+        })?;
+    Ok(())
+}
+
+/// `LogCategories` (the same in FMI 2.0 and 3.0).
+pub(crate) fn write_log_categories(w: &mut Writer<Vec<u8>>) -> io::Result<()> {
+    w.create_element("LogCategories").write_inner_content(|w| {
+        for (name, d) in LOG_CATEGORIES {
+            w.create_element("Category")
+                .with_attribute(("name", name))
+                .with_attribute(("description", d))
+                .write_empty()?;
+        }
+        Ok(())
+    })?;
+    Ok(())
 }
 
 fn write_var(w: &mut Writer<Vec<u8>>, v: &Var) -> io::Result<()> {

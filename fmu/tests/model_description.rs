@@ -1,18 +1,28 @@
-//! The committed `modelDescription/*.xml` files are exactly what the variable table generates.
+//! The committed `modelDescription/*.xml` files (FMI 2.0) and `modelDescription/fmi3/*.xml`
+//! (FMI 3.0) are exactly what the variable table generates.
 //! Regenerate them with `ENTRYNAV_BLESS=1 cargo test -p entrynav-fmu --test model_description`.
 
 use mars_entry_nav::xml::{committed_file_name, model_description};
-use mars_entry_nav::{Model, guid_of};
+use mars_entry_nav::{Model, ModelSpec, description3_of, guid_of};
 use std::path::PathBuf;
 
 #[test]
 fn committed_model_descriptions_do_not_drift() {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../modelDescription");
     let bless = std::env::var_os("ENTRYNAV_BLESS").is_some();
-    for m in Model::ALL {
-        let path = dir.join(committed_file_name(m));
-        let generated = model_description(m);
-        assert!(generated.contains(&format!("guid=\"{}\"", guid_of(m))));
+    std::fs::create_dir_all(dir.join("fmi3")).unwrap();
+    let both = Model::ALL.into_iter().flat_map(|m| {
+        [
+            (dir.join(committed_file_name(m)), m, model_description(m)),
+            (
+                dir.join("fmi3").join(committed_file_name(m)),
+                m,
+                description3_of(&ModelSpec::generic(m)),
+            ),
+        ]
+    });
+    for (path, m, generated) in both {
+        assert!(generated.contains(&format!("=\"{}\"", guid_of(m))));
         assert!(generated.contains(&format!("modelIdentifier=\"{}\"", m.identifier())));
         if bless {
             std::fs::write(&path, &generated).unwrap();

@@ -1,5 +1,6 @@
 //! `entrynav fmu cross-check`: the FMI Cross-Check files of packed FMUs, as the cross-check rules
-//! (version 4.1) lay them out: `fmus/2.0/cs/linux64/entrynav/<version>/<Model>/` with
+//! (version 4.1) lay them out: `fmus/2.0/cs/linux64/entrynav/<version>/<Model>/` (FMI 3.0 FMUs:
+//! `fmus/3.0/cs/x86_64-linux/…`) with
 //! `<Model>.fmu`, `<Model>_ref.csv` (at most 10 important outputs, from StartTime to StopTime),
 //! `<Model>_ref.opt`, `<Model>_in.csv` (every input) and `README.md`. CSV files have a quoted
 //! header, a `time` first column, numbers only (Booleans as 0/1) and stay under 1 MB.
@@ -148,9 +149,13 @@ pub(super) fn cross_check(a: &CrossCheckArgs) -> Result<()> {
         let u = unpack(fmu)?;
         let spec = Arc::clone(&u.spec);
         let id = spec.identifier();
+        let (version, platform) = match u.fmi_version {
+            3 => ("3.0", "x86_64-linux"),
+            _ => ("2.0", "linux64"),
+        };
         let dir = a
             .out
-            .join("fmus/2.0/cs/linux64/entrynav")
+            .join(format!("fmus/{version}/cs/{platform}/entrynav"))
             .join(env!("CARGO_PKG_VERSION"))
             .join(id);
         std::fs::create_dir_all(&dir)
@@ -201,13 +206,13 @@ pub(super) fn cross_check(a: &CrossCheckArgs) -> Result<()> {
         crate::atomic_file::write(
             &dir.join("README.md"),
             format!(
-                "# {id}\n\n{}\n\nExported by entrynav {} (`entrynav fmu pack`), FMI 2.0 co-simulation, linux64.\n\n\
+                "# {id}\n\n{}\n\nExported by entrynav {} (`entrynav fmu pack`), FMI {version} co-simulation, {platform}.\n\n\
                  The reference result `{id}_ref.csv` is the model run with its default parameters from {start} s to {stop} s \
                  in communication steps of {step} s, with the inputs of `{id}_in.csv` held over each step (the row at each \
                  communication point applies). The model is deterministic: an importer that applies the same inputs at the \
                  same communication points reproduces the reference exactly.\n",
                 spec.description(),
-                env!("CARGO_PKG_VERSION")
+                env!("CARGO_PKG_VERSION"),
             ),
         )?;
         println!(

@@ -9,7 +9,7 @@ use super::*;
 use entrynav::estimation::nav::FilterKind;
 use mars_entry_nav::ModelSpec;
 use mars_entry_nav::binding::{Binding, patch};
-use mars_entry_nav::description_of;
+use mars_entry_nav::{description_of, description3_of};
 use std::cell::RefCell;
 use std::process::Command;
 
@@ -37,6 +37,12 @@ pub(super) struct PackArgs {
     /// parameters in an .ssv.
     #[arg(long, conflicts_with = "scenario")]
     ssp: bool,
+    /// FMI version of the packed FMUs: 2 (FMI 2.0, `<id>.fmu`) or 3 (FMI 3.0, `<id>-fmi3.fmu`:
+    /// the same variables and value references, plus `time`, the structural parameter
+    /// `n_state_slots` and the arrays `est_x`, `est_sigma`, `est_covariance`). The library is
+    /// the same and exports both interfaces.
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
+    fmi: u8,
     /// Ship the library with its symbols and debug information (by default it is stripped with
     /// binutils' `strip --strip-all`).
     #[arg(long)]
@@ -143,7 +149,13 @@ fn generic_resources() -> Resources {
 }
 
 /// Write `spec`'s `.fmu` into `out` with the library `so` bound to it; returns its path.
-fn write_fmu(out: &Path, spec: &ModelSpec, so: &[u8], resources: &Resources) -> Result<PathBuf> {
+fn write_fmu(
+    out: &Path,
+    spec: &ModelSpec,
+    so: &[u8],
+    resources: &Resources,
+    fmi: u8,
+) -> Result<PathBuf> {
     let id = spec.identifier();
     let binding = Binding {
         identifier: id.to_string(),
@@ -154,18 +166,29 @@ fn write_fmu(out: &Path, spec: &ModelSpec, so: &[u8], resources: &Resources) -> 
             .map(|s| (s.scenario_file.clone(), s.filter.name().to_string())),
     };
     let bound = patch(so, &binding)?;
-    let path = out.join(format!("{id}.fmu"));
+    let (path, xml, platform) = match fmi {
+        3 => (
+            out.join(format!("{id}-fmi3.fmu")),
+            description3_of(spec),
+            "x86_64-linux",
+        ),
+        _ => (
+            out.join(format!("{id}.fmu")),
+            description_of(spec),
+            "linux64",
+        ),
+    };
     let file = crate::atomic_file::AtomicFile::create(&path)?;
     let mut zip = zip::ZipWriter::new(file);
     let opts = zip::write::SimpleFileOptions::default()
         .compression_method(zip::CompressionMethod::Deflated)
         .unix_permissions(0o644);
     zip.start_file("modelDescription.xml", opts)?;
-    zip.write_all(description_of(spec).as_bytes())?;
+    zip.write_all(xml.as_bytes())?;
     zip.add_directory("binaries/", opts)?;
-    zip.add_directory("binaries/linux64/", opts)?;
+    zip.add_directory(format!("binaries/{platform}/"), opts)?;
     zip.start_file(
-        format!("binaries/linux64/{id}.so"),
+        format!("binaries/{platform}/{id}.so"),
         opts.unix_permissions(0o755),
     )?;
     zip.write_all(&bound)?;
@@ -182,6 +205,10 @@ fn write_fmu(out: &Path, spec: &ModelSpec, so: &[u8], resources: &Resources) -> 
 }
 
 pub(super) fn pack(a: &PackArgs) -> Result<()> {
+    ensure!(
+        !(a.ssp && a.fmi == 3),
+        "--ssp systems hold the FMI 2.0 FMUs (OMSimulator and SSP 1.0 tools import those); pack them without --fmi 3"
+    );
     let lib = super::library::Search::of_process(a.lib.as_deref()).find()?;
     std::fs::create_dir_all(&a.out)
         .with_context(|| format!("cannot create {}", a.out.display()))?;
@@ -194,7 +221,7 @@ pub(super) fn pack(a: &PackArgs) -> Result<()> {
             .collect(),
     };
     for (spec, resources) in &models {
-        let path = write_fmu(&a.out, spec, &so, resources)?;
+        let path = write_fmu(&a.out, spec, &so, resources, a.fmi)?;
         // The packed FMU must unpack to the model it was packed for (binding, description and,
         // for a specific FMU, the embedded scenario).
         let u = entrynav_fmi_host::unpack(&path)
@@ -204,9 +231,15 @@ pub(super) fn pack(a: &PackArgs) -> Result<()> {
             "{}: GUID changed when unpacked",
             path.display()
         );
+        ensure!(
+            u.fmi_version == a.fmi,
+            "{}: FMI version changed when unpacked",
+            path.display()
+        );
         println!(
-            "{}  {}  {}  library {:.2} MiB{}",
+            "{}  FMI {}.0  {}  {}  library {:.2} MiB{}",
             path.display(),
+            a.fmi,
             spec.identifier(),
             spec.guid(),
             u.library_bytes as f64 / (1024.0 * 1024.0),

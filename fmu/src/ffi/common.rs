@@ -76,7 +76,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
         // SAFETY: null or C strings.
         let name = unsafe { text(instance_name, MAX_STRING_BYTES) };
         let logger = Arc::new(CLogger {
-            f: fns.logger,
+            f: fns.logger.map(LogFn::V2),
             env: fns.component_environment,
             name: c_text(name.unwrap_or("")),
         });

@@ -1,4 +1,5 @@
-//! The 34 FMI 2.0 co-simulation functions: the only `unsafe` and the only exported symbols.
+//! The 34 FMI 2.0 co-simulation functions and, in [`fmi3`], the 75 FMI 3.0 functions: the only
+//! `unsafe` and the only exported symbols.
 //!
 //! Every entry point checks its pointers, bounds every length and count it is given before it
 //! reads or allocates by it ([`crate::limits`]), runs the call under [`panic_hook::guarded`] (a panic
@@ -57,9 +58,24 @@ struct Inner {
     snapshots: HashMap<usize, Box<Snapshot>>,
 }
 
+/// The FMI 3.0 logger callback type (`fmi3LogMessageCallback`: not variadic, no instance name).
+pub type Logger3Fn = unsafe extern "C" fn(
+    env: *mut c_void,
+    status: c_int,
+    category: *const c_char,
+    message: *const c_char,
+);
+
+/// The master's logger: FMI 2.0 (printf-like) or FMI 3.0.
+#[derive(Clone, Copy)]
+enum LogFn {
+    V2(LoggerFn),
+    V3(Logger3Fn),
+}
+
 /// The logger callback with its environment.
 struct CLogger {
-    f: Option<LoggerFn>,
+    f: Option<LogFn>,
     env: *mut c_void,
     name: CString,
 }
@@ -79,20 +95,30 @@ fn c_text(s: &str) -> CString {
 
 impl CLogger {
     fn log(&self, status: Status, category: &str, msg: &str) {
-        if let Some(f) = self.f {
-            let cat = c_text(category);
-            let text = c_text(&msg.replace('%', "%%"));
-            // SAFETY: `f` is the master's logger; all strings are valid NUL-terminated C strings
-            // that outlive the call, and the message contains no unescaped format directives.
-            unsafe {
-                f(
-                    self.env,
-                    self.name.as_ptr(),
-                    status as c_int,
-                    cat.as_ptr(),
-                    text.as_ptr(),
-                )
-            };
+        let cat = c_text(category);
+        match self.f {
+            None => {}
+            Some(LogFn::V2(f)) => {
+                let text = c_text(&msg.replace('%', "%%"));
+                // SAFETY: `f` is the master's logger; all strings are valid NUL-terminated C
+                // strings that outlive the call, and the message contains no unescaped format
+                // directives.
+                unsafe {
+                    f(
+                        self.env,
+                        self.name.as_ptr(),
+                        status as c_int,
+                        cat.as_ptr(),
+                        text.as_ptr(),
+                    )
+                };
+            }
+            Some(LogFn::V3(f)) => {
+                let text = c_text(&fmi3::in_fmi3_terms(msg));
+                // SAFETY: `f` is the master's fmi3LogMessageCallback; the strings are valid
+                // NUL-terminated C strings that outlive the call (the message is not a format).
+                unsafe { f(self.env, status as c_int, cat.as_ptr(), text.as_ptr()) };
+            }
         }
     }
 }
@@ -179,6 +205,7 @@ fn null_arg(inner: &Inner, func: Fmi2, what: &str) -> Status {
 mod binding;
 mod common;
 mod cosim;
+pub mod fmi3;
 mod fmu_state;
 pub mod panic_hook;
 mod registry;
@@ -189,5 +216,6 @@ use registry::status;
 
 pub use common::*;
 pub use cosim::*;
+pub use fmi3::*;
 pub use fmu_state::*;
 pub use values::*;

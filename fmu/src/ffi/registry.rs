@@ -28,7 +28,7 @@
 
 use super::panic_hook;
 use super::{CLogger, Fmi2Component, Inner};
-use crate::instance::{Fmi2, Status};
+use crate::instance::Status;
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, PoisonError, RwLock, TryLockError};
@@ -86,7 +86,7 @@ pub(super) fn free(c: Fmi2Component) {
 /// panics give `fail`.
 pub(super) fn with_inst<T>(
     c: Fmi2Component,
-    func: Fmi2,
+    func: impl std::fmt::Display,
     fail: T,
     f: impl FnOnce(&mut Inner) -> T,
 ) -> T {
@@ -100,7 +100,12 @@ pub(super) fn with_inst<T>(
 }
 
 /// [`with_inst`] on a live handle.
-fn call<T>(handle: &Handle, func: Fmi2, fail: T, f: impl FnOnce(&mut Inner) -> T) -> T {
+fn call<T>(
+    handle: &Handle,
+    func: impl std::fmt::Display,
+    fail: T,
+    f: impl FnOnce(&mut Inner) -> T,
+) -> T {
     let mut guard = match handle.inner.try_lock() {
         Ok(g) => g,
         Err(TryLockError::Poisoned(p)) => p.into_inner(),
@@ -134,7 +139,7 @@ fn call<T>(handle: &Handle, func: Fmi2, fail: T, f: impl FnOnce(&mut Inner) -> T
 /// [`with_inst`] for the calls that return an fmi2Status.
 pub(super) fn status(
     c: Fmi2Component,
-    func: Fmi2,
+    func: impl std::fmt::Display,
     f: impl FnOnce(&mut Inner) -> Status,
 ) -> super::Fmi2Status {
     with_inst(c, func, Status::Error, f) as super::Fmi2Status

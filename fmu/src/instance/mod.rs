@@ -11,6 +11,7 @@
 
 mod allowed;
 mod engine;
+mod fmi3;
 mod lifecycle;
 mod outputs;
 mod scenario;
@@ -20,6 +21,7 @@ mod values;
 
 pub use allowed::{Fmi2, Phases};
 pub use engine::{Engine, InstanceError};
+pub use fmi3::{Ref3, Type3};
 pub use lifecycle::{StatusAnswer, StatusType};
 pub use scenario::{ScenarioFileError, load_resource_scenario};
 pub use spec::resolve_spec;
@@ -257,6 +259,12 @@ impl Instance {
     /// Whether `f` may be called in the current phase ([`Fmi2::allowed`]); if not, the error is
     /// logged ("Illegal call sequence") and returned.
     pub fn check(&self, f: Fmi2) -> Result<(), Status> {
+        self.check_as(f, f)
+    }
+
+    /// [`Instance::check`] of `f`'s table entry on behalf of the function `name` (an FMI 3.0
+    /// function whose allowed states are those of `f`), which the message names.
+    pub fn check_as(&self, f: Fmi2, name: impl std::fmt::Display) -> Result<(), Status> {
         let allowed = f.allowed();
         if allowed.contains(self.phase) {
             return Ok(());
@@ -267,7 +275,7 @@ impl Instance {
             false => format!("in {}", states.join(", ")),
         };
         Err(self.error(&format!(
-            "{f}: Illegal call sequence (the instance is in state {}; allowed {allowed_in})",
+            "{name}: Illegal call sequence (the instance is in state {}; allowed {allowed_in})",
             phase_name(self.phase),
         )))
     }

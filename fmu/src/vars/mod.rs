@@ -11,6 +11,7 @@
 //! scenario-specific FMU ([`ModelSpec::for_scenario`]) names its state outputs after the scenario's
 //! states instead (`est.r` in m, `est.lon` in rad, …) and has one beacon slot per beacon.
 
+pub mod fmi3;
 mod model;
 mod slot;
 mod table;

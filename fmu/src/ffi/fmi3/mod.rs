@@ -1,0 +1,159 @@
+//! The FMI 3.0 co-simulation interface: the 75 `fmi3*` functions, over the same safe instance,
+//! registry, limits and panic guard as the FMI 2.0 functions.
+//!
+//! One library exports both interfaces; an instance belongs to the interface that instantiated
+//! it (an `fmi3Instance` is a registry token like an `fmi2Component`). The FMI 3.0 state machine
+//! of co-simulation without event mode has the same states as this FMU's FMI 2.0 machine
+//! (*Instantiated*, *Initialization Mode*, *Step Mode* = FMI 2.0's *stepComplete*, *Terminated*,
+//! the error state), and each FMI 3.0 function this FMU supports is allowed in exactly the states
+//! of the FMI 2.0 operation it maps to ([`MAPPED`]; the test at the end compares the two tables),
+//! so the instance's one allowed-state table serves both. The mapping:
+//!
+//! | FMI 3.0 | instance operation |
+//! |---|---|
+//! | fmi3InstantiateCoSimulation | fmi2Instantiate (resource *path*, not URI; no event mode, no intermediate update) |
+//! | fmi3EnterInitializationMode | fmi2SetupExperiment, then fmi2EnterInitializationMode |
+//! | fmi3GetFloat64 / Int32 / Int64 / Boolean / String | fmi2GetReal / Integer / Integer (Enumerations) / Boolean / String, plus `time`, the arrays and the structural parameter (UInt64) |
+//! | fmi3DoStep | fmi2DoStep; never asks for event handling, never terminates, never returns early |
+//! | fmi3Get/Set/Free/Serialize…FMUState, Terminate, Reset, FreeInstance | their fmi2 namesakes |
+//!
+//! Everything else (model exchange, scheduled execution, event and configuration mode, clocks,
+//! derivatives, the variable types without variables: Float32, Int8–UInt32, Binary) returns
+//! `fmi3Error` with a logged reason (or NULL for the other instantiation functions). Messages
+//! reach the master's `fmi3LogMessageCallback` in FMI 3.0 terms ([`in_fmi3_terms`]).
+
+mod lifecycle;
+mod unsupported;
+mod values;
+
+pub use lifecycle::*;
+pub use unsupported::*;
+pub use values::*;
+
+use crate::instance::Fmi2;
+
+/// The FMI 3.0 functions this FMU supports and the instance operation each maps to.
+pub const MAPPED: [(&str, Fmi2); 20] = [
+    ("fmi3SetDebugLogging", Fmi2::SetDebugLogging),
+    ("fmi3FreeInstance", Fmi2::FreeInstance),
+    ("fmi3EnterInitializationMode", Fmi2::EnterInitializationMode),
+    ("fmi3ExitInitializationMode", Fmi2::ExitInitializationMode),
+    ("fmi3Terminate", Fmi2::Terminate),
+    ("fmi3Reset", Fmi2::Reset),
+    ("fmi3GetFloat64", Fmi2::GetReal),
+    ("fmi3GetInt32", Fmi2::GetInteger),
+    ("fmi3GetInt64", Fmi2::GetInteger),
+    ("fmi3GetUInt64", Fmi2::GetInteger),
+    ("fmi3GetBoolean", Fmi2::GetBoolean),
+    ("fmi3GetString", Fmi2::GetString),
+    ("fmi3SetFloat64", Fmi2::SetReal),
+    ("fmi3SetInt32", Fmi2::SetInteger),
+    ("fmi3SetInt64", Fmi2::SetInteger),
+    ("fmi3SetUInt64", Fmi2::SetInteger),
+    ("fmi3SetBoolean", Fmi2::SetBoolean),
+    ("fmi3SetString", Fmi2::SetString),
+    ("fmi3GetFMUState", Fmi2::GetFMUstate),
+    ("fmi3DoStep", Fmi2::DoStep),
+];
+
+/// FMI 2.0 names in the instance's messages and their FMI 3.0 counterparts (longest first where
+/// one is a prefix of another); every other `fmi2X` becomes `fmi3X`.
+const RENAMED: [(&str, &str); 17] = [
+    ("fmi2Instantiate", "fmi3InstantiateCoSimulation"),
+    ("fmi2SetupExperiment", "fmi3EnterInitializationMode"),
+    ("fmi2GetReal", "fmi3GetFloat64"),
+    ("fmi2SetReal", "fmi3SetFloat64"),
+    ("fmi2GetInteger", "fmi3GetInt32"),
+    ("fmi2SetInteger", "fmi3SetInt32"),
+    ("fmi2GetFMUstate", "fmi3GetFMUState"),
+    ("fmi2SetFMUstate", "fmi3SetFMUState"),
+    ("fmi2FreeFMUstate", "fmi3FreeFMUState"),
+    ("fmi2SerializedFMUstateSize", "fmi3SerializedFMUStateSize"),
+    ("fmi2SerializeFMUstate", "fmi3SerializeFMUState"),
+    ("fmi2DeSerializeFMUstate", "fmi3DeserializeFMUState"),
+    ("fmi2Component", "fmi3Instance"),
+    ("fmuResourceLocation", "resourcePath"),
+    ("GUID", "instantiation token"),
+    ("StepComplete", "StepMode"),
+    ("FMI 2.0", "FMI"),
+];
+
+/// A message of the instance (written in FMI 2.0 terms) in FMI 3.0 terms.
+pub fn in_fmi3_terms(msg: &str) -> String {
+    let mut s = msg.to_string();
+    for (from, to) in RENAMED {
+        if s.contains(from) {
+            s = s.replace(from, to);
+        }
+    }
+    s.replace("fmi2", "fmi3")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::state::Phase::{self, *};
+
+    /// The FMI 3.0 co-simulation state table (FMI 3.0.1 §4.2.3, without event mode) restricted
+    /// to the states of this FMU, columns *Instantiated*, *Initialization Mode*, *Step Mode*,
+    /// *Terminated*, error state; `x` allowed.
+    const STANDARD3: [(&str, &str); 20] = [
+        ("fmi3SetDebugLogging", "xxxxx"),
+        ("fmi3FreeInstance", "xxxxx"),
+        ("fmi3EnterInitializationMode", "x...."),
+        ("fmi3ExitInitializationMode", ".x..."),
+        ("fmi3Terminate", "..x.."),
+        ("fmi3Reset", "xxxxx"),
+        ("fmi3GetFloat64", ".xxxx"),
+        ("fmi3GetInt32", ".xxxx"),
+        ("fmi3GetInt64", ".xxxx"),
+        ("fmi3GetUInt64", ".xxxx"),
+        ("fmi3GetBoolean", ".xxxx"),
+        ("fmi3GetString", ".xxxx"),
+        ("fmi3SetFloat64", "xxx.."),
+        ("fmi3SetInt32", "xxx.."),
+        ("fmi3SetInt64", "xxx.."),
+        ("fmi3SetUInt64", "xxx.."),
+        ("fmi3SetBoolean", "xxx.."),
+        ("fmi3SetString", "xxx.."),
+        ("fmi3GetFMUState", "xxxxx"),
+        ("fmi3DoStep", "..x.."),
+    ];
+
+    fn column(p: Phase) -> usize {
+        match p {
+            Instantiated => 0,
+            InitializationMode => 1,
+            StepComplete => 2,
+            Terminated => 3,
+            Error => 4,
+        }
+    }
+
+    #[test]
+    fn each_fmi3_function_is_allowed_where_its_instance_operation_is() {
+        for ((name, op), (std_name, row)) in MAPPED.iter().zip(STANDARD3) {
+            assert_eq!(*name, std_name);
+            for p in Phase::ALL {
+                assert_eq!(
+                    op.allowed().contains(p),
+                    row.as_bytes()[column(p)] == b'x',
+                    "{name} in {p:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn messages_speak_fmi3() {
+        assert_eq!(
+            in_fmi3_terms("fmi2GetReal: Illegal call sequence (state StepComplete)"),
+            "fmi3GetFloat64: Illegal call sequence (state StepMode)"
+        );
+        assert_eq!(
+            in_fmi3_terms("fmi2SerializedFMUstateSize and fmi2SerializeFMUstate; fmi2DoStep"),
+            "fmi3SerializedFMUStateSize and fmi3SerializeFMUState; fmi3DoStep"
+        );
+        assert!(!in_fmi3_terms("fmi2Instantiate: GUID 'x'").contains("fmi2"));
+    }
+}

@@ -34,10 +34,11 @@ cargo run --release --quiet --bin entrynav -- trade --scenario four-beacon-fusio
 echo "== HTML report: a small trade's --report renders in headless Chromium (no console errors, not blank)"
 bash scripts/check_report.sh
 
-echo "== FMU: shared library, packed FMUs (MarsEntryNav, MarsEntryNavFilter, MarsEntryTruth)"
+echo "== FMU: shared library, packed FMUs (MarsEntryNav, MarsEntryNavFilter, MarsEntryTruth; FMI 2.0 and 3.0)"
 # Before the Dask and tutorial steps: both load the packed MarsEntryNav.fmu.
 cargo build --release --workspace
 target/release/entrynav fmu pack --out target/fmu
+target/release/entrynav fmu pack --out target/fmu --fmi 3
 
 echo "== Dask: sharded CLI study and fmpy FMU runs on a 2-worker LocalCluster equal the single-process results"
 ENTRYNAV="$PWD/target/release/entrynav" ENTRYNAV_FMU="$PWD/target/fmu/MarsEntryNav.fmu" \
@@ -52,5 +53,5 @@ for fmu in target/fmu/MarsEntryNav.fmu target/fmu/MarsEntryNavFilter.fmu target/
 done
 target/release/entrynav fmu check target/fmu/MarsEntryNav.fmu --bench
 
-echo "== FMU: pytest (symbols, fmpy validate/simulate/FMU2Slave, fmutool, libcosimpy, host fuzz)"
+echo "== FMU: pytest (symbols, fmpy validate/simulate/FMU2Slave/FMU3Slave, fmutool, libcosimpy, fmusim, OMSimulator, host fuzz)"
 .venv/bin/pytest -q -s -p no:cacheprovider tests/python

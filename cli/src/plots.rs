@@ -175,7 +175,10 @@ fn consistency_figures(report: &TradeReport, out: &mut Out) -> Result<()> {
                 curve(f.name.clone(), pts, false)
             })
             .collect();
-        if let Some(f) = report.filters.first() {
+        // Each filter's own two-sided band: filters with another dof (a fusion filter's NIS sums
+        // its local filters' innovations) get their own pair, named after them.
+        let mut bands: Vec<([f64; 2], String, Vec<&str>, &FilterReport)> = Vec::new();
+        for f in &report.filters {
             let c = &f.consistency;
             let (b, dof) = if nis {
                 (
@@ -185,9 +188,28 @@ fn consistency_figures(report: &TradeReport, out: &mut Out) -> Result<()> {
             } else {
                 (c.nees_bounds_95, c.nees_dof.to_string())
             };
+            match bands.iter_mut().find(|(bb, d, _, _)| *bb == b && *d == dof) {
+                Some(band) => band.2.push(&f.name),
+                None => bands.push((b, dof, vec![&f.name], f)),
+            }
+        }
+        let several = bands.len() > 1;
+        for (b, dof, names, f) in &bands {
+            let whose = if several {
+                format!(", {}", names.join(", "))
+            } else {
+                String::new()
+            };
             for (v, side) in [(b[0], "lower"), (b[1], "upper")] {
+                if !v.is_finite() {
+                    continue;
+                }
                 let pts = f.series.times_s.iter().map(|t| (*t, v)).collect();
-                curves.push(curve(format!("χ² 95 % {side} (dof {dof})"), pts, true));
+                curves.push(curve(
+                    format!("χ² 95 % {side} (dof {dof}{whose})"),
+                    pts,
+                    true,
+                ));
             }
         }
         let (title, y) = if nis {

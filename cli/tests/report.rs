@@ -79,6 +79,16 @@ fn trade_report_is_one_self_contained_page_with_every_section() {
     ] {
         assert!(html.contains(text), "page lacks {text}");
     }
+    // Each filter's NIS against its own band: DCIFAIF's NIS sums its four local filters'
+    // innovations (dof 16), the EKF's has dof 7.
+    assert!(
+        html.contains("(dof 7.0, ekf)") && html.contains("(dof 16.0, dcifaif)"),
+        "NIS bands are not per filter"
+    );
+    // The 900-px NEES/NIS figures take a row each (labels drawn at full size).
+    let nees_section = html.split("<section id=\"nees-nis\">").nth(1).unwrap();
+    let nees_section = nees_section.split("</section>").next().unwrap();
+    assert_eq!(nees_section.matches("<div class=\"fig wide\">").count(), 2);
     // A decision at the top: the recommendation names the most accurate consistent filter.
     let rec = html
         .split("<p class=\"recommendation\">")

@@ -34,6 +34,7 @@ td.l, th.l { text-align: left; }
 .warn { color: #b26a00; font-weight: bold; }
 .figs { display: grid; grid-template-columns: repeat(auto-fill, minmax(540px, 1fr)); gap: 10px; }
 .fig svg { width: 100%; height: auto; border: 1px solid #eee; }
+.fig.wide { grid-column: 1 / -1; max-width: 1000px; }
 pre { background: #f7f7f7; padding: 10px; overflow-x: auto; font-size: 0.85em; }
 ";
 
@@ -110,13 +111,31 @@ pub fn table(header: &[&str], rows: &[Vec<Cell>]) -> String {
     s
 }
 
-/// Inline SVG figures in a responsive grid. The SVG text comes from plotters, which escapes
-/// its text content.
+/// Figures wider than this (px) get a row of their own ([`figures`]).
+pub const WIDE_FIGURE_PX: u32 = 600;
+
+/// The `width` attribute of an SVG's root element, in px.
+fn svg_width(svg: &str) -> Option<u32> {
+    let tag = &svg[svg.find("<svg")?..];
+    let tag = &tag[..tag.find('>')?];
+    let at = tag.find(" width=\"")? + " width=\"".len();
+    let end = tag[at..].find('"')? + at;
+    tag[at..end].trim_end_matches("px").parse().ok()
+}
+
+/// Inline SVG figures in a responsive grid (two columns of at least 540 px). A figure wider than
+/// [`WIDE_FIGURE_PX`] (the 900-px RMSE, NEES, NIS and density plots) takes a whole row, so it is
+/// never drawn below its own size and its 13–15 px labels stay legible. The SVG text comes from
+/// plotters, which escapes its text content.
 pub fn figures<'a>(svgs: impl IntoIterator<Item = &'a str>) -> String {
     let mut s = String::from("<div class=\"figs\">\n");
     for svg in svgs {
         let body = svg.find("<svg").map_or(svg, |i| &svg[i..]).trim_end();
-        let _ = writeln!(s, "<div class=\"fig\">{body}</div>");
+        let class = match svg_width(body) {
+            Some(w) if w > WIDE_FIGURE_PX => "fig wide",
+            _ => "fig",
+        };
+        let _ = writeln!(s, "<div class=\"{class}\">{body}</div>");
     }
     s.push_str("</div>\n");
     s
@@ -153,6 +172,34 @@ mod tests {
         );
         let t = table(&["a<b"], &[vec![Cell::text("<i>")]]);
         assert!(t.contains("a&lt;b") && t.contains("&lt;i&gt;") && !t.contains("<i>"));
+    }
+
+    #[test]
+    fn wide_figures_take_a_row_so_their_labels_are_not_shrunk() {
+        use crate::plot::{Curve, Frame, line_chart};
+        let chart = |size| {
+            let frame = Frame {
+                title: "mean NEES over runs",
+                x_label: "time (s)",
+                y_label: "NEES (1)",
+                log_y: true,
+                size,
+            };
+            let curve = Curve {
+                name: "ekf".into(),
+                points: vec![(0.0, 1.0), (10.0, 2.0)],
+                dashed: false,
+            };
+            line_chart(&frame, &[curve]).unwrap().unwrap()
+        };
+        let (wide, small) = (chart(crate::plots::WIDE), chart(crate::plots::SMALL));
+        assert_eq!(svg_width(&wide), Some(crate::plots::WIDE.0));
+        let html = figures([wide.as_str(), small.as_str()]);
+        assert_eq!(html.matches("<div class=\"fig wide\">").count(), 1);
+        assert_eq!(html.matches("<div class=\"fig\">").count(), 1);
+        // The page's column is at most 1180 px: a wide figure in its own row shows at least at
+        // 1000/900 of its size; in a grid cell (2 columns of ≥ 540 px) it would shrink to ~0.6.
+        assert!(STYLE.contains(".fig.wide { grid-column: 1 / -1;"));
     }
 
     #[test]

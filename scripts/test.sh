@@ -7,9 +7,12 @@ bash scripts/setup.sh
 
 echo "== cargo fmt --check"
 cargo fmt --all -- --check
+(cd python && cargo fmt -- --check)
 
 echo "== cargo clippy (all targets, warnings are errors)"
 cargo clippy --workspace --all-targets --release -- -D warnings
+# The Python extension is its own workspace (python/); it shares the target folder.
+(cd python && CARGO_TARGET_DIR="$PWD/../target" cargo clippy --release -- -D warnings)
 
 echo "== rustdoc of the library crates (broken links are errors)"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -p entrynav -p entrynav-loader -p entrynav-fmu -p entrynav-fmi-host -p entrynav-optimizer
@@ -52,6 +55,9 @@ for fmu in target/fmu/MarsEntryNav.fmu target/fmu/MarsEntryNavFilter.fmu target/
   target/release/entrynav fmu check "$fmu"
 done
 target/release/entrynav fmu check target/fmu/MarsEntryNav.fmu --bench
+
+echo "== Python package: build the wheel (maturin) and install it into .venv"
+bash scripts/build_python.sh
 
 echo "== FMU: pytest (symbols, fmpy validate/simulate/FMU2Slave/FMU3Slave, fmutool, libcosimpy, fmusim, OMSimulator, host fuzz)"
 .venv/bin/pytest -q -s -p no:cacheprovider tests/python

@@ -13,6 +13,7 @@ use std::path::{Path, PathBuf};
 use thiserror::Error;
 
 mod read;
+pub mod summary;
 pub use read::{MAX_FILE_BYTES, read_bytes, read_text};
 
 /// Why a scenario could not be loaded.

@@ -1,0 +1,292 @@
+"""entrynav from Python: Mars entry navigation scenarios and Monte Carlo trades of navigation filters.
+
+>>> import entrynav
+>>> sc = entrynav.Scenario.builtin("four-beacon-fusion")
+>>> res = entrynav.trade(sc, ["ekf", "dcifaif"], runs=200, seed=1)
+>>> res.rmse("ekf")["pos_m"]          # position RMSE per epoch, a pandas Series
+>>> moved = sc.set("beacons.0.lat_deg", 3.0)   # a new Scenario; `sc` is unchanged
+
+The same engine as the `entrynav` command: `trade(...)` with the same scenario, filters, runs and
+seed gives the CLI's `--json` summary bit for bit (outside `provenance` and `timing`), on any
+number of threads. Runs execute in Rust with the GIL released; Ctrl-C raises KeyboardInterrupt
+within a fraction of a second, and the runs finished so far are on the exception's `partial`
+attribute (a `TradeResult` with `complete == False`), as the CLI keeps them on SIGINT.
+
+Errors: `ValueError` for a bad field or argument (the message names the field, the value and the
+allowed range, as the CLI's), `FileNotFoundError` for a scenario file that does not exist,
+`RuntimeError` for a numerical failure.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Any, Callable, Dict, Iterable, List, Optional, Sequence, Union
+
+from . import _entrynav
+
+__all__ = ["Scenario", "TradeResult", "builtin_scenarios", "trade", "__version__"]
+
+__version__ = _entrynav.version()
+
+
+def _toml_value(value: Any) -> str:
+    """A Python value in TOML syntax (what `--set PATH=VALUE` expects)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if math.isnan(value):
+            return "nan"
+        if math.isinf(value):
+            return "inf" if value > 0 else "-inf"
+        return repr(value)
+    if isinstance(value, str):
+        return json.dumps(value)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{json.dumps(str(k))} = {_toml_value(v)}" for k, v in value.items()) + "}"
+    try:  # numpy scalars
+        return _toml_value(value.item())
+    except AttributeError:
+        raise TypeError(f"cannot write a {type(value).__name__} as a scenario value") from None
+
+
+class Scenario:
+    """A validated scenario: its TOML text and the folder its relative file names resolve against.
+
+    Scenarios are values: `set` returns a new, re-validated Scenario.
+    """
+
+    def __init__(self, toml: str, folder: Union[str, Path] = "."):
+        # Validate now, so a Scenario always holds a valid configuration.
+        self._toml = _entrynav.apply_sets(toml, [])
+        self._folder = str(folder)
+
+    @classmethod
+    def builtin(cls, name: str) -> "Scenario":
+        """A built-in scenario by name (see `builtin_scenarios()`)."""
+        if name not in builtin_scenarios():
+            raise ValueError(f"'{name}' is not a built-in scenario (built-ins: {', '.join(builtin_scenarios())})")
+        toml, folder = _entrynav.resolve_scenario(name)
+        return cls(toml, folder)
+
+    @classmethod
+    def from_file(cls, path: Union[str, Path]) -> "Scenario":
+        """A scenario TOML file; files it names are read relative to its folder."""
+        toml, folder = _entrynav.resolve_scenario(str(path))
+        return cls(toml, folder)
+
+    def set(self, path: str, value: Any) -> "Scenario":
+        """A copy with field `path` (dotted, numeric keys index arrays: `beacons.0.lat_deg`) set
+        to `value`, validated as `--set path=value` is; `ValueError` names a bad field or value."""
+        toml = _entrynav.apply_sets(self._toml, [f"{path}={_toml_value(value)}"])
+        return Scenario(toml, self._folder)
+
+    def to_toml(self) -> str:
+        """The scenario as TOML (what `entrynav trade --scenario FILE` reads back)."""
+        return self._toml
+
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field of the scenario, defaults filled in."""
+        return json.loads(_entrynav.scenario_json(self._toml))
+
+    @property
+    def name(self) -> str:
+        return self.to_dict()["name"]
+
+    @property
+    def folder(self) -> str:
+        return self._folder
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Scenario) and (self._toml, self._folder) == (other._toml, other._folder)
+
+    def __repr__(self) -> str:
+        return f"Scenario({self.name!r})"
+
+
+def builtin_scenarios() -> Dict[str, str]:
+    """Built-in scenario names with a one-line description (paper, states, sensors, beacons)."""
+    return dict(_entrynav.builtin_scenarios())
+
+
+class TradeResult:
+    """The outcome of `trade`: the summary (the CLI's JSON) and the per-epoch series."""
+
+    def __init__(self, summary: Dict[str, Any], details: Dict[str, Any], scenario: Scenario, filters: List[str]):
+        self.summary = summary
+        self._details = details
+        self.scenario = scenario
+        self.filters = filters
+
+    @property
+    def complete(self) -> bool:
+        """False when the trade was interrupted: the statistics are those of the finished runs."""
+        return bool(self.summary["complete"])
+
+    def _filter(self, name: str) -> Dict[str, Any]:
+        if name not in self._details["filters"]:
+            raise ValueError(f"filter '{name}' is not in this trade ({', '.join(self.filters)})")
+        return self._details["filters"][name]
+
+    def rmse(self, filter: str):
+        """RMSE over runs per epoch (pandas DataFrame indexed by time in s): one column per
+        state, then `pos_m`, `vel_mps`, `downrange_m`, `crossrange_m`, `up_m`."""
+        import pandas as pd
+
+        s = self._filter(filter)["series"]
+        states = self.summary["states"]
+        data = {st: [row[i] for row in s["rmse"]] for i, st in enumerate(states)}
+        data["pos_m"] = s["pos_rmse_m"]
+        data["vel_mps"] = s["vel_rmse_mps"]
+        local = s["local_rmse_m"]  # [component][epoch]
+        for j, name in enumerate(["downrange_m", "crossrange_m", "up_m"]):
+            data[name] = local[j] if j < len(local) else [None] * len(s["times_s"])
+        return pd.DataFrame(data, index=pd.Index(s["times_s"], name="t_s"), dtype=float)
+
+    def sigma(self, filter: str):
+        """Mean onboard 1σ over runs per epoch and state (DataFrame indexed by time in s)."""
+        import pandas as pd
+
+        s = self._filter(filter)["series"]
+        data = {st: [row[i] for row in s["sigma_mean"]] for i, st in enumerate(self.summary["states"])}
+        return pd.DataFrame(data, index=pd.Index(s["times_s"], name="t_s"), dtype=float)
+
+    def nees(self, filter: str):
+        """Mean NEES and NIS over runs per epoch with the two-sided 95 % χ² bands of the means
+        (DataFrame indexed by time in s)."""
+        import pandas as pd
+
+        s = self._filter(filter)["series"]
+        f = next(f for f in self.summary["filters"] if f["name"] == filter)
+        lo, hi = f["nees_bounds_95"]
+        nlo, nhi = f["nis_bounds_95"] if f.get("nis_bounds_95") else (None, None)
+        n = len(s["times_s"])
+        return pd.DataFrame(
+            {
+                "nees": s["nees_mean"],
+                "nees_lower": [lo] * n,
+                "nees_upper": [hi] * n,
+                "nis": s["nis_mean"],
+                "nis_lower": [nlo] * n,
+                "nis_upper": [nhi] * n,
+            },
+            index=pd.Index(s["times_s"], name="t_s"),
+            dtype=float,
+        )
+
+    def final_errors(self):
+        """One row per run and filter: run, filter, status, the final error per state, `pos_m`,
+        `vel_mps`, `nees` (the CLI's `_final_errors.csv`)."""
+        import pandas as pd
+
+        rows = []
+        states = self.summary["states"]
+        for name in self.filters:
+            for r in self._filter(name)["final_errors"]:
+                row = {"run": r["run"], "filter": name, "status": r["status"]}
+                row.update({f"err_{st}": (r["err"][i] if i < len(r["err"]) else None) for i, st in enumerate(states)})
+                row.update({"pos_m": r["pos_m"], "vel_mps": r["vel_mps"], "nees": r["nees"]})
+                rows.append(row)
+        return pd.DataFrame(rows)
+
+    def pcrlb(self):
+        """The PCRLB per epoch (DataFrame indexed by time in s), or None without one."""
+        import pandas as pd
+
+        b = self.summary.get("pcrlb")
+        if not b or not b.get("available"):
+            return None
+        return pd.DataFrame(b["series"], index=pd.Index(b["times_s"], name="t_s"), dtype=float)
+
+    def to_json(self, path: Union[str, Path]) -> None:
+        """Write the summary as the CLI writes `--json` (with a `provenance` saying where it came
+        from; no `timing`)."""
+        doc = {
+            "provenance": {
+                "tool": f"entrynav {__version__} (Python package)",
+                "scenario": self.scenario.name,
+                "filters": self.filters,
+            },
+            **self.summary,
+        }
+        Path(path).write_text(json.dumps(doc, indent=2) + "\n")
+
+    def __repr__(self) -> str:
+        state = "complete" if self.complete else f"interrupted after {self.summary['runs_completed']} runs"
+        return f"TradeResult({self.summary['scenario']!r}, {', '.join(self.filters)}, {self.summary['runs']} runs, {state})"
+
+
+def _progress_callback(progress: Any) -> Optional[Callable[[int, int], Any]]:
+    if progress is None or progress is False:
+        return None
+    if callable(progress):
+        return progress
+    if progress is True or progress == "tqdm":
+        try:
+            from tqdm.auto import tqdm
+        except ImportError:
+            raise ValueError("progress=True needs tqdm (pip install tqdm), or pass a callable(done, total)") from None
+        bar: List[Any] = []
+
+        def update(done: int, total: int) -> None:
+            if not bar:
+                bar.append(tqdm(total=total, unit="run"))
+            bar[0].n = done
+            bar[0].refresh()
+            if done >= total:
+                bar[0].close()
+
+        return update
+    raise ValueError(f"progress = {progress!r}: expected None, True, 'tqdm' or a callable(done, total)")
+
+
+def trade(
+    scenario: Union[Scenario, str],
+    filters: Union[Sequence[str], str] = ("ekf",),
+    runs: Optional[int] = None,
+    seed: int = 1,
+    threads: Optional[int] = None,
+    pcrlb: bool = True,
+    progress: Any = None,
+) -> TradeResult:
+    """A Monte Carlo trade of `filters` on `scenario` (a Scenario or a built-in name): `runs`
+    (default the scenario's `monte_carlo.runs`), master `seed`, on `threads` workers (default all
+    cores; the result does not depend on it), with the PCRLB unless `pcrlb=False`.
+
+    `progress`: a callable `(done, total)`, or True / "tqdm" for a tqdm bar.
+    """
+    if isinstance(scenario, str):
+        scenario = Scenario.builtin(scenario)
+    names = [filters] if isinstance(filters, str) else list(filters)
+    if not names:
+        raise ValueError("filters is empty: name at least one filter (ekf, ukf, ci, dcifaif, ...)")
+    if runs is not None and (isinstance(runs, bool) or int(runs) != runs):
+        raise ValueError(f"runs = {runs!r}: must be a whole number")
+    if runs is not None and not 1 <= runs <= 10_000_000:
+        raise ValueError(f"runs = {runs} is out of range: must be >= 1 and <= 10000000")
+    if seed < 0:
+        raise ValueError(f"seed = {seed} is out of range: must be >= 0")
+    summary, details, _complete, interrupted = _entrynav.trade(
+        scenario.to_toml(),
+        scenario.folder,
+        ",".join(names),
+        runs,
+        seed,
+        threads,
+        pcrlb,
+        _progress_callback(progress),
+    )
+    result = TradeResult(json.loads(summary), json.loads(details), scenario, names)
+    if interrupted:
+        err = KeyboardInterrupt(
+            f"trade interrupted: {result.summary['runs_completed']} of {result.summary['runs']} runs finished; "
+            "they are on this exception's `partial` attribute"
+        )
+        err.partial = result  # type: ignore[attr-defined]
+        raise err
+    return result

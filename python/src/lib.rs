@@ -1,0 +1,234 @@
+//! `entrynav._entrynav`: the native half of the Python package (the typed API is the pure
+//! Python `entrynav/__init__.py` over it).
+//!
+//! Scenarios cross the boundary as their TOML text and the folder their relative file names
+//! resolve against, so a Python `Scenario` is a value that `to_toml()` prints exactly; every
+//! change goes through the loader's `--set` path and validation. A trade runs on a Rust thread
+//! with the GIL released; the calling thread waits in slices of 50 ms, runs Python's signal
+//! handlers between them (Ctrl-C raises `KeyboardInterrupt` there: the trade is cancelled like
+//! the CLI's SIGINT, the runs finished so far are folded and handed back) and calls the progress
+//! callback. Errors become Python exceptions: `FileNotFoundError` for a scenario file that does
+//! not exist, `ValueError` for a bad field (the loader's message names field, value and range),
+//! `RuntimeError` for a numerical failure; a panic is caught and becomes `RuntimeError`.
+
+use entrynav::estimation::nav::FilterKind;
+use entrynav::scenario::{BUILTIN_NAMES, Scenario, ScenarioConfig};
+use entrynav::sim::{McOptions, TradeError, TradeReport, run_trade};
+use entrynav_loader as load;
+use pyo3::exceptions::{PyFileNotFoundError, PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::time::Duration;
+
+fn load_err(e: load::LoadError) -> PyErr {
+    match e {
+        load::LoadError::NotFound { .. } => PyFileNotFoundError::new_err(e.to_string()),
+        e => PyValueError::new_err(e.to_string()),
+    }
+}
+
+fn config_of(toml: &str, origin: &str) -> PyResult<ScenarioConfig> {
+    ScenarioConfig::from_toml_str(toml, origin).map_err(|e| PyValueError::new_err(e.to_string()))
+}
+
+/// `[(name, one-line summary)]` of every built-in scenario.
+#[pyfunction]
+fn builtin_scenarios() -> PyResult<Vec<(String, String)>> {
+    BUILTIN_NAMES
+        .iter()
+        .map(|name| {
+            let cfg =
+                ScenarioConfig::builtin(name).map_err(|e| PyValueError::new_err(e.to_string()))?;
+            let sc = Scenario::build(cfg, &entrynav::files::no_files)
+                .map_err(|e| PyValueError::new_err(e.to_string()))?;
+            Ok((name.to_string(), load::summary::summary(&sc)))
+        })
+        .collect()
+}
+
+/// A built-in name or a TOML file (relative to the working directory): `(toml, folder)`.
+#[pyfunction]
+fn resolve_scenario(name_or_file: &str) -> PyResult<(String, String)> {
+    let (cfg, dir) = load::resolve(name_or_file, load::Base::CurrentDir)
+        .map_err(load_err)?
+        .into_parts();
+    Ok((cfg.to_toml_string(), dir.display().to_string()))
+}
+
+/// The scenario `toml` with `PATH=VALUE` overrides applied and validated: its new TOML text.
+#[pyfunction]
+fn apply_sets(toml: &str, sets: Vec<String>) -> PyResult<String> {
+    let cfg = config_of(toml, "scenario")?;
+    let cfg = load::apply_overrides(cfg, &sets).map_err(load_err)?;
+    Ok(cfg.to_toml_string())
+}
+
+/// The scenario as JSON (every field, defaults filled in).
+#[pyfunction]
+fn scenario_json(toml: &str) -> PyResult<String> {
+    let cfg = config_of(toml, "scenario")?;
+    serde_json::to_string(&cfg).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+}
+
+/// Build the scenario as the CLI's `trade` does, and its filters.
+fn setup(toml: &str, dir: &str, filters: &str) -> PyResult<(Scenario, Vec<FilterKind>)> {
+    let cfg = config_of(toml, "scenario")?;
+    let scenario = load::build(cfg, Path::new(dir)).map_err(load_err)?;
+    let kinds = FilterKind::parse_list(filters, &scenario.onboard)
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok((scenario, kinds))
+}
+
+fn trade_err(e: TradeError) -> PyErr {
+    match e {
+        TradeError::Options(m) => PyValueError::new_err(m),
+        e => PyRuntimeError::new_err(e.to_string()),
+    }
+}
+
+/// What a trade hands back to Python: the summary JSON (the CLI's `--json` without `provenance`
+/// and `timing`), the per-filter series and final errors as JSON, whether it completed, and
+/// whether Ctrl-C (or the progress callback) stopped it.
+type TradeOut = (String, String, bool, bool);
+
+fn details(report: &TradeReport) -> serde_json::Value {
+    let filters: serde_json::Map<String, serde_json::Value> = report
+        .filters
+        .iter()
+        .map(|f| {
+            (
+                f.name.clone(),
+                serde_json::json!({ "series": f.series, "final_errors": f.final_errors }),
+            )
+        })
+        .collect();
+    serde_json::json!({ "filters": filters })
+}
+
+/// Run a Monte Carlo trade of `filters` (comma-separated names, as `--filters`) on the scenario
+/// `toml` (relative file names against `dir`): `runs` (default the scenario's), `seed`, on
+/// `threads` workers (default all cores), with the PCRLB unless `pcrlb` is false.
+/// `progress(done, total)` is called from the calling thread about every 50 ms while runs finish.
+#[pyfunction]
+#[pyo3(signature = (toml, dir, filters, runs=None, seed=1, threads=None, pcrlb=true, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn trade(
+    py: Python<'_>,
+    toml: &str,
+    dir: &str,
+    filters: &str,
+    runs: Option<usize>,
+    seed: u64,
+    threads: Option<usize>,
+    pcrlb: bool,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<TradeOut> {
+    let (scenario, kinds) = setup(toml, dir, filters)?;
+    let runs = runs.unwrap_or(scenario.config.monte_carlo.runs);
+    if !(1..=10_000_000).contains(&runs) {
+        return Err(PyValueError::new_err(format!(
+            "runs = {runs} is out of range: must be >= 1 and <= 10000000"
+        )));
+    }
+    if threads == Some(0) {
+        return Err(PyValueError::new_err(
+            "threads = 0: must be at least 1 (or None for all cores)",
+        ));
+    }
+    // The core reads the cancellation flag through a 'static reference: one byte per trade is
+    // leaked so that a trade never shares its flag with another.
+    let cancel: &'static AtomicBool = Box::leak(Box::new(AtomicBool::new(false)));
+    let opts = McOptions {
+        pcrlb,
+        cancel: Some(cancel),
+        ..McOptions::new(runs, seed)
+    };
+    let done = AtomicUsize::new(0);
+    let mut stopped: Option<PyErr> = None;
+    let result = std::thread::scope(|s| {
+        let worker = s.spawn(|| {
+            let job = || {
+                run_trade(&scenario, &kinds, &opts, &|d| {
+                    done.store(d, Ordering::Relaxed)
+                })
+            };
+            match threads {
+                Some(n) => rayon::ThreadPoolBuilder::new()
+                    .num_threads(n)
+                    .build()
+                    .map_err(|e| TradeError::Options(format!("threads = {n}: {e}")))
+                    .and_then(|pool| pool.install(job)),
+                None => job(),
+            }
+        });
+        let mut shown = usize::MAX;
+        while !worker.is_finished() {
+            py.detach(|| {
+                let until = std::time::Instant::now() + Duration::from_millis(50);
+                while !worker.is_finished() && std::time::Instant::now() < until {
+                    std::thread::sleep(Duration::from_millis(2));
+                }
+            });
+            if stopped.is_none() {
+                if let Err(e) = py.check_signals() {
+                    cancel.store(true, Ordering::Relaxed);
+                    stopped = Some(e);
+                    continue;
+                }
+                let d = done.load(Ordering::Relaxed);
+                if let Some(cb) = &progress
+                    && d != shown
+                {
+                    shown = d;
+                    if let Err(e) = cb.call1(py, (d, runs)) {
+                        cancel.store(true, Ordering::Relaxed);
+                        stopped = Some(e);
+                    }
+                }
+            }
+        }
+        worker.join()
+    });
+    let report = match result {
+        Ok(r) => r.map_err(trade_err)?,
+        Err(_) => {
+            return Err(PyRuntimeError::new_err(
+                "the trade panicked (internal error)",
+            ));
+        }
+    };
+    if let (Some(cb), None) = (&progress, &stopped) {
+        cb.call1(py, (report.runs_completed, runs))?;
+    }
+    let summary =
+        serde_json::to_string(&report).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let details = details(&report).to_string();
+    match stopped {
+        // Ctrl-C: the finished runs go back with the flag; the Python side raises
+        // KeyboardInterrupt carrying them. Another error from the callback propagates as is.
+        Some(e) if e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) => {
+            Ok((summary, details, report.complete, true))
+        }
+        Some(e) => Err(e),
+        None => Ok((summary, details, report.complete, false)),
+    }
+}
+
+/// The version of the library.
+#[pyfunction]
+fn version() -> &'static str {
+    env!("CARGO_PKG_VERSION")
+}
+
+/// The native module.
+#[pymodule]
+fn _entrynav(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(builtin_scenarios, m)?)?;
+    m.add_function(wrap_pyfunction!(resolve_scenario, m)?)?;
+    m.add_function(wrap_pyfunction!(apply_sets, m)?)?;
+    m.add_function(wrap_pyfunction!(scenario_json, m)?)?;
+    m.add_function(wrap_pyfunction!(trade, m)?)?;
+    m.add_function(wrap_pyfunction!(version, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,160 @@
+"""The Python package (`import entrynav`, python/, built by scripts/build_python.sh):
+
+- for every built-in, `entrynav.trade(...)` equals the CLI's `--json` summary bit for bit outside
+  `provenance` and `timing` (same scenario, filters, runs, seed);
+- the result does not depend on the thread count, nor on another trade running at the same time
+  in another Python thread;
+- a bad field raises ValueError naming it, a missing file FileNotFoundError;
+- Ctrl-C during a trade raises KeyboardInterrupt within 1 s with the finished runs attached;
+- the wheel installs into a fresh virtual environment and the README's one-liner runs.
+"""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import pytest
+
+from conftest import ENTRYNAV, ROOT, run
+
+entrynav = pytest.importorskip("entrynav", reason="the package is not installed: run scripts/build_python.sh")
+
+BUILTINS = list(entrynav.builtin_scenarios())
+
+
+def _cli_summary(name, filters, runs, seed, extra=()):
+    r = run([ENTRYNAV, "trade", "--scenario", name, "--filters", filters, "--runs", runs, "--seed", seed,
+             "--quiet", *extra, "--json", "-"], timeout=600)
+    assert r.returncode == 0, r.stderr
+    doc = json.loads(r.stdout)
+    for key in ("provenance", "timing"):
+        doc.pop(key)
+    return doc
+
+
+def test_every_builtin_is_listed_with_a_description():
+    cli = run([ENTRYNAV, "scenarios"]).stdout.split("\n")
+    assert len(BUILTINS) == len([l for l in cli if l.strip()]) >= 9
+    for name, line in entrynav.builtin_scenarios().items():
+        assert any(l.startswith(name + " ") and line in l for l in cli), name
+
+
+@pytest.mark.parametrize("name", BUILTINS)
+def test_a_python_trade_equals_the_cli_json_bit_for_bit(name):
+    res = entrynav.trade(entrynav.Scenario.builtin(name), ["ekf"], runs=4, seed=3)
+    assert res.complete
+    assert res.summary == _cli_summary(name, "ekf", 4, 3)
+
+
+def test_a_changed_scenario_equals_the_cli_with_set():
+    sc = entrynav.Scenario.builtin("ground-beacons-3").set("beacons.0.lat_deg", -24.0)
+    assert sc.to_dict()["beacons"][0]["lat_deg"] == -24.0
+    assert entrynav.Scenario.builtin("ground-beacons-3").to_dict()["beacons"][0]["lat_deg"] != -24.0
+    res = entrynav.trade(sc, ["ekf"], runs=6, seed=2)
+    cli = _cli_summary("ground-beacons-3", "ekf", 6, 2, ["--set", "beacons.0.lat_deg=-24.0"])
+    assert res.summary == cli
+
+
+def test_series_frames_match_the_summary():
+    res = entrynav.trade("four-beacon-fusion", ["ekf", "dcifaif"], runs=5, seed=1)
+    rmse = res.rmse("dcifaif")
+    assert list(rmse.columns[-5:]) == ["pos_m", "vel_mps", "downrange_m", "crossrange_m", "up_m"]
+    final = next(f for f in res.summary["filters"] if f["name"] == "dcifaif")["rmse_final"]["pos_m"]
+    assert rmse["pos_m"].iloc[-1] == pytest.approx(final, rel=1e-12)
+    assert len(res.final_errors()) == 10
+    nees = res.nees("ekf")
+    assert {"nees", "nees_lower", "nees_upper", "nis"} <= set(nees.columns)
+    assert res.pcrlb() is not None and (res.pcrlb()["pos_m"] > 0).all()
+    with pytest.raises(ValueError, match="not in this trade"):
+        res.rmse("ukf")
+
+
+def test_thread_count_and_concurrent_trades_do_not_change_results():
+    sc = entrynav.Scenario.builtin("orbiters-3")
+    one = entrynav.trade(sc, ["ekf"], runs=16, seed=5, threads=1).summary
+    two = entrynav.trade(sc, ["ekf"], runs=16, seed=5, threads=2).summary
+    assert one == two
+    other = entrynav.trade("four-beacon-fusion", ["ekf"], runs=8, seed=7).summary
+    got = {}
+
+    def go(key, *args, **kw):
+        got[key] = entrynav.trade(*args, **kw).summary
+
+    threads = [
+        threading.Thread(target=go, args=("a", sc, ["ekf"]), kwargs=dict(runs=16, seed=5)),
+        threading.Thread(target=go, args=("b", "four-beacon-fusion", ["ekf"]), kwargs=dict(runs=8, seed=7)),
+    ]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert got["a"] == one and got["b"] == other
+
+
+def test_bad_input_raises_python_exceptions_naming_the_field():
+    sc = entrynav.Scenario.builtin("ground-beacons-3")
+    with pytest.raises(ValueError, match=r"beacons\[0\].lat_deg = 123.0 .*\[-90, 90\]"):
+        sc.set("beacons.0.lat_deg", 123.0)
+    with pytest.raises(ValueError, match="nonexistent"):
+        sc.set("truth.nonexistent", 1)
+    with pytest.raises(FileNotFoundError):
+        entrynav.Scenario.from_file("/no/such/scenario.toml")
+    with pytest.raises(ValueError, match="not a built-in"):
+        entrynav.Scenario.builtin("mars-2099")
+    with pytest.raises(ValueError, match="runs = 0 is out of range"):
+        entrynav.trade(sc, ["ekf"], runs=0)
+    with pytest.raises(ValueError, match="wiener"):
+        entrynav.trade(sc, ["wiener"], runs=2)
+
+
+def test_progress_callback_sees_every_run_and_can_stop_the_trade():
+    seen = []
+    entrynav.trade("orbiters-3", ["ekf"], runs=40, seed=1, progress=lambda d, n: seen.append((d, n)))
+    assert seen[-1] == (40, 40) and all(n == 40 for _, n in seen)
+    assert [d for d, _ in seen] == sorted(d for d, _ in seen)
+
+
+CTRL_C = r"""
+import json, os, signal, sys, threading, time
+import entrynav
+threading.Timer(1.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+t0 = time.time()
+try:
+    entrynav.trade("four-beacon-fusion", ["ekf", "dcifaif"], runs=100000, seed=1)
+    print(json.dumps({"raised": False}))
+except KeyboardInterrupt as e:
+    p = e.partial
+    print(json.dumps({"raised": True, "after_signal_s": time.time() - t0 - 1.5, "complete": p.complete,
+                      "done": p.summary["runs_completed"], "runs": p.summary["runs"],
+                      "pos": p.summary["filters"][0]["rmse_final"]["pos_m"]}))
+"""
+
+
+def test_ctrl_c_raises_keyboard_interrupt_within_a_second_and_keeps_the_finished_runs():
+    out = subprocess.run([sys.executable, "-c", CTRL_C], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    r = json.loads(out.stdout.strip().splitlines()[-1])
+    assert r["raised"], "the trade ran to the end"
+    assert r["after_signal_s"] < 1.0, r
+    assert r["complete"] is False and 0 < r["done"] < r["runs"] == 100000, r
+    assert r["pos"] is not None and r["pos"] > 0
+
+
+def test_the_wheel_installs_into_a_fresh_venv_and_the_one_liner_runs(tmp_path):
+    wheels = sorted((ROOT / "target" / "wheels").glob("entrynav-*.whl"))
+    assert wheels, "no wheel: run scripts/build_python.sh"
+    venv = tmp_path / "venv"
+    subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True, timeout=120)
+    py = venv / "bin" / "python"
+    r = subprocess.run([str(py), "-m", "pip", "install", "--quiet", "--no-deps", str(wheels[-1])],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    one = "import entrynav; r = entrynav.trade(entrynav.Scenario.builtin('orbiters-3'), ['ekf'], runs=4); print(r.summary['runs_completed'])"
+    r = subprocess.run([str(py), "-c", one], capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip() == "4"

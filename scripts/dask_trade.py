@@ -6,17 +6,21 @@ thread each); pass --scheduler tcp://HOST:8786 to use a real cluster. The study 
 modes; both give a result that does not depend on the number of workers or on how the runs are
 split into tasks.
 
-CLI mode (default): shards of the CLI
-    The study is split into shards (`entrynav trade --shard I/N`); each shard is a Dask task that
-    runs the entrynav CLI on a worker and returns the shard file's contents; the client merges them
-    with `entrynav trade merge`, which reproduces the single-process result exactly.
+Engine mode (default): shards of the engine
+    The study is split into shards; each shard is a Dask task that runs the engine in the worker's
+    own process through the Python package (`entrynav.trade_shard`, no subprocess; the GIL is
+    released while the runs execute) and returns the shard file's contents, the same JSON as
+    `entrynav trade --shard I/N --json FILE`; the client merges them with `entrynav trade merge`,
+    which reproduces the single-process result exactly. Where the package is not installed on the
+    workers, `--engine cli` runs the CLI there instead (`entrynav trade --shard I/N`).
 
         scripts/dask_trade.py --scenario four-beacon-fusion --filters ekf,ci,dcifaif --runs 5000 \
             --shards 8 --json out/study.json                      # LocalCluster on this machine
         scripts/dask_trade.py ... --scheduler tcp://HOST:8786     # a real cluster
 
-    Every worker needs the `entrynav` binary (same version) on its PATH or at --entrynav.
-    Scenario files given by path must be readable at the same path on the workers.
+    Every worker needs the `entrynav` package (scripts/build_python.sh) or, with --engine cli, the
+    `entrynav` binary (same version) on its PATH or at --entrynav; the client needs the binary for
+    the merge. Scenario files given by path must be readable at the same path on the workers.
 
 FMU mode (--fmu PATH/MarsEntryNav.fmu): Monte Carlo runs of the FMU through fmpy
     Each Dask task unpacks the FMU on its worker, simulates a batch of runs of one filter with
@@ -123,12 +127,31 @@ def run_shard(entrynav, scenario, filters, runs, seed, index, count, sets):
     return out
 
 
+def package_shard(scenario, filters, runs, seed, index, count, sets):
+    """Dask task: run one shard in this worker's process with the Python package and return the
+    shard file's text (what `entrynav trade --shard I/N --json -` prints)."""
+    import entrynav
+
+    try:
+        sc = entrynav.Scenario.builtin(scenario) if scenario in entrynav.builtin_scenarios() \
+            else entrynav.Scenario.from_file(scenario)
+        sc = sc.with_sets(sets)
+        return entrynav.trade_shard(sc, filters.split(","), runs, seed, index, count, overrides=sets)
+    except (ValueError, FileNotFoundError, RuntimeError) as e:
+        raise RuntimeError(f"shard {index}/{count} failed: {e}") from None
+
+
 def cli_study(a, client):
-    """CLI mode: shard tasks on the cluster, merged by `entrynav trade merge`; returns the exit code."""
+    """Engine or CLI mode: shard tasks on the cluster, merged by `entrynav trade merge`; returns the
+    exit code."""
     n_workers = max(1, len(client.scheduler_info().get("workers", {})))
     count = a.shards or 2 * n_workers
-    futures = [client.submit(run_shard, a.entrynav, a.scenario, a.filters, a.runs, a.seed, i, count, a.sets,
-                             pure=False, key=f"entrynav-shard-{i}-of-{count}") for i in range(count)]
+    if a.engine == "package":
+        futures = [client.submit(package_shard, a.scenario, a.filters, a.runs, a.seed, i, count, a.sets,
+                                 pure=False, key=f"entrynav-shard-{i}-of-{count}") for i in range(count)]
+    else:
+        futures = [client.submit(run_shard, a.entrynav, a.scenario, a.filters, a.runs, a.seed, i, count, a.sets,
+                                 pure=False, key=f"entrynav-shard-{i}-of-{count}") for i in range(count)]
     texts = client.gather(futures)
     keep = Path(a.keep_shards) if a.keep_shards else None
     with tempfile.TemporaryDirectory() as tmp:
@@ -407,7 +430,9 @@ def main(argv=None):
     p.add_argument("--scheduler", default=None, help="tcp://HOST:PORT of a Dask scheduler (default: LocalCluster)")
     p.add_argument("--workers", type=int, default=2, help="LocalCluster workers (one thread each)")
     p.add_argument("--json", required=True, help="summary JSON")
-    cli = p.add_argument_group("CLI mode")
+    cli = p.add_argument_group("engine mode")
+    cli.add_argument("--engine", choices=["package", "cli"], default="package",
+                     help="run shards in the workers' processes with the Python package (default) or with the CLI")
     cli.add_argument("--shards", type=int, default=None, help="number of shards (default: 2 x workers)")
     cli.add_argument("--set", dest="sets", action="append", default=[], metavar="PATH=VALUE")
     cli.add_argument("--entrynav", default=os.environ.get("ENTRYNAV", "entrynav"), help="path of the entrynav binary")
@@ -427,7 +452,7 @@ def main(argv=None):
         wrong = [o for o, v in (("--shards", a.shards), ("--set", a.sets), ("--csv-dir", a.csv_dir),
                                 ("--keep-shards", a.keep_shards)) if v]
         if wrong:
-            p.error(f"{', '.join(wrong)}: CLI mode only, not with --fmu")
+            p.error(f"{', '.join(wrong)}: engine mode only, not with --fmu")
         if not Path(a.fmu).is_file():
             p.error(f"--fmu {a.fmu}: no such file")
         if a.batch_size is not None and a.batch_size < 1:

@@ -43,6 +43,9 @@ cargo build --release --workspace
 target/release/entrynav fmu pack --out target/fmu
 target/release/entrynav fmu pack --out target/fmu --fmi 3
 
+echo "== Python package: build the wheel (maturin) and install it into .venv (the Dask engine path uses it)"
+bash scripts/build_python.sh
+
 echo "== Dask: sharded CLI study and fmpy FMU runs on a 2-worker LocalCluster equal the single-process results"
 ENTRYNAV="$PWD/target/release/entrynav" ENTRYNAV_FMU="$PWD/target/fmu/MarsEntryNav.fmu" \
   .venv/bin/pytest -q -p no:cacheprovider tests/dask
@@ -55,9 +58,6 @@ for fmu in target/fmu/MarsEntryNav.fmu target/fmu/MarsEntryNavFilter.fmu target/
   target/release/entrynav fmu check "$fmu"
 done
 target/release/entrynav fmu check target/fmu/MarsEntryNav.fmu --bench
-
-echo "== Python package: build the wheel (maturin) and install it into .venv"
-bash scripts/build_python.sh
 
 echo "== FMU: pytest (symbols, fmpy validate/simulate/FMU2Slave/FMU3Slave, fmutool, libcosimpy, fmusim, OMSimulator, host fuzz)"
 .venv/bin/pytest -q -s -p no:cacheprovider tests/python

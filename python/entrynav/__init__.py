@@ -26,7 +26,7 @@ from typing import Any, Callable, Dict, Iterable, List, Optional, Sequence, Unio
 
 from . import _entrynav
 
-__all__ = ["Scenario", "TradeResult", "builtin_scenarios", "trade", "__version__"]
+__all__ = ["Scenario", "TradeResult", "builtin_scenarios", "trade", "trade_shard", "__version__"]
 
 __version__ = _entrynav.version()
 
@@ -84,6 +84,11 @@ class Scenario:
         """A copy with field `path` (dotted, numeric keys index arrays: `beacons.0.lat_deg`) set
         to `value`, validated as `--set path=value` is; `ValueError` names a bad field or value."""
         toml = _entrynav.apply_sets(self._toml, [f"{path}={_toml_value(value)}"])
+        return Scenario(toml, self._folder)
+
+    def with_sets(self, sets: Iterable[str]) -> "Scenario":
+        """A copy with the CLI's `--set PATH=VALUE` strings applied (VALUE in TOML syntax)."""
+        toml = _entrynav.apply_sets(self._toml, list(sets))
         return Scenario(toml, self._folder)
 
     def to_toml(self) -> str:
@@ -290,3 +295,25 @@ def trade(
         err.partial = result  # type: ignore[attr-defined]
         raise err
     return result
+
+
+def trade_shard(
+    scenario: Union[Scenario, str],
+    filters: Union[Sequence[str], str],
+    runs: int,
+    seed: int,
+    index: int,
+    count: int,
+    overrides: Sequence[str] = (),
+    threads: Optional[int] = None,
+) -> str:
+    """Shard `index` of `count` of a study, as the JSON text `entrynav trade --shard I/N --json
+    FILE` writes: `entrynav trade merge` combines shards from either into exactly the
+    single-process result. `overrides` are the `--set` strings already applied to `scenario`
+    (recorded in the shard's provenance, which merge checks across shards)."""
+    if isinstance(scenario, str):
+        scenario = Scenario.builtin(scenario) if scenario in builtin_scenarios() else Scenario.from_file(scenario)
+    names = [filters] if isinstance(filters, str) else list(filters)
+    return _entrynav.trade_shard(
+        scenario.to_toml(), scenario.folder, ",".join(names), runs, seed, index, count, list(overrides), threads
+    )

@@ -17,3 +17,14 @@ def trade(
     pcrlb: bool = True,
     progress: Optional[Callable[[int, int], object]] = None,
 ) -> Tuple[str, str, bool, bool]: ...
+def trade_shard(
+    toml: str,
+    dir: str,
+    filters: str,
+    runs: int,
+    seed: int,
+    index: int,
+    count: int,
+    overrides: List[str],
+    threads: Optional[int] = None,
+) -> str: ...

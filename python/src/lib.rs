@@ -13,7 +13,7 @@
 
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{BUILTIN_NAMES, Scenario, ScenarioConfig};
-use entrynav::sim::{McOptions, TradeError, TradeReport, run_trade};
+use entrynav::sim::{McOptions, Shard, TradeError, TradeReport, run_shard, run_trade};
 use entrynav_loader as load;
 use pyo3::exceptions::{PyFileNotFoundError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -215,6 +215,69 @@ fn trade(
     }
 }
 
+/// Run shard `index` of `count` of the study (the CLI's `trade --shard I/N`) and return the
+/// shard file's JSON, as `entrynav trade --shard I/N --json FILE` writes it (so `entrynav trade
+/// merge` combines shards from either): the block sums, the study's `provenance` (`overrides`
+/// as given, the truth atmosphere source) and `wall_s`. The GIL is released while it runs.
+#[pyfunction]
+#[pyo3(signature = (toml, dir, filters, runs, seed, index, count, overrides, threads=None))]
+#[allow(clippy::too_many_arguments)]
+fn trade_shard(
+    py: Python<'_>,
+    toml: &str,
+    dir: &str,
+    filters: &str,
+    runs: usize,
+    seed: u64,
+    index: usize,
+    count: usize,
+    overrides: Vec<String>,
+    threads: Option<usize>,
+) -> PyResult<String> {
+    let (scenario, kinds) = setup(toml, dir, filters)?;
+    if !(1..=10_000_000).contains(&runs) {
+        return Err(PyValueError::new_err(format!(
+            "runs = {runs} is out of range: must be >= 1 and <= 10000000"
+        )));
+    }
+    let shard = Shard::parse(&format!("{index}/{count}")).map_err(trade_err)?;
+    let opts = McOptions {
+        pcrlb: true,
+        ..McOptions::new(runs, seed)
+    };
+    let clock = std::time::Instant::now();
+    let result = py.detach(|| {
+        let job = || run_shard(&scenario, &kinds, &opts, shard, &|_| {});
+        match threads {
+            Some(n) => rayon::ThreadPoolBuilder::new()
+                .num_threads(n.max(1))
+                .build()
+                .map_err(|e| TradeError::Options(format!("threads = {n}: {e}")))
+                .and_then(|pool| pool.install(job)),
+            None => job(),
+        }
+    });
+    let result = result.map_err(trade_err)?;
+    let truth = &scenario.config.truth;
+    let mut doc =
+        serde_json::to_value(&result).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    if let Some(map) = doc.as_object_mut() {
+        map.insert(
+            "provenance".into(),
+            serde_json::json!({
+                "overrides": overrides,
+                "atmosphere": {
+                    "file": null,
+                    "truth": serde_json::to_value(&truth.atmosphere).unwrap_or(serde_json::Value::Null),
+                    "perturbation": truth.perturbation.is_some(),
+                },
+            }),
+        );
+        map.insert("wall_s".into(), clock.elapsed().as_secs_f64().into());
+    }
+    Ok(doc.to_string())
+}
+
 /// The version of the library.
 #[pyfunction]
 fn version() -> &'static str {
@@ -229,6 +292,7 @@ fn _entrynav(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(apply_sets, m)?)?;
     m.add_function(wrap_pyfunction!(scenario_json, m)?)?;
     m.add_function(wrap_pyfunction!(trade, m)?)?;
+    m.add_function(wrap_pyfunction!(trade_shard, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())
 }

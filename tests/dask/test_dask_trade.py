@@ -1,10 +1,13 @@
-"""A study run as Dask shard tasks on a 2-worker LocalCluster merges to the single-process result."""
+"""A study run as Dask shard tasks on a 2-worker LocalCluster merges to the single-process result, with
+the shards run in the workers' processes by the Python package (the default) or by the CLI."""
 
 import json
 import os
 import subprocess
 import sys
 from pathlib import Path
+
+import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 ENTRYNAV = os.environ.get("ENTRYNAV", str(ROOT / "target" / "release" / "entrynav"))
@@ -19,7 +22,8 @@ def summary(path):
     return report
 
 
-def test_dask_localcluster_matches_single_process(tmp_path):
+@pytest.mark.parametrize("engine", ["package", "cli"])
+def test_dask_localcluster_matches_single_process(tmp_path, engine):
     common = ["--scenario", "orbiters-3", "--filters", "ekf,ukf", "--runs", "520", "--seed", "17",
               "--set", "filter.update_iterations=2"]
     single = tmp_path / "single.json"
@@ -27,7 +31,7 @@ def test_dask_localcluster_matches_single_process(tmp_path):
     merged = tmp_path / "dask.json"
     res = subprocess.run(
         [sys.executable, str(ROOT / "scripts" / "dask_trade.py"), *common, "--shards", "3", "--workers", "2",
-         "--entrynav", ENTRYNAV, "--json", str(merged)],
+         "--engine", engine, "--entrynav", ENTRYNAV, "--json", str(merged)],
         capture_output=True, text=True, timeout=900)
     assert res.returncode == 0, res.stderr
     assert summary(single) == summary(merged)

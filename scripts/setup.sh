@@ -71,10 +71,10 @@ fi
 if [ ! -x .venv/bin/python ]; then
   python3 -m venv .venv
 fi
-if ! .venv/bin/python -c "import fmpy, libcosimpy, pytest, numpy, scipy, fmu_manipulation_toolbox, distributed, pandas, maturin" >/dev/null 2>&1; then
+if ! .venv/bin/python -c "import fmpy, libcosimpy, pytest, numpy, scipy, fmu_manipulation_toolbox, distributed, pandas, maturin, nbclient, nbformat, ipykernel, matplotlib" >/dev/null 2>&1; then
   .venv/bin/pip install --quiet --disable-pip-version-check \
     "fmpy==0.3.32" "fmu-manipulation-toolbox==2.0" "libcosimpy==0.0.6" pytest numpy scipy distributed \
-    pandas "maturin==1.16.0"
+    pandas "maturin==1.16.0" nbclient nbformat ipykernel matplotlib
 fi
 # OMSimulator 3 (OpenModelica's FMI/SSP engine) is not installable from PyPI here (its sdist downloads
 # a binary from elsewhere); a wheel built from source may sit in ../shared/tools (ENTRYNAV_TOOLS

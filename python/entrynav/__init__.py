@@ -26,7 +26,7 @@ from typing import Any, Callable, Dict, Iterable, List, Optional, Sequence, Unio
 
 from . import _entrynav
 
-__all__ = ["Scenario", "TradeResult", "builtin_scenarios", "trade", "trade_shard", "__version__"]
+__all__ = ["Scenario", "TradeResult", "builtin_scenarios", "simulate", "trade", "trade_shard", "__version__"]
 
 __version__ = _entrynav.version()
 
@@ -317,3 +317,23 @@ def trade_shard(
     return _entrynav.trade_shard(
         scenario.to_toml(), scenario.folder, ",".join(names), runs, seed, index, count, list(overrides), threads
     )
+
+
+def simulate(scenario: Union[Scenario, str], seed: int = 1, dispersed: bool = False):
+    """One truth run with its measurement record (`entrynav simulate --out FILE`): a pandas
+    DataFrame with the CLI's columns (time, spherical state, altitude, density, dynamic pressure,
+    heating, aerodynamic acceleration, Cartesian state for a Cartesian truth, beacon visibility,
+    one column per measurement channel, NaN where not sampled). `df.attrs` holds `stop` (duration,
+    stop_speed, ground) and `peaks` (value and time of the peak deceleration, dynamic pressure and
+    heating over every integration step)."""
+    import pandas as pd
+
+    if isinstance(scenario, str):
+        scenario = Scenario.builtin(scenario)
+    if seed < 0:
+        raise ValueError(f"seed = {seed} is out of range: must be >= 0")
+    doc = json.loads(_entrynav.simulate(scenario.to_toml(), scenario.folder, seed, dispersed))
+    df = pd.DataFrame(doc["rows"], columns=doc["columns"], dtype=float)
+    df.attrs["stop"] = doc["stop"]
+    df.attrs["peaks"] = doc["peaks"]
+    return df

@@ -13,10 +13,14 @@
 
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{BUILTIN_NAMES, Scenario, ScenarioConfig};
-use entrynav::sim::{McOptions, Shard, TradeError, TradeReport, run_shard, run_trade};
+use entrynav::sim::{
+    McOptions, Shard, TradeError, TradeReport, run_shard, run_trade, simulate_truth_with_peaks,
+};
 use entrynav_loader as load;
 use pyo3::exceptions::{PyFileNotFoundError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Duration;
@@ -278,6 +282,97 @@ fn trade_shard(
     Ok(doc.to_string())
 }
 
+/// One truth run with its measurement record, as `entrynav simulate --out FILE` writes it: JSON
+/// `{"columns": [...], "rows": [[...]], "stop": "...", "peaks": {...}}` (a missing measurement
+/// is null). `dispersed` draws the truth from the scenario's dispersions.
+#[pyfunction]
+#[pyo3(signature = (toml, dir, seed=1, dispersed=false))]
+fn simulate(py: Python<'_>, toml: &str, dir: &str, seed: u64, dispersed: bool) -> PyResult<String> {
+    let cfg = config_of(toml, "scenario")?;
+    let scenario = load::build(cfg, Path::new(dir)).map_err(load_err)?;
+    let (run, peaks) = py
+        .detach(|| {
+            let mut rng = ChaCha8Rng::seed_from_u64(seed);
+            let draw = if dispersed {
+                scenario.draw_truth(&mut rng)
+            } else {
+                entrynav::scenario::TruthDraw {
+                    initial: scenario.truth_initial,
+                    model: scenario.truth_model.clone(),
+                }
+            };
+            simulate_truth_with_peaks(&scenario, &draw, &mut rng)
+        })
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let cartesian = scenario.truth_model.kind.is_cartesian();
+    let mut columns: Vec<String> = [
+        "t_s",
+        "r_m",
+        "lon_rad",
+        "lat_rad",
+        "v_mps",
+        "fpa_rad",
+        "heading_rad",
+        "altitude_m",
+        "density_kgm3",
+        "dynamic_pressure_pa",
+        "heating_wm2",
+        "aero_accel_mps2",
+    ]
+    .map(String::from)
+    .to_vec();
+    if cartesian {
+        columns.extend(["x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps"].map(String::from));
+    }
+    columns.extend(scenario.beacon_names.iter().map(|b| format!("visible_{b}")));
+    columns.extend(scenario.channels.iter().map(|c| c.name.clone()));
+    let mut epochs = run.epochs.iter().peekable();
+    let mut rows = Vec::with_capacity(run.samples.len());
+    for s in &run.samples {
+        let mut row: Vec<Option<f64>> = vec![Some(s.t)];
+        row.extend(s.spherical.iter().map(|v| Some(*v)));
+        row.extend(
+            [
+                s.altitude,
+                s.density,
+                s.dynamic_pressure,
+                s.heating,
+                s.aero_accel,
+            ]
+            .map(Some),
+        );
+        if cartesian {
+            row.extend(s.state.iter().map(|v| Some(*v)));
+        }
+        row.extend(s.visible.iter().map(|v| Some(f64::from(u8::from(*v)))));
+        match epochs.peek() {
+            Some(e) if (e.t - s.t).abs() < 1e-9 => {
+                row.extend(e.values.iter().copied());
+                epochs.next();
+            }
+            _ => row.extend(std::iter::repeat_n(None, scenario.channels.len())),
+        }
+        rows.push(row);
+    }
+    let stop = match run.stop {
+        entrynav::sim::StopReason::Duration => "duration",
+        entrynav::sim::StopReason::StopSpeed => "stop_speed",
+        entrynav::sim::StopReason::Ground => "ground",
+    };
+    let peak = |p: &entrynav::sim::Peak| serde_json::json!({ "value": p.value, "t_s": p.t });
+    let doc = serde_json::json!({
+        "columns": columns,
+        "rows": rows,
+        "stop": stop,
+        "peaks": {
+            "aero_accel_mps2": peak(&peaks.aero_accel),
+            "dynamic_pressure_pa": peak(&peaks.dynamic_pressure),
+            "heating_wm2": peak(&peaks.heating),
+        },
+    });
+    Ok(doc.to_string())
+}
+
 /// The version of the library.
 #[pyfunction]
 fn version() -> &'static str {
@@ -293,6 +388,7 @@ fn _entrynav(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scenario_json, m)?)?;
     m.add_function(wrap_pyfunction!(trade, m)?)?;
     m.add_function(wrap_pyfunction!(trade_shard, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())
 }

@@ -158,3 +158,20 @@ def test_the_wheel_installs_into_a_fresh_venv_and_the_one_liner_runs(tmp_path):
     r = subprocess.run([str(py), "-c", one], capture_output=True, text=True, timeout=300, cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     assert r.stdout.strip() == "4"
+
+
+@pytest.mark.parametrize("name,dispersed", [("msl-airdata", True), ("orbiters-3", False)])
+def test_simulate_equals_the_cli_csv(name, dispersed, tmp_path):
+    import numpy as np
+    import pandas as pd
+
+    df = entrynav.simulate(name, seed=9, dispersed=dispersed)
+    out = tmp_path / "sim.csv"
+    r = run([ENTRYNAV, "simulate", "--scenario", name, "--seed", 9, *(["--dispersed"] if dispersed else []),
+             "--out", out])
+    assert r.returncode == 0, r.stderr
+    cli = pd.read_csv(out, dtype=float)
+    assert list(df.columns) == list(cli.columns)
+    assert np.array_equal(df.to_numpy(), cli.to_numpy(), equal_nan=True)
+    assert df.attrs["stop"] in ("duration", "stop_speed", "ground")
+    assert df.attrs["peaks"]["dynamic_pressure_pa"]["value"] >= df["dynamic_pressure_pa"].max()

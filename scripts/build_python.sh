@@ -6,6 +6,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 [ -x .venv/bin/maturin ] || { echo "build_python: run scripts/setup.sh first (.venv with maturin)" >&2; exit 1; }
 rm -f target/wheels/entrynav-*.whl
-(cd python && CARGO_TARGET_DIR="$PWD/../target" ../.venv/bin/maturin build --release --quiet -o ../target/wheels)
+(cd python && CARGO_TARGET_DIR="$PWD/../target" ../.venv/bin/maturin build --release --quiet --compatibility linux -o ../target/wheels)
 .venv/bin/pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/wheels/entrynav-*.whl
 echo "build_python: installed $(ls target/wheels/entrynav-*.whl) into .venv"

@@ -21,12 +21,28 @@ from __future__ import annotations
 
 import json
 import math
+import os
 from pathlib import Path
 from typing import Any, Callable, Dict, Iterable, List, Optional, Sequence, Union
 
 from . import _entrynav
 
-__all__ = ["Scenario", "TradeResult", "builtin_scenarios", "simulate", "trade", "trade_shard", "__version__"]
+__all__ = [
+    "Scenario",
+    "TradeResult",
+    "DesignResult",
+    "builtin_scenarios",
+    "simulate",
+    "trade",
+    "trade_shard",
+    "tune",
+    "observe",
+    "optimize_ground",
+    "optimize_select",
+    "optimize_orbiters",
+    "fmu_pack",
+    "__version__",
+]
 
 __version__ = _entrynav.version()
 
@@ -337,3 +353,168 @@ def simulate(scenario: Union[Scenario, str], seed: int = 1, dispersed: bool = Fa
     df.attrs["stop"] = doc["stop"]
     df.attrs["peaks"] = doc["peaks"]
     return df
+
+
+# ---------------------------------------------------------------------------------------------
+# The design commands, run in this process by the CLI's library (their tables print on standard
+# output as the CLI's do; the files they write are read back here).
+
+
+def _raise_for(code: int, message: str, what: str) -> None:
+    if code == 0:
+        return
+    if code == 2:
+        raise ValueError(message.strip() or f"{what}: bad arguments")
+    if code == 130:
+        raise KeyboardInterrupt(message.strip())
+    raise RuntimeError(message.strip() or f"{what} failed (exit code {code})")
+
+
+class _ScenarioFile:
+    """The scenario as a file the CLI can read: a built-in by name when unchanged, else its TOML in
+    a hidden temporary file next to the files it may name (its folder), removed afterwards."""
+
+    def __init__(self, scenario: Union[Scenario, str]):
+        self.scenario = Scenario.builtin(scenario) if isinstance(scenario, str) and scenario in builtin_scenarios() \
+            else (Scenario.from_file(scenario) if isinstance(scenario, str) else scenario)
+        self.path: Optional[Path] = None
+
+    def __enter__(self) -> str:
+        name = self.scenario.name
+        if name in builtin_scenarios() and Scenario.builtin(name) == self.scenario:
+            return name
+        import tempfile
+
+        folder = Path(self.scenario.folder)
+        try:
+            fd, path = tempfile.mkstemp(prefix=".entrynav-", suffix=".toml", dir=folder)
+        except OSError:
+            fd, path = tempfile.mkstemp(prefix="entrynav-", suffix=".toml")
+        with os.fdopen(fd, "w") as f:
+            f.write(self.scenario.to_toml())
+        self.path = Path(path)
+        return path
+
+    def __exit__(self, *exc: Any) -> None:
+        if self.path is not None:
+            self.path.unlink(missing_ok=True)
+
+
+def _cli(args: List[str], what: str) -> None:
+    code, message = _entrynav.run_cli([str(a) for a in args])
+    _raise_for(code, message, what)
+
+
+def tune(
+    scenario: Union[Scenario, str],
+    filters: Union[Sequence[str], str] = ("ekf",),
+    runs: int = 24,
+    seed: int = 1,
+    validation_runs: int = 100,
+    tune_noise: bool = False,
+    nis_only: bool = False,
+    max_evaluations: int = 150,
+    threads: Optional[int] = None,
+    force: bool = False,
+) -> Scenario:
+    """`entrynav tune`: each filter's process noise (and with `tune_noise` its assumed measurement
+    noise) tuned to consistency, validated on fresh runs; returns the tuned Scenario (one
+    `[filter.tuned.<name>]` table per filter). A tuning that makes a filter worse on the fresh
+    runs is refused with RuntimeError naming the filter and figure, unless `force`."""
+    import tempfile
+
+    names = [filters] if isinstance(filters, str) else list(filters)
+    files = _ScenarioFile(scenario)
+    with files as sc, tempfile.TemporaryDirectory() as tmp:
+        out = Path(tmp) / "tuned.toml"
+        args = ["tune", "--scenario", sc, "--filter", ",".join(names), "--out", out, "--runs", runs, "--seed", seed,
+                "--validation-runs", validation_runs, "--max-evaluations", max_evaluations, "--quiet"]
+        args += ["--tune-noise"] * tune_noise + ["--nis-only"] * nis_only + ["--force"] * force
+        if threads is not None:
+            args += ["--threads", threads]
+        _cli(args, "tune")
+        return Scenario(out.read_text(), files.scenario.folder)
+
+
+def observe(scenario: Union[Scenario, str], method: str = "lie", step: float = 1.0, fim: bool = False,
+            extra_args: Sequence[str] = ()) -> Dict[str, Any]:
+    """`entrynav observe --json`: the degree of observability δ(t) along the trajectory (and with
+    `fim` the beacons' Fisher information) as the JSON dict the CLI writes."""
+    import tempfile
+
+    with _ScenarioFile(scenario) as sc, tempfile.TemporaryDirectory() as tmp:
+        out = Path(tmp) / "observe.json"
+        args = ["observe", "--scenario", sc, "--method", method, "--step", step, "--json", out, *extra_args]
+        if fim:
+            args.append("--fim")
+        _cli(args, "observe")
+        return json.loads(out.read_text())
+
+
+class DesignResult:
+    """An optimizer's answer: `summary` (its `--json`, with the `check` of the optimum against the
+    input design by the bound and a Monte Carlo) and `scenario` (the written scenario)."""
+
+    def __init__(self, summary: Dict[str, Any], scenario: Scenario):
+        self.summary = summary
+        self.scenario = scenario
+
+    def __repr__(self) -> str:
+        return f"DesignResult({self.scenario.name!r})"
+
+
+def _optimize(kind: str, scenario: Union[Scenario, str], args: List[Any]) -> DesignResult:
+    import tempfile
+
+    files = _ScenarioFile(scenario)
+    with files as sc, tempfile.TemporaryDirectory() as tmp:
+        js, toml = Path(tmp) / "design.json", Path(tmp) / "design.toml"
+        _cli(["optimize", kind, "--scenario", sc, *args, "--json", js, "--write-scenario", toml], f"optimize {kind}")
+        return DesignResult(json.loads(js.read_text()), Scenario(toml.read_text(), files.scenario.folder))
+
+
+def optimize_ground(scenario: Union[Scenario, str], beacons: Optional[int] = None,
+                    extra_args: Sequence[str] = ()) -> DesignResult:
+    """`entrynav optimize ground`: surface beacon sites (defaults: the navigation objective, the
+    separation constraint, the check against the input design). A worse optimum raises
+    RuntimeError (the CLI's exit 1); pass `extra_args=["--objective", "min-delta"]` etc. as on the
+    command line."""
+    args: List[Any] = [] if beacons is None else ["--beacons", beacons]
+    return _optimize("ground", scenario, [*args, *extra_args])
+
+
+def optimize_select(scenario: Union[Scenario, str], k: int, grid_deg: float = 0.5, exact: bool = False,
+                    extra_args: Sequence[str] = ()) -> DesignResult:
+    """`entrynav optimize select`: k sites of a candidate grid, certified with `exact`."""
+    args: List[Any] = ["--k", k, "--grid-deg", grid_deg, *(["--exact"] if exact else []), *extra_args]
+    return _optimize("select", scenario, args)
+
+
+def optimize_orbiters(scenario: Union[Scenario, str], extra_args: Sequence[str] = ()) -> DesignResult:
+    """`entrynav optimize orbiters`: orbital elements (Ω, i, f) of the relay orbiters."""
+    return _optimize("orbiters", scenario, list(extra_args))
+
+
+def fmu_pack(out: Union[str, Path], scenario: Optional[Union[Scenario, str]] = None, filter: Optional[str] = None,
+             fmi: int = 2, library: Optional[Union[str, Path]] = None) -> List[Path]:
+    """`entrynav fmu pack`: the FMUs into `out` (FMI 2.0, or 3.0 with `fmi=3`); with `scenario`
+    the combined FMU specific to it. `library` is the FMU shared library
+    (target/release/libmars_entry_nav.so; default $ENTRYNAV_FMU_LIB). Returns the .fmu paths."""
+    import time
+
+    out = Path(out)
+    start = time.time() - 1.0
+    args: List[Any] = ["fmu", "pack", "--out", out, "--fmi", fmi]
+    lib = library or os.environ.get("ENTRYNAV_FMU_LIB")
+    if lib is None:
+        raise ValueError("fmu_pack needs library= (target/release/libmars_entry_nav.so) or $ENTRYNAV_FMU_LIB")
+    args += ["--lib", lib]
+    if scenario is not None:
+        with _ScenarioFile(scenario) as sc:
+            args += ["--scenario", sc] + (["--filter", filter] if filter else [])
+            _cli(args, "fmu pack")
+    else:
+        _cli(args, "fmu pack")
+    # The files this call wrote (the CLI replaces each atomically).
+    return sorted(p for p in out.glob("*.fmu")
+                  if p.stat().st_mtime >= start and (fmi == 3) == p.name.endswith("-fmi3.fmu"))

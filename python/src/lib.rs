@@ -373,6 +373,18 @@ fn simulate(py: Python<'_>, toml: &str, dir: &str, seed: u64, dispersed: bool) -
     Ok(doc.to_string())
 }
 
+/// Run one `entrynav` command line in this process (the design commands: `tune`, `observe`,
+/// `optimize …`, `fmu pack`), with the GIL released: `(exit code, error message)`. Their tables
+/// print on the process's standard output, as the CLI's do; their files are what the Python API
+/// reads back.
+#[pyfunction]
+fn run_cli(py: Python<'_>, args: Vec<String>) -> PyResult<(i32, String)> {
+    let mut argv = vec!["entrynav".to_string()];
+    argv.extend(args);
+    let out = py.detach(|| std::panic::catch_unwind(|| entrynav_cli::run_args(argv)));
+    out.map_err(|_| PyRuntimeError::new_err("the command panicked (internal error)"))
+}
+
 /// The version of the library.
 #[pyfunction]
 fn version() -> &'static str {
@@ -389,6 +401,7 @@ fn _entrynav(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(trade, m)?)?;
     m.add_function(wrap_pyfunction!(trade_shard, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(run_cli, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())
 }

@@ -1,0 +1,201 @@
+//! `entrynav`: Mars entry navigation from the command line. The commands live in this library
+//! (`entrynav_cli`) so that the Python package can run them in process; `src/main.rs` is the
+//! binary.
+
+mod atmosphere_file;
+mod atmosphere_generate;
+mod atmosphere_inspect;
+mod atomic_file;
+mod compare;
+mod compare_input;
+mod compare_paired;
+mod compare_scenarios;
+mod compare_stats;
+mod compare_table;
+mod csv_file;
+mod exit;
+mod fmu;
+mod grid;
+mod grid_files;
+mod grid_plots;
+mod interrupt;
+mod observe;
+mod observe_files;
+mod observe_pcrlb;
+mod optimize;
+mod plot;
+mod plots;
+mod progress;
+mod provenance;
+mod replay;
+mod report;
+mod scenarios;
+mod simulate;
+mod threads;
+mod trade;
+mod trade_args;
+mod trade_checkpoint;
+mod trade_files;
+mod trade_tables;
+mod train;
+mod tune;
+mod tune_verdict;
+mod tuned_file;
+
+use anyhow::{Context, Result};
+use clap::{Parser, Subcommand};
+use entrynav_loader as load;
+
+/// What `--quiet` means in every command that has it: standard output is the same with or
+/// without it; standard error loses the progress and keeps warnings, notes and errors.
+const QUIET_HELP: &str = "Print no progress (bars, per-run, per-epoch and per-cell logs); results \
+(tables, `wrote FILE` lines) still print on standard output, unchanged, and warnings, notes and \
+errors on standard error";
+
+/// Mars atmospheric-entry navigation: scenarios, truth simulation, navigation filters and
+/// Monte Carlo trade studies, observability and Fisher information.
+#[derive(Parser)]
+#[command(name = "entrynav", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+// Parsed once per process; boxing the larger argument structs would only add noise.
+#[allow(clippy::large_enum_variant)]
+#[derive(Subcommand)]
+enum Command {
+    /// List the built-in scenarios.
+    Scenarios,
+    /// Inspect a scenario.
+    Scenario {
+        #[command(subcommand)]
+        action: ScenarioAction,
+    },
+    /// Density tables (CSV, Mars-GRAM output, Mars-GRAM Monte Carlo sets): inspect.
+    Atmosphere {
+        #[command(subcommand)]
+        action: atmosphere_inspect::AtmosphereAction,
+    },
+    /// Simulate the truth trajectory and the sensor measurements of a scenario.
+    Simulate(simulate::SimulateArgs),
+    /// Monte Carlo trade study of navigation filters on a scenario.
+    ///
+    /// Per filter: RMSE per state, consistency (NEES over all states with truth-equivalent
+    /// augmented parameters and over the six kinematic states; NIS overall and per channel; χ²
+    /// 95 % bounds), and two kinds of bad runs: FAILED = the filter stopped on a numerical
+    /// failure (a covariance lost positive definiteness, a value became non-finite); DIVERGED =
+    /// the run completed but its final NEES exceeds 100 × its degrees of freedom (confidently
+    /// wrong). `failures` lists run index, time and reason; `--replay-run K --csv-dir DIR`
+    /// writes run K's full series.
+    ///
+    /// Progress is a bar on a terminal; with the environment variable `ENTRYNAV_PROGRESS=lines`
+    /// (and no `--quiet`) it is one `progress: DONE/TOTAL runs` line on standard error per chunk
+    /// of finished runs, for a script that reads it through a pipe (e.g. to know that runs have
+    /// finished before it sends Ctrl-C).
+    Trade(trade::TradeArgs),
+    /// Tune a scenario's process noise (and optionally the assumed measurement noise) until its
+    /// filters are consistent (ANEES/dof and ANIS/dof near 1, no divergence), validate on fresh
+    /// runs and write the tuned scenario.
+    Tune(tune::TuneArgs),
+    /// Degree of observability δ(t) and beacon Fisher information along a scenario's trajectory.
+    Observe(observe::ObserveArgs),
+    /// Train the USKF-NN density network offline (seed 001 Algorithm 1) and write its file.
+    TrainDensity(train::TrainArgs),
+    /// FMI 2.0 co-simulation FMUs: pack, check, fuzz.
+    Fmu(fmu::FmuArgs),
+    /// Optimize beacon and orbiter geometry (seed 002 Sec. 4): orbiters, ground sites, certified
+    /// site selection.
+    Optimize(optimize::OptimizeArgs),
+}
+
+#[derive(Subcommand)]
+enum ScenarioAction {
+    /// Print a scenario (built-in name or TOML file) as written, comments included, after
+    /// validating it; the output is a file to copy and edit.
+    Show {
+        /// Built-in name or path to a scenario TOML file.
+        name: String,
+        /// Print the validated configuration in canonical TOML instead (every field, defaults
+        /// filled in, no comments).
+        #[arg(long)]
+        resolved: bool,
+    },
+    /// Print the reference of every scenario field (type, default, allowed range, meaning) as
+    /// Markdown, generated from the configuration types: docs/scenario-reference.md.
+    Schema,
+}
+
+/// The `entrynav` command: parse the process's arguments, run, print an error and exit with its
+/// code. What the binary's `main` is.
+pub fn cli_main() {
+    interrupt::die_on_broken_pipe();
+    let cli = Cli::parse();
+    if let Err(e) = run(cli) {
+        let code = exit::code(&e);
+        if code == interrupt::EXIT_INTERRUPTED {
+            eprintln!("{e}");
+        } else {
+            eprintln!("error: {e:#}");
+        }
+        std::process::exit(code);
+    }
+}
+
+/// Run one `entrynav` command line in this process (`args[0]` is the program name) and return
+/// its exit code: 0 success, 1 a failed output or check, 2 a usage error (with clap's message),
+/// 130 interrupted. The error message goes to standard error, as the binary prints it. For the
+/// Python package, which calls the design commands (tune, observe, optimize, fmu pack) without a
+/// subprocess; it installs no signal handler for them.
+pub fn run_args(args: Vec<String>) -> (i32, String) {
+    let cli = match Cli::try_parse_from(args) {
+        Ok(c) => c,
+        Err(e) => {
+            let text = e.render().to_string();
+            return (if e.use_stderr() { 2 } else { 0 }, text);
+        }
+    };
+    match run(cli) {
+        Ok(()) => (0, String::new()),
+        Err(e) => {
+            let code = exit::code(&e);
+            (code, format!("{e:#}"))
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Scenarios => scenarios::list(),
+        Command::Scenario {
+            action: ScenarioAction::Schema,
+        } => {
+            print!("{}", entrynav::scenario::reference::markdown());
+            Ok(())
+        }
+        Command::Scenario {
+            action: ScenarioAction::Show { name, resolved },
+        } => {
+            let (cfg, _) = load::resolve(&name, load::Base::CurrentDir)?.into_parts();
+            if resolved {
+                print!("{}", cfg.to_toml_string());
+            } else if let Some(text) = entrynav::scenario::builtin_toml(name.trim()) {
+                print!("{text}");
+            } else {
+                let path = name.trim();
+                let text = entrynav_loader::read_text(path)
+                    .with_context(|| format!("cannot read scenario file {path}"))?;
+                print!("{text}");
+            }
+            Ok(())
+        }
+        Command::Atmosphere { action } => atmosphere_inspect::run(&action),
+        Command::Simulate(args) => simulate::run(&args),
+        Command::Trade(args) => trade::run(&args),
+        Command::Tune(args) => tune::run(&args),
+        Command::Observe(args) => observe::run(&args),
+        Command::TrainDensity(args) => train::run(&args),
+        Command::Fmu(args) => fmu::run(&args),
+        Command::Optimize(args) => optimize::run(&args),
+    }
+}

@@ -142,6 +142,21 @@ pub fn cli_main() {
     }
 }
 
+/// Write the HTML report of a finished trade `report` of `scenario` to `path` (what `trade
+/// --report` writes; `overrides` are the `--set` strings the scenario was built with, for its
+/// provenance). Returns the seconds it took. For the Python package's `TradeResult.report`.
+pub fn write_trade_report(
+    path: &std::path::Path,
+    report: &entrynav::sim::TradeReport,
+    scenario: &entrynav::scenario::Scenario,
+    overrides: &[String],
+) -> Result<f64> {
+    report::check_path(Some(path))?;
+    let names = plot::labels::WeightNames::of_scenario(scenario);
+    let provenance = provenance::Provenance::new(overrides).with_scenario(scenario, None);
+    report::write_trade(path, report, &names, &provenance, 0.0)
+}
+
 /// Run one `entrynav` command line in this process (`args[0]` is the program name) and return
 /// its exit code: 0 success, 1 a failed output or check, 2 a usage error (with clap's message),
 /// 130 interrupted. The error message goes to standard error, as the binary prints it. For the

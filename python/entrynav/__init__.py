@@ -138,9 +138,11 @@ def builtin_scenarios() -> Dict[str, str]:
 class TradeResult:
     """The outcome of `trade`: the summary (the CLI's JSON) and the per-epoch series."""
 
-    def __init__(self, summary: Dict[str, Any], details: Dict[str, Any], scenario: Scenario, filters: List[str]):
+    def __init__(self, summary: Dict[str, Any], details: Dict[str, Any], scenario: Scenario, filters: List[str],
+                 native: Any = None):
         self.summary = summary
         self._details = details
+        self._native = native
         self.scenario = scenario
         self.filters = filters
 
@@ -224,6 +226,14 @@ class TradeResult:
             return None
         return pd.DataFrame(b["series"], index=pd.Index(b["times_s"], name="t_s"), dtype=float)
 
+    def report(self, path: Union[str, Path]) -> Path:
+        """Write the self-contained HTML report (`entrynav trade --report PATH`): recommendation,
+        verdicts, RMSE against the PCRLB, errors and ±3σ, NEES/NIS, dispersion. Returns the path."""
+        if self._native is None:
+            raise ValueError("this result has no native trade to report on")
+        _entrynav.write_report(self._native, str(path))
+        return Path(path)
+
     def to_json(self, path: Union[str, Path]) -> None:
         """Write the summary as the CLI writes `--json` (with a `provenance` saying where it came
         from; no `timing`)."""
@@ -292,7 +302,7 @@ def trade(
         raise ValueError(f"runs = {runs} is out of range: must be >= 1 and <= 10000000")
     if seed < 0:
         raise ValueError(f"seed = {seed} is out of range: must be >= 0")
-    summary, details, _complete, interrupted = _entrynav.trade(
+    summary, details, _complete, interrupted, native = _entrynav.trade(
         scenario.to_toml(),
         scenario.folder,
         ",".join(names),
@@ -302,7 +312,7 @@ def trade(
         pcrlb,
         _progress_callback(progress),
     )
-    result = TradeResult(json.loads(summary), json.loads(details), scenario, names)
+    result = TradeResult(json.loads(summary), json.loads(details), scenario, names, native)
     if interrupted:
         err = KeyboardInterrupt(
             f"trade interrupted: {result.summary['runs_completed']} of {result.summary['runs']} runs finished; "

@@ -91,10 +91,26 @@ fn trade_err(e: TradeError) -> PyErr {
     }
 }
 
+/// A finished trade kept on the Rust side, for what needs more than its JSON (the HTML report).
+#[pyclass(frozen, module = "entrynav._entrynav")]
+struct NativeTrade {
+    report: TradeReport,
+    scenario: Scenario,
+}
+
+/// Write the HTML report of `trade` to `path` (as `entrynav trade --report PATH`): seconds taken.
+#[pyfunction]
+fn write_report(py: Python<'_>, trade: &NativeTrade, path: &str) -> PyResult<f64> {
+    py.detach(|| {
+        entrynav_cli::write_trade_report(Path::new(path), &trade.report, &trade.scenario, &[])
+    })
+    .map_err(|e| PyValueError::new_err(format!("{e:#}")))
+}
+
 /// What a trade hands back to Python: the summary JSON (the CLI's `--json` without `provenance`
 /// and `timing`), the per-filter series and final errors as JSON, whether it completed, and
 /// whether Ctrl-C (or the progress callback) stopped it.
-type TradeOut = (String, String, bool, bool);
+type TradeOut = (String, String, bool, bool, NativeTrade);
 
 fn details(report: &TradeReport) -> serde_json::Value {
     let filters: serde_json::Map<String, serde_json::Value> = report
@@ -208,14 +224,16 @@ fn trade(
     let summary =
         serde_json::to_string(&report).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
     let details = details(&report).to_string();
+    let complete = report.complete;
+    let native = NativeTrade { report, scenario };
     match stopped {
         // Ctrl-C: the finished runs go back with the flag; the Python side raises
         // KeyboardInterrupt carrying them. Another error from the callback propagates as is.
         Some(e) if e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) => {
-            Ok((summary, details, report.complete, true))
+            Ok((summary, details, complete, true, native))
         }
         Some(e) => Err(e),
-        None => Ok((summary, details, report.complete, false)),
+        None => Ok((summary, details, complete, false, native)),
     }
 }
 
@@ -402,6 +420,8 @@ fn _entrynav(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(trade_shard, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(run_cli, m)?)?;
+    m.add_function(wrap_pyfunction!(write_report, m)?)?;
+    m.add_class::<NativeTrade>()?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())
 }

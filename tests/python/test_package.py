@@ -223,3 +223,13 @@ def test_fmu_pack_from_python(tmp_path):
     assert [p.name for p in paths] == ["MarsEntryNav-fmi3.fmu", "MarsEntryNavFilter-fmi3.fmu", "MarsEntryTruth-fmi3.fmu"]
     spec = entrynav.fmu_pack(tmp_path, scenario="msl-airdata", library=lib)
     assert [p.name for p in spec] == ["MarsEntryNav_msl_airdata.fmu"]
+
+
+def test_the_html_report_from_python(tmp_path):
+    res = entrynav.trade("four-beacon-fusion", ["ekf", "dcifaif"], runs=6, seed=1)
+    page = res.report(tmp_path / "r.html").read_text()
+    assert page.startswith("<!DOCTYPE html>") and '<p class="recommendation">' in page
+    for section in ("summary", "rmse", "errors", "nees-nis"):
+        assert f'<section id="{section}">' in page
+    with pytest.raises(ValueError):
+        res.report(tmp_path)  # a folder, not a file

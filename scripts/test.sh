@@ -7,12 +7,9 @@ bash scripts/setup.sh
 
 echo "== cargo fmt --check"
 cargo fmt --all -- --check
-(cd python && cargo fmt -- --check)
 
 echo "== cargo clippy (all targets, warnings are errors)"
 cargo clippy --workspace --all-targets --release -- -D warnings
-# The Python extension is its own workspace (python/); it shares the target folder.
-(cd python && CARGO_TARGET_DIR="$PWD/../target" cargo clippy --release -- -D warnings)
 
 echo "== rustdoc of the library crates (broken links are errors)"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -p entrynav -p entrynav-loader -p entrynav-fmu -p entrynav-fmi-host -p entrynav-optimizer

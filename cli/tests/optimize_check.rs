@@ -64,8 +64,8 @@ fn default_ground_optimum_navigates_better_than_the_hand_placed_sites() {
     let v = read_json(&j);
     assert_eq!(v["objective"], "nav");
     assert_eq!(v["check"]["verdict"], "not worse", "{}", v["check"]);
-    assert!(v["closest_pair_deg"].as_f64().unwrap() >= 2.0 - 1e-9);
-    assert!(out.contains("at least 2 deg apart"), "{out}");
+    assert!(v["closest_pair_deg"].as_f64().unwrap() >= 3.0 - 1e-9);
+    assert!(out.contains("at least 3 deg apart"), "{out}");
     // An independent trade of the written scenario against the input.
     let mine = trade(g.to_str().unwrap(), &dir.join("t-opt.json"));
     let input = trade("ground-beacons-3", &dir.join("t-in.json"));
@@ -132,9 +132,8 @@ fn optimize_writes_its_files_even_when_standard_output_is_closed() {
 #[test]
 fn select_and_orbiters_check_their_answers_too() {
     let dir = scratch_dir("optimize-check", "select-orbiters");
-    // The certified D-optimal selection keeps the default 2 deg separation, and its check says
-    // what it does to navigation (it is worse on ground-beacons-3: the time-averaged FIM
-    // criterion is not a navigation objective).
+    // The certified D-optimal selection keeps the default 3 deg separation, and its check says
+    // what it does to navigation (the exit code follows the verdict).
     let j = dir.join("select.json");
     let (code, out, err) = entrynav(&[
         "optimize",
@@ -151,7 +150,7 @@ fn select_and_orbiters_check_their_answers_too() {
         j.to_str().unwrap(),
     ]);
     let v = read_json(&j);
-    assert_eq!(v["constraints"]["min_separation_deg"], 2.0, "{out}");
+    assert_eq!(v["constraints"]["min_separation_deg"], 3.0, "{out}");
     let verdict = v["check"]["verdict"].as_str().unwrap();
     assert_eq!(code, if verdict == "worse" { 1 } else { 0 }, "{err}");
     assert!(v["check"]["input"]["rmse_time_avg_pos_m"].as_f64().unwrap() > 0.0);

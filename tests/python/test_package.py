@@ -209,10 +209,11 @@ def test_observe_and_tune_and_a_refused_design_raise_or_return_like_the_cli(tmp_
     assert r.returncode == 0, r.stderr
     assert tuned == entrynav.Scenario(out.read_text(), tuned.folder)
     assert entrynav.trade(tuned, ["ekf"], runs=4).complete
-    # The certified logdet selection is worse than the hand-placed sites on this scenario: the CLI's
-    # check refuses it (exit 1), which the package raises.
+    # With sites only 2 deg apart the certified logdet selection is worse than the hand-placed sites
+    # on this scenario: the CLI's check refuses it (exit 1), which the package raises.
     with pytest.raises(RuntimeError, match="worse than the input design"):
-        entrynav.optimize_select("ground-beacons-3", k=3, grid_deg=1.0, exact=True)
+        entrynav.optimize_select("ground-beacons-3", k=3, grid_deg=1.0, exact=True,
+                                 extra_args=["--min-separation-deg", "2"])
     with pytest.raises(ValueError):
         entrynav.optimize_ground("ground-beacons-3", extra_args=["--beacons", "-3"])
 

@@ -179,10 +179,11 @@ pub struct GroundArgs {
     /// check.
     #[arg(long, conflicts_with = "min_elevation_deg")]
     partial_visibility: bool,
-    /// Smallest great-circle separation between two sites [deg] (0 to 90; default 2: closer
+    /// Smallest great-circle separation between two sites [deg] (0 to 90; default 3: closer
     /// sites see the vehicle along nearly parallel lines, which the bound rewards and a filter
-    /// does not survive: two sites 0.5 deg apart gave an EKF ANEES/dof of 26).
-    #[arg(long, default_value_t = 2.0)]
+    /// does not survive: two sites 0.5 deg apart gave an EKF ANEES/dof of 26, a certified
+    /// selection with sites 2.3 deg apart 8.2; see docs/optimizer.md).
+    #[arg(long, default_value_t = 3.0)]
     min_separation_deg: f64,
     /// Elevation mask of the placed sites [deg] (0 to 90): they measure only while the vehicle
     /// is above it, in the bound and in the written scenario (`elevation_mask_deg`). Default 0,
@@ -249,9 +250,9 @@ pub struct SelectArgs {
     #[arg(long)]
     solver_verbose: bool,
     /// Minimum great-circle separation between chosen sites [deg] (a linear constraint
-    /// z_i + z_j <= 1 of the relaxation for every closer pair; default 2, 0 for none: closer
+    /// z_i + z_j <= 1 of the relaxation for every closer pair; default 3, 0 for none: closer
     /// sites see the vehicle along nearly parallel lines).
-    #[arg(long, value_name = "DEG", default_value_t = 2.0)]
+    #[arg(long, value_name = "DEG", default_value_t = 3.0)]
     min_separation_deg: f64,
     /// Keep only candidates inside this latitude/longitude box [deg].
     #[arg(

@@ -7,16 +7,19 @@
 //! `.fmu`) carries only the FMU: the host's libloading and zip stay in the `entrynav` command.
 //!
 //! Modules: [`api`] (the fmi2 functions of a loaded library and the logger the host passes),
+//! [`api3`] (the fmi3 functions of a loaded library and the FMI 3.0 log callback the host passes),
 //! [`unpack`](mod@unpack) (opening an archive, reading its model description, loading its library) and
 //! `slave` (one instance through the host, and reading all outputs of it or of an in-process
 //! instance the same way).
 #![warn(missing_docs)]
 
 pub mod api;
+pub mod api3;
 mod slave;
 pub mod unpack;
 
 pub use api::{Api, Callbacks, Comp, HostLogger};
+pub use api3::{Api3, Inst3, Log3, Logger3, Message3, State3, host_logger3};
 pub use slave::{OutputGroups, Slave, file_uri, in_process_get_all, output_groups};
 pub use unpack::{Unpacked, unpack};
 

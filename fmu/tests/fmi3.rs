@@ -192,15 +192,23 @@ fn fmi3_type_rules_nvalues_and_the_structural_parameter() {
             i.last()
                 .contains("nValues = 11, but the 1 variables hold 12 values")
         );
-        // The structural parameter accepts only its own value; outputs cannot be set.
+        // The structural parameter accepts only its own value, and only until initialisation
+        // ends (fixed variability); outputs cannot be set.
         let twelve = 12u64;
         let thirteen = 13u64;
-        assert_eq!(fmi3SetUInt64(i.c, &slots, 1, &twelve, 1), OK);
-        assert_eq!(fmi3SetUInt64(i.c, &slots, 1, &thirteen, 1), ERROR);
+        assert_eq!(fmi3SetUInt64(i.c, &slots, 1, &twelve, 1), ERROR);
         assert!(
-            i.last().contains("'n_state_slots' is fixed at 12"),
+            i.last().contains("cannot be set after initialisation"),
             "{}",
             i.last()
+        );
+        let fresh = Inst3::new(model);
+        assert_eq!(fmi3SetUInt64(fresh.c, &slots, 1, &twelve, 1), OK);
+        assert_eq!(fmi3SetUInt64(fresh.c, &slots, 1, &thirteen, 1), ERROR);
+        assert!(
+            fresh.last().contains("'n_state_slots' is fixed at 12"),
+            "{}",
+            fresh.last()
         );
         assert_eq!(fmi3SetFloat64(i.c, &est, 1, buf.as_ptr(), 12), ERROR);
         // Types without variables: fine with no references, an error with one.
@@ -295,6 +303,40 @@ fn the_fmi3_state_machine_speaks_fmi3_and_refuses_what_this_fmu_lacks() {
         e[0].starts_with("fmi3InstantiateCoSimulation") && e[0].contains("instantiation token"),
         "{e:?}"
     );
+}
+
+#[test]
+fn an_instance_answers_only_the_interface_that_created_it() {
+    let i3 = Inst3::new(Model::Truth);
+    let i2 = common::Inst::new(Model::Truth);
+    let mut s: *mut c_void = std::ptr::null_mut();
+    // SAFETY: live instances; locals.
+    unsafe {
+        assert_eq!(fmi2EnterInitializationMode(i3.c), ERROR);
+        assert!(i3.last().starts_with("fmi2EnterInitializationMode: this instance was created by fmi3InstantiateCoSimulation"), "{}", i3.last());
+        assert_eq!(
+            fmi3EnterInitializationMode(i2.c, 0, 0.0, 0.0, 0, 0.0),
+            ERROR
+        );
+        assert_eq!(fmi3Terminate(i2.c), ERROR);
+        assert!(
+            i2.last().contains("created by fmi2Instantiate"),
+            "{}",
+            i2.last()
+        );
+        // A foreign FMU state is named in FMI 3.0 spelling.
+        assert_eq!(fmi3SetFMUState(i3.c, std::ptr::null_mut()), ERROR);
+        assert!(
+            i3.last().contains("FMUState") && !i3.last().contains("FMUstate"),
+            "{}",
+            i3.last()
+        );
+        assert_eq!(fmi3GetFMUState(i3.c, &mut s), OK);
+        assert_eq!(fmi3FreeFMUState(i3.c, &mut s), OK);
+    }
+    // Both still work through their own interface.
+    i2.init();
+    i3.init();
 }
 
 #[test]

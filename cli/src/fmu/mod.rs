@@ -11,6 +11,7 @@
 mod check;
 mod cross_check;
 mod fuzz;
+mod fuzz3;
 mod library;
 mod pack;
 mod run;
@@ -54,9 +55,9 @@ enum FmuAction {
     /// Run a model in process (no FFI) with an input table and write every output as CSV: the
     /// reference the Python tests compare external FMI tools with.
     Run(RunArgs),
-    /// Random fmi2 call sequences and values through our host, huge and tiny intervals and every
-    /// size-like argument included: no crash, every illegal call answered with fmi2Error, every
-    /// refused request leaves the instance as it was.
+    /// Random fmi2 call sequences and values through our host (fmi3 for an FMI 3.0 FMU), huge and
+    /// tiny intervals and every size-like argument included: no crash, every illegal call answered
+    /// with fmi2Error (fmi3Error), every refused request leaves the instance as it was.
     Fuzz(FuzzArgs),
     /// Write the FMI Cross-Check files (<Model>_ref.csv, _ref.opt, _in.csv, README.md and the
     /// .fmu) of packed FMUs, laid out as fmus/2.0/cs/linux64/entrynav/<version>/<Model>/.

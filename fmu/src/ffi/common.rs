@@ -28,8 +28,23 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
     n: usize,
     categories: *const *const c_char,
 ) -> Fmi2Status {
+    // SAFETY: the same contract.
+    unsafe { set_debug_logging("fmi2SetDebugLogging", c, logging_on != 0, n, categories) }
+}
+
+/// The body of `fmi2SetDebugLogging` (and of `fmi3SetDebugLogging`) on behalf of `name`.
+///
+/// # Safety
+/// FMI 2.0 / 3.0 calling conventions.
+pub(super) unsafe fn set_debug_logging(
+    name: &'static str,
+    c: Fmi2Component,
+    logging_on: bool,
+    n: usize,
+    categories: *const *const c_char,
+) -> Fmi2Status {
     const F: Fmi2 = Fmi2::SetDebugLogging;
-    status(c, F, |inner| {
+    status(c, name, |inner| {
         // SAFETY: the master passes `n` category strings (n is bounded first).
         let Some(cats) = (unsafe { slice(categories, n, MAX_CATEGORIES) }) else {
             return inner.inst.error(&format!(
@@ -48,7 +63,7 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
                 }
             }
         }
-        inner.inst.set_debug_logging(logging_on != 0, &names)
+        inner.inst.set_debug_logging(logging_on, &names)
     })
 }
 
@@ -122,6 +137,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
         match Instance::new(spec, name, guid, res, logging_on != 0, sink) {
             Ok(inst) => registry::register(
                 logger,
+                false,
                 Inner {
                     inst,
                     strings: Vec::new(),

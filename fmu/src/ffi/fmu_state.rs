@@ -35,7 +35,20 @@ fn store_snapshot(inner: &mut Inner, func: Fmi2, slot: &mut Fmi2State, snap: Sna
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetFMUstate(c: Fmi2Component, state: *mut Fmi2State) -> Fmi2Status {
-    status(c, Fmi2::GetFMUstate, |i| {
+    // SAFETY: the same contract.
+    unsafe { get_fmu_state("fmi2GetFMUstate", c, state) }
+}
+
+/// The body of `fmi2GetFMUstate` (and of its FMI 3.0 namesake) on behalf of the function `name`.
+///
+/// # Safety
+/// FMI 2.0 / 3.0 calling conventions.
+pub(super) unsafe fn get_fmu_state(
+    name: &'static str,
+    c: Fmi2Component,
+    state: *mut Fmi2State,
+) -> Fmi2Status {
+    status(c, name, |i| {
         if state.is_null() {
             return null_arg(i, Fmi2::GetFMUstate, "FMUstate");
         }
@@ -59,7 +72,20 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: Fmi2Component, state: *mut Fmi2State
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2SetFMUstate(c: Fmi2Component, state: Fmi2State) -> Fmi2Status {
-    status(c, Fmi2::SetFMUstate, |i| {
+    // SAFETY: the same contract.
+    unsafe { set_fmu_state("fmi2SetFMUstate", c, state) }
+}
+
+/// The body of `fmi2SetFMUstate` (and of its FMI 3.0 namesake) on behalf of the function `name`.
+///
+/// # Safety
+/// FMI 2.0 / 3.0 calling conventions.
+pub(super) unsafe fn set_fmu_state(
+    name: &'static str,
+    c: Fmi2Component,
+    state: Fmi2State,
+) -> Fmi2Status {
+    status(c, name, |i| {
         if !known(i, state) {
             return i
                 .inst
@@ -76,7 +102,20 @@ pub unsafe extern "C" fn fmi2SetFMUstate(c: Fmi2Component, state: Fmi2State) -> 
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: Fmi2Component, state: *mut Fmi2State) -> Fmi2Status {
-    status(c, Fmi2::FreeFMUstate, |i| {
+    // SAFETY: the same contract.
+    unsafe { free_fmu_state("fmi2FreeFMUstate", c, state) }
+}
+
+/// The body of `fmi2FreeFMUstate` (and of its FMI 3.0 namesake) on behalf of the function `name`.
+///
+/// # Safety
+/// FMI 2.0 / 3.0 calling conventions.
+pub(super) unsafe fn free_fmu_state(
+    name: &'static str,
+    c: Fmi2Component,
+    state: *mut Fmi2State,
+) -> Fmi2Status {
+    status(c, name, |i| {
         if let Err(s) = i.inst.check(Fmi2::FreeFMUstate) {
             return s;
         }
@@ -108,7 +147,21 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
     state: Fmi2State,
     size: *mut usize,
 ) -> Fmi2Status {
-    status(c, Fmi2::SerializedFMUstateSize, |i| {
+    // SAFETY: the same contract.
+    unsafe { serialized_size("fmi2SerializedFMUstateSize", c, state, size) }
+}
+
+/// The body of `fmi2SerializedFMUstateSize` (and of its FMI 3.0 namesake) on behalf of the function `name`.
+///
+/// # Safety
+/// FMI 2.0 / 3.0 calling conventions.
+pub(super) unsafe fn serialized_size(
+    name: &'static str,
+    c: Fmi2Component,
+    state: Fmi2State,
+    size: *mut usize,
+) -> Fmi2Status {
+    status(c, name, |i| {
         if let Err(s) = i.inst.check(Fmi2::SerializedFMUstateSize) {
             return s;
         }
@@ -138,7 +191,22 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
     bytes: *mut u8,
     size: usize,
 ) -> Fmi2Status {
-    status(c, Fmi2::SerializeFMUstate, |i| {
+    // SAFETY: the same contract.
+    unsafe { serialize("fmi2SerializeFMUstate", c, state, bytes, size) }
+}
+
+/// The body of `fmi2SerializeFMUstate` (and of its FMI 3.0 namesake) on behalf of the function `name`.
+///
+/// # Safety
+/// FMI 2.0 / 3.0 calling conventions.
+pub(super) unsafe fn serialize(
+    name: &'static str,
+    c: Fmi2Component,
+    state: Fmi2State,
+    bytes: *mut u8,
+    size: usize,
+) -> Fmi2Status {
+    status(c, name, |i| {
         if let Err(s) = i.inst.check(Fmi2::SerializeFMUstate) {
             return s;
         }
@@ -174,7 +242,22 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     size: usize,
     state: *mut Fmi2State,
 ) -> Fmi2Status {
-    status(c, Fmi2::DeSerializeFMUstate, |i| {
+    // SAFETY: the same contract.
+    unsafe { deserialize("fmi2DeSerializeFMUstate", c, bytes, size, state) }
+}
+
+/// The body of `fmi2DeSerializeFMUstate` (and of its FMI 3.0 namesake) on behalf of the function `name`.
+///
+/// # Safety
+/// FMI 2.0 / 3.0 calling conventions.
+pub(super) unsafe fn deserialize(
+    name: &'static str,
+    c: Fmi2Component,
+    bytes: *const u8,
+    size: usize,
+    state: *mut Fmi2State,
+) -> Fmi2Status {
+    status(c, name, |i| {
         if let Err(s) = i.inst.check(Fmi2::DeSerializeFMUstate) {
             return s;
         }

@@ -95,6 +95,15 @@ fn c_text(s: &str) -> CString {
 
 impl CLogger {
     fn log(&self, status: Status, category: &str, msg: &str) {
+        self.emit(status, category, msg, true);
+    }
+
+    /// [`CLogger::log`] without the FMI 3.0 renaming (a message that names both interfaces).
+    fn log_verbatim(&self, status: Status, category: &str, msg: &str) {
+        self.emit(status, category, msg, false);
+    }
+
+    fn emit(&self, status: Status, category: &str, msg: &str, rename: bool) {
         let cat = c_text(category);
         match self.f {
             None => {}
@@ -114,7 +123,11 @@ impl CLogger {
                 };
             }
             Some(LogFn::V3(f)) => {
-                let text = c_text(&fmi3::in_fmi3_terms(msg));
+                let text = c_text(&if rename {
+                    fmi3::in_fmi3_terms(msg)
+                } else {
+                    msg.to_string()
+                });
                 // SAFETY: `f` is the master's fmi3LogMessageCallback; the strings are valid
                 // NUL-terminated C strings that outlive the call (the message is not a format).
                 unsafe { f(self.env, status as c_int, cat.as_ptr(), text.as_ptr()) };

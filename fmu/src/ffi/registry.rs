@@ -40,6 +40,9 @@ pub(super) struct Handle {
     inner: Mutex<Inner>,
     /// Set by `fmi2FreeInstance` after it removed the handle from the registry.
     freed: AtomicBool,
+    /// Created by `fmi3InstantiateCoSimulation`: only fmi3 functions may use it (and only fmi2
+    /// functions an instance of `fmi2Instantiate`).
+    fmi3: bool,
 }
 
 /// Live instances by token.
@@ -48,12 +51,13 @@ static LIVE: RwLock<BTreeMap<usize, Arc<Handle>>> = RwLock::new(BTreeMap::new())
 static NEXT: AtomicUsize = AtomicUsize::new(16);
 
 /// Register a new instance; its token is the `fmi2Component` handed to the master.
-pub(super) fn register(log: Arc<CLogger>, inner: Inner) -> Fmi2Component {
+pub(super) fn register(log: Arc<CLogger>, fmi3: bool, inner: Inner) -> Fmi2Component {
     let token = NEXT.fetch_add(16, Ordering::Relaxed);
     let handle = Arc::new(Handle {
         log,
         inner: Mutex::new(inner),
         freed: AtomicBool::new(false),
+        fmi3,
     });
     LIVE.write()
         .unwrap_or_else(PoisonError::into_inner)
@@ -93,6 +97,29 @@ pub(super) fn with_inst<T>(
     let Some(handle) = lookup(c) else {
         return fail;
     };
+    // An instance answers only the interface that created it.
+    let name = func.to_string();
+    let other = match name.get(..4) {
+        Some("fmi2") => handle.fmi3,
+        Some("fmi3") => !handle.fmi3,
+        _ => false,
+    };
+    if other {
+        let (made, use_) = if handle.fmi3 {
+            ("fmi3InstantiateCoSimulation (FMI 3.0)", "fmi3")
+        } else {
+            ("fmi2Instantiate (FMI 2.0)", "fmi2")
+        };
+        let log = &handle.log;
+        let _ = panic_hook::guarded(|| {
+            log.log_verbatim(
+                Status::Error,
+                "logStatusError",
+                &format!("{name}: this instance was created by {made}; call the {use_} functions on it; nothing was done"),
+            )
+        });
+        return fail;
+    }
     let result = call(&handle, func, fail, f);
     // The last holder drops the instance: this call, when the instance was freed during it.
     let _ = panic_hook::guarded(move || drop(handle));

@@ -208,6 +208,14 @@ impl Instance {
                             if let Err(s) = self.check(Fmi2::setter(Type::Integer)) {
                                 return s;
                             }
+                            // Fixed variability: settable until initialisation ends, as the
+                            // other fixed parameters.
+                            if self.phase == crate::state::Phase::StepComplete {
+                                return self.error(&format!(
+                                    "{func}: '{}' is a fixed structural parameter and cannot be set after initialisation",
+                                    x.name
+                                ));
+                            }
                             v == Some(Value::Integer(slots as i32))
                         }
                         _ => false,

@@ -5,7 +5,8 @@
 //! non-empty and none may disclose a host file. The values cover huge and tiny intervals and
 //! step sizes, and every size-like argument below and above its bound (value-reference counts,
 //! string lengths, category counts, serialized-state sizes, numbers of FMU states, measurement
-//! times). CI runs 100,000 calls per FMU; `--calls 5000000` is the long mode.
+//! times). CI runs 100,000 calls per FMU; `--calls 5000000` is the long mode. An FMI 3.0 FMU
+//! (`<id>-fmi3.fmu`) is fuzzed through its fmi3 functions instead ([`super::fuzz3`]).
 
 #![allow(non_snake_case)]
 
@@ -25,7 +26,8 @@ use rand_chacha::ChaCha8Rng;
 pub(super) struct FuzzArgs {
     /// The .fmu file.
     file: PathBuf,
-    /// fmi2 calls in all (CI: 100,000 per FMU; the long mode: 5,000,000).
+    /// FMI calls in all (fmi2, or fmi3 for an FMI 3.0 FMU; CI: 100,000 per FMU; the long mode:
+    /// 5,000,000).
     #[arg(long, default_value_t = 100_000)]
     calls: usize,
     /// Longest call sequence on one instance.
@@ -130,6 +132,9 @@ impl Fuzzer<'_> {
 
 pub(super) fn fuzz(a: &FuzzArgs) -> Result<()> {
     let u = unpack(&a.file)?;
+    if u.fmi_version == 3 {
+        return super::fuzz3::fuzz3(&u, a.calls, a.max_sequence, a.seed);
+    }
     let mut f = Fuzzer {
         vars: u.spec.vars().to_vec(),
         guid: u.spec.guid().to_string(),

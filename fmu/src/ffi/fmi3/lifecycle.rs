@@ -2,6 +2,7 @@
 //! initialisation, fmi3DoStep, termination, reset, and the FMU-state functions (whose C
 //! signatures are those of FMI 2.0: they run the FMI 2.0 bodies).
 
+use super::super::fmu_state;
 use super::super::*;
 use crate::instance::resolve_spec;
 use crate::limits::{MAX_GUID_BYTES, MAX_LOCATION_BYTES, MAX_STRING_BYTES};
@@ -30,8 +31,8 @@ pub unsafe extern "C" fn fmi3SetDebugLogging(
     n: usize,
     categories: *const *const c_char,
 ) -> Fmi3Status {
-    // SAFETY: the same contract as fmi2SetDebugLogging (the Boolean widened).
-    unsafe { fmi2SetDebugLogging(c, (logging_on != 0) as Fmi2Boolean, n, categories) }
+    // SAFETY: the same contract as fmi2SetDebugLogging.
+    unsafe { set_debug_logging("fmi3SetDebugLogging", c, logging_on != 0, n, categories) }
 }
 
 /// `fmi3InstantiateCoSimulation`: `resourcePath` is a directory path (FMI 3.0), not a URI;
@@ -107,6 +108,7 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
         match Instance::new(spec, name, token, res.as_deref(), logging_on != 0, sink) {
             Ok(inst) => registry::register(
                 logger,
+                true,
                 Inner {
                     inst,
                     strings: Vec::new(),
@@ -128,8 +130,7 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
 /// FMI 3.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3FreeInstance(c: Fmi3Instance) {
-    // SAFETY: the same contract.
-    unsafe { fmi2FreeInstance(c) }
+    let _ = panic_hook::guarded(|| registry::free(c));
 }
 
 /// `fmi3EnterInitializationMode`: the experiment set-up of FMI 2.0's fmi2SetupExperiment, then
@@ -167,8 +168,9 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
 /// FMI 3.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3ExitInitializationMode(c: Fmi3Instance) -> Fmi3Status {
-    // SAFETY: the same contract.
-    unsafe { fmi2ExitInitializationMode(c) }
+    status(c, "fmi3ExitInitializationMode", |i| {
+        i.inst.exit_initialization_mode()
+    })
 }
 
 /// `fmi3Terminate`.
@@ -177,8 +179,7 @@ pub unsafe extern "C" fn fmi3ExitInitializationMode(c: Fmi3Instance) -> Fmi3Stat
 /// FMI 3.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3Terminate(c: Fmi3Instance) -> Fmi3Status {
-    // SAFETY: the same contract.
-    unsafe { fmi2Terminate(c) }
+    status(c, "fmi3Terminate", |i| i.inst.terminate())
 }
 
 /// `fmi3Reset`.
@@ -187,8 +188,7 @@ pub unsafe extern "C" fn fmi3Terminate(c: Fmi3Instance) -> Fmi3Status {
 /// FMI 3.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3Reset(c: Fmi3Instance) -> Fmi3Status {
-    // SAFETY: the same contract.
-    unsafe { fmi2Reset(c) }
+    status(c, "fmi3Reset", |i| i.inst.reset())
 }
 
 /// Write `v` through `p` when the master passed a pointer.
@@ -242,8 +242,8 @@ pub unsafe extern "C" fn fmi3DoStep(
 /// FMI 3.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3GetFMUState(c: Fmi3Instance, state: *mut *mut c_void) -> Fmi3Status {
-    // SAFETY: the same contract.
-    unsafe { fmi2GetFMUstate(c, state) }
+    // SAFETY: the same contract as fmi2GetFMUstate.
+    unsafe { fmu_state::get_fmu_state("fmi3GetFMUState", c, state) }
 }
 
 /// `fmi3SetFMUState`.
@@ -252,8 +252,8 @@ pub unsafe extern "C" fn fmi3GetFMUState(c: Fmi3Instance, state: *mut *mut c_voi
 /// FMI 3.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3SetFMUState(c: Fmi3Instance, state: *mut c_void) -> Fmi3Status {
-    // SAFETY: the same contract.
-    unsafe { fmi2SetFMUstate(c, state) }
+    // SAFETY: the same contract as fmi2SetFMUstate.
+    unsafe { fmu_state::set_fmu_state("fmi3SetFMUState", c, state) }
 }
 
 /// `fmi3FreeFMUState`.
@@ -262,8 +262,8 @@ pub unsafe extern "C" fn fmi3SetFMUState(c: Fmi3Instance, state: *mut c_void) ->
 /// FMI 3.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3FreeFMUState(c: Fmi3Instance, state: *mut *mut c_void) -> Fmi3Status {
-    // SAFETY: the same contract.
-    unsafe { fmi2FreeFMUstate(c, state) }
+    // SAFETY: the same contract as fmi2FreeFMUstate.
+    unsafe { fmu_state::free_fmu_state("fmi3FreeFMUState", c, state) }
 }
 
 /// `fmi3SerializedFMUStateSize`.
@@ -276,8 +276,8 @@ pub unsafe extern "C" fn fmi3SerializedFMUStateSize(
     state: *mut c_void,
     size: *mut usize,
 ) -> Fmi3Status {
-    // SAFETY: the same contract.
-    unsafe { fmi2SerializedFMUstateSize(c, state, size) }
+    // SAFETY: the same contract as fmi2SerializedFMUstateSize.
+    unsafe { fmu_state::serialized_size("fmi3SerializedFMUStateSize", c, state, size) }
 }
 
 /// `fmi3SerializeFMUState`.
@@ -291,8 +291,8 @@ pub unsafe extern "C" fn fmi3SerializeFMUState(
     bytes: *mut u8,
     size: usize,
 ) -> Fmi3Status {
-    // SAFETY: the same contract.
-    unsafe { fmi2SerializeFMUstate(c, state, bytes, size) }
+    // SAFETY: the same contract as fmi2SerializeFMUstate.
+    unsafe { fmu_state::serialize("fmi3SerializeFMUState", c, state, bytes, size) }
 }
 
 /// `fmi3DeserializeFMUState`.
@@ -306,6 +306,6 @@ pub unsafe extern "C" fn fmi3DeserializeFMUState(
     size: usize,
     state: *mut *mut c_void,
 ) -> Fmi3Status {
-    // SAFETY: the same contract.
-    unsafe { fmi2DeSerializeFMUstate(c, bytes, size, state) }
+    // SAFETY: the same contract as fmi2DeSerializeFMUstate.
+    unsafe { fmu_state::deserialize("fmi3DeserializeFMUState", c, bytes, size, state) }
 }

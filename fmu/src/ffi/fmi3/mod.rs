@@ -58,7 +58,7 @@ pub const MAPPED: [(&str, Fmi2); 20] = [
 
 /// FMI 2.0 names in the instance's messages and their FMI 3.0 counterparts (longest first where
 /// one is a prefix of another); every other `fmi2X` becomes `fmi3X`.
-const RENAMED: [(&str, &str); 17] = [
+const RENAMED: [(&str, &str); 19] = [
     ("fmi2Instantiate", "fmi3InstantiateCoSimulation"),
     ("fmi2SetupExperiment", "fmi3EnterInitializationMode"),
     ("fmi2GetReal", "fmi3GetFloat64"),
@@ -72,6 +72,8 @@ const RENAMED: [(&str, &str); 17] = [
     ("fmi2SerializeFMUstate", "fmi3SerializeFMUState"),
     ("fmi2DeSerializeFMUstate", "fmi3DeserializeFMUState"),
     ("fmi2Component", "fmi3Instance"),
+    ("FMUstate", "FMUState"),
+    ("binaries/linux64/", "binaries/x86_64-linux/"),
     ("fmuResourceLocation", "resourcePath"),
     ("GUID", "instantiation token"),
     ("StepComplete", "StepMode"),

@@ -124,33 +124,60 @@ pub unsafe extern "C" fn fmi2Instantiate(
                 ));
             }
         };
-        let bound = match binding::current() {
-            Ok(b) => b,
-            Err(e) => return fail(&format!("fmi2Instantiate: {e}")),
-        };
-        let spec = match resolve_spec(bound.as_ref(), guid, res) {
-            Ok(s) => s,
-            Err(e) => return fail(&e.to_string()),
-        };
-        let sink_logger = Arc::clone(&logger);
-        let sink: LogSink = Box::new(move |s, cat, msg| sink_logger.log(s, cat, msg));
-        match Instance::new(spec, name, guid, res, logging_on != 0, sink) {
-            Ok(inst) => registry::register(
-                logger,
-                false,
-                Inner {
-                    inst,
-                    strings: Vec::new(),
-                    snapshots: HashMap::new(),
-                },
-            ),
-            Err((sink, e)) => {
-                sink(Status::Error, "logStatusError", &e.to_string());
-                std::ptr::null_mut()
-            }
-        }
+        create(
+            logger,
+            false,
+            "fmi2Instantiate",
+            name,
+            guid,
+            res,
+            logging_on != 0,
+        )
     });
     r.unwrap_or(std::ptr::null_mut())
+}
+
+/// The rest of an instantiation once the arguments are read: the library's binding, the model
+/// the GUID / instantiation token names, the instance, its registration (`fmi3`: created by
+/// fmi3InstantiateCoSimulation). Errors go to `logger` and give NULL.
+pub(super) fn create(
+    logger: Arc<CLogger>,
+    fmi3: bool,
+    func: &str,
+    name: &str,
+    guid: &str,
+    res: Option<&str>,
+    logging_on: bool,
+) -> Fmi2Component {
+    let fail = |msg: &str| {
+        logger.log(Status::Error, "logStatusError", msg);
+        std::ptr::null_mut()
+    };
+    let bound = match binding::current() {
+        Ok(b) => b,
+        Err(e) => return fail(&format!("{func}: {e}")),
+    };
+    let spec = match resolve_spec(bound.as_ref(), guid, res) {
+        Ok(s) => s,
+        Err(e) => return fail(&e.to_string()),
+    };
+    let sink_logger = Arc::clone(&logger);
+    let sink: LogSink = Box::new(move |s, cat, msg| sink_logger.log(s, cat, msg));
+    match Instance::new(spec, name, guid, res, logging_on, sink) {
+        Ok(inst) => registry::register(
+            logger,
+            fmi3,
+            Inner {
+                inst,
+                strings: Vec::new(),
+                snapshots: HashMap::new(),
+            },
+        ),
+        Err((sink, e)) => {
+            sink(Status::Error, "logStatusError", &e.to_string());
+            std::ptr::null_mut()
+        }
+    }
 }
 
 /// `fmi2FreeInstance`: safe with NULL, after any error, twice, and while another thread is

@@ -11,7 +11,7 @@
 #![allow(non_snake_case)]
 
 mod calls;
-mod model;
+pub(super) mod model;
 mod ops;
 mod values;
 

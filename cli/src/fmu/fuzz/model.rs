@@ -43,15 +43,18 @@ impl Expect {
     }
 }
 
-/// Scenario timing and which filters fit, per built-in scenario.
-pub(super) struct Scenarios {
-    pub(super) timing: HashMap<String, (f64, f64)>,
-    pub(super) fits: HashMap<String, Vec<&'static str>>,
+/// Scenario timing and which filters fit, per built-in scenario (shared with the FMI 3.0
+/// fuzzer).
+pub(in crate::fmu) struct Scenarios {
+    pub(in crate::fmu) timing: HashMap<String, (f64, f64)>,
+    pub(in crate::fmu) fits: HashMap<String, Vec<&'static str>>,
 }
 
 impl Scenarios {
     /// The built-in scenarios, and the embedded one of a specific FMU.
-    pub(super) fn new(specific: Option<&mars_entry_nav::vars::Specific>) -> Result<Scenarios> {
+    pub(in crate::fmu) fn new(
+        specific: Option<&mars_entry_nav::vars::Specific>,
+    ) -> Result<Scenarios> {
         let mut all = Vec::new();
         for name in BUILTIN_NAMES {
             let s = Scenario::build(ScenarioConfig::builtin(name)?, &entrynav::files::no_files)?;

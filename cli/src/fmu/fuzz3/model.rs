@@ -3,13 +3,10 @@
 //! implements it, the variables as FMI 3.0 types them ([`V3`]), and what every call must answer.
 
 use super::super::*;
-use entrynav::estimation::nav::FilterKind;
-use entrynav::scenario::{Scenario, ScenarioConfig};
 use mars_entry_nav::instance::Type3;
 use mars_entry_nav::limits::MAX_PREDICTION_SUBSTEPS;
 use mars_entry_nav::vars::fmi3::{Extra, extras, state_slots};
 use mars_entry_nav::vars::{DEFAULT_FILTER, DEFAULT_SCENARIO, DEFAULT_SEED, ModelSpec};
-use std::collections::HashMap;
 
 /// The states of the FMI 3.0 co-simulation state machine this FMU has.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -120,37 +117,7 @@ pub(super) fn variables(spec: &ModelSpec) -> Vec<V3> {
     out
 }
 
-/// Scenario timing and which filters fit, per built-in scenario.
-pub(super) struct Scenarios {
-    pub(super) timing: HashMap<String, (f64, f64)>,
-    pub(super) fits: HashMap<String, Vec<&'static str>>,
-}
-
-impl Scenarios {
-    /// The built-in scenarios, and the embedded one of a specific FMU.
-    pub(super) fn new(specific: Option<&mars_entry_nav::vars::Specific>) -> Result<Scenarios> {
-        let mut all = Vec::new();
-        for name in BUILTIN_NAMES {
-            let s = Scenario::build(ScenarioConfig::builtin(name)?, &entrynav::files::no_files)?;
-            all.push((name.to_string(), Arc::new(s)));
-        }
-        if let Some(sp) = specific {
-            all.push((sp.scenario.config.name.clone(), Arc::clone(&sp.scenario)));
-        }
-        let (mut timing, mut fits) = (HashMap::new(), HashMap::new());
-        for (name, s) in all {
-            let t = &s.config.timing;
-            timing.insert(name.clone(), (t.duration_s, s.onboard.filter_step_s));
-            let ok: Vec<&'static str> = FilterKind::ALL
-                .into_iter()
-                .filter(|k| k.misfit(&s.onboard).is_none())
-                .map(FilterKind::name)
-                .collect();
-            fits.insert(name, ok);
-        }
-        Ok(Scenarios { timing, fits })
-    }
-}
+pub(super) use super::super::fuzz::model::Scenarios;
 
 /// The model of one instance (everything fmi3GetFMUState saves).
 #[derive(Debug, Clone)]

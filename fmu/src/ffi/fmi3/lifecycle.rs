@@ -4,7 +4,6 @@
 
 use super::super::fmu_state;
 use super::super::*;
-use crate::instance::resolve_spec;
 use crate::limits::{MAX_GUID_BYTES, MAX_LOCATION_BYTES, MAX_STRING_BYTES};
 
 /// `fmi3Status` (a C enum: `int`).
@@ -95,31 +94,15 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
             Err(TextError::Null) => None,
             Err(e) => return fail(&format!("{F}: {}", e.describe("resourcePath"))),
         };
-        let bound = match binding::current() {
-            Ok(b) => b,
-            Err(e) => return fail(&format!("{F}: {e}")),
-        };
-        let spec = match resolve_spec(bound.as_ref(), token, res.as_deref()) {
-            Ok(s) => s,
-            Err(e) => return fail(&in_fmi3_terms(&e.to_string())),
-        };
-        let sink_logger = Arc::clone(&logger);
-        let sink: LogSink = Box::new(move |s, cat, msg| sink_logger.log(s, cat, msg));
-        match Instance::new(spec, name, token, res.as_deref(), logging_on != 0, sink) {
-            Ok(inst) => registry::register(
-                logger,
-                true,
-                Inner {
-                    inst,
-                    strings: Vec::new(),
-                    snapshots: HashMap::new(),
-                },
-            ),
-            Err((sink, e)) => {
-                sink(Status::Error, "logStatusError", &e.to_string());
-                std::ptr::null_mut()
-            }
-        }
+        super::super::common::create(
+            logger,
+            true,
+            F,
+            name,
+            token,
+            res.as_deref(),
+            logging_on != 0,
+        )
     });
     r.unwrap_or(std::ptr::null_mut())
 }

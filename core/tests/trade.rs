@@ -268,7 +268,7 @@ fn shards_merge_to_exactly_the_single_process_result() {
     use entrynav::sim::{Shard, merge_shards, run_shard};
     let s = scenario("orbiters-3");
     let filters = [FilterKind::Ekf];
-    // 600 runs = 32 accumulation blocks of 19 runs; 3 shards of 10 or 11 blocks, and 2 of 16.
+    // 600 runs = 3 accumulation blocks; 3 shards of one block each, and 2 uneven shards.
     let opts = McOptions {
         runs: 600,
         seed: 9,

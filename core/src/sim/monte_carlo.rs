@@ -17,7 +17,7 @@ use super::report::FilterReport;
 use super::run_record::RunRecord;
 pub use super::run_record::filter_run;
 use super::shard::{
-    BlockSums, SHARD_FORMAT, Shard, ShardResult, block_runs, fold_partial, merge_shards,
+    ACCUMULATION_BLOCK, BlockSums, SHARD_FORMAT, Shard, ShardResult, fold_partial, merge_shards,
     scenario_fingerprint,
 };
 use crate::estimation::nav::{FilterKind, NavError};
@@ -347,9 +347,8 @@ fn run_blocks(
         if opts.cancelled() {
             return Ok((out, false));
         }
-        let size = block_runs(opts.runs);
-        let mut first = block * size;
-        let last = ((block + 1) * size).min(opts.runs);
+        let mut first = block * ACCUMULATION_BLOCK;
+        let last = ((block + 1) * ACCUMULATION_BLOCK).min(opts.runs);
         let mut accs = vec![FilterAccumulator::default(); filters.len()];
         let mut bounds = BoundSums::new(scenario);
         // A resumed study: a finished block is kept, a partial one continues from its next run.

@@ -7,27 +7,10 @@ use super::pcrlb_sums::BoundSums;
 use crate::scenario::Scenario;
 use serde::Serialize;
 
-/// The largest accumulation block, in runs.
-pub const ACCUMULATION_BLOCK: usize = 256;
-/// A study of up to `MAX_BLOCKS × ACCUMULATION_BLOCK` runs has at most this many blocks.
-pub const MAX_BLOCKS: usize = 32;
-
-/// Runs per accumulation block of a study of `runs` runs: ⌈runs / [`MAX_BLOCKS`]⌉, at least 1 and
-/// at most [`ACCUMULATION_BLOCK`]. Sums are formed per block in run order and blocks are combined
+/// Runs per accumulation block. Sums are formed per block in run order and blocks are combined
 /// in block order, so a study split into shards (whole blocks) and merged gives exactly the
-/// single-process statistics; a study of a few hundred runs still has enough blocks to give
-/// every one of up to 32 shards an even share (200 runs in 4 shards: 49 to 56 runs each), and the
-/// number of blocks, hence a shard file's size, stays bounded for small studies. The size depends
-/// on the run count only, never on the shard count. Changing the rule changes results in the
-/// last bits.
-pub fn block_runs(runs: usize) -> usize {
-    runs.div_ceil(MAX_BLOCKS).clamp(1, ACCUMULATION_BLOCK)
-}
-
-/// The number of accumulation blocks of a study of `runs` runs.
-pub fn block_count(runs: usize) -> usize {
-    runs.div_ceil(block_runs(runs))
-}
+/// single-process statistics. Changing this constant changes results in the last bits.
+pub const ACCUMULATION_BLOCK: usize = 256;
 
 /// A slice `index` of `count` of a Monte Carlo study (contiguous accumulation blocks).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
@@ -57,10 +40,9 @@ impl Shard {
         Ok(Shard { index, count })
     }
 
-    /// The accumulation blocks of this shard for a study of `runs` runs: a contiguous range,
-    /// shards differing by at most one block.
+    /// The accumulation blocks of this shard for a study of `runs` runs.
     pub fn blocks(&self, runs: usize) -> std::ops::Range<usize> {
-        let n_blocks = block_count(runs);
+        let n_blocks = runs.div_ceil(ACCUMULATION_BLOCK);
         (self.index * n_blocks / self.count)..((self.index + 1) * n_blocks / self.count)
     }
 }
@@ -113,8 +95,8 @@ fn complete_default() -> bool {
     true
 }
 
-/// Shard file format version (4: block size from the run count, [`block_runs`]).
-pub const SHARD_FORMAT: u32 = 4;
+/// Shard file format version.
+pub const SHARD_FORMAT: u32 = 3;
 
 /// FNV-1a 64 fingerprint of a scenario's canonical TOML.
 pub fn scenario_fingerprint(scenario: &Scenario) -> String {
@@ -188,7 +170,7 @@ pub fn merge_shards(mut shards: Vec<ShardResult>) -> Result<TradeReport, TradeEr
             first.shard.count
         )));
     }
-    let n_blocks = block_count(first.runs);
+    let n_blocks = first.runs.div_ceil(ACCUMULATION_BLOCK);
     let mut fold = Fold::new(first.filters.len());
     for s in &shards {
         fold.add(s)?;
@@ -286,59 +268,6 @@ impl Fold {
             channels: first.channels,
             pcrlb,
             atmosphere: first.atmosphere,
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The runs of `shard` in a study of `runs` runs.
-    fn runs_of(shard: Shard, runs: usize) -> usize {
-        let b = shard.blocks(runs);
-        (b.end * block_runs(runs)).min(runs) - (b.start * block_runs(runs)).min(runs)
-    }
-
-    #[test]
-    fn shards_are_balanced_to_one_block_and_cover_the_study() {
-        // The cases of the report: 200 runs in 4 shards put all in shard 3; 600 in 2 were 1 vs 2
-        // blocks of 256.
-        let four: Vec<usize> = (0..4)
-            .map(|i| runs_of(Shard { index: i, count: 4 }, 200))
-            .collect();
-        assert_eq!(four.iter().sum::<usize>(), 200);
-        assert!(four.iter().all(|&n| (49..=56).contains(&n)), "{four:?}");
-        let two: Vec<usize> = (0..2)
-            .map(|i| runs_of(Shard { index: i, count: 2 }, 600))
-            .collect();
-        assert_eq!(
-            two,
-            [304, 296],
-            "16 blocks of 19 runs each, the last one of 11"
-        );
-        for runs in [
-            1, 2, 7, 31, 32, 33, 200, 255, 256, 600, 1000, 5000, 8192, 8193, 100_000,
-        ] {
-            let size = block_runs(runs);
-            assert!((1..=ACCUMULATION_BLOCK).contains(&size));
-            assert!(block_count(runs) <= MAX_BLOCKS || size == ACCUMULATION_BLOCK);
-            for count in 1..=8 {
-                let mut next = 0;
-                let mut sizes = Vec::new();
-                for index in 0..count {
-                    let b = Shard { index, count }.blocks(runs);
-                    assert_eq!(b.start, next, "{runs} runs, {index}/{count}");
-                    next = b.end;
-                    sizes.push(b.len());
-                }
-                assert_eq!(next, block_count(runs));
-                let (lo, hi) = (sizes.iter().min().unwrap(), sizes.iter().max().unwrap());
-                assert!(
-                    hi - lo <= 1,
-                    "{runs} runs in {count} shards: blocks {sizes:?}"
-                );
-            }
         }
     }
 }

@@ -145,7 +145,10 @@ def cli_study(a, client):
     """Engine or CLI mode: shard tasks on the cluster, merged by `entrynav trade merge`; returns the
     exit code."""
     n_workers = max(1, len(client.scheduler_info().get("workers", {})))
-    count = a.shards or 2 * n_workers
+    # A shard holds whole accumulation blocks of 256 runs (so that the merge is bit-identical):
+    # by default no more shards than blocks, so none is empty.
+    blocks = -(-a.runs // 256)
+    count = a.shards or max(1, min(2 * n_workers, blocks))
     if a.engine == "package":
         futures = [client.submit(package_shard, a.scenario, a.filters, a.runs, a.seed, i, count, a.sets,
                                  pure=False, key=f"entrynav-shard-{i}-of-{count}") for i in range(count)]

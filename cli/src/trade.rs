@@ -173,6 +173,20 @@ fn run_grid(args: &TradeArgs, grid: &Path) -> Result<()> {
 /// not written (a shard must be complete to merge).
 fn run_one_shard(args: &TradeArgs, shard: Shard, path: &Path) -> Result<()> {
     let setup = Setup::load(args)?;
+    let blocks = setup
+        .runs
+        .div_ceil(entrynav::sim::shard::ACCUMULATION_BLOCK);
+    if shard.blocks(setup.runs).is_empty() {
+        eprintln!(
+            "note: shard {}/{} of this {}-run study holds no runs: a shard holds whole accumulation \
+             blocks of {} runs (so that merged shards equal the single-process study bit for bit) \
+             and the study has {blocks}; use at most {blocks} shard(s)",
+            shard.index,
+            shard.count,
+            setup.runs,
+            entrynav::sim::shard::ACCUMULATION_BLOCK
+        );
+    }
     let opts = setup.options(args);
     let clock = std::time::Instant::now();
     let result = with_threads(args.threads, || {

@@ -160,3 +160,42 @@ fn merge_reports_the_shards_summed_wall_time_and_accepts_quiet() {
     let merged = read_json(&json)["timing"]["wall_s"].as_f64().unwrap();
     assert!((merged - walls).abs() < 1e-9, "{merged} vs {walls}");
 }
+
+#[test]
+fn an_empty_shard_is_named_with_the_number_of_shards_the_study_can_use() {
+    let dir = scratch_dir("merge-provenance", "empty-shard");
+    let out = dir.join("s1.json");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--runs",
+        "200",
+        "--shard",
+        "1/4",
+        "--quiet",
+        "--json",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("shard 1/4 of this 200-run study holds no runs")
+            && err.contains("use at most 1 shard"),
+        "{err}"
+    );
+    // A shard that holds a block: no note.
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--runs",
+        "10",
+        "--shard",
+        "0/1",
+        "--quiet",
+        "--json",
+        dir.join("s0.json").to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("holds no runs"), "{err}");
+}

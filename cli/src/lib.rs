@@ -30,7 +30,7 @@ mod provenance;
 mod replay;
 mod report;
 mod scenarios;
-mod simulate;
+pub mod simulate;
 mod threads;
 mod trade;
 mod trade_args;

@@ -63,14 +63,13 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     Ok(())
 }
 
-/// CSV: one row per truth sample (t = 0, every measurement epoch, the final time); measurement
-/// columns are empty where the channel was not sampled or not available.
-fn write_csv<W: Write>(
-    w: &mut csv::Writer<W>,
-    scenario: &Scenario,
-    run: &TruthRun,
-) -> csv::Result<()> {
-    let mut header = vec![
+/// The truth run as a table: the column names and one row per truth sample (t = 0, every
+/// measurement epoch, the final time); a measurement is `None` where the channel was not sampled
+/// or not available, a visibility 0 or 1. What `--out FILE` writes and the Python package's
+/// `simulate` returns.
+pub fn truth_table(scenario: &Scenario, run: &TruthRun) -> (Vec<String>, Vec<Vec<Option<f64>>>) {
+    let cartesian = scenario.truth_model.kind.is_cartesian();
+    let mut header: Vec<String> = [
         "t_s",
         "r_m",
         "lon_rad",
@@ -84,46 +83,54 @@ fn write_csv<W: Write>(
         "heating_wm2",
         "aero_accel_mps2",
     ]
-    .into_iter()
     .map(String::from)
-    .collect::<Vec<_>>();
-    if scenario.truth_model.kind.is_cartesian() {
-        for c in ["x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps"] {
-            header.push(c.into());
-        }
+    .to_vec();
+    if cartesian {
+        header.extend(["x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps"].map(String::from));
     }
-    for b in &scenario.beacon_names {
-        header.push(format!("visible_{b}"));
-    }
-    for c in &scenario.channels {
-        header.push(c.name.clone());
-    }
-    w.write_record(&header)?;
+    header.extend(scenario.beacon_names.iter().map(|b| format!("visible_{b}")));
+    header.extend(scenario.channels.iter().map(|c| c.name.clone()));
     let mut epochs = run.epochs.iter().peekable();
+    let mut rows = Vec::with_capacity(run.samples.len());
     for s in &run.samples {
-        let mut row: Vec<String> = vec![s.t.to_string()];
-        row.extend(s.spherical.iter().map(|v| v.to_string()));
-        for v in [
-            s.altitude,
-            s.density,
-            s.dynamic_pressure,
-            s.heating,
-            s.aero_accel,
-        ] {
-            row.push(v.to_string());
+        let mut row: Vec<Option<f64>> = vec![Some(s.t)];
+        row.extend(s.spherical.iter().map(|v| Some(*v)));
+        row.extend(
+            [
+                s.altitude,
+                s.density,
+                s.dynamic_pressure,
+                s.heating,
+                s.aero_accel,
+            ]
+            .map(Some),
+        );
+        if cartesian {
+            row.extend(s.state.iter().map(|v| Some(*v)));
         }
-        if scenario.truth_model.kind.is_cartesian() {
-            row.extend(s.state.iter().map(|v| v.to_string()));
-        }
-        row.extend(s.visible.iter().map(|v| (*v as u8).to_string()));
+        row.extend(s.visible.iter().map(|v| Some(f64::from(u8::from(*v)))));
         match epochs.peek() {
             Some(e) if (e.t - s.t).abs() < 1e-9 => {
-                row.extend(e.values.iter().map(|v| crate::csv_file::opt(*v)));
+                row.extend(e.values.iter().copied());
                 epochs.next();
             }
-            _ => row.extend(std::iter::repeat_n(String::new(), scenario.channels.len())),
+            _ => row.extend(std::iter::repeat_n(None, scenario.channels.len())),
         }
-        w.write_record(&row)?;
+        rows.push(row);
+    }
+    (header, rows)
+}
+
+/// CSV of [`truth_table`].
+fn write_csv<W: Write>(
+    w: &mut csv::Writer<W>,
+    scenario: &Scenario,
+    run: &TruthRun,
+) -> csv::Result<()> {
+    let (header, rows) = truth_table(scenario, run);
+    w.write_record(&header)?;
+    for row in rows {
+        w.write_record(row.into_iter().map(crate::csv_file::opt))?;
     }
     Ok(())
 }

@@ -322,56 +322,7 @@ fn simulate(py: Python<'_>, toml: &str, dir: &str, seed: u64, dispersed: bool) -
             simulate_truth_with_peaks(&scenario, &draw, &mut rng)
         })
         .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-    let cartesian = scenario.truth_model.kind.is_cartesian();
-    let mut columns: Vec<String> = [
-        "t_s",
-        "r_m",
-        "lon_rad",
-        "lat_rad",
-        "v_mps",
-        "fpa_rad",
-        "heading_rad",
-        "altitude_m",
-        "density_kgm3",
-        "dynamic_pressure_pa",
-        "heating_wm2",
-        "aero_accel_mps2",
-    ]
-    .map(String::from)
-    .to_vec();
-    if cartesian {
-        columns.extend(["x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps"].map(String::from));
-    }
-    columns.extend(scenario.beacon_names.iter().map(|b| format!("visible_{b}")));
-    columns.extend(scenario.channels.iter().map(|c| c.name.clone()));
-    let mut epochs = run.epochs.iter().peekable();
-    let mut rows = Vec::with_capacity(run.samples.len());
-    for s in &run.samples {
-        let mut row: Vec<Option<f64>> = vec![Some(s.t)];
-        row.extend(s.spherical.iter().map(|v| Some(*v)));
-        row.extend(
-            [
-                s.altitude,
-                s.density,
-                s.dynamic_pressure,
-                s.heating,
-                s.aero_accel,
-            ]
-            .map(Some),
-        );
-        if cartesian {
-            row.extend(s.state.iter().map(|v| Some(*v)));
-        }
-        row.extend(s.visible.iter().map(|v| Some(f64::from(u8::from(*v)))));
-        match epochs.peek() {
-            Some(e) if (e.t - s.t).abs() < 1e-9 => {
-                row.extend(e.values.iter().copied());
-                epochs.next();
-            }
-            _ => row.extend(std::iter::repeat_n(None, scenario.channels.len())),
-        }
-        rows.push(row);
-    }
+    let (columns, rows) = entrynav_cli::simulate::truth_table(&scenario, &run);
     let stop = match run.stop {
         entrynav::sim::StopReason::Duration => "duration",
         entrynav::sim::StopReason::StopSpeed => "stop_speed",

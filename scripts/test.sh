@@ -55,6 +55,10 @@ for fmu in target/fmu/MarsEntryNav.fmu target/fmu/MarsEntryNavFilter.fmu target/
   target/release/entrynav fmu check "$fmu"
 done
 target/release/entrynav fmu check target/fmu/MarsEntryNav.fmu --bench
+echo "== FMU: the FMI 3.0 fuzzer, 100,000 calls per FMI 3.0 FMU (exit 1 on any call the model does not predict)"
+for fmu in target/fmu/MarsEntryNav-fmi3.fmu target/fmu/MarsEntryNavFilter-fmi3.fmu target/fmu/MarsEntryTruth-fmi3.fmu; do
+  target/release/entrynav fmu fuzz "$fmu" --calls 100000
+done
 
 echo "== FMU: pytest (symbols, fmpy validate/simulate/FMU2Slave/FMU3Slave, fmutool, libcosimpy, fmusim, OMSimulator, host fuzz)"
 .venv/bin/pytest -q -s -p no:cacheprovider tests/python

@@ -42,7 +42,8 @@ pub struct ScenarioConfig {
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub beacons: Vec<BeaconConfig>,
     /// Take radio measurements even when a beacon is below the horizon (needed to reproduce
-    /// seed 000, whose beacons are all on the far side of Mars; see SPEC.md).
+    /// the DCIFAIF fusion paper \[P0\], whose beacons are all on the far side of Mars; see
+    /// docs/references.md).
     #[serde(default)]
     pub ignore_visibility: bool,
     /// Monte Carlo dispersions of the truth (1σ).

@@ -23,6 +23,20 @@ fn op(ty: Type3, get: bool) -> Fmi2 {
     }
 }
 
+/// Why a value handed to an fmi3Set function is refused.
+#[derive(Debug, thiserror::Error)]
+enum BadValue {
+    /// An Int64 that is no item of the Enumeration (items are Int32).
+    #[error("value {0} is not an item of the Enumeration")]
+    NotItem(i64),
+    /// A UInt64 past the structural parameter's range.
+    #[error("value {0} is out of range")]
+    OutOfRange(u64),
+    /// A string that cannot be read.
+    #[error("{}", .0.describe("a string value"))]
+    Text(TextError),
+}
+
 fn max_refs(ty: Type3) -> usize {
     if ty == Type3::String {
         MAX_STRING_REFS
@@ -91,7 +105,7 @@ fn set_values<T: Copy>(
     nvr: usize,
     value: *const T,
     n_values: usize,
-    mut conv: impl FnMut(T) -> Result<Value, String>,
+    mut conv: impl FnMut(T) -> Result<Value, BadValue>,
 ) -> Status {
     if let Err(s) = inner.inst.check_as(op(ty, false), func) {
         return s;
@@ -242,12 +256,12 @@ setter!(fmi3SetInt32, "fmi3SetInt32", Type3::Int32, i32, |x| Ok(
 setter!(fmi3SetInt64, "fmi3SetInt64", Type3::Int64, i64, |x| {
     i32::try_from(x)
         .map(Value::Integer)
-        .map_err(|_| format!("value {x} is not an item of the Enumeration"))
+        .map_err(|_| BadValue::NotItem(x))
 });
 setter!(fmi3SetUInt64, "fmi3SetUInt64", Type3::UInt64, u64, |x| {
     i32::try_from(x)
         .map(Value::Integer)
-        .map_err(|_| format!("value {x} is out of range"))
+        .map_err(|_| BadValue::OutOfRange(x))
 });
 setter!(
     fmi3SetBoolean,
@@ -265,6 +279,6 @@ setter!(
         // SAFETY: each value is null (rejected) or a C string.
         unsafe { text(p, MAX_STRING_BYTES) }
             .map(|s| Value::String(s.to_string()))
-            .map_err(|e| e.describe("a string value"))
+            .map_err(BadValue::Text)
     }
 );

@@ -2,6 +2,8 @@
 # The project's test command (README, CI): set up the machine, then format check, lint, tests.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# Nothing here reads the terminal: tools that probe with `-` (rustc) get an empty input, never the caller's.
+exec </dev/null
 
 bash scripts/setup.sh
 

@@ -77,8 +77,9 @@ def case_regression():
 
 
 def case_guid_binding():
-    """Each packed library accepts only its own model's GUID."""
-    fmus = sorted(FMU_DIR.glob("*.fmu"))
+    """Each packed library accepts only its own model's GUID (the FMI 2.0 FMUs, through
+    fmi2Instantiate)."""
+    fmus = sorted(f for f in FMU_DIR.glob("*.fmu") if not f.stem.endswith("-fmi3"))
     guids = {f.stem: variables(f)[0].guid for f in fmus}
     out = {}
     for fmu in fmus:

@@ -28,6 +28,31 @@ FMI2_FUNCTIONS = {
     "fmi2DoStep", "fmi2CancelStep", "fmi2GetStatus", "fmi2GetRealStatus", "fmi2GetIntegerStatus",
     "fmi2GetBooleanStatus", "fmi2GetStringStatus",
 }
+# The FMI 3.0 standard's functions (fmi3FunctionTypes.h of FMI 3.0): the library exports both
+# interfaces, each instance answering only the one that created it.
+FMI3_FUNCTIONS = {
+    "fmi3GetVersion", "fmi3SetDebugLogging", "fmi3InstantiateModelExchange",
+    "fmi3InstantiateCoSimulation", "fmi3InstantiateScheduledExecution", "fmi3FreeInstance",
+    "fmi3EnterInitializationMode", "fmi3ExitInitializationMode", "fmi3EnterEventMode",
+    "fmi3Terminate", "fmi3Reset",
+    "fmi3GetNumberOfVariableDependencies", "fmi3GetVariableDependencies",
+    "fmi3GetFMUState", "fmi3SetFMUState", "fmi3FreeFMUState", "fmi3SerializedFMUStateSize",
+    "fmi3SerializeFMUState", "fmi3DeserializeFMUState",
+    "fmi3GetDirectionalDerivative", "fmi3GetAdjointDerivative",
+    "fmi3EnterConfigurationMode", "fmi3ExitConfigurationMode",
+    "fmi3GetIntervalDecimal", "fmi3GetIntervalFraction", "fmi3GetShiftDecimal",
+    "fmi3GetShiftFraction", "fmi3SetIntervalDecimal", "fmi3SetIntervalFraction",
+    "fmi3SetShiftDecimal", "fmi3SetShiftFraction",
+    "fmi3EvaluateDiscreteStates", "fmi3UpdateDiscreteStates",
+    "fmi3EnterContinuousTimeMode", "fmi3CompletedIntegratorStep", "fmi3SetTime",
+    "fmi3SetContinuousStates", "fmi3GetContinuousStateDerivatives", "fmi3GetEventIndicators",
+    "fmi3GetContinuousStates", "fmi3GetNominalsOfContinuousStates",
+    "fmi3GetNumberOfEventIndicators", "fmi3GetNumberOfContinuousStates",
+    "fmi3EnterStepMode", "fmi3GetOutputDerivatives", "fmi3DoStep",
+    "fmi3ActivateModelPartition",
+} | {f"fmi3{op}{t}" for op in ("Get", "Set") for t in (
+    "Float32", "Float64", "Int8", "UInt8", "Int16", "UInt16", "Int32", "UInt32", "Int64",
+    "UInt64", "Boolean", "String", "Binary", "Clock")}
 ALLOWED_NEEDED = {
     "libc.so.6", "libm.so.6", "libgcc_s.so.1", "ld-linux-x86-64.so.2",
     "libpthread.so.0", "libdl.so.2", "librt.so.1",
@@ -52,13 +77,14 @@ def test_fmu_layout(fmus):
 
 
 @pytest.mark.parametrize("model", MODELS)
-def test_exported_symbols_are_exactly_the_34_fmi2_functions(fmus, model, tmp_path):
+def test_exported_symbols_are_exactly_the_fmi2_and_fmi3_functions(fmus, model, tmp_path):
     so = extracted_so(fmus[model], model, tmp_path)
     out = run(["nm", "-D", "--defined-only", so])
     assert out.returncode == 0, out.stderr
     names = {line.split()[-1] for line in out.stdout.splitlines() if line.strip()}
-    assert len(FMI2_FUNCTIONS) == 34
-    assert names == FMI2_FUNCTIONS, f"extra {names - FMI2_FUNCTIONS}, missing {FMI2_FUNCTIONS - names}"
+    assert len(FMI2_FUNCTIONS) == 34 and len(FMI3_FUNCTIONS) == 75
+    want = FMI2_FUNCTIONS | FMI3_FUNCTIONS
+    assert names == want, f"extra {names - want}, missing {want - names}"
 
 
 @pytest.mark.parametrize("model", MODELS)

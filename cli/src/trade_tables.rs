@@ -132,6 +132,9 @@ fn print_consistency(f: &FilterReport) {
             channels.join(", ")
         );
     }
+    if let Some(g) = &f.gating {
+        print_gating(g);
+    }
     if let Some(d) = f.density_rmspe_pct {
         let at_est = f
             .density_at_estimate_rmspe_pct
@@ -173,6 +176,29 @@ fn print_consistency(f: &FilterReport) {
             "  WARNING: {bad} of {} runs ({:.1}%) failed or diverged; replay one with --replay-run RUN --csv-dir DIR",
             f.runs,
             100.0 * bad as f64 / f.runs.max(1) as f64
+        );
+    }
+}
+
+/// The innovation gate's line and, per excluded beacon, its detections.
+fn print_gating(g: &entrynav::sim::gate_stats::GatingSummary) {
+    println!(
+        "  gate: {:.3} % of measurements rejected, ANIS/dof before gating {}; runs with a false beacon exclusion {:.1} %",
+        100.0 * g.rejected_frac,
+        fmt(g.anis_before_gating_per_dof),
+        100.0 * g.false_exclusion_run_frac
+    );
+    for (beacon, b) in &g.per_beacon {
+        println!(
+            "    {beacon}: excluded after its fault in {} of {} runs ({} within 10 s; mean {} s, longest {} s), falsely in {} runs",
+            b.detected_runs,
+            g.runs,
+            b.detected_within_10s_frac
+                .map(|v| format!("{:.1} %", 100.0 * v))
+                .unwrap_or_else(|| "-".into()),
+            fmt(b.detection_mean_s),
+            fmt(b.detection_max_s),
+            b.false_exclusion_runs
         );
     }
 }

@@ -36,6 +36,7 @@ const AIR: &str = "msl-airdata";
 const FUSION: &str = "four-beacon-fusion";
 const PRESSURE: &str = "msl-pressure";
 const ORBITERS: &str = "orbiters-3";
+const FAULTS: &str = "four-beacon-fusion-faults";
 
 /// A 100 s run with 10 s periods: the truth step's lower limit (at most 1e6 steps) is 1e-4 s,
 /// a divisor of every period.
@@ -185,6 +186,14 @@ const CASES: &[Case] = &[
     case("dispersions.density_bias", PRESSURE, &[], "a 1σ must be >= 0 and < 1"),
     case("dispersions.density_bias_clip", PRESSURE, &[], "must be >= 0 and < 1 (0 = no clipping)"),
     case("monte_carlo.runs", FUSION, &[], "must be >= 1 and <= 1000000"),
+    case("filter.gating.probability", FAULTS, &[], "must be >= 0.9 and < 1 (the χ² gate's probability)"),
+    case("filter.gating.exclude_after", FAULTS, &[], "must be >= 1 and <= 1000 epochs"),
+    case("filter.gating.readmit_after", FAULTS, &[], "must be >= 1 and <= 100000 epochs"),
+    case("faults[0].start_s", FAULTS, &[], "must be >= 0 and <= 1000000 s"),
+    case("faults[0].bias_m", FAULTS, &[], "must be >= -1e7 and <= 1e7 m"),
+    case("faults[0].drift_mps", FAULTS, &[], "must be >= -10000 and <= 10000 m/s"),
+    case("faults[1].probability", FAULTS, &[], "must be >= 0 and <= 1"),
+    case("faults[1].size_m", FAULTS, &[], "must be >= 0 and <= 1e7 m"),
 ];
 
 /// The built-in `base` with `sets` applied, as a TOML table (what `--set` edits).

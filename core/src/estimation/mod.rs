@@ -15,9 +15,11 @@
 //! caller turns into a filter status.
 
 pub mod adaptive;
+pub mod chi_square;
 pub mod ci;
 mod ci_weights;
 pub mod ekf;
+pub mod gating;
 pub mod mmae;
 pub mod nav;
 pub mod onboard;

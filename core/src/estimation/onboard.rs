@@ -77,6 +77,8 @@ pub struct FilterTuning {
     /// Settings of the density-adaptation filters (`[filter.density]`; `None` when the scenario
     /// has no such section, in which case the seed-001 defaults apply where a filter needs them).
     pub density: Option<DensityFilterConfig>,
+    /// Innovation gating and beacon exclusion in front of every filter (`[filter.gating]`).
+    pub gating: Option<crate::estimation::gating::GatingConfig>,
 }
 
 impl FilterTuning {

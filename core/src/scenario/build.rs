@@ -11,7 +11,7 @@ use crate::estimation::Onboard;
 use crate::files::FileLoader;
 use crate::frames::{HeadingConvention, inertial_to_spherical, spherical_to_inertial};
 use crate::planet::Planet;
-use crate::sensors::{Channel, MeasurementModel};
+use crate::sensors::{Channel, Fault, MeasurementModel};
 pub use crate::sensors::{ChannelSpec, Noise};
 use nalgebra::SVector;
 use std::borrow::Cow;
@@ -52,6 +52,8 @@ pub struct Scenario {
     pub measurement: MeasurementModel,
     /// All measurement channels with their schedules and noise.
     pub channels: Vec<ChannelSpec>,
+    /// The truth's sensor faults (`[[faults]]`), beacons resolved.
+    pub faults: Vec<Fault>,
 }
 
 /// Convert a state description to the six kinematic states of a model of `kind`.
@@ -162,6 +164,12 @@ impl Scenario {
             .map(|b| b.name().to_string())
             .collect();
 
+        // Validation checked every fault's beacon name, so none is dropped here.
+        let faults = config
+            .faults
+            .iter()
+            .filter_map(|f| Fault::resolve(f, &beacon_names))
+            .collect();
         let climatology = climatology(&config, &filter_model, &planet, entry_lat, load)?;
         let channels = channel_specs(&config, &beacon_names);
         let ephemerides = Arc::new(ephemeris_table(&config, &channels, &beacons));
@@ -192,6 +200,7 @@ impl Scenario {
             beacon_names,
             ephemerides,
             channels,
+            faults,
         })
     }
 

@@ -1,9 +1,10 @@
 //! The built-in scenarios, embedded from this crate's `scenarios/` folder (`core/scenarios/`, inside the crate so that `cargo package` carries them).
 
 /// Names of the built-in scenarios, in listing order.
-pub const BUILTIN_NAMES: [&str; 9] = [
+pub const BUILTIN_NAMES: [&str; 10] = [
     "four-beacon-fusion",
     "four-beacon-fusion-fault",
+    "four-beacon-fusion-faults",
     "four-beacon-fusion-paper",
     "msl-airdata",
     "msl-airdata-paper",
@@ -19,6 +20,9 @@ pub fn builtin_toml(name: &str) -> Option<&'static str> {
         "four-beacon-fusion" => include_str!("../../scenarios/four-beacon-fusion.toml"),
         "four-beacon-fusion-fault" => {
             include_str!("../../scenarios/four-beacon-fusion-fault.toml")
+        }
+        "four-beacon-fusion-faults" => {
+            include_str!("../../scenarios/four-beacon-fusion-faults.toml")
         }
         "four-beacon-fusion-paper" => {
             include_str!("../../scenarios/four-beacon-fusion-paper.toml")

@@ -9,8 +9,9 @@ use crate::beacons::BeaconConfig;
 use crate::dynamics::{AugmentedParam, DynamicsKind};
 pub use crate::estimation::FusionCovariance;
 pub use crate::estimation::adaptive::{DensityFilterConfig, DensityTrainingConfig};
+pub use crate::estimation::gating::GatingConfig;
 use crate::frames::HeadingConvention;
-use crate::sensors::SensorsConfig;
+use crate::sensors::{FaultConfig, SensorsConfig};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -52,6 +53,10 @@ pub struct ScenarioConfig {
     /// Monte Carlo defaults.
     #[serde(default)]
     pub monte_carlo: MonteCarloConfig,
+    /// Sensor faults of the truth: range biases and outliers, accelerometer bias jumps and
+    /// spikes (`[[faults]]`; beacon outages are the beacons' `outages`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub faults: Vec<FaultConfig>,
 }
 
 /// Optional planet-constant overrides.
@@ -256,6 +261,10 @@ pub struct FilterConfig {
     /// (`[filter.tuned.<filter name>]`, e.g. `[filter.tuned.ukf]`; `entrynav tune` writes them).
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub tuned: BTreeMap<String, FilterRetuneConfig>,
+    /// Innovation gating and beacon fault exclusion in front of every filter (absent: every
+    /// available measurement is used).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gating: Option<GatingConfig>,
 }
 
 /// A filter's own tuning (`[filter.tuned.<filter name>]`): each field present replaces the shared

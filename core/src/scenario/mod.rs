@@ -16,6 +16,7 @@ pub mod reference;
 mod truth_values;
 pub mod validate;
 mod validate_density;
+mod validate_faults;
 mod validate_filter;
 mod validate_range;
 mod validate_state;

@@ -64,6 +64,7 @@ pub(super) fn onboard_view(p: OnboardParts<'_>) -> Onboard {
             model_bank_density_bias: f.model_bank_density_bias.clone(),
             fusion_covariance: f.fusion_covariance,
             density: f.density.clone(),
+            gating: f.gating,
         },
         per_filter: per_filter_tuning(p.config, p.channels),
     }

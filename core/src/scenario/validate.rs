@@ -119,6 +119,7 @@ impl ScenarioConfig {
         self.check_sensors()?;
         self.check_beacons()?;
         self.check_dispersions(c)?;
+        self.check_faults(c)?;
         let runs = Range::ge(1.0).le(1e6);
         c.range("monte_carlo.runs", self.monte_carlo.runs, runs)
     }

@@ -37,6 +37,23 @@ impl ScenarioConfig {
         if let Some(d) = &f.density {
             d.check("filter.density", c)?;
         }
+        if let Some(g) = &f.gating {
+            c.range(
+                "filter.gating.probability",
+                g.probability,
+                Range::ge(0.9).lt(1.0).note("the χ² gate's probability"),
+            )?;
+            c.range(
+                "filter.gating.exclude_after",
+                g.exclude_after as f64,
+                Range::ge(1.0).le(1000.0).unit("epochs"),
+            )?;
+            c.range(
+                "filter.gating.readmit_after",
+                g.readmit_after as f64,
+                Range::ge(1.0).le(100_000.0).unit("epochs"),
+            )?;
+        }
         Ok(())
     }
 }

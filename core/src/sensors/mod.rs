@@ -7,6 +7,7 @@
 pub mod airdata;
 pub mod channels;
 pub mod config;
+pub mod faults;
 pub mod imu;
 pub mod radio;
 pub mod schedule;
@@ -14,6 +15,7 @@ pub mod schedule;
 pub use airdata::{dynamic_pressure, sutton_graves_heating};
 pub use channels::{Channel, MeasurementModel};
 pub use config::{SensorError, SensorsConfig};
+pub use faults::{Fault, FaultConfig};
 pub use imu::{ImuFrame, body_from_velocity};
 pub use radio::{range, range_rate};
 pub use schedule::{ChannelSpec, MeasurementEpoch, Noise};

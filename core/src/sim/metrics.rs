@@ -19,6 +19,7 @@
 //!   filter is confidently wrong).
 
 use super::consistency::ConsistencySums;
+use super::gate_stats::GateSums;
 use super::moments::{EpochSums, FinalSums};
 pub use super::run_record::{EpochRecord, FinalRecord, RunRecord};
 use serde::Serialize;
@@ -117,6 +118,9 @@ pub struct FilterAccumulator {
     pub(super) runs: u64,
     /// One row per run, in run order (the per-run final-error CSV).
     pub(super) finals: Vec<FinalRow>,
+    /// What the innovation gate did (empty without `[filter.gating]`).
+    #[serde(default)]
+    pub(super) gate: GateSums,
 }
 
 /// Whether an epoch's NEES exceeds the divergence threshold.
@@ -162,6 +166,7 @@ impl FilterAccumulator {
         self.steps += o.steps;
         self.runs += o.runs;
         self.finals.extend(o.finals.iter().cloned());
+        self.gate.merge(&o.gate);
     }
 
     /// Fold one run in (call in run-index order).
@@ -191,6 +196,7 @@ impl FilterAccumulator {
             }
         }
         self.add_outcome(run_index, rec);
+        self.gate.add(rec);
         if let (Some(f), Some(last)) = (&rec.final_, rec.epochs.last()) {
             self.final_sums.add(last, f.downrange_crossrange);
         }

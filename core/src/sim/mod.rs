@@ -21,6 +21,7 @@ pub mod checkpoint;
 pub mod consistency;
 pub mod density_eval;
 pub mod engine;
+pub mod gate_stats;
 pub mod judge;
 pub mod metrics;
 pub mod moments;

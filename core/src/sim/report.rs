@@ -3,6 +3,7 @@
 //! [`FilterAccumulator::report`](super::metrics::FilterAccumulator::report).
 
 use super::consistency::Consistency;
+use super::gate_stats::GatingSummary;
 use super::metrics::{FilterAccumulator, FinalRow, RunProblem};
 use super::moments::{EpochSums, FinalSums, Moments};
 use serde::Serialize;
@@ -124,6 +125,9 @@ pub struct FilterReport {
     pub density_rmspe_pct: Option<f64>,
     /// The same statistic for the filter's density at its own estimate x̂ [%].
     pub density_at_estimate_rmspe_pct: Option<f64>,
+    /// What the innovation gate did (`[filter.gating]`; absent without a gate).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gating: Option<GatingSummary>,
     /// 3σ deployment-point ellipse.
     pub ellipse_km: Option<Ellipse>,
     /// RMSE / PCRLB per state and for `pos_m`/`vel_mps`, time-averaged (1 is the best any
@@ -282,6 +286,7 @@ impl FilterAccumulator {
             },
             density_rmspe_pct: rmspe_pct(epochs, |e| &e.density),
             density_at_estimate_rmspe_pct: rmspe_pct(epochs, |e| &e.density_at_estimate),
+            gating: self.gate.report(channels),
             ellipse_km: Ellipse::from_sums(&fin.dr_cr, fin.runs),
             efficiency_time_avg: BTreeMap::new(),
             efficiency_final: BTreeMap::new(),

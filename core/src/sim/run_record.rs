@@ -4,9 +4,10 @@
 //! over a recorded run with it.
 
 use super::engine::{FilterFailure, Judgement, Navigator, Observer};
+use super::gate_stats::{JudgedExclusion, judge_exclusions};
 use super::record::RecordedRun;
 use crate::estimation::Onboard;
-use crate::estimation::nav::FilterKind;
+use crate::estimation::nav::{FilterKind, GateReport};
 use crate::scenario::Scenario;
 use crate::sensors::MeasurementEpoch;
 use crate::sim::TruthSample;
@@ -37,6 +38,8 @@ pub struct EpochRecord {
     pub density_at_estimate_rel_err: Option<f64>,
     /// Fusion weights / model probabilities.
     pub weights: Option<Vec<f64>>,
+    /// What the innovation gate did (filters run with `[filter.gating]`).
+    pub gate: Option<GateReport>,
 }
 
 /// Final-epoch quantities of one run.
@@ -61,6 +64,8 @@ pub struct RunRecord {
     pub filter_ns: u128,
     /// Filter steps.
     pub steps: usize,
+    /// The gate's beacon exclusions, judged against the truth's faults.
+    pub exclusions: Vec<JudgedExclusion>,
 }
 
 impl Observer for RunRecord {
@@ -87,6 +92,7 @@ impl Observer for RunRecord {
             density_rel_err: j.density_profile_rel_err,
             density_at_estimate_rel_err: j.density_at_estimate_rel_err,
             weights: est.info.weights.clone(),
+            gate: est.info.gate.clone(),
         });
     }
 
@@ -114,6 +120,13 @@ pub fn filter_run(
         }
     };
     let end = nav.fly(scenario, recorded, &mut rec);
+    let events: Vec<_> = rec
+        .epochs
+        .iter()
+        .filter_map(|e| e.gate.as_ref())
+        .flat_map(|g| g.events.iter().copied())
+        .collect();
+    rec.exclusions = judge_exclusions(scenario, &events);
     rec.filter_ns = end.filter_ns;
     rec.steps = end.steps;
     rec

@@ -222,7 +222,21 @@ impl<const N: usize> NavFilter<N> for BankNav<N> {
             innovations,
             weights: Some(self.weights.clone()),
             nis_terms,
+            gate: None,
         })
+    }
+
+    /// The members' priors fused with the current model weights, as the update fuses posteriors.
+    fn prior(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
+        let (w, est): (Vec<f64>, Vec<_>) = self
+            .ens
+            .members
+            .iter()
+            .enumerate()
+            .zip(&self.weights)
+            .filter_map(|((i, m), w)| m.as_ref().map(|f| (*w, self.member_estimate(i, f))))
+            .unzip();
+        fuse_bank(&w, &est).unwrap_or(self.ens.fused)
     }
 
     fn core(&self) -> &dyn FilterCore<N> {

@@ -3,6 +3,7 @@
 use super::bank::BankNav;
 use super::ekf_nav::EkfNav;
 use super::fusion::FusionNav;
+use super::gate::GatedNav;
 use super::start::FilterStart;
 use super::ukf_ac::UkfAcNav;
 use super::ukf_cm::UkfCmNav;
@@ -26,7 +27,7 @@ pub fn build_filter<const N: usize, const L: usize>(
             kind.name()
         )));
     }
-    Ok(match kind {
+    let filter: Box<dyn NavFilter<N>> = match kind {
         FilterKind::Ekf => Box::new(EkfNav::new(onboard, start, None, 1.0)?),
         FilterKind::Ukf => Box::new(UkfNav::new(onboard, start)?),
         FilterKind::Ci => Box::new(FusionNav::new(onboard, start, false)?),
@@ -36,5 +37,9 @@ pub fn build_filter<const N: usize, const L: usize>(
         FilterKind::UkfCm => Box::new(UkfCmNav::new(onboard, start)?),
         FilterKind::UkfAc => Box::new(UkfAcNav::<N, L>::new(onboard, start)?),
         FilterKind::UskfNn => Box::new(UskfNnNav::<N, L>::new(onboard, start)?),
+    };
+    Ok(match onboard.tuning.gating {
+        Some(config) if config.enabled => Box::new(GatedNav::new(filter, onboard, config)),
+        _ => filter,
     })
 }

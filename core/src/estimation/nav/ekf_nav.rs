@@ -131,6 +131,7 @@ impl<const N: usize> EkfNav<N> {
             innovations,
             weights: None,
             nis_terms: slots.into_iter().zip(terms).collect(),
+            gate: None,
         })
     }
 
@@ -169,6 +170,7 @@ impl<const N: usize> EkfNav<N> {
             innovations: first.iter().map(|(h0, _, z, _)| z - h0).collect(),
             weights: None,
             nis_terms: slots.into_iter().zip(terms).collect(),
+            gate: None,
         })
     }
 

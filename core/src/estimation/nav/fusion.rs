@@ -206,6 +206,7 @@ impl<const N: usize> FusionNav<N> {
             innovations: Vec::new(),
             weights: Some(weights),
             nis_terms,
+            gate: None,
         })
     }
 }
@@ -347,7 +348,24 @@ impl<const N: usize> NavFilter<N> for FusionNav<N> {
             innovations: Vec::new(),
             weights: Some(weights),
             nis_terms,
+            gate: None,
         })
+    }
+
+    /// With information feedback every local filter starts from the fused estimate, so their
+    /// common prior is the fused prior. Without feedback (CI) the local priors differ and are
+    /// only fused after their updates; the gate then uses the local prior with the smallest
+    /// position variance, a consistent (if wider than fused) prior.
+    fn prior(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
+        let live = self.ens.members.iter().flatten().map(|f| f.estimate());
+        if self.feedback {
+            return live.into_iter().next().unwrap_or(self.ens.fused);
+        }
+        live.min_by(|a, b| {
+            let pos = |p: &SMatrix<f64, N, N>| (0..3.min(N)).map(|i| p[(i, i)]).sum::<f64>();
+            pos(&a.1).total_cmp(&pos(&b.1))
+        })
+        .unwrap_or(self.ens.fused)
     }
 
     fn core(&self) -> &dyn FilterCore<N> {

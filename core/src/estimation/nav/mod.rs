@@ -11,6 +11,7 @@ pub mod ekf_nav;
 mod ensemble;
 pub mod fusion;
 mod fusion_exact;
+pub mod gate;
 pub mod kind;
 pub mod start;
 pub mod ukf_ac;
@@ -23,6 +24,7 @@ pub use bank::BankNav;
 pub use build::build_filter;
 pub use ekf_nav::EkfNav;
 pub use fusion::FusionNav;
+pub use gate::{GateReport, GatedNav};
 pub use kind::{FilterKind, NavError};
 pub use start::FilterStart;
 pub use ukf_nav::UkfNav;
@@ -48,6 +50,8 @@ pub struct StepInfo {
     /// consistent filter; batch updates: the marginal ν_i²/S_ii). What a flight team can check
     /// without the truth.
     pub nis_terms: Vec<(usize, f64)>,
+    /// What the innovation gate did (None when the filter runs without `[filter.gating]`).
+    pub gate: Option<GateReport>,
 }
 
 /// Cloning a boxed filter (FMU state snapshots, benchmarks). Implemented for every `Clone` filter.
@@ -97,6 +101,13 @@ pub trait NavFilter<const N: usize>: Send + NavFilterClone<N> {
     /// Current estimate and covariance.
     fn estimate(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
         self.core().state()
+    }
+    /// The estimate a measurement update at the current time would start from (after
+    /// [`NavFilter::predict`]): the current estimate, except for filters of several members whose
+    /// combined estimate is only formed at an update (fusion, banks), which combine their
+    /// members' priors. The innovation gate ([`GatedNav`]) tests measurements against it.
+    fn prior(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
+        self.estimate()
     }
     /// Current time of the estimate \[s\].
     fn time(&self) -> f64 {

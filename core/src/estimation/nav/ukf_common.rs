@@ -100,6 +100,7 @@ pub(crate) fn step_info(upd: &UkfUpdate, slots: &[usize]) -> StepInfo {
             .enumerate()
             .map(|(i, &c)| (c, upd.innovation[i] * upd.innovation[i] / upd.s[(i, i)]))
             .collect(),
+        gate: None,
     }
 }
 

@@ -8,6 +8,7 @@ use crate::dynamics::aero::drag_lift;
 use crate::frames::inertial_to_spherical;
 use crate::scenario::{Scenario, TruthDraw};
 use crate::sensors::channels::{Kinematics, kinematics};
+use crate::sensors::faults::fault_error;
 use crate::sensors::{MeasurementEpoch, dynamic_pressure, sutton_graves_heating};
 use nalgebra::SVector;
 use rand::Rng;
@@ -282,7 +283,12 @@ pub(crate) fn measure_epoch<A: Atmosphere, const N: usize>(
             }
             None => true,
         };
-        values.push(available.then(|| reading + spec.bias + spec.noise.sigma(reading) * z));
+        let fault = if scenario.faults.is_empty() {
+            0.0
+        } else {
+            fault_error(&scenario.faults, spec.channel, t, rng)
+        };
+        values.push(available.then(|| reading + spec.bias + spec.noise.sigma(reading) * z + fault));
     }
     MeasurementEpoch { t, values }
 }

@@ -124,6 +124,55 @@ fn trade_report_is_one_self_contained_page_with_every_section() {
 }
 
 #[test]
+fn a_gated_study_reports_its_gate_and_exclusions() {
+    let dir = tmpdir("gating");
+    let html_path = dir.join("r.html");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "four-beacon-fusion-faults",
+        "--filters",
+        "ekf",
+        "--runs",
+        "4",
+        "--quiet",
+        "--report",
+        html_path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let html = std::fs::read_to_string(&html_path).unwrap();
+    assert!(html.contains("<section id=\"gating\">"), "no gate section");
+    // orbiter-2's 500 m bias from 150 s is excluded in every run.
+    assert!(html.contains("ekf / orbiter-2"), "no exclusion row");
+    assert!(
+        html.contains("4 of 4"),
+        "orbiter-2 not excluded in every run"
+    );
+    // Without a gate there is no such section.
+    let plain = dir.join("p.html");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "four-beacon-fusion-faults",
+        "--set",
+        "filter.gating.enabled=false",
+        "--filters",
+        "ekf",
+        "--runs",
+        "2",
+        "--quiet",
+        "--report",
+        plain.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        !std::fs::read_to_string(&plain)
+            .unwrap()
+            .contains("id=\"gating\"")
+    );
+}
+
+#[test]
 fn an_unwritable_report_path_is_refused_before_the_first_run() {
     let dir = tmpdir("refuse");
     let file = dir.join("a-file");

@@ -40,6 +40,8 @@ pub struct FusionNav<const N: usize> {
     exact: bool,
     /// Number of consider parameters (the last states).
     n_consider: usize,
+    /// Beacons the innovation gate has excluded: their local filters leave the fusion.
+    excluded: Vec<usize>,
 }
 
 impl<const N: usize> FusionNav<N> {
@@ -91,7 +93,34 @@ impl<const N: usize> FusionNav<N> {
             feedback: with_feedback,
             exact,
             n_consider: onboard.tuning.n_consider,
+            excluded: Vec::new(),
         })
+    }
+
+    /// Whether local filter `f` listens to an excluded beacon (and so leaves the fusion).
+    fn leaves_fusion(&self, f: &EkfNav<N>) -> bool {
+        let beacon = |c: &usize| self.ens.onboard.channels.get(*c)?.channel.beacon();
+        f.channel_mask()
+            .iter()
+            .any(|c| beacon(c).is_some_and(|b| self.excluded.contains(&b)))
+    }
+
+    /// The live members that take part in the fusion: all but those of excluded beacons (all,
+    /// if that would leave none).
+    fn fusing(&self) -> Vec<usize> {
+        let live: Vec<usize> = (0..self.ens.members.len())
+            .filter(|&i| self.ens.members[i].is_some())
+            .collect();
+        let kept: Vec<usize> = live
+            .iter()
+            .copied()
+            .filter(|&i| {
+                self.ens.members[i]
+                    .as_ref()
+                    .is_some_and(|f| !self.leaves_fusion(f))
+            })
+            .collect();
+        if kept.is_empty() { live } else { kept }
     }
 }
 
@@ -137,11 +166,13 @@ impl<const N: usize> FusionNav<N> {
         let iterations = first.update_iterations();
         let mut items = first.all_measurement_items(epoch, beacons);
         let all_slots: Vec<usize> = items.iter().map(|(c, _)| *c).collect();
+        let fusing = self.fusing();
         let masks: Vec<(usize, &[usize])> = self
             .ens
             .members
             .iter()
             .enumerate()
+            .filter(|(i, _)| fusing.contains(i))
             .filter_map(|(i, f)| f.as_ref().map(|f| (i, f.channel_mask())))
             .collect();
         // Iterated EKF (EkfNav::update_iterated) for the fusion: every local updates the common
@@ -322,9 +353,7 @@ impl<const N: usize> NavFilter<N> for FusionNav<N> {
             }
         }
         self.ens.alive(LOCAL)?;
-        let alive: Vec<usize> = (0..self.ens.members.len())
-            .filter(|&i| self.ens.members[i].is_some())
-            .collect();
+        let alive = self.fusing();
         let estimates: Vec<_> = alive
             .iter()
             .filter_map(|&i| self.ens.members[i].as_ref().map(|f| f.estimate()))
@@ -366,6 +395,10 @@ impl<const N: usize> NavFilter<N> for FusionNav<N> {
             pos(&a.1).total_cmp(&pos(&b.1))
         })
         .unwrap_or(self.ens.fused)
+    }
+
+    fn exclude_beacons(&mut self, beacons: &[usize]) {
+        self.excluded = beacons.to_vec();
     }
 
     fn core(&self) -> &dyn FilterCore<N> {

@@ -192,6 +192,7 @@ impl<const N: usize> NavFilter<N> for GatedNav<N> {
         beacons: &[(V3<f64>, V3<f64>)],
     ) -> Result<StepInfo, EstimationError> {
         let (screened, report) = self.screen(epoch, beacons);
+        self.inner.exclude_beacons(&report.excluded_beacons);
         let mut info = self.inner.update(&screened, beacons)?;
         info.gate = Some(report);
         Ok(info)
@@ -211,6 +212,10 @@ impl<const N: usize> NavFilter<N> for GatedNav<N> {
 
     fn prior(&self) -> (nalgebra::SVector<f64, N>, nalgebra::SMatrix<f64, N, N>) {
         self.inner.prior()
+    }
+
+    fn exclude_beacons(&mut self, beacons: &[usize]) {
+        self.inner.exclude_beacons(beacons);
     }
 
     fn time(&self) -> f64 {

@@ -109,6 +109,12 @@ pub trait NavFilter<const N: usize>: Send + NavFilterClone<N> {
     fn prior(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
         self.estimate()
     }
+    /// The beacons the innovation gate has excluded ([`GatedNav`]), told before each update.
+    /// Their channels are already withheld from the epoch; a filter that has more to do about it
+    /// overrides this (DCIFAIF: the excluded beacon's local filter leaves the fusion).
+    fn exclude_beacons(&mut self, beacons: &[usize]) {
+        let _ = beacons;
+    }
     /// Current time of the estimate \[s\].
     fn time(&self) -> f64 {
         self.core().t()

@@ -126,6 +126,27 @@ fn without_faults_the_gate_changes_accuracy_by_under_two_percent_and_excludes_no
 }
 
 #[test]
+fn a_stuck_range_is_excluded_and_survived() {
+    let text = ScenarioConfig::builtin("four-beacon-fusion-faults")
+        .unwrap()
+        .to_toml_string();
+    // Replace the faults with one: orbiter-1's range frozen from 100 s.
+    let head = text.split("[[faults]]").next().unwrap().to_string();
+    let text =
+        head + "[[faults]]\nkind = \"range-stuck\"\nbeacon = \"orbiter-1\"\nstart_s = 100.0\n";
+    let stuck = build(ScenarioConfig::from_toml_str(&text, "stuck.toml").unwrap());
+    for f in trade(&stuck) {
+        let g = f.gating.as_ref().unwrap();
+        let o1 = &g.per_beacon["orbiter-1"];
+        assert_eq!(o1.detected_runs, RUNS as u64, "{}: {o1:?}", f.name);
+        assert!(o1.detection_max_s.unwrap() <= 10.0, "{}: {o1:?}", f.name);
+        assert_eq!(g.false_exclusion_run_frac, 0.0, "{}", f.name);
+        let a = anees_per_dof(&f);
+        assert!((0.7..=1.5).contains(&a), "{}: ANEES/dof {a}", f.name);
+    }
+}
+
+#[test]
 fn a_fault_on_an_unknown_beacon_is_refused_by_name() {
     let text = ScenarioConfig::builtin("four-beacon-fusion-faults")
         .unwrap()

@@ -28,7 +28,9 @@ impl ScenarioConfig {
             }
             let needs_range = matches!(
                 fault,
-                FaultConfig::RangeBias { .. } | FaultConfig::RangeOutliers { .. }
+                FaultConfig::RangeBias { .. }
+                    | FaultConfig::RangeStuck { .. }
+                    | FaultConfig::RangeOutliers { .. }
             );
             if needs_range && self.sensors.range.is_none() {
                 return Err(ScenarioError::invalid(
@@ -58,6 +60,9 @@ impl ScenarioConfig {
                     c.range(f("start_s"), *start_s, start())?;
                     c.range(f("bias_m"), *bias_m, Range::within(1e7).unit("m"))?;
                     c.range(f("drift_mps"), *drift_mps, Range::within(1e4).unit("m/s"))?;
+                }
+                FaultConfig::RangeStuck { start_s, .. } => {
+                    c.range(f("start_s"), *start_s, start())?;
                 }
                 FaultConfig::RangeOutliers {
                     start_s,

@@ -32,6 +32,14 @@ pub enum FaultConfig {
         #[serde(default)]
         drift_mps: f64,
     },
+    /// From `start_s` the range to `beacon` is stuck: every sample repeats the first one taken
+    /// at or after `start_s` (a frozen transponder reading).
+    RangeStuck {
+        /// Beacon name.
+        beacon: String,
+        /// Start time \[s\].
+        start_s: f64,
+    },
     /// From `start_s` each range sample of `beacon` (every beacon when absent) is, with
     /// `probability`, off by ±`size_m` (sign drawn with equal odds).
     RangeOutliers {
@@ -70,6 +78,7 @@ impl FaultConfig {
     pub fn kind(&self) -> &'static str {
         match self {
             FaultConfig::RangeBias { .. } => "range-bias",
+            FaultConfig::RangeStuck { .. } => "range-stuck",
             FaultConfig::RangeOutliers { .. } => "range-outliers",
             FaultConfig::AccelBias { .. } => "accel-bias",
             FaultConfig::AccelSpikes { .. } => "accel-spikes",
@@ -79,7 +88,9 @@ impl FaultConfig {
     /// The beacon name the fault refers to, if any.
     pub fn beacon(&self) -> Option<&str> {
         match self {
-            FaultConfig::RangeBias { beacon, .. } => Some(beacon),
+            FaultConfig::RangeBias { beacon, .. } | FaultConfig::RangeStuck { beacon, .. } => {
+                Some(beacon)
+            }
             FaultConfig::RangeOutliers { beacon, .. } => beacon.as_deref(),
             _ => None,
         }
@@ -104,6 +115,8 @@ enum Effect {
     AxisBias([f64; 3]),
     /// ±size with probability `p`.
     Random { p: f64, size: f64 },
+    /// The sample repeats the first one taken at or after the start.
+    Stuck,
 }
 
 /// A fault with its beacon resolved to an index.
@@ -132,6 +145,11 @@ impl Fault {
                     bias: *bias_m,
                     drift: *drift_mps,
                 },
+            },
+            FaultConfig::RangeStuck { beacon, start_s } => Fault {
+                target: Target::Range(Some(index(beacon)?)),
+                start_s: *start_s,
+                effect: Effect::Stuck,
             },
             FaultConfig::RangeOutliers {
                 beacon,
@@ -169,8 +187,8 @@ impl Fault {
         })
     }
 
-    /// The beacon whose range this fault biases (a bias or drift, not random outliers): the
-    /// beacon a correct exclusion removes, and from when.
+    /// The beacon whose range this fault makes persistently wrong (a bias, a drift or a stuck
+    /// value, not random outliers): the beacon a correct exclusion removes, and from when.
     pub fn biased_beacon(&self) -> Option<(usize, f64)> {
         match (self.target, self.effect) {
             (Target::Range(Some(b)), Effect::Bias { bias, drift })
@@ -178,6 +196,7 @@ impl Fault {
             {
                 Some((b, self.start_s))
             }
+            (Target::Range(Some(b)), Effect::Stuck) => Some((b, self.start_s)),
             _ => None,
         }
     }
@@ -190,6 +209,13 @@ impl Fault {
             _ => None,
         }
     }
+}
+
+/// Whether a stuck fault holds `channel` at time `t`.
+pub fn is_stuck(faults: &[Fault], channel: super::Channel, t: f64) -> bool {
+    faults
+        .iter()
+        .any(|f| f.effect == Effect::Stuck && t >= f.start_s && f.acts_on(channel).is_some())
 }
 
 /// The error the `faults` add to a due sample of `channel` at time `t`, drawing the random
@@ -249,6 +275,25 @@ mod tests {
             0.0
         );
         assert_eq!(f.biased_beacon(), Some((1, 10.0)));
+    }
+
+    #[test]
+    fn a_stuck_range_holds_from_its_start_on_its_beacon_only() {
+        let f = Fault::resolve(
+            &FaultConfig::RangeStuck {
+                beacon: "a".into(),
+                start_s: 5.0,
+            },
+            &names(),
+        )
+        .expect("beacon a exists");
+        assert!(!is_stuck(&[f], Channel::Range(0), 4.9));
+        assert!(is_stuck(&[f], Channel::Range(0), 5.0));
+        assert!(!is_stuck(&[f], Channel::Range(1), 6.0));
+        assert!(!is_stuck(&[f], Channel::RangeRate(0), 6.0));
+        assert_eq!(f.biased_beacon(), Some((0, 5.0)));
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(1);
+        assert_eq!(fault_error(&[f], Channel::Range(0), 6.0, &mut rng), 0.0);
     }
 
     #[test]

@@ -8,7 +8,7 @@ use crate::dynamics::aero::drag_lift;
 use crate::frames::inertial_to_spherical;
 use crate::scenario::{Scenario, TruthDraw};
 use crate::sensors::channels::{Kinematics, kinematics};
-use crate::sensors::faults::fault_error;
+use crate::sensors::faults::{fault_error, is_stuck};
 use crate::sensors::{MeasurementEpoch, dynamic_pressure, sutton_graves_heating};
 use nalgebra::SVector;
 use rand::Rng;
@@ -251,12 +251,14 @@ impl TruthPropagator {
 /// other channels. A radio sample is available when its beacon is `commanded` (the FMU's
 /// availability inputs), is not in a configured outage and, unless the scenario ignores
 /// visibility, is `visible` above the horizon. A value is truth + bias + σ·z, with the sensor's
-/// true σ (absolute, or relative to the true reading).
+/// true σ (absolute, or relative to the true reading), plus the scenario's faults; a stuck
+/// channel repeats the value it first took after its fault started (`held`, per channel).
 pub(crate) fn measure_epoch<A: Atmosphere, const N: usize>(
     scenario: &Scenario,
     truth: &TruthAtEpoch<'_, A, N>,
     schedule: &EpochSchedule<'_, impl Fn(usize) -> bool, impl Fn(usize) -> bool>,
     rng: &mut impl Rng,
+    held: &mut [Option<f64>],
 ) -> MeasurementEpoch {
     let t = truth.t;
     let beacon_states = scenario.beacon_states(t);
@@ -288,7 +290,14 @@ pub(crate) fn measure_epoch<A: Atmosphere, const N: usize>(
         } else {
             fault_error(&scenario.faults, spec.channel, t, rng)
         };
-        values.push(available.then(|| reading + spec.bias + spec.noise.sigma(reading) * z + fault));
+        let mut value = reading + spec.bias + spec.noise.sigma(reading) * z + fault;
+        if !scenario.faults.is_empty()
+            && is_stuck(&scenario.faults, spec.channel, t)
+            && let Some(h) = held.get_mut(c)
+        {
+            value = *h.get_or_insert(value);
+        }
+        values.push(available.then_some(value));
     }
     MeasurementEpoch { t, values }
 }

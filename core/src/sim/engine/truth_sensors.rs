@@ -68,6 +68,8 @@ pub struct TruthSensors<R = ChaCha8Rng, S = Arc<Scenario>> {
     time: f64,
     outputs: TruthOutputs,
     last_epoch: Option<MeasurementEpoch>,
+    /// Per channel, the value a stuck fault holds (`[[faults]]` `range-stuck`).
+    held: Vec<Option<f64>>,
 }
 
 impl TruthSensors<ChaCha8Rng, Arc<Scenario>> {
@@ -104,7 +106,9 @@ impl<R: Rng, S: Deref<Target = Scenario>> TruthSensors<R, S> {
             periods,
             time: 0.0,
             last_epoch: None,
+            held: Vec::new(),
         };
+        out.held = vec![None; out.scenario.channels.len()];
         let bank = out.scenario.truth_bank;
         out.refresh_outputs(None, bank);
         out
@@ -207,7 +211,7 @@ impl<R: Rng, S: Deref<Target = Scenario>> TruthSensors<R, S> {
             visible: &s.visible,
             commanded: |i: usize| beacon_available.get(i).copied().unwrap_or(true),
         };
-        let epoch = measure_epoch(sc, &truth, &schedule, &mut self.rng);
+        let epoch = measure_epoch(sc, &truth, &schedule, &mut self.rng, &mut self.held);
         on_epoch(&epoch, &s);
         self.last_epoch = Some(epoch);
         Ok(Some(Some(s)))

@@ -22,6 +22,7 @@ const LAYERS: &[(&str, u32)] = &[
     ("files", 0),
     ("fixed_len", 0),
     ("pcrlb_recursion", 0),
+    ("lincov", 0),
     ("atmosphere", 1),
     ("dynamics", 2),
     ("beacons", 3),

@@ -60,7 +60,7 @@ pub struct LinCovEpoch<const N: usize> {
     pub k: usize,
     /// Mean-square matrix of the true estimation error E[e eᵀ], e = x̂ − x.
     pub p_true: SMatrix<f64, N, N>,
-    /// Mean error E[e].
+    /// Mean error E\[e\].
     pub mean_error: SVector<f64, N>,
     /// The filter's own covariance P.
     pub p_filter: SMatrix<f64, N, N>,

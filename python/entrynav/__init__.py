@@ -156,49 +156,69 @@ class TradeResult:
             raise ValueError(f"filter '{name}' is not in this trade ({', '.join(self.filters)})")
         return self._details["filters"][name]
 
+    def series(self, filter: str, key: str):
+        """One statistic of `filter` per epoch as a read-only numpy float64 array that views the
+        native result's bytes (no copy): `times_s`, `pos_rmse_m`, `vel_rmse_mps`, `nees_mean`,
+        `nees_kinematic_mean`, `nis_mean`, the `density_*` series (shape `(epochs,)`), and
+        `rmse`, `sigma_mean`, `bias` (shape `(epochs, states)`, columns in `summary["states"]`
+        order) and `local_rmse_m` (shape `(3, epochs)`: downrange, crossrange, up). NaN where a
+        value is undefined."""
+        import numpy as np
+
+        self._filter(filter)
+        if self._native is None:
+            s = self._filter(filter)["series"]
+            if key not in s:
+                raise ValueError(f"series '{key}' does not exist")
+            return np.array(s[key], dtype=float)
+        raw, rows, cols = self._native.series(filter, key)
+        a = np.frombuffer(raw, dtype="<f8")
+        return a if cols == 1 and key not in ("rmse", "sigma_mean", "bias", "local_rmse_m") else a.reshape(rows, cols)
+
     def rmse(self, filter: str):
         """RMSE over runs per epoch (pandas DataFrame indexed by time in s): one column per
         state, then `pos_m`, `vel_mps`, `downrange_m`, `crossrange_m`, `up_m`."""
         import pandas as pd
 
-        s = self._filter(filter)["series"]
+        times = self.series(filter, "times_s")
+        rmse = self.series(filter, "rmse")
         states = self.summary["states"]
-        data = {st: [row[i] for row in s["rmse"]] for i, st in enumerate(states)}
-        data["pos_m"] = s["pos_rmse_m"]
-        data["vel_mps"] = s["vel_rmse_mps"]
-        local = s["local_rmse_m"]  # [component][epoch]
+        data = {st: rmse[:, i] for i, st in enumerate(states)}
+        data["pos_m"] = self.series(filter, "pos_rmse_m")
+        data["vel_mps"] = self.series(filter, "vel_rmse_mps")
+        local = self.series(filter, "local_rmse_m")  # [component][epoch]
         for j, name in enumerate(["downrange_m", "crossrange_m", "up_m"]):
-            data[name] = local[j] if j < len(local) else [None] * len(s["times_s"])
-        return pd.DataFrame(data, index=pd.Index(s["times_s"], name="t_s"), dtype=float)
+            data[name] = local[j] if j < len(local) else [None] * len(times)
+        return pd.DataFrame(data, index=pd.Index(times, name="t_s"), dtype=float)
 
     def sigma(self, filter: str):
         """Mean onboard 1σ over runs per epoch and state (DataFrame indexed by time in s)."""
         import pandas as pd
 
-        s = self._filter(filter)["series"]
-        data = {st: [row[i] for row in s["sigma_mean"]] for i, st in enumerate(self.summary["states"])}
-        return pd.DataFrame(data, index=pd.Index(s["times_s"], name="t_s"), dtype=float)
+        sigma = self.series(filter, "sigma_mean")
+        data = {st: sigma[:, i] for i, st in enumerate(self.summary["states"])}
+        return pd.DataFrame(data, index=pd.Index(self.series(filter, "times_s"), name="t_s"), dtype=float)
 
     def nees(self, filter: str):
         """Mean NEES and NIS over runs per epoch with the two-sided 95 % χ² bands of the means
         (DataFrame indexed by time in s)."""
         import pandas as pd
 
-        s = self._filter(filter)["series"]
+        times = self.series(filter, "times_s")
         f = next(f for f in self.summary["filters"] if f["name"] == filter)
         lo, hi = f["nees_bounds_95"]
         nlo, nhi = f["nis_bounds_95"] if f.get("nis_bounds_95") else (None, None)
-        n = len(s["times_s"])
+        n = len(times)
         return pd.DataFrame(
             {
-                "nees": s["nees_mean"],
+                "nees": self.series(filter, "nees_mean"),
                 "nees_lower": [lo] * n,
                 "nees_upper": [hi] * n,
-                "nis": s["nis_mean"],
+                "nis": self.series(filter, "nis_mean"),
                 "nis_lower": [nlo] * n,
                 "nis_upper": [nhi] * n,
             },
-            index=pd.Index(s["times_s"], name="t_s"),
+            index=pd.Index(times, name="t_s"),
             dtype=float,
         )
 

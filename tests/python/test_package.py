@@ -74,6 +74,30 @@ def test_series_frames_match_the_summary():
         res.rmse("ukf")
 
 
+def test_series_are_numpy_views_of_the_native_result_without_a_copy():
+    import numpy as np
+
+    res = entrynav.trade("four-beacon-fusion", ["ekf", "dcifaif"], runs=5, seed=1)
+    details = res._details["filters"]["dcifaif"]["series"]
+    for key in ["times_s", "pos_rmse_m", "nees_mean", "rmse", "local_rmse_m"]:
+        a = res.series("dcifaif", key)
+        # A view of the bytes the native side handed over: no Python lists, no second buffer
+        # (a 2-D series is a reshaped view of the 1-D view).
+        root = a
+        while isinstance(root, np.ndarray):
+            assert not root.flags.owndata, key
+            root = root.base
+        assert isinstance(root, bytes) and not a.flags.writeable, key
+        want = np.array(details[key], dtype=float)
+        assert a.shape == want.shape, key
+        assert np.array_equal(a, want, equal_nan=True), key
+    assert res.series("dcifaif", "rmse").shape == (len(details["times_s"]), len(res.summary["states"]))
+    with pytest.raises(ValueError, match="does not exist"):
+        res.series("ekf", "no_such_series")
+    with pytest.raises(ValueError, match="not in this trade"):
+        res.series("ukf", "times_s")
+
+
 def test_thread_count_and_concurrent_trades_do_not_change_results():
     sc = entrynav.Scenario.builtin("orbiters-3")
     one = entrynav.trade(sc, ["ekf"], runs=16, seed=5, threads=1).summary

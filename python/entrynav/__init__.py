@@ -173,7 +173,7 @@ class TradeResult:
             return np.array(s[key], dtype=float)
         raw, rows, cols = self._native.series(filter, key)
         a = np.frombuffer(raw, dtype="<f8")
-        return a if cols == 1 and key not in ("rmse", "sigma_mean", "bias", "local_rmse_m") else a.reshape(rows, cols)
+        return a.reshape(rows, cols) if key in ("rmse", "sigma_mean", "bias", "local_rmse_m") else a
 
     def rmse(self, filter: str):
         """RMSE over runs per epoch (pandas DataFrame indexed by time in s): one column per

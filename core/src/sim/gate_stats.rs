@@ -95,7 +95,6 @@ impl GateSums {
             self.false_any_runs += 1;
         }
         let mut beacons: Vec<&String> = rec.exclusions.iter().map(|x| &x.beacon).collect();
-        beacons.dedup();
         beacons.sort();
         beacons.dedup();
         for b in beacons {

@@ -129,6 +129,19 @@ impl<const N: usize> BankNav<N> {
     /// Member `i`'s estimate with its density-bias residual δ expressed as the total bias
     /// (1 + Δ_i)(1 + δ) − 1 (a linear map of that state, so the covariance row and column scale
     /// by 1 + Δ_i).
+    /// The live members' estimates fused with the current model weights.
+    fn fuse_members(&self) -> Result<(SVector<f64, N>, SMatrix<f64, N, N>), EstimationError> {
+        let (w, est): (Vec<f64>, Vec<_>) = self
+            .ens
+            .members
+            .iter()
+            .enumerate()
+            .zip(&self.weights)
+            .filter_map(|((i, m), w)| m.as_ref().map(|f| (*w, self.member_estimate(i, f))))
+            .unzip();
+        fuse_bank(&w, &est)
+    }
+
     fn member_estimate(&self, i: usize, f: &EkfNav<N>) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
         let (mut x, mut p) = f.estimate();
         if let Some(k) = self.density_state {
@@ -206,15 +219,7 @@ impl<const N: usize> NavFilter<N> for BankNav<N> {
             Gate::Classic(b) => b.update(&loglik)?.to_vec(),
             Gate::Moe(m) => m.update(&z, &loglik)?.1,
         };
-        let (w, est): (Vec<f64>, Vec<_>) = self
-            .ens
-            .members
-            .iter()
-            .enumerate()
-            .zip(&self.weights)
-            .filter_map(|((i, m), w)| m.as_ref().map(|f| (*w, self.member_estimate(i, f))))
-            .unzip();
-        self.ens.fused = fuse_bank(&w, &est)?;
+        self.ens.fused = self.fuse_members()?;
         let (nis, innovations, nis_terms) = mixture_nis(epoch, &epoch_slots, &predictive);
         Ok(StepInfo {
             nis,
@@ -228,15 +233,7 @@ impl<const N: usize> NavFilter<N> for BankNav<N> {
 
     /// The members' priors fused with the current model weights, as the update fuses posteriors.
     fn prior(&self) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
-        let (w, est): (Vec<f64>, Vec<_>) = self
-            .ens
-            .members
-            .iter()
-            .enumerate()
-            .zip(&self.weights)
-            .filter_map(|((i, m), w)| m.as_ref().map(|f| (*w, self.member_estimate(i, f))))
-            .unzip();
-        fuse_bank(&w, &est).unwrap_or(self.ens.fused)
+        self.fuse_members().unwrap_or(self.ens.fused)
     }
 
     fn core(&self) -> &dyn FilterCore<N> {

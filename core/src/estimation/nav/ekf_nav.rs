@@ -239,33 +239,53 @@ impl<const N: usize> EkfNav<N> {
         beacons: &[(V3<f64>, V3<f64>)],
         mask: Option<&[usize]>,
     ) -> (Vec<usize>, Vec<LinearizedMeasurement<N>>) {
-        let xd = seed_duals(x);
-        let kin = kinematics(&self.model, &xd, epoch.t);
-        let bank = self.bank;
-        let mut slots = Vec::new();
-        let mut items = Vec::new();
-        for (c, value) in epoch.values.iter().enumerate() {
-            let Some(z) = *value else { continue };
-            if let Some(mask) = mask
-                && !mask.contains(&c)
-            {
-                continue;
-            }
-            let spec = &self.onboard.channels[c];
-            let d = self.onboard.measurement.evaluate_with(
-                &self.model,
-                &xd,
-                &kin,
-                bank,
-                beacons,
-                spec.channel,
-            );
-            let sigma = channel_sigma(spec, z);
-            slots.push(c);
-            items.push((d.re, dual_gradient(&d), z, sigma * sigma));
-        }
-        (slots, items)
+        linearize_epoch(
+            &self.onboard,
+            &self.model,
+            self.bank,
+            x,
+            epoch,
+            beacons,
+            mask,
+        )
     }
+}
+
+/// Linearised items `(h(x), ∂h/∂x by AD, z, r)` of the epoch's available channels (those in
+/// `mask`, when given) at `x`, with the `onboard` measurement model on the dynamics `model`
+/// flying `bank`, and the noise the filter assumes; with the channel slot of each. The EKFs'
+/// update and the innovation gate ([`super::GatedNav`]) share it.
+pub(super) fn linearize_epoch<const N: usize>(
+    onboard: &Onboard,
+    model: &EntryModel<AtmosphereModel>,
+    bank: f64,
+    x: &SVector<f64, N>,
+    epoch: &MeasurementEpoch,
+    beacons: &[(V3<f64>, V3<f64>)],
+    mask: Option<&[usize]>,
+) -> (Vec<usize>, Vec<LinearizedMeasurement<N>>) {
+    let xd = seed_duals(x);
+    let kin = kinematics(model, &xd, epoch.t);
+    let mut slots = Vec::new();
+    let mut items = Vec::new();
+    for (c, value) in epoch.values.iter().enumerate() {
+        let Some(z) = *value else { continue };
+        if let Some(mask) = mask
+            && !mask.contains(&c)
+        {
+            continue;
+        }
+        let Some(spec) = onboard.channels.get(c) else {
+            continue;
+        };
+        let d = onboard
+            .measurement
+            .evaluate_with(model, &xd, &kin, bank, beacons, spec.channel);
+        let sigma = channel_sigma(spec, z);
+        slots.push(c);
+        items.push((d.re, dual_gradient(&d), z, sigma * sigma));
+    }
+    (slots, items)
 }
 
 impl<const N: usize> NavFilter<N> for EkfNav<N> {

@@ -8,12 +8,12 @@
 //! what the filter itself believes (x̂⁻, P⁻, R); for the sigma-point filters S is linearised at
 //! the prior mean rather than taken from their sigma points, which is the same to first order.
 
-use super::{FilterCore, NavFilter, StepInfo, channel_sigma};
+use super::ekf_nav::linearize_epoch;
+use super::{FilterCore, NavFilter, StepInfo};
 use crate::estimation::gating::{BeaconMonitor, ExclusionEvent, Gate, GatingConfig};
 use crate::estimation::{EstimationError, Onboard};
-use crate::math::{V3, dual_gradient, seed_duals};
+use crate::math::V3;
 use crate::sensors::MeasurementEpoch;
-use crate::sensors::channels::kinematics;
 use nalgebra::{DMatrix, DVector};
 use std::sync::Arc;
 
@@ -69,46 +69,31 @@ impl<const N: usize> GatedNav<N> {
         }
     }
 
-    /// Innovations ν = z − h(x̂⁻) and S = H P⁻ Hᵀ + R of the epoch's available channels.
+    /// Innovations ν = z − h(x̂⁻) and S = H P⁻ Hᵀ + R of the epoch's available channels,
+    /// linearised at the filter's prior exactly as its EKF update would be.
     fn innovations(
         &self,
         epoch: &MeasurementEpoch,
         beacons: &[(V3<f64>, V3<f64>)],
     ) -> (Vec<usize>, DVector<f64>, DMatrix<f64>) {
         let (x, p) = self.inner.prior();
-        let model = &self.onboard.model;
-        let xd = seed_duals(&x);
-        let kin = kinematics(model, &xd, epoch.t);
         let bank = self.inner.bank_angle();
-        let mut slots = Vec::new();
-        let mut nu = Vec::new();
-        let mut rows = Vec::new();
-        let mut r = Vec::new();
-        for (c, value) in epoch.values.iter().enumerate() {
-            let Some(z) = *value else { continue };
-            let Some(spec) = self.onboard.channels.get(c) else {
-                continue;
-            };
-            let d = self.onboard.measurement.evaluate_with(
-                model,
-                &xd,
-                &kin,
-                bank,
-                beacons,
-                spec.channel,
-            );
-            let sigma = channel_sigma(spec, z);
-            slots.push(c);
-            nu.push(z - d.re);
-            rows.push(dual_gradient(&d));
-            r.push(sigma * sigma);
-        }
+        let (slots, items) = linearize_epoch(
+            &self.onboard,
+            &self.onboard.model,
+            bank,
+            &x,
+            epoch,
+            beacons,
+            None,
+        );
         let m = slots.len();
+        let nu = DVector::from_fn(m, |i, _| items[i].2 - items[i].0);
         let s = DMatrix::from_fn(m, m, |i, j| {
-            let hp = (rows[i].transpose() * p * rows[j])[(0, 0)];
-            if i == j { hp + r[i] } else { hp }
+            let hp = items[i].1.dot(&(p * items[j].1));
+            if i == j { hp + items[i].3 } else { hp }
         });
-        (slots, DVector::from_vec(nu), s)
+        (slots, nu, s)
     }
 
     /// The gate's decision for an epoch: the epoch the filter may use, and the report.

@@ -23,12 +23,29 @@ pub struct GenerateArgs {
     /// Multiplier of the SPEC.md perturbation envelope (0: the scaled mean profiles exactly).
     #[arg(long, default_value_t = 0.5)]
     pub perturbation_scale: f64,
-    /// Density factors above 80 km (comma-separated; default 0.1,0.3,0.5,1,2,3).
+    /// Which cases: `standard` (18: f_above x f_below), `high-latitude` (12: steeper scale height,
+    /// twice the perturbation, 0.3-3x upper atmosphere) or `extended` (the 18 then the 12).
+    #[arg(long, value_enum, default_value_t = Preset::Standard)]
+    pub preset: Preset,
+    /// Density factors above 80 km of the standard cases (comma-separated; default
+    /// 0.1,0.3,0.5,1,2,3; not with another preset).
     #[arg(long, value_name = "LIST")]
     pub factors_above: Option<String>,
-    /// Density factors below 60 km (comma-separated; default 0.7,1,1.3).
+    /// Density factors below 60 km of the standard cases (comma-separated; default 0.7,1,1.3;
+    /// not with another preset).
     #[arg(long, value_name = "LIST")]
     pub factors_below: Option<String>,
+}
+
+/// The case sets of `entrynav::atmosphere::synthetic_set`.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Preset {
+    /// The 18 cases f_above x f_below.
+    Standard,
+    /// The 12 high-latitude cases.
+    HighLatitude,
+    /// The 18 standard cases, then the 12 high-latitude ones.
+    Extended,
 }
 
 fn list(text: &Option<String>, flag: &str) -> Result<Option<Vec<f64>>> {
@@ -44,23 +61,33 @@ fn list(text: &Option<String>, flag: &str) -> Result<Option<Vec<f64>>> {
 
 /// Run the command.
 pub fn run(args: &GenerateArgs) -> Result<()> {
+    let base = match args.preset {
+        Preset::Standard => SyntheticSetSpec::default(),
+        Preset::HighLatitude => SyntheticSetSpec::high_latitude(),
+        Preset::Extended => SyntheticSetSpec::extended(),
+    };
     let mut spec = SyntheticSetSpec {
         seed: args.seed,
         perturbation_scale: args.perturbation_scale,
-        ..SyntheticSetSpec::default()
+        ..base
     };
     let above = list(&args.factors_above, "--factors-above")?;
     let below = list(&args.factors_below, "--factors-below")?;
+    if (above.is_some() || below.is_some()) && args.preset != Preset::Standard {
+        anyhow::bail!(
+            "--factors-above/--factors-below set the standard cases; they cannot be combined with \
+             --preset high-latitude or extended"
+        );
+    }
     if above.is_some() || below.is_some() {
         let above = above.unwrap_or_else(|| vec![0.1, 0.3, 0.5, 1.0, 2.0, 3.0]);
         let below = below.unwrap_or_else(|| vec![0.7, 1.0, 1.3]);
         spec.cases = above
             .iter()
             .flat_map(|&factor_above| {
-                below.iter().map(move |&factor_below| SyntheticCase {
-                    factor_above,
-                    factor_below,
-                })
+                below
+                    .iter()
+                    .map(move |&factor_below| SyntheticCase::scaled(factor_above, factor_below))
             })
             .collect();
     }
@@ -68,19 +95,14 @@ pub fn run(args: &GenerateArgs) -> Result<()> {
     let text = synthetic_set_gram_text(&profiles, &spec, Planet::MARS.radius);
     crate::atomic_file::write(&args.out, text)?;
     println!(
-        "wrote {}: {} profiles (f_above x f_below), 0-150 km every 1 km, perturbation x {}, seed {}",
+        "wrote {}: {} profiles, 0-150 km every 1 km, perturbation x {} (times each case's factor), seed {}",
         args.out.display(),
         profiles.len(),
         spec.perturbation_scale,
         spec.seed
     );
     for (i, p) in profiles.iter().enumerate() {
-        println!(
-            "  profile {i:>3}: f_above {:>4}  f_below {:>4}  {}",
-            p.case.factor_above,
-            p.case.factor_below,
-            p.case.season()
-        );
+        println!("  profile {i:>3}: {}", p.case.describe());
     }
     Ok(())
 }

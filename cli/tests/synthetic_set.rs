@@ -63,4 +63,43 @@ fn generated_set_is_read_back_as_18_covering_profiles_and_flown_by_the_trade() {
     ]);
     assert_ne!(code, 0);
     assert!(err.contains("factor_above"), "{err}");
+
+    // The extended set: the 18 standard profiles, unchanged, then 12 high-latitude ones.
+    let ext = dir.join("extended.txt");
+    let (code, out, err) = entrynav(&[
+        "atmosphere",
+        "generate",
+        "--preset",
+        "extended",
+        "--out",
+        ext.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("30 profiles"), "{out}");
+    assert_eq!(out.matches("(high latitude)").count(), 12, "{out}");
+    let ext_text = std::fs::read_to_string(&ext).unwrap();
+    let rows = |t: &str| -> Vec<String> {
+        t.lines()
+            .filter(|l| !l.starts_with('#'))
+            .map(str::to_string)
+            .collect()
+    };
+    let (std_rows, ext_rows) = (rows(&text), rows(&ext_text));
+    assert_eq!(ext_rows.len(), 30 * 151);
+    assert_eq!(&ext_rows[..std_rows.len()], &std_rows[..]);
+    let (code, out, err) = entrynav(&["atmosphere", "inspect", ext.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("profiles  30"), "{out}");
+    let (code, _, err) = entrynav(&[
+        "atmosphere",
+        "generate",
+        "--preset",
+        "high-latitude",
+        "--factors-above",
+        "1",
+        "--out",
+        ext.to_str().unwrap(),
+    ]);
+    assert_ne!(code, 0);
+    assert!(err.contains("--preset"), "{err}");
 }

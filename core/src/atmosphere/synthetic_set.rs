@@ -15,6 +15,23 @@
 //! over a thinner lower atmosphere) and everything in between. These are **not** Mars-GRAM
 //! output; they only bracket the ranges seed 001 and the issue name.
 //!
+//! **High-latitude cases** ([`SyntheticSetSpec::high_latitude`], issue 30). Seed 001 §V reports
+//! its largest density errors at 80°N; polar winter atmospheres are cold (a smaller scale height:
+//! density falls off faster with height), vary more, and have an upper atmosphere that differs from
+//! the mean by a factor of a few either way. A case's `scale_height_factor` s < 1 steepens the
+//! lower atmosphere about an anchor altitude h_a = 40 km (the band of peak deceleration of the MSL
+//! entry): below 60 km the factor gains
+//!
+//! k(h) = (ρ̄(h)/ρ̄(h_a))^(1/s − 1),
+//!
+//! which turns every local scale height H(h) of the mean into s·H(h) (for an exponential mean,
+//! exactly an exponential of scale height s·H), held at its 60 km value above that, blended out
+//! with f_below over 60–80 km, so `f_above` stays the ratio to the mean above 80 km. Its
+//! `perturbation_factor` multiplies the set's perturbation scale (2: the full SPEC.md envelope for
+//! the default scale 0.5). The high-latitude grid crosses s ∈ {0.75, 0.9} with
+//! `f_above` ∈ {0.3, 1, 3} and `f_below` ∈ {1, 1.3}, perturbation ×2; [`SyntheticSetSpec::extended`]
+//! is the standard 18 cases followed by these 12.
+//!
 //! [`generate_synthetic_set`] returns the profiles; [`synthetic_set_gram_text`] formats them as
 //! a Mars-GRAM Monte Carlo set (a `#` header of `Var_X DENSTOT Radius`, stacked profiles), which
 //! `atmosphere::parse_profiles` reads back. The core does no I/O: the CLI writes the text.
@@ -28,29 +45,83 @@ use super::{Atmosphere, Tabulated};
 pub const SYNTHETIC_BLEND_BOTTOM_M: f64 = 60_000.0;
 /// Altitude (m) above which a case's `f_above` applies.
 pub const SYNTHETIC_BLEND_TOP_M: f64 = 80_000.0;
+/// Anchor altitude (m) about which a high-latitude case steepens the lower atmosphere.
+pub const SYNTHETIC_STEEPEN_ANCHOR_M: f64 = 40_000.0;
 
 /// One atmosphere of the set: density factors relative to the mean.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SyntheticCase {
     /// ρ/ρ̄ above 80 km (before the perturbation).
     pub factor_above: f64,
-    /// ρ/ρ̄ below 60 km (before the perturbation).
+    /// ρ/ρ̄ below 60 km (before the perturbation), times the steepening k(h) when
+    /// `scale_height_factor` ≠ 1.
     pub factor_below: f64,
+    /// s: the lower atmosphere's scale heights are s times the mean's (1 = the mean's shape).
+    pub scale_height_factor: f64,
+    /// Multiplier of the set's perturbation scale for this case (1 = the set's).
+    pub perturbation_factor: f64,
 }
 
 impl SyntheticCase {
-    /// The deterministic factor f(h) of the module documentation.
+    /// A case with the mean's shape (s = 1) and the set's perturbation.
+    pub fn scaled(factor_above: f64, factor_below: f64) -> Self {
+        SyntheticCase {
+            factor_above,
+            factor_below,
+            scale_height_factor: 1.0,
+            perturbation_factor: 1.0,
+        }
+    }
+
+    /// The deterministic factor f(h) of the module documentation for a case with the mean's
+    /// shape (s = 1); [`SyntheticCase::factor_over`] includes the steepening.
     pub fn factor(&self, altitude_m: f64) -> f64 {
+        self.blend(altitude_m, 0.0)
+    }
+
+    /// The deterministic factor ρ/ρ̄ at `altitude_m` over the mean `mean`: f(h) times the
+    /// steepening k(h) below 60 km (blended out over 60–80 km) when s ≠ 1.
+    pub fn factor_over(&self, mean: &impl Atmosphere, altitude_m: f64) -> f64 {
+        if self.scale_height_factor == 1.0 {
+            return self.factor(altitude_m);
+        }
+        let h = altitude_m.min(SYNTHETIC_BLEND_BOTTOM_M);
+        let ln_k = (1.0 / self.scale_height_factor - 1.0)
+            * (mean.density(h) / mean.density(SYNTHETIC_STEEPEN_ANCHOR_M)).ln();
+        self.blend(altitude_m, ln_k)
+    }
+
+    /// exp of ln f_below + ln k blended into ln f_above over 60–80 km (smoothstep).
+    fn blend(&self, altitude_m: f64, ln_k: f64) -> f64 {
         let u = ((altitude_m - SYNTHETIC_BLEND_BOTTOM_M)
             / (SYNTHETIC_BLEND_TOP_M - SYNTHETIC_BLEND_BOTTOM_M))
             .clamp(0.0, 1.0);
         let s = u * u * (3.0 - 2.0 * u);
-        let (lb, la) = (self.factor_below.ln(), self.factor_above.ln());
+        let (lb, la) = (self.factor_below.ln() + ln_k, self.factor_above.ln());
         (lb + (la - lb) * s).exp()
     }
 
-    /// A short description: "cold / polar", "dusty season", or "mixed".
+    /// One line: the factors, and s and the perturbation factor where they are not 1.
+    pub fn describe(&self) -> String {
+        let mut d = format!(
+            "f_above {:>4} f_below {:>4}",
+            self.factor_above, self.factor_below
+        );
+        if self.scale_height_factor != 1.0 || self.perturbation_factor != 1.0 {
+            d.push_str(&format!(
+                " scale height x {} perturbation x {}",
+                self.scale_height_factor, self.perturbation_factor
+            ));
+        }
+        d.push_str(&format!(" ({})", self.season()));
+        d
+    }
+
+    /// A short description: "high latitude", "cold / polar", "dusty season", "mean" or "mixed".
     pub fn season(&self) -> &'static str {
+        if self.scale_height_factor < 1.0 {
+            return "high latitude";
+        }
         match (self.factor_above, self.factor_below) {
             (a, b) if a < 1.0 && b > 1.0 => "cold / polar",
             (a, b) if a > 1.0 && b < 1.0 => "dusty season",
@@ -82,10 +153,7 @@ impl Default for SyntheticSetSpec {
         let mut cases = Vec::new();
         for factor_above in [0.1, 0.3, 0.5, 1.0, 2.0, 3.0] {
             for factor_below in [0.7, 1.0, 1.3] {
-                cases.push(SyntheticCase {
-                    factor_above,
-                    factor_below,
-                });
+                cases.push(SyntheticCase::scaled(factor_above, factor_below));
             }
         }
         SyntheticSetSpec {
@@ -98,9 +166,45 @@ impl Default for SyntheticSetSpec {
     }
 }
 
+/// The 12 high-latitude cases of the module documentation: s ∈ {0.75, 0.9} × `f_above` ∈
+/// {0.3, 1, 3} × `f_below` ∈ {1, 1.3}, perturbation ×2.
+pub fn high_latitude_cases() -> Vec<SyntheticCase> {
+    let mut cases = Vec::new();
+    for scale_height_factor in [0.75, 0.9] {
+        for factor_above in [0.3, 1.0, 3.0] {
+            for factor_below in [1.0, 1.3] {
+                cases.push(SyntheticCase {
+                    factor_above,
+                    factor_below,
+                    scale_height_factor,
+                    perturbation_factor: 2.0,
+                });
+            }
+        }
+    }
+    cases
+}
+
 impl SyntheticSetSpec {
-    /// Check the spec: 1 to 10 000 cases with factors in [0.01, 100], scale in [0, 10], a range of
-    /// at least three rows.
+    /// The high-latitude set alone (12 cases, seed 1, scale 0.5 × each case's factor 2).
+    pub fn high_latitude() -> Self {
+        SyntheticSetSpec {
+            cases: high_latitude_cases(),
+            ..SyntheticSetSpec::default()
+        }
+    }
+
+    /// The extended set: the standard 18 cases, then the 12 high-latitude ones (30 profiles;
+    /// profile i keeps seed + i, so the first 18 equal the standard set's).
+    pub fn extended() -> Self {
+        let mut spec = SyntheticSetSpec::default();
+        spec.cases.extend(high_latitude_cases());
+        spec
+    }
+
+    /// Check the spec: 1 to 10 000 cases with factors in [0.01, 100], scale height factors in
+    /// [0.5, 2], perturbation factors in [0, 10], scale in [0, 10] (and scale × factor ≤ 10), a
+    /// range of at least three rows.
     pub fn validate(&self) -> Result<(), AtmosphereError> {
         if self.cases.is_empty() || self.cases.len() > super::MAX_PROFILES {
             return Err(AtmosphereError::InvalidField {
@@ -124,6 +228,24 @@ impl SyntheticSetSpec {
                 c.factor_below,
                 0.01,
                 100.0,
+            )?;
+            check_closed(
+                &format!("cases[{i}].scale_height_factor"),
+                c.scale_height_factor,
+                0.5,
+                2.0,
+            )?;
+            check_closed(
+                &format!("cases[{i}].perturbation_factor"),
+                c.perturbation_factor,
+                0.0,
+                10.0,
+            )?;
+            check_closed(
+                &format!("cases[{i}].perturbation_factor x perturbation_scale"),
+                c.perturbation_factor * self.perturbation_scale,
+                0.0,
+                10.0,
             )?;
         }
         check_closed("perturbation_scale", self.perturbation_scale, 0.0, 10.0)?;
@@ -159,20 +281,20 @@ pub fn generate_synthetic_set(
     spec.validate()?;
     let (lo, hi) = spec.altitude_range_m;
     let rows = ((hi - lo) / spec.step_m + 1e-9).floor() as usize + 1;
-    let pert = PerturbationSpec {
-        grid_bottom_m: lo.min(0.0),
-        grid_top_m: hi.max(150_000.0),
-        scale: spec.perturbation_scale,
-        ..PerturbationSpec::default()
-    };
     let mut out = Vec::with_capacity(spec.cases.len());
     for (i, case) in spec.cases.iter().enumerate() {
         let seed = spec.seed.wrapping_add(i as u64);
+        let pert = PerturbationSpec {
+            grid_bottom_m: lo.min(0.0),
+            grid_top_m: hi.max(150_000.0),
+            scale: spec.perturbation_scale * case.perturbation_factor,
+            ..PerturbationSpec::default()
+        };
         let p = Perturbed::from_seed(AtmosphereModel::Tabulated(mean.clone()), &pert, seed)?;
         let altitude_m: Vec<f64> = (0..rows).map(|k| lo + k as f64 * spec.step_m).collect();
         let density = altitude_m
             .iter()
-            .map(|&h| case.factor(h) * p.density(h))
+            .map(|&h| case.factor_over(mean, h) * p.density(h))
             .collect();
         out.push(SyntheticProfile {
             case: *case,
@@ -200,13 +322,13 @@ pub fn synthetic_set_gram_text(
         "# x f(h) (f_below below 60 km, f_above above 80 km, smooth in ln rho between) x a seeded\n# perturbation (SPEC.md envelope x {}, seed {} + profile index). Profiles, in order:\n",
         spec.perturbation_scale, spec.seed
     ));
+    if profiles.iter().any(|p| p.case.season() == "high latitude") {
+        s.push_str(
+            "# High-latitude cases: scale heights below 60 km x s about 40 km (blended out over\n# 60-80 km) and the perturbation scale x the case's factor.\n",
+        );
+    }
     for (i, p) in profiles.iter().enumerate() {
-        s.push_str(&format!(
-            "#   profile {i:>3}: f_above {:>4} f_below {:>4} ({})\n",
-            p.case.factor_above,
-            p.case.factor_below,
-            p.case.season()
-        ));
+        s.push_str(&format!("#   profile {i:>3}: {}\n", p.case.describe()));
     }
     s.push_str("#      Var_X      DENSTOT       Radius\n");
     for p in profiles {
@@ -229,10 +351,7 @@ mod tests {
 
     #[test]
     fn factor_is_f_below_low_f_above_high_and_monotone_between() {
-        let c = SyntheticCase {
-            factor_above: 3.0,
-            factor_below: 0.7,
-        };
+        let c = SyntheticCase::scaled(3.0, 0.7);
         assert!((c.factor(0.0) - 0.7).abs() < 1e-15);
         assert!((c.factor(59_999.0) - 0.7).abs() < 1e-15);
         assert!((c.factor(80_000.0) - 3.0).abs() < 1e-12);
@@ -262,13 +381,71 @@ mod tests {
             }
         }
         let bad = SyntheticSetSpec {
-            cases: vec![SyntheticCase {
-                factor_above: 0.0,
-                factor_below: 1.0,
-            }],
-            ..spec
+            cases: vec![SyntheticCase::scaled(0.0, 1.0)],
+            ..spec.clone()
         };
         let e = generate_synthetic_set(&mean, &bad).unwrap_err().to_string();
         assert!(e.contains("cases[0].factor_above"), "{e}");
+        let steep = SyntheticCase {
+            scale_height_factor: 0.3,
+            ..SyntheticCase::scaled(1.0, 1.0)
+        };
+        let bad = SyntheticSetSpec {
+            cases: vec![steep],
+            ..spec
+        };
+        let e = generate_synthetic_set(&mean, &bad).unwrap_err().to_string();
+        assert!(e.contains("cases[0].scale_height_factor"), "{e}");
+        assert!(e.contains("0.3"), "{e}");
+    }
+
+    /// A high-latitude case has s times the mean's scale heights below 60 km (ln ρ differences
+    /// scaled by 1/s), equals the mean at the 40 km anchor and f_above above 80 km; the extended
+    /// set starts with the standard set, profile for profile.
+    #[test]
+    fn high_latitude_cases_steepen_the_lower_atmosphere_and_extend_the_set() {
+        let mean = mars_mean_profile();
+        let spec = SyntheticSetSpec {
+            perturbation_scale: 0.0,
+            ..SyntheticSetSpec::high_latitude()
+        };
+        let set = generate_synthetic_set(&mean, &spec).unwrap();
+        assert_eq!(set.len(), 12);
+        for p in &set {
+            let (s, c) = (p.case.scale_height_factor, p.case);
+            assert!(s < 1.0 && c.perturbation_factor == 2.0);
+            assert_eq!(c.season(), "high latitude");
+            let rho = |h: f64| p.density[(h / 1000.0) as usize];
+            assert!((rho(40_000.0) / mean.density(40_000.0) / c.factor_below - 1.0).abs() < 1e-12);
+            for (a, b) in [(0.0, 20_000.0), (25_000.0, 55_000.0), (10_000.0, 60_000.0)] {
+                let steep = (rho(a) / rho(b)).ln();
+                let base = (mean.density(a) / mean.density(b)).ln();
+                assert!((steep * s / base - 1.0).abs() < 1e-9, "{c:?} {a} {b}");
+            }
+            for h in [80_000.0, 120_000.0] {
+                assert!((rho(h) / mean.density(h) / c.factor_above - 1.0).abs() < 1e-12);
+            }
+        }
+        let std = generate_synthetic_set(&mean, &SyntheticSetSpec::default()).unwrap();
+        let ext = generate_synthetic_set(&mean, &SyntheticSetSpec::extended()).unwrap();
+        assert_eq!(ext.len(), 30);
+        assert_eq!(&ext[..18], &std[..]);
+        // Twice the perturbation: the spread of ln(ρ/deterministic) at 100 km over the 12 cases
+        // is larger than over the standard set's 18.
+        let spread = |ps: &[SyntheticProfile]| {
+            let v: Vec<f64> = ps
+                .iter()
+                .map(|p| {
+                    (p.density[100] / (p.case.factor_over(&mean, 100e3) * mean.density(100e3))).ln()
+                })
+                .collect();
+            (v.iter().map(|x| x * x).sum::<f64>() / v.len() as f64).sqrt()
+        };
+        assert!(
+            spread(&ext[18..]) > 1.4 * spread(&std),
+            "{} {}",
+            spread(&ext[18..]),
+            spread(&std)
+        );
     }
 }

@@ -12,7 +12,7 @@ use entrynav::guidance::longitudinal::{GAMMA, LongModel, R, THETA, U};
 use entrynav::guidance::reference::ReferenceTrajectory;
 use entrynav::guidance::{
     BankActuator, BankLimits, Guidance, GuidanceAlgorithm, GuidanceConfig, GuidanceError, NavState,
-    build_guidance, config::REFERENCE_STEP_S, config::reference_and_target,
+    TargetConfig, config::REFERENCE_STEP_S, config::reference_and_target,
 };
 use entrynav::scenario::{Scenario, ScenarioConfig, TruthDraw};
 use entrynav::sim::guided_flight::{GuidedFlight, GuidedFlightSettings, fly_perfect_navigation};
@@ -20,30 +20,32 @@ use nalgebra::SVector;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
-fn msl() -> Scenario {
-    Scenario::build(
-        ScenarioConfig::builtin("msl-airdata").unwrap(),
-        &entrynav::files::no_files,
-    )
-    .unwrap()
+/// Seed 001's MSL entry (`msl-airdata`) with `[guidance]` of `algorithm`: reference bank 60°,
+/// deployment at 450 m/s, every other setting its default.
+fn msl(algorithm: &str) -> Scenario {
+    let mut cfg = ScenarioConfig::builtin("msl-airdata").unwrap();
+    cfg.guidance = Some(
+        toml::from_str(&format!(
+            "algorithm = \"{algorithm}\"\nreference_bank_deg = 60.0\ntrigger = {{ speed_mps = 450.0 }}\n"
+        ))
+        .unwrap(),
+    );
+    let text = cfg.to_toml_string();
+    let cfg = ScenarioConfig::from_toml_str(&text, "msl-guided test").unwrap();
+    Scenario::build(cfg, &entrynav::files::no_files).unwrap()
+}
+
+fn guidance_config(s: &Scenario) -> &GuidanceConfig {
+    s.config.guidance.as_ref().unwrap()
 }
 
 /// The onboard model guidance uses (module documentation).
 fn onboard(s: &Scenario) -> EntryModel<entrynav::atmosphere::AtmosphereModel> {
-    let mut m = s.filter_model().clone();
-    m.atmosphere = s.onboard.climatology.clone();
-    m
-}
-
-fn config(algorithm: &str) -> GuidanceConfig {
-    toml::from_str(&format!(
-        "algorithm = \"{algorithm}\"\nreference_bank_deg = 60.0\ntrigger = {{ speed_mps = 450.0 }}\n"
-    ))
-    .unwrap()
+    s.guidance_model().unwrap()
 }
 
 fn entry(s: &Scenario) -> [f64; 6] {
-    let e = s.truth_initial;
+    let e = &s.onboard.initial_estimate;
     [e[0], e[1], e[2], e[3], e[4], e[5]]
 }
 
@@ -59,11 +61,11 @@ impl Guidance for ConstantBank {
     }
 }
 
-/// Fly `truth` with the guidance of `cfg` (or the constant reference bank when `constant`), with
-/// perfect navigation, and check the bank rate limit at every step.
-fn fly(s: &Scenario, cfg: &GuidanceConfig, truth: &TruthDraw, constant: bool) -> GuidedFlight {
-    let model = onboard(s);
-    let mut built = build_guidance(cfg, &model, &entry(s)).unwrap();
+/// Fly `truth` with the scenario's guidance (or the constant reference bank when `constant`),
+/// with perfect navigation, and check the bank rate limit at every step.
+fn fly(s: &Scenario, truth: &TruthDraw, constant: bool) -> GuidedFlight {
+    let cfg = guidance_config(s);
+    let mut built = s.build_guidance().unwrap().unwrap();
     let bank0 = cfg.reference_bank_deg.to_radians();
     let mut fixed = ConstantBank(bank0);
     let guidance: &mut dyn Guidance = if constant {
@@ -115,11 +117,11 @@ fn describe(name: &str, f: &GuidedFlight) {
 
 #[test]
 fn perfect_navigation_no_dispersions_meets_the_miss_requirements() {
-    let s = msl();
-    let truth = s.nominal_truth();
-    let apollo = fly(&s, &config("apollo"), &truth, false);
-    let fnpeg = fly(&s, &config("fnpeg"), &truth, false);
-    let constant = fly(&s, &config("apollo"), &truth, true);
+    let (a, f) = (msl("apollo"), msl("fnpeg"));
+    let truth = a.nominal_truth();
+    let apollo = fly(&a, &truth, false);
+    let fnpeg = fly(&f, &truth, false);
+    let constant = fly(&a, &truth, true);
     describe("apollo", &apollo);
     describe("fnpeg", &fnpeg);
     describe("constant", &constant);
@@ -130,13 +132,13 @@ fn perfect_navigation_no_dispersions_meets_the_miss_requirements() {
 
 #[test]
 fn guidance_beats_the_constant_bank_on_dispersed_entries() {
-    let s = msl();
+    let (a, f) = (msl("apollo"), msl("fnpeg"));
     for run in 0..5 {
         let mut rng = ChaCha8Rng::seed_from_u64(2800 + run as u64);
-        let truth = s.draw_truth_run(run, &mut rng);
-        let apollo = fly(&s, &config("apollo"), &truth, false);
-        let fnpeg = fly(&s, &config("fnpeg"), &truth, false);
-        let constant = fly(&s, &config("apollo"), &truth, true);
+        let truth = a.draw_truth_run(run, &mut rng);
+        let apollo = fly(&a, &truth, false);
+        let fnpeg = fly(&f, &truth, false);
+        let constant = fly(&a, &truth, true);
         println!("run {run}:");
         describe("apollo", &apollo);
         describe("fnpeg", &fnpeg);
@@ -149,12 +151,10 @@ fn guidance_beats_the_constant_bank_on_dispersed_entries() {
 #[test]
 fn the_bank_rate_limit_binds_and_holds() {
     // The limit must be active (reversals fly at it), not merely never reached.
-    let s = msl();
-    let truth = s.nominal_truth();
     for alg in ["apollo", "fnpeg"] {
-        let cfg = config(alg);
-        let f = fly(&s, &cfg, &truth, false);
-        let limits = cfg.limits().unwrap();
+        let s = msl(alg);
+        let f = fly(&s, &s.nominal_truth(), false);
+        let limits = guidance_config(&s).limits().unwrap();
         let max_rate = assert_rate_limit(&f, &limits, s.config.timing.truth_step_s);
         assert!(max_rate > 0.99 * limits.rate_max, "{alg}: {max_rate}");
         let reversals = f
@@ -201,10 +201,10 @@ fn the_limiter_keeps_rate_and_acceleration_on_a_step_reversal() {
 
 #[test]
 fn adjoint_gains_match_finite_differences_of_the_reference() {
-    let s = msl();
+    let s = msl("apollo");
     let model = onboard(&s);
-    let cfg = config("apollo");
-    let (reference, _) = reference_and_target(&cfg, &model, &entry(&s)).unwrap();
+    let cfg = guidance_config(&s);
+    let (reference, _) = reference_and_target(cfg, &model, &entry(&s)).unwrap();
     let lm = LongModel {
         model: &model,
         density_scale: 1.0,
@@ -273,10 +273,10 @@ fn adjoint_gains_match_finite_differences_of_the_reference() {
 
 #[test]
 fn the_reference_lands_on_its_target_and_is_tabulated_against_speed() {
-    let s = msl();
+    let s = msl("apollo");
     let model = onboard(&s);
-    let cfg = config("apollo");
-    let (reference, target) = reference_and_target(&cfg, &model, &entry(&s)).unwrap();
+    let (reference, target) =
+        reference_and_target(guidance_config(&s), &model, &entry(&s)).unwrap();
     assert!(reference.points.windows(2).all(|w| w[1].x[2] < w[0].x[2]));
     let last = reference.points.last().unwrap();
     assert!((reference.final_state[2] - 450.0).abs() < 1e-6);
@@ -291,5 +291,57 @@ fn the_reference_lands_on_its_target_and_is_tabulated_against_speed() {
         reference.final_state[1] - model.planet.radius
     );
     let _: &ReferenceTrajectory = &reference;
-    let _ = GuidanceAlgorithm::Apollo;
+}
+
+#[test]
+fn a_scenario_without_guidance_is_unchanged_and_a_bad_target_is_refused() {
+    let plain = ScenarioConfig::builtin("msl-airdata").unwrap();
+    assert!(plain.guidance.is_none());
+    assert!(!plain.to_toml_string().contains("guidance"));
+    let s = Scenario::build(plain, &entrynav::files::no_files).unwrap();
+    assert!(s.build_guidance().is_none() && s.guidance_model().is_none());
+    // A target needs lat and lon together, or a range.
+    let mut cfg = msl("apollo").config;
+    let g = cfg.guidance.as_mut().unwrap();
+    assert_eq!(g.algorithm, GuidanceAlgorithm::Apollo);
+    g.target = Some(TargetConfig {
+        lat_deg: Some(-4.0),
+        lon_deg: None,
+        range_km: None,
+    });
+    let e = ScenarioConfig::from_toml_str(&cfg.to_toml_string(), "t").unwrap_err();
+    assert!(e.to_string().contains("guidance.target"), "{e}");
+}
+
+/// The scan behind the default corridor and hold speeds (docs/guidance.md): nominal misses for
+/// several crossrange corridors and hold speeds. Run with `--ignored --nocapture`.
+#[test]
+#[ignore]
+fn corridor_and_hold_speed_scan() {
+    let corridors = [
+        (4000.0, 100.0, 5000.0, 600.0),
+        (4000.0, 0.0, 5000.0, 600.0),
+        (8000.0, 200.0, 5000.0, 1000.0),
+        (2000.0, 50.0, 5000.0, 600.0),
+        (4000.0, 300.0, 4000.0, 1500.0),
+    ];
+    for alg in ["apollo", "fnpeg"] {
+        for (hi, lo, vhi, vlo) in corridors {
+            for hold in [500.0, 600.0, 800.0, 1000.0] {
+                let mut s = msl(alg);
+                let g = s.config.guidance.as_mut().unwrap();
+                g.lateral.deadband_high_m = hi;
+                g.lateral.deadband_low_m = lo;
+                g.lateral.speed_high_mps = vhi;
+                g.lateral.speed_low_mps = vlo;
+                g.apollo.hold_speed_mps = hold;
+                g.fnpeg.hold_speed_mps = hold;
+                let f = fly(&s, &s.nominal_truth(), false);
+                println!(
+                    "| {alg} | {hi} m @ {vhi} m/s → {lo} m @ {vlo} m/s | {hold} | {:.1} | {:.1} | {:.1} |",
+                    f.miss_m, f.downrange_error_m, f.crossrange_error_m
+                );
+            }
+        }
+    }
 }

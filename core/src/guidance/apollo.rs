@@ -49,7 +49,8 @@ fn default_gain() -> f64 {
     5.0
 }
 fn default_start_drag() -> f64 {
-    // 0.2 Earth g, MSL's range-control start (Mendeck & Craig §III).
+    // 0.2 Earth g: our choice (MSL starts range control on a sensed-drag threshold; we have not
+    // checked its value against Mendeck & Craig).
     0.2 * crate::planet::G_EARTH
 }
 fn default_hold_speed() -> f64 {

@@ -23,6 +23,20 @@ pub enum GuidanceAlgorithm {
     Fnpeg,
 }
 
+/// The atmosphere guidance predicts with.
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum GuidanceAtmosphere {
+    /// The pre-flight climatology (`filter.density.climatology`, default the filter's own
+    /// atmosphere): what a reference trajectory is designed on before flight.
+    #[default]
+    Climatology,
+    /// The filter's onboard atmosphere model (`filter.atmosphere`).
+    Filter,
+}
+
 /// The deployment target: a point, or a downrange along the entry heading.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -68,6 +82,10 @@ pub struct GuidanceConfig {
     /// Bank acceleration limit \[deg/s²\].
     #[serde(default = "default_accel_limit")]
     pub bank_accel_limit_deg_s2: f64,
+    /// The atmosphere of guidance's onboard model (`climatology` or `filter`); the vehicle
+    /// constants and planet are always the filter's.
+    #[serde(default)]
+    pub atmosphere: GuidanceAtmosphere,
     /// Crossrange corridor of the bank reversals.
     #[serde(default)]
     pub lateral: LateralConfig,

@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 
 /// The crossrange corridor (`[guidance.lateral]`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields)]
+#[serde(default, deny_unknown_fields)]
 pub struct LateralConfig {
     /// Crossrange deadband at and above `speed_high_mps` \[m\].
     pub deadband_high_m: f64,

@@ -24,7 +24,10 @@ pub mod limits;
 pub mod longitudinal;
 pub mod reference;
 
-pub use config::{GuidanceAlgorithm, GuidanceConfig, build_guidance};
+pub use config::{
+    BuiltGuidance, GuidanceAlgorithm, GuidanceAtmosphere, GuidanceConfig, TargetConfig,
+    build_guidance,
+};
 pub use error::GuidanceError;
 pub use limits::{BankActuator, BankLimits};
 pub use longitudinal::Trigger;

@@ -11,8 +11,8 @@ use entrynav::dynamics::EntryModel;
 use entrynav::guidance::longitudinal::{GAMMA, LongModel, R, THETA, U};
 use entrynav::guidance::reference::ReferenceTrajectory;
 use entrynav::guidance::{
-    BankActuator, BankLimits, Guidance, GuidanceAlgorithm, GuidanceConfig, GuidanceError, NavState,
-    TargetConfig, config::REFERENCE_STEP_S, config::reference_and_target,
+    BankActuator, BankLimits, Guidance, GuidanceAlgorithm, GuidanceAtmosphere, GuidanceConfig,
+    GuidanceError, NavState, TargetConfig, config::REFERENCE_STEP_S, config::reference_and_target,
 };
 use entrynav::scenario::{Scenario, ScenarioConfig, TruthDraw};
 use entrynav::sim::guided_flight::{GuidedFlight, GuidedFlightSettings, fly_perfect_navigation};
@@ -343,5 +343,19 @@ fn corridor_and_hold_speed_scan() {
                 );
             }
         }
+    }
+}
+
+/// Guidance on the filter's exponential atmosphere instead of the climatology (docs/guidance.md):
+/// the default target then comes from a reference in a different atmosphere from the one flown.
+/// Run with `--ignored --nocapture`.
+#[test]
+#[ignore]
+fn filter_atmosphere_variant() {
+    for alg in ["apollo", "fnpeg"] {
+        let mut s = msl(alg);
+        s.config.guidance.as_mut().unwrap().atmosphere = GuidanceAtmosphere::Filter;
+        let f = fly(&s, &s.nominal_truth(), false);
+        describe(alg, &f);
     }
 }

@@ -27,6 +27,7 @@ pub mod estimation;
 pub mod files;
 pub mod fixed_len;
 pub mod frames;
+pub mod guidance;
 pub mod lincov;
 pub mod math;
 pub mod observability;

@@ -13,7 +13,8 @@ use std::path::{Path, PathBuf};
 
 /// Layer rank of each top-level module of `core/src`, as in ARCHITECTURE.md's table: numerics
 /// (0, may import each other), physics in list order (atmosphere, dynamics, beacons, sensors),
-/// estimation, scenario, simulation, analysis. A module may import modules of a lower rank only.
+/// estimation and guidance (beside each other, neither imports the other), scenario, simulation,
+/// analysis. A module may import modules of a lower rank only.
 const LAYERS: &[(&str, u32)] = &[
     ("math", 0),
     ("planet", 0),
@@ -28,6 +29,7 @@ const LAYERS: &[(&str, u32)] = &[
     ("beacons", 3),
     ("sensors", 4),
     ("estimation", 5),
+    ("guidance", 5),
     ("scenario", 6),
     ("sim", 7),
     ("observability", 8),
@@ -268,4 +270,47 @@ fn embedded_files_stay_inside_their_crate() {
     }
     assert!(seen >= 10, "found only {seen} embedded files");
     assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
+
+#[test]
+fn guidance_never_reaches_the_truth() {
+    // Guidance is onboard, like a filter: the layer table keeps `scenario` and `sim` (where the
+    // truth model, its draws and samples live) above it. The check must see such a leak ...
+    let dir = std::env::temp_dir().join(format!("entrynav-guidance-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("guidance")).unwrap();
+    std::fs::write(
+        dir.join("guidance/leak.rs"),
+        "use crate::sim::engine::TruthSample;\nuse crate::scenario::TruthDraw;\nuse crate::dynamics::EntryModel;\n",
+    )
+    .unwrap();
+    let bad = upward_imports(&dir);
+    std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(bad.len(), 2, "{bad:?}");
+    // ... and the real guidance layer has none, nor names a truth-only type.
+    let src = workspace().join("core/src");
+    let mut files = Vec::new();
+    rust_files(&src.join("guidance"), &mut files);
+    assert!(files.len() >= 6, "guidance files: {files:?}");
+    let bad = upward_imports(&src);
+    for file in &files {
+        let rel = file.strip_prefix(&src).unwrap().display().to_string();
+        assert!(!bad.iter().any(|b| b.starts_with(&rel)), "{bad:?}");
+        let text = std::fs::read_to_string(file).unwrap();
+        for (n, line) in text.lines().enumerate() {
+            let code = line.split("//").next().unwrap_or("");
+            for name in [
+                "TruthSample",
+                "TruthDraw",
+                "TruthPropagator",
+                "truth_model",
+                "Scenario",
+            ] {
+                assert!(
+                    !code.contains(name),
+                    "{rel}:{}: guidance names the truth-side `{name}`",
+                    n + 1
+                );
+            }
+        }
+    }
 }

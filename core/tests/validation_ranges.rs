@@ -55,6 +55,62 @@ const SHORT: &[&str] = &[
     "sensors.range.rate_hz=0.2",
 ];
 
+/// `[guidance]` on seed 001's MSL entry, every field that holds an integer written out.
+const GUIDED: &[&str] = &[
+    "guidance.algorithm=\"apollo\"",
+    "guidance.reference_bank_deg=60.0",
+    "guidance.trigger.speed_mps=450.0",
+    "guidance.fnpeg.iterations=4",
+];
+
+/// `[guidance]` with a dynamic-pressure trigger.
+const GUIDED_Q: &[&str] = &[
+    "guidance.algorithm=\"fnpeg\"",
+    "guidance.reference_bank_deg=60.0",
+    "guidance.trigger.dynamic_pressure_pa=700.0",
+];
+
+/// `[guidance]` with a 10 ms truth step, so that every rate up to 100 Hz divides it.
+const GUIDED_FAST: &[&str] = &[
+    "guidance.algorithm=\"apollo\"",
+    "guidance.reference_bank_deg=60.0",
+    "guidance.trigger.speed_mps=450.0",
+    "timing.truth_step_s=0.01",
+];
+
+/// `[guidance]` whose banks all sit at 180°, so `bank_min_deg` may reach it.
+const GUIDED_HIGH: &[&str] = &[
+    "guidance.algorithm=\"apollo\"",
+    "guidance.reference_bank_deg=180.0",
+    "guidance.fnpeg.final_bank_deg=180.0",
+    "guidance.trigger.speed_mps=450.0",
+];
+
+/// `[guidance]` whose banks all sit at 0°, so `bank_max_deg` may reach it.
+const GUIDED_LOW: &[&str] = &[
+    "guidance.algorithm=\"apollo\"",
+    "guidance.reference_bank_deg=0.0",
+    "guidance.fnpeg.final_bank_deg=0.0",
+    "guidance.trigger.speed_mps=450.0",
+];
+
+/// `[guidance]` with a target point.
+const GUIDED_POINT: &[&str] = &[
+    "guidance.algorithm=\"apollo\"",
+    "guidance.reference_bank_deg=60.0",
+    "guidance.trigger.speed_mps=450.0",
+    "guidance.target.lat_deg=-4.0",
+    "guidance.target.lon_deg=137.0",
+];
+
+/// `[guidance]` with a target downrange.
+const GUIDED_RANGE: &[&str] = &[
+    "guidance.algorithm=\"apollo\"",
+    "guidance.reference_bank_deg=60.0",
+    "guidance.trigger.speed_mps=450.0",
+    "guidance.target.range_km=600.0",
+];
+
 const PLANET: &[&str] = &[
     "planet.radius_km=3396.2",
     "planet.rotation_rate_rad_s=7.088e-5",
@@ -194,6 +250,29 @@ const CASES: &[Case] = &[
     case("faults[0].drift_mps", FAULTS, &[], "must be >= -10000 and <= 10000 m/s"),
     case("faults[1].probability", FAULTS, &[], "must be >= 0 and <= 1"),
     case("faults[1].size_m", FAULTS, &[], "must be >= 0 and <= 1e7 m"),
+    case("guidance.rate_hz", AIR, GUIDED_FAST, "must be > 0 and <= 100 Hz"),
+    case("guidance.bank_min_deg", AIR, GUIDED_HIGH, "must be >= 0 and <= 180°"),
+    case("guidance.bank_max_deg", AIR, GUIDED_LOW, "must be >= guidance.bank_min_deg = 0 and <= 180°"),
+    case("guidance.reference_bank_deg", AIR, GUIDED, "must be >= guidance.bank_min_deg = 0 and <= guidance.bank_max_deg = 180°"),
+    case("guidance.bank_rate_limit_deg_s", AIR, GUIDED, "must be > 0 and <= 360 deg/s"),
+    case("guidance.bank_accel_limit_deg_s2", AIR, GUIDED, "must be > 0 and <= 360 deg/s²"),
+    case("guidance.trigger.speed_mps", AIR, GUIDED, "must be > 0 and < 30000 m/s"),
+    case("guidance.trigger.dynamic_pressure_pa", AIR, GUIDED_Q, "must be > 0 and <= 1000000 Pa"),
+    case("guidance.target.lat_deg", AIR, GUIDED_POINT, "must be >= -90 and <= 90°"),
+    case("guidance.target.lon_deg", AIR, GUIDED_POINT, "must be >= -360 and <= 360°"),
+    case("guidance.target.range_km", AIR, GUIDED_RANGE, "must be > 0 and < 10000 km"),
+    case("guidance.lateral.deadband_high_m", AIR, GUIDED, "must be >= 0 and <= 1000000 m"),
+    case("guidance.lateral.deadband_low_m", AIR, GUIDED, "must be >= 0 and <= guidance.lateral.deadband_high_m = 4000 m"),
+    case("guidance.lateral.speed_high_mps", AIR, GUIDED, "must be > 0 and < 30000 m/s"),
+    case("guidance.lateral.speed_low_mps", AIR, GUIDED, "must be >= 0 and < guidance.lateral.speed_high_mps = 5000 m/s"),
+    case("guidance.apollo.overcontrol_gain", AIR, GUIDED, "must be > 0 and <= 100"),
+    case("guidance.apollo.start_drag_mps2", AIR, GUIDED, "must be >= 0 and <= 1000 m/s²"),
+    case("guidance.apollo.hold_speed_mps", AIR, GUIDED, "must be >= 0 and < 30000 m/s"),
+    case("guidance.fnpeg.final_bank_deg", AIR, GUIDED, "must be >= guidance.bank_min_deg = 0 and <= guidance.bank_max_deg = 180°"),
+    case("guidance.fnpeg.predictor_step_s", AIR, GUIDED, "must be > 0 and <= 10 s"),
+    case("guidance.fnpeg.iterations", AIR, GUIDED, "must be >= 1 and <= 50"),
+    case("guidance.fnpeg.density_gain", AIR, GUIDED, "must be >= 0 and <= 1 (0 = trust the onboard atmosphere)"),
+    case("guidance.fnpeg.hold_speed_mps", AIR, GUIDED, "must be >= 0 and < 30000 m/s"),
 ];
 
 /// The built-in `base` with `sets` applied, as a TOML table (what `--set` edits).

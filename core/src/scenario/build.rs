@@ -10,6 +10,7 @@ use crate::dynamics::{DynamicsKind, EntryModel, Vehicle};
 use crate::estimation::Onboard;
 use crate::files::FileLoader;
 use crate::frames::{HeadingConvention, inertial_to_spherical, spherical_to_inertial};
+use crate::guidance::{BuiltGuidance, GuidanceAtmosphere, GuidanceError, NavState, build_guidance};
 use crate::planet::Planet;
 use crate::sensors::{Channel, Fault, MeasurementModel};
 pub use crate::sensors::{ChannelSpec, Noise};
@@ -207,6 +208,29 @@ impl Scenario {
     /// The filter's dynamics model (the onboard view's).
     pub fn filter_model(&self) -> &EntryModel<AtmosphereModel> {
         &self.onboard.model
+    }
+
+    /// The onboard model `[guidance]` predicts with: the filter's model with the atmosphere
+    /// `guidance.atmosphere` names (the climatology by default); `None` without `[guidance]`.
+    pub fn guidance_model(&self) -> Option<EntryModel<AtmosphereModel>> {
+        let g = self.config.guidance.as_ref()?;
+        let mut m = self.onboard.model.clone();
+        if g.atmosphere == GuidanceAtmosphere::Climatology {
+            m.atmosphere = self.onboard.climatology.clone();
+        }
+        Some(m)
+    }
+
+    /// The guidance of `[guidance]`, built on [`Scenario::guidance_model`] from the onboard
+    /// nominal entry (the filter's initial estimate, as a planet-relative spherical state); `None`
+    /// without `[guidance]`.
+    pub fn build_guidance(&self) -> Option<Result<BuiltGuidance, GuidanceError>> {
+        let g = self.config.guidance.as_ref()?;
+        let model = self.guidance_model()?;
+        let e = &self.onboard.initial_estimate;
+        let entry = NavState::from_estimate(e, model.kind.is_cartesian(), 0.0, model.omega(), 0.0)
+            .map(|n| n.spherical);
+        Some(entry.and_then(|entry| build_guidance(g, &model, &entry)))
     }
 
     /// Inertial (position, velocity) of every beacon at time `t` (tabulated at the measurement

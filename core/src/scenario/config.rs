@@ -11,6 +11,7 @@ pub use crate::estimation::FusionCovariance;
 pub use crate::estimation::adaptive::{DensityFilterConfig, DensityTrainingConfig};
 pub use crate::estimation::gating::GatingConfig;
 use crate::frames::HeadingConvention;
+pub use crate::guidance::GuidanceConfig;
 use crate::sensors::{FaultConfig, SensorsConfig};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -57,6 +58,11 @@ pub struct ScenarioConfig {
     /// spikes (`[[faults]]`; beacon outages are the beacons' `outages`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub faults: Vec<FaultConfig>,
+    /// Entry guidance (issue 28): the algorithm, target, rate, bank limits and deployment
+    /// trigger. Absent: the constant `truth.bank_deg`. The simulation engine does not fly it yet
+    /// (trades still fly `truth.bank_deg`); `sim::guided_flight` flies it with perfect navigation.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub guidance: Option<GuidanceConfig>,
 }
 
 /// Optional planet-constant overrides.

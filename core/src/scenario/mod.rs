@@ -18,6 +18,7 @@ pub mod validate;
 mod validate_density;
 mod validate_faults;
 mod validate_filter;
+mod validate_guidance;
 mod validate_range;
 mod validate_state;
 

@@ -120,6 +120,7 @@ impl ScenarioConfig {
         self.check_beacons()?;
         self.check_dispersions(c)?;
         self.check_faults(c)?;
+        self.check_guidance(c)?;
         let runs = Range::ge(1.0).le(1e6);
         c.range("monte_carlo.runs", self.monte_carlo.runs, runs)
     }

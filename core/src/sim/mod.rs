@@ -22,6 +22,7 @@ pub mod consistency;
 pub mod density_eval;
 pub mod engine;
 pub mod gate_stats;
+pub mod guided_flight;
 pub mod judge;
 pub mod metrics;
 pub mod moments;

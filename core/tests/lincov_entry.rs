@@ -155,13 +155,30 @@ fn filters_it_cannot_analyse_are_refused_with_the_reason() {
     assert!(e.to_string().contains("faults"), "{e}");
 }
 
-/// A density perturbation is not modelled: said in the notes, not silently left out.
+/// The truth's density perturbation is carried as the grid normals below the trajectory's top
+/// (msl-airdata: entry at 125 km, grid every 1 km from 0), and the notes say that its nominal is
+/// the median profile; a scenario without perturbation, clip or profile set has no notes.
 #[test]
-fn unmodelled_truth_effects_are_listed() {
+fn density_perturbation_is_carried_and_noted() {
     let s = build(builtin("msl-airdata"));
     let l = entry_lincov(&s, FilterKind::Ekf).unwrap();
+    let grid = l
+        .parameters
+        .iter()
+        .filter(|p| p.starts_with("density_perturbation_"))
+        .count();
     assert!(
-        l.notes.iter().any(|n| n.contains("truth.perturbation")),
+        (100..=140).contains(&grid),
+        "{grid} grid normals: {:?}",
+        l.parameters
+    );
+    assert!(
+        !l.parameters
+            .iter()
+            .any(|p| p == "density_perturbation_150000m")
+    );
+    assert!(
+        l.notes.iter().any(|n| n.contains("median")),
         "{:?}",
         l.notes
     );

@@ -9,7 +9,8 @@
 //!
 //! The truth flies no process noise, so its random part is a set of constants θ: the standard
 //! normals a Monte Carlo draw turns into the initial-state, C_D S/m, L/D and density-bias
-//! dispersions ([`crate::scenario::Scenario::disperse_with`]; Cov θ = I). Its state in the
+//! dispersions ([`crate::scenario::Scenario::disperse_with`]) and, where the truth has one, its
+//! density perturbation (Cov θ = I). Its state in the
 //! filter's coordinates (truth-equivalent parameters included) is x_k = x̄_k + S_k θ and its
 //! measurements z_k = z̄_k + Z_k θ + v_k (noise v ~ N(0, R_t), the truth's own σ), with x̄, z̄ the
 //! noise-free nominal run and S_k, Z_k from central differences of whole truth runs
@@ -45,9 +46,15 @@
 //!
 //! # What it does not model
 //!
-//! Listed per run in [`EntryLinCov::notes`]: a truth density perturbation (a random process,
-//! not among θ), profile cycling of a table of stacked profiles, the clip of the density bias,
-//! visibility changes of dispersed trajectories (the nominal's schedule is used). Filters whose
+//! Listed per run in [`EntryLinCov::notes`]: profile cycling of a table of stacked profiles, the
+//! clip of the density bias, and that with a truth density perturbation the nominal flies its
+//! median profile. Not listed: visibility changes of dispersed trajectories (the nominal's
+//! schedule is used).
+//!
+//! A truth density perturbation (`truth.perturbation`, the altitude-correlated Gauss–Markov
+//! factor of [`crate::atmosphere::Perturbed`]) is in θ too: one standard normal per point of its
+//! AR(1) grid at or below the highest altitude flown ([`crate::atmosphere::Perturbed::from_normals`]),
+//! so its contribution is a sum over those columns of S and Z like any other parameter's. Filters whose
 //! gain depends on the measurements or on something beside their own P are refused
 //! ([`unsupported_reason`]), and so is an innovation gate or a scenario with sensor faults.
 
@@ -237,8 +244,8 @@ pub fn entry_lincov(
     let mut notes = Vec::new();
     if scenario.config.truth.perturbation.is_some() {
         notes.push(
-            "truth.perturbation: the per-run density perturbation (a random process) is not \
-             among the modelled parameters; its contribution to the error is missing"
+            "truth.perturbation: carried as the AR(1) grid's standard normals; the nominal flies \
+             z = 0, the median profile ρ_mean·exp(−s²/2), not the mean"
                 .to_string(),
         );
     }

@@ -5,9 +5,12 @@
 //! dispersion δz_k = Z_k θ).
 //!
 //! θ are the standard normals [`Scenario::disperse_with`] turns into a Monte Carlo draw (initial
-//! state, C_D S/m, L/D, density bias Δ), so Cov θ = I. A parameter whose σ is zero is left out.
+//! state, C_D S/m, L/D, density bias Δ) and those of the truth's density perturbation, so
+//! Cov θ = I. A parameter that cannot move the truth (σ zero, a grid point above the trajectory)
+//! is left out.
 
 use super::EntryLinCovError;
+use crate::atmosphere::{AtmosphereModel, Perturbed};
 use crate::math::wrap_pi;
 use crate::scenario::{Scenario, TruthDraw};
 use crate::sensors::MeasurementEpoch;
@@ -64,18 +67,34 @@ pub(super) struct NominalTruth {
     pub truncated: Option<f64>,
 }
 
-/// The standard normal θ_j perturbed by `dz` (others zero), in draw order.
+/// The truth realisation with standard normal θ_j set to `dz` and every other one zero: the draw's
+/// normals ([`Scenario::disperse_with`]) first, then, when the truth has a density
+/// perturbation, one per point of its AR(1) grid ([`Perturbed::from_normals`]).
 fn draw_with(scenario: &Scenario, j: Option<usize>, dz: f64) -> TruthDraw {
+    let at = |i: usize| if Some(i) == j { dz } else { 0.0 };
     let mut i = 0;
-    scenario.disperse_with(|| {
-        let v = if Some(i) == j { dz } else { 0.0 };
+    let mut draw = scenario.disperse_with(|| {
+        let v = at(i);
         i += 1;
         v
-    })
+    });
+    if let Some(p) = &scenario.config.truth.perturbation {
+        let spec = p.to_spec();
+        let first = scenario.dispersion_normals();
+        let normals: Vec<f64> = (0..spec.grid_len()).map(|k| at(first + k)).collect();
+        draw.model.atmosphere = AtmosphereModel::Perturbed(Box::new(Perturbed::from_normals(
+            draw.model.atmosphere,
+            &spec,
+            &normals,
+        )));
+    }
+    draw
 }
 
-/// Names and σ of the draw's normals (σ zero: the parameter is not dispersed).
-fn parameters(scenario: &Scenario) -> Vec<(String, bool)> {
+/// Names of θ and whether each can move the truth: a draw normal whose σ is not zero, a grid
+/// normal of the density perturbation at or below `top_m` (the highest altitude flown; a grid
+/// normal enters the AR(1) values at its altitude and above only).
+fn parameters(scenario: &Scenario, top_m: f64) -> Vec<(String, bool)> {
     let d = &scenario.config.dispersions;
     let mut out = Vec::new();
     if scenario.dispersion_normals() == 9 {
@@ -86,6 +105,17 @@ fn parameters(scenario: &Scenario) -> Vec<(String, bool)> {
     out.push(("cd_s_over_m".into(), d.cd_s_over_m_m2kg != 0.0));
     out.push(("lift_to_drag".into(), d.lift_to_drag != 0.0));
     out.push(("density_bias".into(), d.density_bias != 0.0));
+    if let Some(p) = &scenario.config.truth.perturbation {
+        let spec = p.to_spec();
+        let moves = spec.scale > 0.0;
+        for k in 0..spec.grid_len() {
+            let h = spec.grid_bottom_m + k as f64 * spec.grid_step_m;
+            out.push((
+                format!("density_perturbation_{:.0}m", h),
+                moves && h <= top_m + spec.grid_step_m,
+            ));
+        }
+    }
     out
 }
 
@@ -152,41 +182,35 @@ pub(super) fn nominal_truth(
         })
         .collect();
     let in_filter = |d: &TruthDraw, s: &TruthSample| truth_in_filter_coords(scenario, d, s, n);
-    let all = parameters(scenario);
+    let top_m = samples.iter().map(|x| x.altitude).fold(f64::MIN, f64::max);
+    let all = parameters(scenario, top_m);
     let active: Vec<usize> = (0..all.len()).filter(|&j| all[j].1).collect();
     let p = active.len();
-    let mut runs = Vec::with_capacity(p);
-    for &j in &active {
+    let mut k_max = epochs.len();
+    let mut s_mats = vec![DMatrix::<f64>::zeros(n, p); k_max + 1];
+    let mut zetas: Vec<Vec<DVector<f64>>> = slots
+        .iter()
+        .map(|sl| vec![DVector::zeros(p); sl.len()])
+        .collect();
+    for (col, &j) in active.iter().enumerate() {
         let plus_draw = draw_with(scenario, Some(j), FD_STEP);
         let minus_draw = draw_with(scenario, Some(j), -FD_STEP);
         let plus = run(scenario, &plus_draw)?.0;
         let minus = run(scenario, &minus_draw)?.0;
-        runs.push(((plus_draw, plus), (minus_draw, minus)));
-    }
-    // A dispersed run may stop a step earlier (ground, stop speed): keep the common epochs.
-    let common = runs
-        .iter()
-        .map(|(a, b)| a.1.len().min(b.1.len()))
-        .fold(samples.len(), usize::min);
-    let k_max = common.saturating_sub(1).min(epochs.len());
-    let mut s_mats = vec![DMatrix::<f64>::zeros(n, p); k_max + 1];
-    let mut zetas: Vec<Vec<DVector<f64>>> = slots[..k_max]
-        .iter()
-        .map(|sl| vec![DVector::zeros(p); sl.len()])
-        .collect();
-    for (col, ((plus_draw, plus), (minus_draw, minus))) in runs.iter().enumerate() {
+        // A dispersed run may stop a step earlier (ground, stop speed): keep the common epochs.
+        k_max = k_max.min(plus.len() - 1).min(minus.len() - 1);
         for k in 0..=k_max {
             let (sp, sm) = (&plus[k], &minus[k]);
             if (sp.t - samples[k].t).abs() > 1e-9 || (sm.t - samples[k].t).abs() > 1e-9 {
                 return Err(EntryLinCovError::Schedule {
-                    parameter: all[active[col]].0.clone(),
+                    parameter: all[j].0.clone(),
                     t: samples[k].t,
                 });
             }
             let dx = difference(
                 spherical,
-                &in_filter(plus_draw, sp),
-                &in_filter(minus_draw, sm),
+                &in_filter(&plus_draw, sp),
+                &in_filter(&minus_draw, sm),
             );
             for (i, v) in dx.iter().enumerate() {
                 s_mats[k][(i, col)] = if v.is_finite() {
@@ -196,8 +220,8 @@ pub(super) fn nominal_truth(
                 };
             }
             if k > 0 {
-                let zp = readings(scenario, plus_draw, sp, &slots[k - 1]);
-                let zm = readings(scenario, minus_draw, sm, &slots[k - 1]);
+                let zp = readings(scenario, &plus_draw, sp, &slots[k - 1]);
+                let zm = readings(scenario, &minus_draw, sm, &slots[k - 1]);
                 for (m, (a, b)) in zp.iter().zip(&zm).enumerate() {
                     zetas[k - 1][m][col] = (a - b) / (2.0 * FD_STEP);
                 }
@@ -267,7 +291,8 @@ mod tests {
         let s = Scenario::build(cfg, &crate::files::no_files).unwrap();
         let n = s.onboard.state_dim();
         let nominal = nominal_truth(&s, n).unwrap();
-        let all = parameters(&s);
+        let top = f64::INFINITY;
+        let all = parameters(&s, top);
         let active: Vec<usize> = (0..all.len()).filter(|&j| all[j].1).collect();
         assert_eq!(active.len(), nominal.params.len());
         let nominal_draw = draw_with(&s, None, 0.0);

@@ -19,6 +19,7 @@ mod grid;
 mod grid_files;
 mod grid_plots;
 mod interrupt;
+mod lincov;
 mod observe;
 mod observe_files;
 mod observe_pcrlb;
@@ -100,6 +101,13 @@ enum Command {
     Tune(tune::TuneArgs),
     /// Degree of observability δ(t) and beacon Fisher information along a scenario's trajectory.
     Observe(observe::ObserveArgs),
+    /// Linear covariance analysis (LinCov) of a filter along the scenario's nominal trajectory:
+    /// the true RMSE a Monte Carlo of the same filter would measure (model mismatch included),
+    /// the filter's own σ and the predicted NEES, in one pass (Maybeck vol. 1 ch. 6; Geller
+    /// 2006). Supports the EKF (its iterated update linearised at the nominal, consider states
+    /// included); other filters get an error saying why. `--compare-mc RUNS` runs the Monte
+    /// Carlo beside it and prints both wall times.
+    Lincov(lincov::LinCovArgs),
     /// Train the USKF-NN density network offline (seed 001 Algorithm 1) and write its file.
     TrainDensity(train::TrainArgs),
     /// FMI 2.0 co-simulation FMUs: pack, check, fuzz.
@@ -209,6 +217,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Trade(args) => trade::run(&args),
         Command::Tune(args) => tune::run(&args),
         Command::Observe(args) => observe::run(&args),
+        Command::Lincov(args) => lincov::run(&args),
         Command::TrainDensity(args) => train::run(&args),
         Command::Fmu(args) => fmu::run(&args),
         Command::Optimize(args) => optimize::run(&args),

@@ -150,7 +150,8 @@ impl PerturbationSpec {
         Ok(())
     }
 
-    fn grid_len(&self) -> usize {
+    /// Number of AR(1) grid points (and of standard normals a realisation takes).
+    pub fn grid_len(&self) -> usize {
         ((self.grid_top_m - self.grid_bottom_m) / self.grid_step_m - 1e-9).ceil() as usize + 1
     }
 }
@@ -186,15 +187,30 @@ impl Perturbed {
             let a = (-spec.grid_step_m / spec.correlation_length_m).exp();
             return Perturbed { mean, spec, z, a };
         }
+        let normals: Vec<f64> = (0..spec.grid_len())
+            .map(|_| StandardNormal.sample(rng))
+            .collect();
+        Self::from_normals(mean, spec, &normals)
+    }
+
+    /// The realisation of the standard normals `normals` (one per grid point, from the bottom;
+    /// missing entries are 0): z_0 = n_0, z_k = a·z_{k−1} + √(1 − a²)·n_k, the recursion
+    /// [`Perturbed::sample`] applies to its draws. All zero gives z ≡ 0, the median profile
+    /// ρ_mean·exp(−s²/2). `spec` should have passed [`PerturbationSpec::validate`].
+    pub fn from_normals(
+        mean: AtmosphereModel,
+        spec: &PerturbationSpec,
+        normals: &[f64],
+    ) -> Perturbed {
         let n = spec.grid_len();
         let a = (-spec.grid_step_m / spec.correlation_length_m).exp();
         let b = (1.0 - a * a).max(0.0).sqrt();
+        let normal = |k: usize| normals.get(k).copied().unwrap_or(0.0);
         let mut z = Vec::with_capacity(n);
-        let mut zk: f64 = StandardNormal.sample(rng);
+        let mut zk = normal(0);
         z.push(zk);
-        for _ in 1..n {
-            let eps: f64 = StandardNormal.sample(rng);
-            zk = a * zk + b * eps;
+        for k in 1..n {
+            zk = a * zk + b * normal(k);
             z.push(zk);
         }
         Perturbed {

@@ -44,8 +44,39 @@ impl Scenario {
     /// atmosphere is profile [`ProfileChoice::profile_for_run`](crate::atmosphere::ProfileChoice::profile_for_run) (k mod n: it depends only on the
     /// run index, so shards and threads agree); a configured perturbation is applied on it.
     pub fn draw_truth_run(&self, run: usize, rng: &mut impl Rng) -> TruthDraw {
+        let mut draw = self.disperse_with(|| StandardNormal.sample(&mut *rng));
+        if let Some(choice) = self.truth_profiles.as_ref().filter(|c| c.is_cycling()) {
+            draw.model.atmosphere = choice.model_for_run(run);
+        }
+        if let Some(p) = &self.config.truth.perturbation {
+            let spec = p.to_spec();
+            draw.model.atmosphere = AtmosphereModel::Perturbed(Box::new(Perturbed::sample(
+                draw.model.atmosphere,
+                &spec,
+                rng,
+            )));
+        }
+        draw
+    }
+
+    /// How many standard normals [`Scenario::disperse_with`] takes: six for the initial state
+    /// when `dispersions.initial` is given, then C_D S/m, L/D and Δ.
+    pub fn dispersion_normals(&self) -> usize {
+        let initial = self.config.dispersions.initial.as_ref();
+        3 + if initial.is_some_and(|s| s.form("dispersions.initial").is_ok()) {
+            6
+        } else {
+            0
+        }
+    }
+
+    /// The truth realisation with the standard normals `z` (called
+    /// [`Scenario::dispersion_normals`] times, in the order of [`Scenario::draw_truth_run`])
+    /// applied to the initial state, C_D S/m, L/D and the density bias Δ, in the scenario's mean
+    /// truth atmosphere (no profile cycling, no perturbation). LinCov differentiates the truth
+    /// through it.
+    pub fn disperse_with(&self, mut z: impl FnMut() -> f64) -> TruthDraw {
         let d = &self.config.dispersions;
-        let mut z = || -> f64 { StandardNormal.sample(rng) };
         let mut initial = self.truth_initial;
         if let Some(sig) = &d.initial {
             initial = self.disperse_initial(sig, &mut z);
@@ -59,17 +90,6 @@ impl Scenario {
             delta = delta.clamp(-d.density_bias_clip, d.density_bias_clip);
         }
         model.density_factor = 1.0 + delta;
-        if let Some(choice) = self.truth_profiles.as_ref().filter(|c| c.is_cycling()) {
-            model.atmosphere = choice.model_for_run(run);
-        }
-        if let Some(p) = &self.config.truth.perturbation {
-            let spec = p.to_spec();
-            model.atmosphere = AtmosphereModel::Perturbed(Box::new(Perturbed::sample(
-                model.atmosphere,
-                &spec,
-                rng,
-            )));
-        }
         TruthDraw { initial, model }
     }
 

@@ -14,6 +14,7 @@
 //!   parallel, folded in run order, shardable, summarised;
 //! * [`pcrlb`], [`pcrlb_sums`] — the posterior Cramér–Rao lower bound of the scenario, from the
 //!   same truth runs, in every trade summary;
+//! * [`lincov_entry`] — LinCov of the EKF along the nominal trajectory (`entrynav lincov`);
 //! * [`density_eval`] — seed 001's density RMSPE (eq. 70) over a Monte Carlo;
 //! * [`training`] — seed 001 Algorithm 1's training trajectories and the whole offline training.
 
@@ -24,6 +25,7 @@ pub mod engine;
 pub mod gate_stats;
 pub mod guided_flight;
 pub mod judge;
+pub mod lincov_entry;
 pub mod metrics;
 pub mod moments;
 pub mod monte_carlo;

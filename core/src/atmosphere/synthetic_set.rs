@@ -73,18 +73,10 @@ impl SyntheticCase {
         }
     }
 
-    /// The deterministic factor f(h) of the module documentation for a case with the mean's
-    /// shape (s = 1); [`SyntheticCase::factor_over`] includes the steepening.
-    pub fn factor(&self, altitude_m: f64) -> f64 {
-        self.blend(altitude_m, 0.0)
-    }
-
-    /// The deterministic factor ρ/ρ̄ at `altitude_m` over the mean `mean`: f(h) times the
-    /// steepening k(h) below 60 km (blended out over 60–80 km) when s ≠ 1.
-    pub fn factor_over(&self, mean: &impl Atmosphere, altitude_m: f64) -> f64 {
-        if self.scale_height_factor == 1.0 {
-            return self.factor(altitude_m);
-        }
+    /// The deterministic factor ρ/ρ̄ at `altitude_m` over the mean `mean`: f(h) of the module
+    /// documentation times the steepening k(h) below 60 km, blended out over 60–80 km (k = 1
+    /// exactly when s = 1).
+    pub fn factor(&self, mean: &impl Atmosphere, altitude_m: f64) -> f64 {
         let h = altitude_m.min(SYNTHETIC_BLEND_BOTTOM_M);
         let ln_k = (1.0 / self.scale_height_factor - 1.0)
             * (mean.density(h) / mean.density(SYNTHETIC_STEEPEN_ANCHOR_M)).ln();
@@ -294,7 +286,7 @@ pub fn generate_synthetic_set(
         let altitude_m: Vec<f64> = (0..rows).map(|k| lo + k as f64 * spec.step_m).collect();
         let density = altitude_m
             .iter()
-            .map(|&h| case.factor_over(mean, h) * p.density(h))
+            .map(|&h| case.factor(mean, h) * p.density(h))
             .collect();
         out.push(SyntheticProfile {
             case: *case,
@@ -352,11 +344,12 @@ mod tests {
     #[test]
     fn factor_is_f_below_low_f_above_high_and_monotone_between() {
         let c = SyntheticCase::scaled(3.0, 0.7);
-        assert!((c.factor(0.0) - 0.7).abs() < 1e-15);
-        assert!((c.factor(59_999.0) - 0.7).abs() < 1e-15);
-        assert!((c.factor(80_000.0) - 3.0).abs() < 1e-12);
-        assert!((c.factor(140_000.0) - 3.0).abs() < 1e-12);
-        let mid = c.factor(70_000.0);
+        let mean = mars_mean_profile();
+        assert!((c.factor(&mean, 0.0) - 0.7).abs() < 1e-15);
+        assert!((c.factor(&mean, 59_999.0) - 0.7).abs() < 1e-15);
+        assert!((c.factor(&mean, 80_000.0) - 3.0).abs() < 1e-12);
+        assert!((c.factor(&mean, 140_000.0) - 3.0).abs() < 1e-12);
+        let mid = c.factor(&mean, 70_000.0);
         assert!((mid - (0.7_f64 * 3.0).sqrt()).abs() < 1e-12, "{mid}");
         assert_eq!(c.season(), "dusty season");
     }
@@ -376,7 +369,7 @@ mod tests {
         let b = generate_synthetic_set(&mean, &exact).unwrap();
         for p in &b {
             for (&h, &rho) in p.altitude_m.iter().zip(&p.density) {
-                let want = p.case.factor(h) * mean.density(h);
+                let want = p.case.factor(&mean, h) * mean.density(h);
                 assert!((rho / want - 1.0).abs() < 1e-12);
             }
         }
@@ -436,7 +429,7 @@ mod tests {
             let v: Vec<f64> = ps
                 .iter()
                 .map(|p| {
-                    (p.density[100] / (p.case.factor_over(&mean, 100e3) * mean.density(100e3))).ln()
+                    (p.density[100] / (p.case.factor(&mean, 100e3) * mean.density(100e3))).ln()
                 })
                 .collect();
             (v.iter().map(|x| x * x).sum::<f64>() / v.len() as f64).sqrt()

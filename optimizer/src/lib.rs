@@ -37,8 +37,10 @@ use openblas_src as _;
 
 pub mod free;
 pub mod ground;
+pub mod lincov_score;
 pub mod orbiters;
 pub mod orbiters_bound;
+pub mod orbiters_lincov;
 pub mod orbiters_nav;
 pub mod output;
 pub mod search;
@@ -47,8 +49,10 @@ pub mod trajectory;
 pub mod tune;
 
 pub use ground::{GroundObjective, GroundProblem, GroundSolution, Site};
+pub use lincov_score::{LinCovFigure, LinCovFigures, LinCovScore};
 pub use orbiters::{OrbitElements, OrbiterObjective, OrbiterProblem, OrbiterSolution};
 pub use orbiters_bound::{OrbiterBoundProblem, OrbiterBoundSolution};
+pub use orbiters_lincov::OrbiterLinCovSolution;
 pub use orbiters_nav::{BoundFigure, OrbiterNavProblem, OrbiterNavSolution};
 pub use search::{SearchOptions, SearchResult, minimize, polish_from};
 pub use select::{

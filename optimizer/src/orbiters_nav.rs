@@ -117,6 +117,11 @@ impl OrbiterNavProblem {
         self.reference
     }
 
+    /// The orbit geometry (count, altitude, search box).
+    pub fn geometry(&self) -> &OrbiterProblem {
+        &self.geometry
+    }
+
     /// The minimised figure.
     pub fn figure(&self) -> BoundFigure {
         self.figure

@@ -6,8 +6,9 @@
 //! never costs a file), and exit code 1 when the check finds the optimum worse.
 
 use super::design_check::{DesignCheck, check_configs, print_check, verdict};
+use super::lincov_polish::{self, LinCovStage};
 use super::*;
-use entrynav_optimizer::GroundSolution;
+use entrynav_optimizer::{GroundSolution, LinCovFigure};
 
 /// The scenario's surface beacons as sites (lat/lon/altitude or planet-fixed position).
 pub(super) fn scenario_sites(cfg: &ScenarioConfig) -> Vec<Site> {
@@ -100,7 +101,18 @@ struct GroundInputs {
     own_mask_deg: f64,
     count: usize,
     method: Method,
+    /// The search's objective (for lincov-*, the bound of the same figure).
     objective: GroundObjective,
+    /// lincov-*: the figure the bound's optimum is polished on.
+    lincov: Option<LinCovFigure>,
+}
+
+impl GroundInputs {
+    /// The objective the user chose.
+    fn objective_name(&self) -> &'static str {
+        self.lincov
+            .map_or(self.objective.name(), LinCovFigure::name)
+    }
 }
 
 /// The search's answer re-evaluated at the reporting step, and the scenario's own sites.
@@ -121,6 +133,8 @@ struct GroundAnswer {
     written: (ScenarioConfig, String),
     /// The Monte Carlo check against the input design (`None` with `--no-check`).
     check: Option<DesignCheck>,
+    /// lincov-*: the polish on LinCov.
+    lincov: Option<LinCovStage>,
 }
 
 pub(super) fn run_ground(a: &GroundArgs) -> Result<()> {
@@ -131,7 +145,7 @@ pub(super) fn run_ground(a: &GroundArgs) -> Result<()> {
         &inputs.cfg,
         &answer.written.0,
         &inputs.dir,
-        inputs.objective.name(),
+        inputs.objective_name(),
         &a.check,
     )?;
     // Files first, each attempted; then the tables and what was written.
@@ -176,7 +190,15 @@ fn load_ground_inputs(a: &GroundArgs) -> Result<GroundInputs> {
         GroundObjectiveArg::MinEig => GroundObjective::MinEig,
         GroundObjectiveArg::PcrlbAvg => GroundObjective::PcrlbAvg,
         GroundObjectiveArg::PcrlbFinal => GroundObjective::PcrlbFinal,
-        GroundObjectiveArg::Nav => GroundObjective::Navigation,
+        GroundObjectiveArg::Nav | GroundObjectiveArg::LincovNav => GroundObjective::Navigation,
+        GroundObjectiveArg::LincovAvg => GroundObjective::PcrlbAvg,
+        GroundObjectiveArg::LincovFinal => GroundObjective::PcrlbFinal,
+    };
+    let lincov = match a.objective {
+        GroundObjectiveArg::LincovAvg => Some(LinCovFigure::Average),
+        GroundObjectiveArg::LincovFinal => Some(LinCovFigure::Final),
+        GroundObjectiveArg::LincovNav => Some(LinCovFigure::Navigation),
+        _ => None,
     };
     let own_mask_deg = cfg
         .beacons
@@ -194,6 +216,7 @@ fn load_ground_inputs(a: &GroundArgs) -> Result<GroundInputs> {
         count,
         method,
         objective,
+        lincov,
     })
 }
 
@@ -232,6 +255,22 @@ fn solve_ground(a: &GroundArgs, inputs: &GroundInputs) -> Result<GroundAnswer> {
     };
     let sol = search_problem.optimize(&opts, &progress)?;
     bar.finish_and_clear();
+    let (sol, lincov) = match inputs.lincov {
+        Some(figure) => {
+            let (s, stage) = lincov_polish::polish_ground(
+                &search_problem,
+                sol,
+                figure,
+                &a.lincov_filter,
+                &inputs.own,
+                inputs.own_mask_deg.to_radians(),
+                c.seed,
+                c.quiet,
+            )?;
+            (s, Some(stage))
+        }
+        None => (sol, None),
+    };
     let ev = report.evaluate(&sol.sites)?;
     let delta = DeltaStats {
         raw: report.delta_series(&sol.sites, inputs.method)?,
@@ -276,7 +315,7 @@ fn solve_ground(a: &GroundArgs, inputs: &GroundInputs) -> Result<GroundAnswer> {
         &format!(
             "Ground sites optimized by `entrynav optimize ground` ({}, seed {}, sites at least \
              {} deg apart): value {}.",
-            objective.name(),
+            inputs.objective_name(),
             opts.seed,
             a.min_separation_deg,
             fmt_value(ev.value)
@@ -292,6 +331,7 @@ fn solve_ground(a: &GroundArgs, inputs: &GroundInputs) -> Result<GroundAnswer> {
         bounds,
         written,
         check: None,
+        lincov,
     })
 }
 
@@ -375,6 +415,9 @@ fn print_ground(a: &GroundArgs, inputs: &GroundInputs, answer: &GroundAnswer, wa
          outputs [m], Lie order k rows in m/s^k; scaled: {}",
         scaling_note(&answer.report)
     );
+    if let Some(l) = &answer.lincov {
+        l.print();
+    }
     print_search(&answer.sol.search, answer.sol.elapsed_s, wall, &answer.opts);
     print_check(answer.check.as_ref());
 }
@@ -448,8 +491,10 @@ fn write_ground_json(
     let v = json!({
         "problem": "ground",
         "scenario": cfg.name,
-        "objective": objective.name(),
+        "objective": inputs.objective_name(),
         "objective_units": objective.units(),
+        "search_objective": objective.name(),
+        "lincov": answer.lincov.as_ref().map(LinCovStage::json),
         "value": ev.value,
         "beacons": inputs.count,
         "sites": sites_json(&answer.sol.sites),

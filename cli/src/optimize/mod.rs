@@ -33,6 +33,7 @@ mod bound_selection;
 mod design_check;
 mod exact_selection;
 mod ground_sites;
+mod lincov_polish;
 mod names;
 mod orbit_elements;
 mod orbit_files;
@@ -125,10 +126,15 @@ pub struct OrbitersArgs {
     altitude_km: Option<f64>,
     /// Objective: nav (both nominal position bounds relative to the scenario's own orbiters;
     /// the default, pcrlb-avg when the scenario has no comparable orbiters), pcrlb-avg,
-    /// pcrlb-final, or seed 002's det-n3 (eq. 57, 3 orbiters) and logdet (any n >= 3); pcrlb
-    /// polishes the geometric optimum on Monte Carlo run 0's final bound.
+    /// pcrlb-final; lincov-nav, lincov-avg, lincov-final (the same figures of the filter's
+    /// position RMSE predicted by LinCov: the bound's optimum polished on it); or seed 002's
+    /// det-n3 (eq. 57, 3 orbiters) and logdet (any n >= 3); pcrlb polishes the geometric
+    /// optimum on Monte Carlo run 0's final bound.
     #[arg(long, value_enum)]
     objective: Option<OrbiterObjectiveArg>,
+    /// Filter whose LinCov the lincov-* objectives score (one LinCov can analyse: ekf).
+    #[arg(long, default_value = "ekf")]
+    lincov_filter: String,
     /// Seconds between trajectory samples of the time integral (trapezoid rule).
     #[arg(long, default_value_t = 1.0)]
     step: f64,
@@ -153,10 +159,15 @@ pub struct GroundArgs {
     #[arg(long)]
     beacons: Option<usize>,
     /// Objective: nav (both position bounds relative to the input design, the default),
-    /// pcrlb-avg, pcrlb-final, or seed 002's min-delta (eq. 49), logdet (integral of ln det FIM),
-    /// min-eig (min over time of lambda_min(FIM)).
+    /// pcrlb-avg, pcrlb-final; lincov-nav, lincov-avg, lincov-final (the same figures of the
+    /// filter's position RMSE predicted by LinCov: the bound's optimum polished on it); or seed
+    /// 002's min-delta (eq. 49), logdet (integral of ln det FIM), min-eig (min over time of
+    /// lambda_min(FIM)).
     #[arg(long, value_enum, default_value_t = GroundObjectiveArg::Nav)]
     objective: GroundObjectiveArg,
+    /// Filter whose LinCov the lincov-* objectives score (one LinCov can analyse: ekf).
+    #[arg(long, default_value = "ekf")]
+    lincov_filter: String,
     /// Observability method for min-delta (see `entrynav observe`).
     #[arg(long, value_enum, default_value_t = MethodArg::Lie)]
     method: MethodArg,

@@ -29,6 +29,16 @@ pub(super) enum OrbiterObjectiveArg {
     /// 1/2 (avg/avg_in + final/final_in), minimised.
     #[value(name = "nav")]
     Nav,
+    /// The filter's time-averaged position RMSE predicted by LinCov (the pcrlb-avg optimum
+    /// polished on it).
+    #[value(name = "lincov-avg")]
+    LincovAvg,
+    /// The filter's final position RMSE predicted by LinCov (the pcrlb-final optimum polished).
+    #[value(name = "lincov-final")]
+    LincovFinal,
+    /// 1/2 (lincov-avg/input's + lincov-final/input's) (the nav optimum polished on it).
+    #[value(name = "lincov-nav")]
+    LincovNav,
 }
 
 impl OrbiterObjectiveArg {
@@ -46,9 +56,26 @@ impl OrbiterObjectiveArg {
     pub(super) fn bound_figure(self) -> Option<entrynav_optimizer::BoundFigure> {
         use entrynav_optimizer::BoundFigure;
         match self {
-            OrbiterObjectiveArg::PcrlbAvg => Some(BoundFigure::Average),
-            OrbiterObjectiveArg::PcrlbFinal => Some(BoundFigure::Final),
-            OrbiterObjectiveArg::Nav => Some(BoundFigure::Navigation),
+            OrbiterObjectiveArg::PcrlbAvg | OrbiterObjectiveArg::LincovAvg => {
+                Some(BoundFigure::Average)
+            }
+            OrbiterObjectiveArg::PcrlbFinal | OrbiterObjectiveArg::LincovFinal => {
+                Some(BoundFigure::Final)
+            }
+            OrbiterObjectiveArg::Nav | OrbiterObjectiveArg::LincovNav => {
+                Some(BoundFigure::Navigation)
+            }
+            _ => None,
+        }
+    }
+
+    /// The LinCov figure the bound's optimum is polished on (lincov-*), if any.
+    pub(super) fn lincov_figure(self) -> Option<entrynav_optimizer::LinCovFigure> {
+        use entrynav_optimizer::LinCovFigure;
+        match self {
+            OrbiterObjectiveArg::LincovAvg => Some(LinCovFigure::Average),
+            OrbiterObjectiveArg::LincovFinal => Some(LinCovFigure::Final),
+            OrbiterObjectiveArg::LincovNav => Some(LinCovFigure::Navigation),
             _ => None,
         }
     }
@@ -76,6 +103,16 @@ pub(super) enum GroundObjectiveArg {
     /// minimised (the default: it serves navigation over the whole entry and at its end).
     #[value(name = "nav")]
     Nav,
+    /// The filter's time-averaged position RMSE predicted by LinCov (the pcrlb-avg optimum
+    /// polished on it).
+    #[value(name = "lincov-avg")]
+    LincovAvg,
+    /// The filter's final position RMSE predicted by LinCov (the pcrlb-final optimum polished).
+    #[value(name = "lincov-final")]
+    LincovFinal,
+    /// 1/2 (lincov-avg/input's + lincov-final/input's) (the nav optimum polished on it).
+    #[value(name = "lincov-nav")]
+    LincovNav,
 }
 
 /// `--method` (names of [`Method::name`]).

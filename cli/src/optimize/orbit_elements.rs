@@ -1,6 +1,7 @@
 //! `entrynav optimize orbiters`: orbiter elements (Ω, i, f) on circular orbits (seed 002 §4.2).
 
 use super::design_check::{check_configs, print_check, verdict};
+use super::lincov_polish::{self, LinCovStage};
 use super::orbit_files::{export_trajectory, orbiter_scenario, plot_orbiters, write_orbiter_json};
 use super::*;
 use entrynav_optimizer::OrbiterNavProblem;
@@ -51,6 +52,8 @@ pub(super) struct NavAnswer {
     /// Objective name (`nav`, `pcrlb-avg`, `pcrlb-final`).
     pub(super) objective: &'static str,
     pub(super) solution: OrbiterNavSolution,
+    /// lincov-*: the polish of the bound's optimum on LinCov.
+    pub(super) lincov: Option<LinCovStage>,
     /// The (time-averaged, final) bound of the scenario's own orbiters, when comparable.
     pub(super) own: Option<(f64, f64)>,
 }
@@ -89,7 +92,7 @@ pub(super) fn run_orbiters(a: &OrbitersArgs) -> Result<()> {
     let written = orbiter_scenario(a, &inputs, &answer)?;
     let objective = match (&answer.bound, &answer.nav) {
         (Some(_), _) => "pcrlb",
-        (None, Some(n)) => n.objective,
+        (None, Some(n)) => n.lincov.as_ref().map_or(n.objective, LinCovStage::name),
         (None, None) => answer.problem.objective().name(),
     };
     let check = check_configs(&inputs.cfg, &written.0, &inputs.dir, objective, &a.check)?;
@@ -201,7 +204,23 @@ fn solve_orbiters(a: &OrbitersArgs, inputs: &OrbiterInputs) -> Result<OrbiterAns
             } else {
                 p
             };
-            let s = p.optimize(&opts, &progress)?;
+            let mut s = p.optimize(&opts, &progress)?;
+            let lincov = chosen
+                .lincov_figure()
+                .map(|figure| {
+                    lincov_polish::polish_orbiters(
+                        &p,
+                        &working,
+                        &mut s,
+                        figure,
+                        &a.lincov_filter,
+                        comparable.then_some(own_elements.as_slice()),
+                        &noise,
+                        c.seed,
+                        c.quiet,
+                    )
+                })
+                .transpose()?;
             let own = comparable
                 .then(|| {
                     p.series(&own_elements)
@@ -211,6 +230,7 @@ fn solve_orbiters(a: &OrbitersArgs, inputs: &OrbiterInputs) -> Result<OrbiterAns
             Some(NavAnswer {
                 objective: figure.name(),
                 solution: s,
+                lincov,
                 own,
             })
         }
@@ -318,6 +338,9 @@ fn print_orbiters(inputs: &OrbiterInputs, answer: &OrbiterAnswer, wall: Instant)
                 "  (scenario's own orbiters: {a:.2} m, {f:.2} m)"
             ))
         );
+        if let Some(l) = &n.lincov {
+            l.print();
+        }
     }
 }
 

@@ -158,6 +158,10 @@ pub(super) fn write_orbiter_json(
     });
     if let Some(n) = &answer.nav {
         v["objective"] = json!(n.objective);
+        if let Some(l) = &n.lincov {
+            v["objective"] = json!(l.name());
+            v["lincov"] = l.json();
+        }
         v["geometric_objective"] = json!(problem.objective().name());
         v["navigation"] = json!({
             "objective": n.objective,

@@ -292,7 +292,7 @@ fn entry_latitude(
 
 /// The beacons' states at every measurement epoch of the truth: steps that are multiples of the
 /// channels' common period (in truth steps, as the truth schedules them), up to the duration.
-fn ephemeris_table(
+pub(super) fn ephemeris_table(
     config: &ScenarioConfig,
     channels: &[ChannelSpec],
     beacons: &[Beacon],
@@ -306,7 +306,7 @@ fn ephemeris_table(
     EphemerisTable::new(beacons, dt, stride, max_steps)
 }
 
-fn channel_specs(config: &ScenarioConfig, beacon_names: &[String]) -> Vec<ChannelSpec> {
+pub(super) fn channel_specs(config: &ScenarioConfig, beacon_names: &[String]) -> Vec<ChannelSpec> {
     let mut out = channel_specs_as_sensed(config, beacon_names);
     if let Some(inflation) = &config.filter.noise_inflation {
         for spec in &mut out {

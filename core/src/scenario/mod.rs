@@ -21,6 +21,7 @@ mod validate_filter;
 mod validate_guidance;
 mod validate_range;
 mod validate_state;
+mod with_beacons;
 
 pub use build::Scenario;
 pub use builtin::{BUILTIN_NAMES, builtin_toml};

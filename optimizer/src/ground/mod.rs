@@ -57,9 +57,11 @@ use std::time::Instant;
 
 mod bound_selection;
 mod evaluation;
+mod lincov_polish;
 mod visibility;
 
 pub use bound_selection::BoundSelection;
+pub use lincov_polish::{GroundLinCovSolution, default_lincov_polish};
 
 /// Base cost of an infeasible configuration (above every feasible cost).
 pub const INFEASIBLE_COST: f64 = 1e4;
@@ -445,6 +447,11 @@ impl GroundProblem {
     /// The δ scaling of the scenario's filter model.
     pub fn scaling(&self) -> &Scaling {
         &self.scaling
+    }
+
+    /// The working scenario (the base with `count` placeholder surface beacons).
+    pub fn scenario(&self) -> &Scenario {
+        &self.scenario
     }
 }
 

@@ -37,6 +37,7 @@ mod trade;
 mod trade_args;
 mod trade_checkpoint;
 mod trade_files;
+mod trade_lincov;
 mod trade_tables;
 mod train;
 mod tune;

@@ -49,9 +49,26 @@ pub struct LinCovArgs {
 }
 
 /// One analysed filter with its wall time.
-struct Analysed {
-    lincov: EntryLinCov,
-    seconds: f64,
+pub(crate) struct Analysed {
+    pub(crate) lincov: EntryLinCov,
+    pub(crate) seconds: f64,
+}
+
+/// LinCov of every filter of `kinds` on `scenario` (named `label` in errors).
+pub(crate) fn analyse(
+    scenario: &Scenario,
+    kinds: &[FilterKind],
+    label: &str,
+) -> Result<Vec<Analysed>> {
+    let mut analysed = Vec::with_capacity(kinds.len());
+    for &kind in kinds {
+        let started = Instant::now();
+        let lincov = entry_lincov(scenario, kind)
+            .with_context(|| format!("LinCov of '{}' on '{label}'", kind.name()))?;
+        let seconds = started.elapsed().as_secs_f64();
+        analysed.push(Analysed { lincov, seconds });
+    }
+    Ok(analysed)
 }
 
 /// Run the command.
@@ -65,14 +82,7 @@ pub fn run(args: &LinCovArgs) -> Result<()> {
     {
         bail!("--compare-mc {runs}: the Monte Carlo needs 1..={MAX_COMPARE_RUNS} runs");
     }
-    let mut analysed = Vec::with_capacity(kinds.len());
-    for &kind in &kinds {
-        let started = Instant::now();
-        let lincov = entry_lincov(&scenario, kind)
-            .with_context(|| format!("LinCov of '{}' on '{}'", kind.name(), args.scenario))?;
-        let seconds = started.elapsed().as_secs_f64();
-        analysed.push(Analysed { lincov, seconds });
-    }
+    let analysed = analyse(&scenario, &kinds, &args.scenario)?;
     let mc = match args.compare_mc {
         Some(runs) => {
             let started = Instant::now();
@@ -137,7 +147,11 @@ fn finite(v: f64) -> Value {
     if v.is_finite() { json!(v) } else { Value::Null }
 }
 
-fn to_json(scenario: &Scenario, analysed: &[Analysed], mc: Option<&(TradeReport, f64)>) -> Value {
+pub(crate) fn to_json(
+    scenario: &Scenario,
+    analysed: &[Analysed],
+    mc: Option<&(TradeReport, f64)>,
+) -> Value {
     let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
     let last = |v: &[f64]| v.last().copied().unwrap_or(f64::NAN);
     let filters: Vec<Value> = analysed
@@ -202,7 +216,11 @@ fn to_json(scenario: &Scenario, analysed: &[Analysed], mc: Option<&(TradeReport,
 /// A table row: label, time-average and final prediction, the Monte Carlo's two.
 type Row<'a> = (&'a str, f64, f64, Option<f64>, Option<f64>);
 
-fn print_table(scenario: &Scenario, analysed: &[Analysed], mc: Option<&(TradeReport, f64)>) {
+pub(crate) fn print_table(
+    scenario: &Scenario,
+    analysed: &[Analysed],
+    mc: Option<&(TradeReport, f64)>,
+) {
     println!(
         "LinCov along the nominal trajectory of '{}'",
         scenario.config.name
@@ -289,7 +307,10 @@ fn print_table(scenario: &Scenario, analysed: &[Analysed], mc: Option<&(TradeRep
     }
 }
 
-fn write_csv<W: std::io::Write>(w: &mut csv::Writer<W>, l: &EntryLinCov) -> csv::Result<()> {
+pub(crate) fn write_csv<W: std::io::Write>(
+    w: &mut csv::Writer<W>,
+    l: &EntryLinCov,
+) -> csv::Result<()> {
     let mut header = vec![
         "t_s".to_string(),
         "pos_rmse_m".into(),

@@ -101,6 +101,10 @@ pub struct Summary<'a> {
     /// Only beside `resume`: its checksum (`trade_files::resume_checksum`), checked by `--resume`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub resume_checksum: Option<String>,
+    /// Only with `trade --method both`: LinCov of each filter beside the Monte Carlo
+    /// (`trade_lincov::Comparison`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lincov: Option<&'a serde_json::Value>,
     /// Wall-clock timing.
     pub timing: Timing,
 }

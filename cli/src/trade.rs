@@ -15,8 +15,9 @@ pub use crate::trade_args::{TradeAction, TradeArgs};
 use crate::trade_checkpoint::{self, SummaryCheckpoints};
 use crate::trade_files::{
     ShardFile, StudyProvenance, check_outputs, read_resume, read_shards, write_csv_dir, write_file,
-    write_summary,
+    write_summary, write_summary_with,
 };
+use crate::trade_lincov::{Comparison, Method};
 use crate::trade_tables::print_tables;
 use anyhow::{Context, Result};
 use entrynav::estimation::nav::FilterKind;
@@ -96,7 +97,11 @@ impl<'a> Mode<'a> {
 
 /// Run the command.
 pub fn run(args: &TradeArgs) -> Result<()> {
-    match Mode::of(args)? {
+    let mode = Mode::of(args)?;
+    if args.method != Method::Mc {
+        check_method(args, &mode)?;
+    }
+    match mode {
         Mode::Compare(c) => crate::compare::run(c),
         Mode::Merge {
             shards,
@@ -110,8 +115,66 @@ pub fn run(args: &TradeArgs) -> Result<()> {
             crate::replay::write_replay(&setup.scenario, &setup.filters, args.seed, run, csv_dir)
         }
         Mode::Shard { shard, json } => run_one_shard(args, shard, json),
+        Mode::Study { .. } if args.method == Method::Lincov => {
+            let setup = Setup::load(args)?;
+            crate::trade_lincov::run_lincov(
+                &setup.scenario,
+                &setup.filters,
+                args.json.as_deref(),
+                args.csv_dir.as_deref(),
+            )
+        }
         Mode::Study { resume } => run_study(args, resume),
     }
+}
+
+/// `--method lincov|both` is a study's option: refuse the modes and outputs it has no meaning
+/// for, naming the flag (exit code 2).
+fn check_method(args: &TradeArgs, mode: &Mode<'_>) -> Result<()> {
+    let method = match args.method {
+        Method::Lincov => "lincov",
+        Method::Both => "both",
+        Method::Mc => return Ok(()),
+    };
+    let refuse = |flag: &str, why: &str| -> Result<()> {
+        Err(crate::exit::Usage(format!("--method {method} with {flag}: {why}")).into())
+    };
+    match mode {
+        Mode::Study { resume: Some(_) } => {
+            return refuse(
+                "--resume",
+                "only a Monte Carlo study is resumed; use --method mc",
+            );
+        }
+        Mode::Study { resume: None } => {}
+        Mode::Grid(_) => return refuse("--grid", "grids run the Monte Carlo only (--method mc)"),
+        Mode::Shard { .. } => return refuse("--shard", "LinCov is one pass, not sharded"),
+        Mode::Replay { .. } => return refuse("--replay-run", "a replay is one Monte Carlo run"),
+        Mode::Compare(_) | Mode::Merge { .. } => {
+            return refuse("trade compare/merge", "they read finished summaries");
+        }
+    }
+    if args.method == Method::Lincov {
+        if args.plots.is_some() {
+            return refuse(
+                "--plots",
+                "the plots are of the Monte Carlo; use --method both",
+            );
+        }
+        if args.report.is_some() {
+            return refuse(
+                "--report",
+                "the report is of the Monte Carlo; use --method both",
+            );
+        }
+        if args.runs.is_some() {
+            return refuse(
+                "--runs",
+                "LinCov flies no runs; use --method both to compare",
+            );
+        }
+    }
+    Ok(())
 }
 
 /// The scenario, filters and run count of a study, loaded once its output paths are checked.
@@ -242,7 +305,17 @@ fn run_study(args: &TradeArgs, resume: Option<&Path>) -> Result<()> {
             report.runs_completed, report.runs
         );
     }
-    write_results(args, &setup, &report, partial.as_ref(), elapsed)?;
+    let lincov = (args.method == Method::Both && report.complete)
+        .then(|| Comparison::of(&setup.scenario, &setup.filters, &report))
+        .transpose()?;
+    write_results(
+        args,
+        &setup,
+        &report,
+        partial.as_ref(),
+        elapsed,
+        lincov.as_ref(),
+    )?;
     if !report.complete {
         return Err(Interrupted(format!(
             "{} of {} runs completed (complete: false in the summary)",
@@ -319,12 +392,20 @@ fn write_results(
     report: &TradeReport,
     resume: Option<&ShardResult>,
     elapsed: f64,
+    lincov: Option<&Comparison>,
 ) -> Result<()> {
     // With `--json -` the JSON is standard output: no tables, notes to stderr.
     let to_stdout = args.json.as_deref().is_some_and(is_stdout);
     let mut outputs = Outputs::default();
     if let Some(path) = &args.json {
-        let done = write_summary(path, &setup.provenance(args), report, resume, elapsed);
+        let done = write_summary_with(
+            path,
+            &setup.provenance(args),
+            report,
+            resume,
+            elapsed,
+            lincov.map(Comparison::json),
+        );
         let note = (!to_stdout).then(|| format!("wrote {}", path.display()));
         outputs.record(done.map(|()| note));
     }
@@ -344,6 +425,9 @@ fn write_results(
     }
     if !to_stdout {
         print_tables(report, &format!("{elapsed:.2} s wall"));
+        if let Some(c) = lincov {
+            c.print(report);
+        }
     }
     outputs.finish(to_stdout)
 }

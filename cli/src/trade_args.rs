@@ -84,6 +84,12 @@ pub struct TradeArgs {
     /// it costs about one EKF's worth of work per run).
     #[arg(long)]
     pub no_pcrlb: bool,
+    /// How the statistics are computed: mc (Monte Carlo of --runs runs), lincov (LinCov of each
+    /// filter along the nominal trajectory, one pass; ekf only), or both (the Monte Carlo with
+    /// LinCov / MC for every headline figure and a warning where they differ beyond the Monte
+    /// Carlo's 95 % interval).
+    #[arg(long, value_enum, default_value_t = crate::trade_lincov::Method::Mc)]
+    pub method: crate::trade_lincov::Method,
 }
 
 /// `entrynav trade merge`, `entrynav trade compare`.

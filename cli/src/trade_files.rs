@@ -35,11 +35,24 @@ pub fn write_summary(
     resume: Option<&ShardResult>,
     wall_s: f64,
 ) -> Result<()> {
+    write_summary_with(path, provenance, report, resume, wall_s, None)
+}
+
+/// [`write_summary`] with the `lincov` block of `trade --method both`.
+pub fn write_summary_with(
+    path: &Path,
+    provenance: &Provenance,
+    report: &TradeReport,
+    resume: Option<&ShardResult>,
+    wall_s: f64,
+    lincov: Option<&serde_json::Value>,
+) -> Result<()> {
     let summary = Summary {
         provenance,
         report,
         resume,
         resume_checksum: resume.map(resume_checksum),
+        lincov,
         timing: Timing::of(report, wall_s),
     };
     write_file(path, |w| {

@@ -107,3 +107,97 @@ fn a_filter_it_cannot_analyse_gets_the_reason() {
     assert_ne!(code, 0);
     assert!(err.contains("--compare-mc 0"), "{err}");
 }
+
+/// `trade --method both`: the summary carries LinCov beside the Monte Carlo with the ratio and
+/// the Monte Carlo's interval for every headline figure; on a filter LinCov models well every
+/// position figure is within 15 % and inside the interval.
+#[test]
+fn trade_method_both_puts_lincov_beside_the_monte_carlo() {
+    let dir = scratch_dir("lincov", "trade-both");
+    let json_path = dir.join("t.json");
+    let (code, out, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "orbiters-3",
+        "--filters",
+        "ekf",
+        "--runs",
+        "200",
+        "--threads",
+        "2",
+        "--method",
+        "both",
+        "--quiet",
+        "--json",
+        json_path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("LinCov beside the Monte Carlo"), "{out}");
+    let v = json(&std::fs::read_to_string(&json_path).unwrap());
+    assert_eq!(v["runs"], 200);
+    let l = &v["lincov"];
+    assert_eq!(l["filters"][0]["name"], "ekf");
+    let vs = &l["versus_monte_carlo"][0];
+    assert_eq!(vs["name"], "ekf");
+    let figures = vs["figures"].as_array().unwrap();
+    let find = |name: &str| {
+        figures
+            .iter()
+            .find(|f| f["figure"] == name)
+            .unwrap_or_else(|| panic!("{name} missing: {vs}"))
+    };
+    for name in ["rmse_time_avg.pos_m", "rmse_final.pos_m"] {
+        let f = find(name);
+        let mc = f["monte_carlo"].as_f64().unwrap();
+        assert_eq!(
+            mc,
+            v["filters"][0][name.split('.').next().unwrap()]["pos_m"]
+        );
+        let ratio = f["ratio"].as_f64().unwrap();
+        assert!((ratio - 1.0).abs() < 0.15, "{f}");
+        assert_eq!(f["outside_mc_interval"], false, "{f}");
+    }
+    assert!(find("anees_per_dof")["lincov"].as_f64().unwrap() > 0.0);
+}
+
+/// `trade --method lincov` is `entrynav lincov`; options with no meaning for it are refused.
+#[test]
+fn trade_method_lincov_is_the_lincov_command_and_refuses_monte_carlo_options() {
+    let args = ["--scenario", "four-beacon-fusion", "--json", "-"];
+    let (code, a, err) = entrynav(&[&["lincov"][..], &args[..]].concat());
+    assert_eq!(code, 0, "{err}");
+    let (code, b, err) = entrynav(&[&["trade", "--method", "lincov"][..], &args[..]].concat());
+    assert_eq!(code, 0, "{err}");
+    let strip = |s: &str| {
+        let mut v = json(s);
+        for f in v["lincov"]["filters"].as_array_mut().unwrap() {
+            f["wall_s"] = Value::Null;
+        }
+        v
+    };
+    assert_eq!(strip(&a), strip(&b));
+    for (extra, flag) in [
+        (&["--runs", "10"][..], "--runs"),
+        (&["--resume", "partial.json"][..], "--resume"),
+        (&["--plots", "p"][..], "--plots"),
+    ] {
+        let (code, _, err) = entrynav(
+            &[
+                &[
+                    "trade",
+                    "--method",
+                    "lincov",
+                    "--scenario",
+                    "four-beacon-fusion",
+                ][..],
+                extra,
+            ]
+            .concat(),
+        );
+        assert_eq!(code, 2, "{flag}: {err}");
+        assert!(
+            err.contains("--method lincov") && err.contains(flag),
+            "{err}"
+        );
+    }
+}

@@ -209,13 +209,13 @@ impl Comparison {
             let rows = rows(a, f);
             for r in &rows {
                 println!(
-                    "  {:<34} {:>12.5} {:>12.5} {:>8.3} {:>12.5}..{:<12.5}{}",
+                    "  {:<34} {:>12} {:>12} {:>8.3} {:>12}..{:<12}{}",
                     r.figure,
-                    r.lincov,
-                    r.mc,
+                    num(r.lincov),
+                    num(r.mc),
                     r.ratio(),
-                    r.mc - r.half,
-                    r.mc + r.half,
+                    num(r.mc - r.half),
+                    num(r.mc + r.half),
                     if r.disagrees() { " !" } else { "" }
                 );
             }
@@ -235,5 +235,14 @@ impl Comparison {
                 );
             }
         }
+    }
+}
+
+/// Five significant digits: fixed from 0.01 up, scientific below (angles in rad, densities).
+fn num(v: f64) -> String {
+    if v != 0.0 && v.abs() < 0.01 {
+        format!("{v:.4e}")
+    } else {
+        format!("{v:.5}")
     }
 }

@@ -132,7 +132,7 @@ pub struct OrbitersArgs {
     /// optimum on Monte Carlo run 0's final bound.
     #[arg(long, value_enum)]
     objective: Option<OrbiterObjectiveArg>,
-    /// Filter whose LinCov the lincov-* objectives score (one LinCov can analyse: ekf).
+    /// Filter whose LinCov the lincov-* objectives score (one LinCov can analyse: ekf, or ukf as its EKF equivalent).
     #[arg(long, default_value = "ekf")]
     lincov_filter: String,
     /// Seconds between trajectory samples of the time integral (trapezoid rule).
@@ -165,7 +165,7 @@ pub struct GroundArgs {
     /// lambda_min(FIM)).
     #[arg(long, value_enum, default_value_t = GroundObjectiveArg::Nav)]
     objective: GroundObjectiveArg,
-    /// Filter whose LinCov the lincov-* objectives score (one LinCov can analyse: ekf).
+    /// Filter whose LinCov the lincov-* objectives score (one LinCov can analyse: ekf, or ukf as its EKF equivalent).
     #[arg(long, default_value = "ekf")]
     lincov_filter: String,
     /// Observability method for min-delta (see `entrynav observe`).

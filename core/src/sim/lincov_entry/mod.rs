@@ -71,7 +71,7 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum EntryLinCovError {
     /// The filter's gain is not a function of its own covariance along the nominal.
-    #[error("LinCov cannot analyse filter '{filter}': {reason}; supported filters: ekf")]
+    #[error("LinCov cannot analyse filter '{filter}': {reason}; supported filters: ekf, ukf")]
     UnsupportedFilter {
         /// Filter name.
         filter: String,
@@ -184,11 +184,7 @@ impl EntryLinCov {
 /// Why LinCov cannot analyse filter `kind` (`None`: it can).
 pub fn unsupported_reason(kind: FilterKind) -> Option<&'static str> {
     Some(match kind {
-        FilterKind::Ekf => return None,
-        FilterKind::Ukf => {
-            "its gain comes from sigma points spread by its own covariance; to first order along \
-             the nominal it is the EKF's, and no separate LinCov of it is implemented"
-        }
+        FilterKind::Ekf | FilterKind::Ukf => return None,
         FilterKind::Ci | FilterKind::Dcifaif => {
             "its covariance-intersection weights are an optimisation over the local covariances \
              and its fused estimate is not the output of one Kalman gain; its LinCov is not \
@@ -242,6 +238,14 @@ pub fn entry_lincov(
     let n = onboard.state_dim();
     let truth = truth::nominal_truth(scenario, n)?;
     let mut notes = Vec::new();
+    if kind == FilterKind::Ukf {
+        notes.push(
+            "ukf: analysed as its EKF equivalent (with the UKF's own tuning): along the nominal \
+             its sigma-point mean, covariance and gain equal the EKF's to first order in the \
+             dispersions; the sigma points' second-order terms are not modelled"
+                .to_string(),
+        );
+    }
     if scenario.config.truth.perturbation.is_some() {
         notes.push(
             "truth.perturbation: carried as the AR(1) grid's standard normals; the nominal flies \

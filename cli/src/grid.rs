@@ -45,7 +45,13 @@ pub struct GridFile {
     /// Variations.
     #[serde(default)]
     pub variations: Variations,
+    /// `trade --grid … --method lincov`: every cell by LinCov of each filter (no runs).
+    #[serde(skip)]
+    pub lincov: bool,
 }
+
+/// Seconds between rewrites of a LinCov grid's outputs.
+const LINCOV_WRITE_EVERY_S: f64 = 5.0;
 
 fn one() -> u64 {
     1
@@ -236,11 +242,18 @@ fn expand(grid: &GridFile, grid_dir: &Path) -> Result<Vec<Cell>> {
 /// Run a grid file, writing the report into `out_dir`.
 /// Run the grid in `grid_path`; the report goes to `out_dir`, and an HTML page to `report` if
 /// given as `html` (rewritten after every finished cell, so an interrupted grid keeps its cells there too).
-pub fn run(grid_path: &Path, out_dir: &Path, quiet: bool, html: Option<&Path>) -> Result<()> {
+pub fn run(
+    grid_path: &Path,
+    out_dir: &Path,
+    quiet: bool,
+    html: Option<&Path>,
+    lincov: bool,
+) -> Result<()> {
     let text = entrynav_loader::read_text(grid_path)
         .with_context(|| format!("cannot read grid file {}", grid_path.display()))?;
-    let grid: GridFile =
+    let mut grid: GridFile =
         toml::from_str(&text).with_context(|| format!("grid file {}", grid_path.display()))?;
+    grid.lincov = lincov;
     if grid.runs == 0 {
         bail!("{}: runs must be at least 1", grid_path.display());
     }
@@ -254,6 +267,8 @@ pub fn run(grid_path: &Path, out_dir: &Path, quiet: bool, html: Option<&Path>) -
     let mut rows = Vec::new();
     let mut reports: Vec<(String, String, TradeReport)> = Vec::new();
     let cancel = crate::interrupt::install();
+    // A LinCov cell takes milliseconds: its outputs are rewritten every few seconds, not per cell.
+    let mut written = std::time::Instant::now();
     for (i, cell) in cells.iter().enumerate() {
         if cancel.load(std::sync::atomic::Ordering::Relaxed) {
             return Err(crate::interrupt::Interrupted(format!(
@@ -286,8 +301,11 @@ pub fn run(grid_path: &Path, out_dir: &Path, quiet: bool, html: Option<&Path>) -
                 }),
             }
         }
-        let min_delta = analysis_points(&scenario, 1.0)
-            .ok()
+        // The observability column costs ~50 ms a cell (Lie derivatives by jets), five LinCovs'
+        // worth: a LinCov grid leaves it out (`observe` gives it per scenario).
+        let min_delta = (!grid.lincov)
+            .then(|| analysis_points(&scenario, 1.0).ok())
+            .flatten()
             .and_then(|pts| {
                 degree_series(
                     &scenario,
@@ -302,17 +320,37 @@ pub fn run(grid_path: &Path, out_dir: &Path, quiet: bool, html: Option<&Path>) -
             .map(|s| s.min);
         if !quiet {
             eprintln!(
-                "[{}/{}] {} {} ({}): {} filters × {} runs",
+                "[{}/{}] {} {} ({}): {} filters × {}",
                 i + 1,
                 cells.len(),
                 cell.label,
                 scenario.config.name,
                 cell.variation,
                 fit.len(),
-                grid.runs
+                if grid.lincov {
+                    "LinCov".to_string()
+                } else {
+                    format!("{} runs", grid.runs)
+                }
             );
         }
         if fit.is_empty() {
+            continue;
+        }
+        if grid.lincov {
+            for &k in &fit {
+                rows.push(crate::grid_lincov::row(
+                    &scenario,
+                    k,
+                    &cell.label,
+                    &cell.variation,
+                    min_delta,
+                ));
+            }
+            if written.elapsed().as_secs_f64() > LINCOV_WRITE_EVERY_S {
+                write_outputs(&grid, out_dir, &rows, &reports, (cells.len(), html))?;
+                written = std::time::Instant::now();
+            }
             continue;
         }
         let opts = McOptions {

@@ -63,14 +63,24 @@ pub fn write_outputs(
     let provenance = crate::provenance::Provenance::new(&[]);
     let md_path = out.join(format!("{}.md", grid.name));
     let mut md = crate::atomic_file::AtomicFile::create(&md_path)?;
-    writeln!(
-        md,
-        "# Grid `{}`\n\n{} runs per cell, seed {}, filters {}.\n",
-        grid.name,
-        grid.runs,
-        grid.seed,
-        grid.filters.join(", ")
-    )?;
+    if grid.lincov {
+        writeln!(
+            md,
+            "# Grid `{}`\n\nLinCov of each filter along each cell's nominal trajectory (no runs: \
+             predicted RMSE and ANEES), filters {}.\n",
+            grid.name,
+            grid.filters.join(", ")
+        )?;
+    } else {
+        writeln!(
+            md,
+            "# Grid `{}`\n\n{} runs per cell, seed {}, filters {}.\n",
+            grid.name,
+            grid.runs,
+            grid.seed,
+            grid.filters.join(", ")
+        )?;
+    }
     writeln!(
         md,
         "| cell | scenario | variation | filter | pos RMSE final [m] | vel RMSE final [m/s] | pos RMSE avg [m] | ANEES | min in-3σ | diverged | µs/step | min δ (scaled) |"
@@ -110,6 +120,7 @@ pub fn write_outputs(
         serde_json::to_string_pretty(&serde_json::json!({
             "provenance": &provenance,
             "grid": grid.name, "runs": grid.runs, "seed": grid.seed, "cells": rows,
+            "method": if grid.lincov { "lincov" } else { "mc" },
             "reports": reports.iter().map(|(c, fp, r)| serde_json::json!({"cell": c, "scenario_fingerprint": fp, "report": r})).collect::<Vec<_>>(),
             "timing": {
                 "us_per_step": rows.iter().filter(|r| r.us_per_step.is_some()).map(|r| serde_json::json!({"cell": r.cell, "filter": r.filter, "us_per_step": r.us_per_step})).collect::<Vec<_>>(),

@@ -17,6 +17,7 @@ mod exit;
 mod fmu;
 mod grid;
 mod grid_files;
+mod grid_lincov;
 mod grid_plots;
 mod interrupt;
 mod lincov;

@@ -147,14 +147,17 @@ fn check_method(args: &TradeArgs, mode: &Mode<'_>) -> Result<()> {
             );
         }
         Mode::Study { resume: None } => {}
-        Mode::Grid(_) => return refuse("--grid", "grids run the Monte Carlo only (--method mc)"),
+        Mode::Grid(_) if args.method == Method::Both => {
+            return refuse("--grid", "a grid runs one method: mc or lincov");
+        }
+        Mode::Grid(_) => {}
         Mode::Shard { .. } => return refuse("--shard", "LinCov is one pass, not sharded"),
         Mode::Replay { .. } => return refuse("--replay-run", "a replay is one Monte Carlo run"),
         Mode::Compare(_) | Mode::Merge { .. } => {
             return refuse("trade compare/merge", "they read finished summaries");
         }
     }
-    if args.method == Method::Lincov {
+    if args.method == Method::Lincov && matches!(mode, Mode::Study { .. }) {
         if args.plots.is_some() {
             return refuse(
                 "--plots",
@@ -229,7 +232,13 @@ impl Setup {
 fn run_grid(args: &TradeArgs, grid: &Path) -> Result<()> {
     check_output_dir(&args.out_dir, "--out-dir")?;
     crate::report::check_path(args.report.as_deref())?;
-    crate::grid::run(grid, &args.out_dir, args.quiet, args.report.as_deref())
+    crate::grid::run(
+        grid,
+        &args.out_dir,
+        args.quiet,
+        args.report.as_deref(),
+        args.method == Method::Lincov,
+    )
 }
 
 /// Run shard `shard` of the study and write its block sums to `path`; an interrupted shard is

@@ -201,3 +201,67 @@ fn trade_method_lincov_is_the_lincov_command_and_refuses_monte_carlo_options() {
         );
     }
 }
+
+/// `trade --grid FILE --method lincov`: every cell by LinCov — the full-geometry, unit-noise cell
+/// is exactly `entrynav lincov`'s prediction, fewer beacons and more noise predict more error,
+/// and a filter LinCov cannot analyse is a refused row naming why.
+#[test]
+fn a_lincov_grid_predicts_every_cell() {
+    let dir = scratch_dir("lincov", "grid");
+    let grid = dir.join("g.toml");
+    std::fs::write(
+        &grid,
+        "name = \"g\"\nruns = 1\nfilters = [\"ekf\", \"dcifaif\"]\nscenarios = [\"four-beacon-fusion\"]\n\
+         [variations]\nbeacons = [2, 4]\nnoise_scale = [1.0, 2.0]\n",
+    )
+    .unwrap();
+    let out_dir = dir.join("out");
+    let (code, out, err) = entrynav(&[
+        "trade",
+        "--grid",
+        grid.to_str().unwrap(),
+        "--method",
+        "lincov",
+        "--out-dir",
+        out_dir.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{out}\n{err}");
+    let v = json(&std::fs::read_to_string(out_dir.join("g.json")).unwrap());
+    assert_eq!(v["method"], "lincov");
+    let cells = v["cells"].as_array().unwrap();
+    let ekf: Vec<&Value> = cells.iter().filter(|c| c["filter"] == "ekf").collect();
+    assert_eq!(ekf.len(), 4, "{cells:?}");
+    let pos = |beacons: &str, noise: &str| {
+        ekf.iter()
+            .find(|c| {
+                let var = c["variation"].as_str().unwrap();
+                var.contains(&format!("{beacons} beacons"))
+                    && var.contains(&format!("noise x{noise}"))
+            })
+            .unwrap_or_else(|| panic!("{beacons}/{noise}: {ekf:?}"))["pos_rmse_avg_m"]
+            .as_f64()
+            .unwrap()
+    };
+    let (code, l, err) = entrynav(&["lincov", "--scenario", "four-beacon-fusion", "--json", "-"]);
+    assert_eq!(code, 0, "{err}");
+    let direct = json(&l)["lincov"]["filters"][0]["rmse_time_avg"]["pos_m"]
+        .as_f64()
+        .unwrap();
+    assert!(
+        (pos("4", "1") / direct - 1.0).abs() < 1e-12,
+        "{} vs {direct}",
+        pos("4", "1")
+    );
+    assert!(pos("2", "1") > pos("4", "1"));
+    assert!(pos("4", "2") > pos("4", "1"));
+    let refused: Vec<&Value> = cells.iter().filter(|c| c["filter"] == "dcifaif").collect();
+    assert!(!refused.is_empty());
+    for r in refused {
+        let why = r["refused"].as_str().unwrap_or_default();
+        assert!(
+            why.contains("LinCov") && why.contains("covariance-intersection"),
+            "{r}"
+        );
+    }
+}

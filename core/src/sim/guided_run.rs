@@ -60,7 +60,7 @@ pub enum GuidedRunError {
     #[error(transparent)]
     Guidance(#[from] GuidanceError),
     /// The filter stopped on a numerical failure before deployment.
-    #[error("the navigation filter failed at t = {t_s} s: {reason}")]
+    #[error("the navigation filter failed at t = {t_s:.2} s: {reason}")]
     FilterFailed {
         /// Epoch of the failure \[s\].
         t_s: f64,
@@ -69,7 +69,7 @@ pub enum GuidedRunError {
     },
     /// The truth stopped (ground, stop speed, duration) before the deployment trigger.
     #[error(
-        "the guided truth did not reach the deployment trigger: it stopped at t = {t_s} s, \
+        "the guided truth did not reach the deployment trigger: it stopped at t = {t_s:.2} s, \
          altitude {altitude_m:.0} m, speed {speed_mps:.1} m/s"
     )]
     NoTrigger {
@@ -201,8 +201,8 @@ pub(crate) fn deployment(
 
 /// Fly Monte Carlo run `run` of a study with master seed `seed` on `scenario` (its `[guidance]`)
 /// with filter `kind` in the loop (module documentation). The truth realisation is the trade's
-/// for the same (seed, run) ([`EntryCoSim::for_run`]); `limits` are checked at every step only
-/// by the caller (the result carries the largest rate flown).
+/// for the same (seed, run) ([`EntryCoSim::for_run`]). The result carries the largest bank rate
+/// flown, for the caller to hold against the limits ([`within_rate_limit`]).
 pub fn fly_with_filter(
     scenario: &Arc<Scenario>,
     kind: FilterKind,

@@ -19,6 +19,7 @@ mod grid;
 mod grid_files;
 mod grid_lincov;
 mod grid_plots;
+mod guidance;
 mod interrupt;
 mod lincov;
 mod observe;
@@ -117,6 +118,9 @@ enum Command {
     /// Optimize beacon and orbiter geometry (seed 002 Sec. 4): orbiters, ground sites, certified
     /// site selection.
     Optimize(optimize::OptimizeArgs),
+    /// Entry guidance flown in closed loop: `deliver`, the Monte Carlo of delivery at deployment
+    /// with navigation filters in the loop (docs/guidance.md).
+    Guidance(guidance::GuidanceArgs),
 }
 
 #[derive(Subcommand)]
@@ -223,5 +227,6 @@ fn run(cli: Cli) -> Result<()> {
         Command::TrainDensity(args) => train::run(&args),
         Command::Fmu(args) => fmu::run(&args),
         Command::Optimize(args) => optimize::run(&args),
+        Command::Guidance(args) => guidance::run(&args),
     }
 }

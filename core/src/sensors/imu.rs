@@ -36,6 +36,20 @@ impl ImuFrame {
             ImuFrame::Body { angle_of_attack } => body_from_velocity(a_v, *angle_of_attack),
         }
     }
+
+    /// The drag acceleration D \[m/s²\] in a triad `a` read in this frame: minus the wind-frame x
+    /// component (`[−D, −L sinσ, L cosσ]`, seed 000 eq. 5), the inverse of
+    /// [`ImuFrame::express`] (`a_x^v = cosα·a_x^b + sinα·a_z^b`). What an entry vehicle's guidance
+    /// calls the sensed drag.
+    pub fn drag_from(&self, a: &V3<f64>) -> f64 {
+        match self {
+            ImuFrame::Velocity => -a[0],
+            ImuFrame::Body { angle_of_attack } => {
+                let (s, c) = angle_of_attack.sin_cos();
+                -(c * a[0] + s * a[2])
+            }
+        }
+    }
 }
 
 #[cfg(test)]
@@ -49,5 +63,18 @@ mod tests {
         let n = |v: &[f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
         assert!((n(&a) - n(&b)).abs() < 1e-12);
         assert_eq!(body_from_velocity(&a, 0.0), a);
+    }
+
+    #[test]
+    fn drag_from_inverts_express() {
+        let a_v = [-10.0, 0.5, 2.4];
+        for f in [
+            ImuFrame::Velocity,
+            ImuFrame::Body {
+                angle_of_attack: -17f64.to_radians(),
+            },
+        ] {
+            assert!((f.drag_from(&f.express(&a_v)) - 10.0).abs() < 1e-12);
+        }
     }
 }

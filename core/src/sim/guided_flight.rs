@@ -36,7 +36,7 @@ pub enum GuidedFlightError {
     Guidance(#[from] GuidanceError),
     /// The truth never met the deployment trigger.
     #[error(
-        "the guided truth did not reach the deployment trigger: it stopped at t = {t_s} s, \
+        "the guided truth did not reach the deployment trigger: it stopped at t = {t_s:.2} s, \
          altitude {altitude_m:.0} m, speed {speed_mps:.1} m/s"
     )]
     NoTrigger {

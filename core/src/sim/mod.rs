@@ -16,14 +16,18 @@
 //!   same truth runs, in every trade summary;
 //! * [`lincov_entry`] — LinCov of the EKF along the nominal trajectory (`entrynav lincov`);
 //! * [`density_eval`] — seed 001's density RMSPE (eq. 70) over a Monte Carlo;
-//! * [`training`] — seed 001 Algorithm 1's training trajectories and the whole offline training.
+//! * [`training`] — seed 001 Algorithm 1's training trajectories and the whole offline training;
+//! * [`guided_flight`], [`guided_run`], [`delivery`] — entry guidance flown with perfect
+//!   navigation, with a filter in the loop, and the Monte Carlo of delivery at deployment.
 
 pub mod checkpoint;
 pub mod consistency;
+pub mod delivery;
 pub mod density_eval;
 pub mod engine;
 pub mod gate_stats;
 pub mod guided_flight;
+pub mod guided_run;
 pub mod judge;
 pub mod lincov_entry;
 pub mod metrics;

@@ -7,6 +7,8 @@ use super::truth_sensors::TruthSensors;
 use super::{EngineError, StepReport, check_step};
 use crate::estimation::nav::FilterKind;
 use crate::scenario::Scenario;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
 use std::sync::Arc;
 
 /// Truth, sensors and a navigation filter in one co-simulation slave.
@@ -28,6 +30,31 @@ impl EntryCoSim {
         let truth = TruthSensors::new(Arc::clone(&scenario), seed, dispersed);
         let nav =
             Navigator::for_truth(&scenario, kind, seed, truth.draw(), &truth.outputs().sample)?;
+        let judgement = nav.judge(&scenario, truth.draw(), &truth.outputs().sample);
+        Ok(EntryCoSim {
+            truth,
+            nav,
+            judgement,
+        })
+    }
+
+    /// Filter `kind` on `scenario` with the truth realisation of Monte Carlo run `run` of a study
+    /// with master seed `seed`: everything from `run_seed(seed, run)` as a trade's run draws it
+    /// ([`Scenario::draw_truth_run`], so a truth profile set is cycled by run index), the
+    /// measurement noise after the draw, and the filter start from that seed's stream 1 (as
+    /// [`EntryCoSim::new`]). Without a cycled profile set this is
+    /// `EntryCoSim::new(scenario, kind, run_seed(seed, run), true)`.
+    pub fn for_run(
+        scenario: Arc<Scenario>,
+        kind: FilterKind,
+        seed: u64,
+        run: usize,
+    ) -> Result<EntryCoSim, EngineError> {
+        let s = crate::sim::run_seed(seed, run as u64);
+        let mut rng = ChaCha8Rng::seed_from_u64(s);
+        let draw = scenario.draw_truth_run(run, &mut rng);
+        let truth = TruthSensors::with_draw(Arc::clone(&scenario), draw, rng);
+        let nav = Navigator::for_truth(&scenario, kind, s, truth.draw(), &truth.outputs().sample)?;
         let judgement = nav.judge(&scenario, truth.draw(), &truth.outputs().sample);
         Ok(EntryCoSim {
             truth,

@@ -1,0 +1,200 @@
+//! `entrynav guidance deliver`: the Monte Carlo of delivery at deployment with navigation filters
+//! in the guidance loop, against perfect navigation and the unguided reference bank on the same
+//! dispersion draws (`entrynav::sim::delivery`).
+
+use crate::exit::{check_output_file, is_stdout};
+use crate::threads::with_threads;
+use anyhow::{Context, Result};
+use clap::{Args, Subcommand};
+use entrynav::estimation::nav::FilterKind;
+use entrynav::sim::delivery::{DeliveryReport, DeliveryRow, run_delivery};
+use entrynav_loader as load;
+use serde::Serialize;
+use std::path::PathBuf;
+
+/// Arguments of `entrynav guidance`.
+#[derive(Args)]
+pub struct GuidanceArgs {
+    /// What to do.
+    #[command(subcommand)]
+    pub action: GuidanceAction,
+}
+
+/// `entrynav guidance …`.
+#[derive(Subcommand)]
+pub enum GuidanceAction {
+    /// Monte Carlo of delivery at deployment: each filter flown in the guidance loop (its
+    /// estimate and the sensed drag go to guidance, the bank through the rate and acceleration
+    /// limits drives truth and filter), with perfect navigation and the unguided reference bank
+    /// on the same dispersion draws. The scenario needs a `[guidance]` section, e.g.
+    /// `--set 'guidance={algorithm="apollo",reference_bank_deg=60.0,trigger={speed_mps=450.0}}'`.
+    Deliver(DeliverArgs),
+}
+
+/// Arguments of `entrynav guidance deliver`.
+#[derive(Args)]
+pub struct DeliverArgs {
+    /// Built-in scenario name or path to a scenario TOML file (with a `[guidance]` section, or
+    /// one given by --set).
+    #[arg(long)]
+    pub scenario: String,
+    /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable).
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub sets: Vec<String>,
+    /// Comma-separated filters flown in the loop: ekf, ukf, ci, dcifaif, mmae, mmae-moe, ukf-cm,
+    /// ukf-ac, uskf-nn.
+    #[arg(long, default_value = "ekf")]
+    pub filters: String,
+    /// Monte Carlo runs (default: the scenario's monte_carlo.runs).
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::exit::parse_runs)]
+    pub runs: Option<usize>,
+    /// Master seed; run r draws its truth from run_seed(seed, r) as `trade` does, and the same
+    /// seed gives the same statistics on any thread count.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = crate::exit::parse_threads)]
+    pub threads: Option<usize>,
+    /// Write the result as JSON (`-`: to standard output, and no table): the rows under
+    /// `delivery`, and every run's deliveries under `runs`. Checked before the first run.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+}
+
+/// Run the command.
+pub fn run(args: &GuidanceArgs) -> Result<()> {
+    match &args.action {
+        GuidanceAction::Deliver(a) => deliver(a),
+    }
+}
+
+/// One run's row in the JSON: its delivery or why it failed.
+#[derive(Serialize)]
+struct RunRow<'a> {
+    run: usize,
+    row: &'a str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    delivery: Option<&'a entrynav::sim::guided_run::Delivery>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    failure: Option<&'a str>,
+}
+
+#[derive(Serialize)]
+struct Output<'a> {
+    delivery: &'a DeliveryReport,
+    runs: Vec<RunRow<'a>>,
+}
+
+fn deliver(args: &DeliverArgs) -> Result<()> {
+    if let Some(p) = &args.json {
+        check_output_file(p, "--json")?;
+    }
+    let (cfg, dir) = load::resolve(&args.scenario, load::Base::CurrentDir)?.into_parts();
+    let cfg = load::apply_overrides(cfg, &args.sets)?;
+    crate::exit::warn_implausible(&cfg);
+    let scenario = load::build(cfg, &dir)?;
+    let filters = FilterKind::parse_list(&args.filters, &scenario.onboard)?;
+    let runs = args.runs.unwrap_or(scenario.config.monte_carlo.runs);
+    let report = with_threads(args.threads, || {
+        Ok(run_delivery(&scenario, &filters, runs, args.seed, &|_| {})?)
+    })?;
+    let to_stdout = args.json.as_deref().is_some_and(is_stdout);
+    if !to_stdout {
+        print_table(&report);
+    }
+    if let Some(path) = &args.json {
+        let names: Vec<&str> = report.rows.iter().map(|r| r.name.as_str()).collect();
+        let out = Output {
+            delivery: &report,
+            runs: report
+                .per_run
+                .iter()
+                .enumerate()
+                .flat_map(|(run, rows)| {
+                    rows.iter().zip(&names).map(move |(r, name)| RunRow {
+                        run,
+                        row: name,
+                        delivery: r.as_ref().ok(),
+                        failure: r.as_ref().err().map(String::as_str),
+                    })
+                })
+                .collect(),
+        };
+        let text = serde_json::to_string_pretty(&out)? + "\n";
+        if to_stdout {
+            print!("{text}");
+        } else {
+            crate::atomic_file::write(path, text)
+                .with_context(|| format!("writing {}", path.display()))?;
+            println!("wrote {}", path.display());
+        }
+    }
+    Ok(())
+}
+
+fn opt(v: Option<f64>, digits: usize) -> String {
+    v.map_or_else(|| "-".to_string(), |x| format!("{x:.digits$}"))
+}
+
+fn print_table(r: &DeliveryReport) {
+    println!(
+        "Delivery at deployment: scenario {}, {} guidance, {} runs, seed {} (bank rate limit {:.1} deg/s)",
+        r.scenario, r.algorithm, r.runs, r.seed, r.bank_rate_limit_deg_s
+    );
+    println!(
+        "{:<12} {:>8} {:>6} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>24} {:>9} {:>10}",
+        "row",
+        "deployed",
+        "failed",
+        "mean [m]",
+        "RMS [m]",
+        "median [m]",
+        "max [m]",
+        "mean DR",
+        "mean CR",
+        "99% ellipse a x b @ deg",
+        "max rate",
+        "nav [m]"
+    );
+    for row in &r.rows {
+        print_row(row);
+    }
+    for row in r.rows.iter().filter(|x| x.failures > 0) {
+        if let Some((run, why)) = &row.first_failure {
+            println!(
+                "{}: {} failed run(s); first: run {run}: {why}",
+                row.name, row.failures
+            );
+        }
+    }
+    if r.rows.iter().any(|x| !x.rate_limit_held) {
+        println!("WARNING: the bank rate exceeded its limit in some run");
+    }
+}
+
+fn print_row(x: &DeliveryRow) {
+    let ellipse = x.ellipse_99.map_or_else(
+        || "-".to_string(),
+        |e| {
+            format!(
+                "{:.0} x {:.0} @ {:.1}",
+                e.semi_major_m, e.semi_minor_m, e.orientation_deg
+            )
+        },
+    );
+    println!(
+        "{:<12} {:>8} {:>6} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>24} {:>9} {:>10}",
+        x.name,
+        x.deployed,
+        x.failures,
+        opt(x.mean_miss_m, 1),
+        opt(x.rms_miss_m, 1),
+        opt(x.median_miss_m, 1),
+        opt(x.max_miss_m, 1),
+        opt(x.mean_downrange_m, 1),
+        opt(x.mean_crossrange_m, 1),
+        ellipse,
+        opt(x.max_bank_rate_deg_s, 2),
+        opt(x.rms_nav_position_error_m, 1),
+    );
+}

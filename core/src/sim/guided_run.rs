@@ -1,0 +1,305 @@
+//! One dispersed entry flown with a **navigation filter in the guidance loop** (issue 28): each
+//! guidance cycle the filter's estimate — never the truth — becomes the guidance layer's
+//! [`NavState`], the bank command goes through the [`BankActuator`] (rate and acceleration
+//! limits), and the flown bank drives both the truth and the filter's onboard models.
+//!
+//! The loop drives the engine's step API ([`EntryCoSim::do_step`]) one truth step at a time, so
+//! the truth, the sensors and the filter advance exactly as in the FMUs: the bank of step k is
+//! the actuator's output after the command computed from the estimate at the start of the step
+//! (the epoch at t = k·dt, processed at the end of the previous step). What guidance is given:
+//!
+//! * the kinematic state of the filter's latest estimate (spherical, or Cartesian converted with
+//!   the onboard planet rotation, [`NavState::from_estimate`]);
+//! * the **sensed drag** from the accelerometer triad of the latest measurement epoch, noisy as the
+//!   vehicle reads it, rotated from the IMU frame to the wind frame with the onboard IMU frame
+//!   ([`crate::sensors::imu::ImuFrame::drag_from`]). A scenario without the three accelerometer
+//!   channels cannot be flown this way ([`GuidedRunError::NoAccelerometers`]).
+//!
+//! Deployment is decided on the truth (true density and airspeed), as in
+//! [`super::guided_flight`], and interpolated linearly in the trigger function between the two
+//! truth steps around the crossing. A filter failure ends the run as a failure (the vehicle would
+//! be flying blind); so does a truth that stops before the trigger.
+
+use super::engine::{EngineError, EntryCoSim, NavStatus, TruthSample};
+use super::guided_flight::GuidedFlight;
+use crate::estimation::Onboard;
+use crate::estimation::nav::FilterKind;
+use crate::guidance::{
+    BankActuator, BankLimits, GuidanceError, NavState, Target, Trigger, bearing, central_angle,
+};
+use crate::scenario::Scenario;
+use crate::sensors::{Channel, MeasurementEpoch};
+use serde::Serialize;
+use std::sync::Arc;
+use thiserror::Error;
+
+/// Why a guided run could not be flown or did not reach deployment.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum GuidedRunError {
+    /// The scenario has no `[guidance]` section.
+    #[error("scenario '{0}' has no [guidance] section: there is nothing to fly in the loop")]
+    NoGuidance(String),
+    /// The onboard channels lack an accelerometer triad, so there is no sensed drag.
+    #[error(
+        "scenario '{0}' has no accelerometer triad (accel_x/y/z): guidance needs the sensed drag; \
+         give [sensors.imu]"
+    )]
+    NoAccelerometers(String),
+    /// The guidance period is not a positive multiple of the truth step.
+    #[error("guidance period {period_s} s is not a positive multiple of the truth step {step_s} s")]
+    Period {
+        /// Guidance period \[s\].
+        period_s: f64,
+        /// Truth step \[s\].
+        step_s: f64,
+    },
+    /// The engine failed (filter set-up, non-finite truth).
+    #[error(transparent)]
+    Engine(#[from] EngineError),
+    /// Guidance failed (also: the filter's estimate was not finite).
+    #[error(transparent)]
+    Guidance(#[from] GuidanceError),
+    /// The filter stopped on a numerical failure before deployment.
+    #[error("the navigation filter failed at t = {t_s:.2} s: {reason}")]
+    FilterFailed {
+        /// Epoch of the failure \[s\].
+        t_s: f64,
+        /// What failed.
+        reason: String,
+    },
+    /// The truth stopped (ground, stop speed, duration) before the deployment trigger.
+    #[error(
+        "the guided truth did not reach the deployment trigger: it stopped at t = {t_s:.2} s, \
+         altitude {altitude_m:.0} m, speed {speed_mps:.1} m/s"
+    )]
+    NoTrigger {
+        /// Time \[s\].
+        t_s: f64,
+        /// Altitude \[m\].
+        altitude_m: f64,
+        /// Speed \[m/s\].
+        speed_mps: f64,
+    },
+}
+
+/// The navigation error at deployment: the filter's latest estimate (the last measurement epoch
+/// at or before the trigger) against the truth at that epoch.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DeployNavError {
+    /// Position error norm \[m\].
+    pub position_m: f64,
+    /// Velocity error norm \[m/s\].
+    pub velocity_mps: f64,
+    /// Downrange (along the true heading) position error \[m\].
+    pub downrange_m: f64,
+    /// Crossrange position error \[m\].
+    pub crossrange_m: f64,
+}
+
+/// Where one flight deployed and how far from the target.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Delivery {
+    /// Deployment time \[s\].
+    pub t_deploy_s: f64,
+    /// Deployment latitude \[deg\].
+    pub lat_deg: f64,
+    /// Deployment longitude \[deg\].
+    pub lon_deg: f64,
+    /// Deployment altitude \[m\].
+    pub altitude_m: f64,
+    /// Surface distance from the deployment point to the target \[m\].
+    pub miss_m: f64,
+    /// Along-track part of the miss, positive when the vehicle overflew the target \[m\].
+    pub downrange_m: f64,
+    /// Cross-track part of the miss, positive when the target lies to the right \[m\].
+    pub crossrange_m: f64,
+    /// Largest |bank rate| flown over any truth step \[deg/s\].
+    pub max_bank_rate_deg_s: f64,
+    /// Navigation error at deployment (`None` for perfect navigation and the unguided flight).
+    pub nav_error: Option<DeployNavError>,
+}
+
+impl Delivery {
+    /// The delivery of a flight of [`super::guided_flight`] (perfect navigation or a constant
+    /// bank), with the largest bank rate over its samples.
+    pub fn from_flight(f: &GuidedFlight) -> Delivery {
+        let max_rate = f
+            .samples
+            .windows(2)
+            .map(|w| (w[1].bank - w[0].bank).abs() / (w[1].t - w[0].t))
+            .fold(0.0, f64::max);
+        Delivery {
+            t_deploy_s: f.t_deploy,
+            lat_deg: f.deploy_lat_lon[0].to_degrees(),
+            lon_deg: f.deploy_lat_lon[1].to_degrees(),
+            altitude_m: f.deploy_altitude_m,
+            miss_m: f.miss_m,
+            downrange_m: f.downrange_error_m,
+            crossrange_m: f.crossrange_error_m,
+            max_bank_rate_deg_s: max_rate.to_degrees(),
+            nav_error: None,
+        }
+    }
+}
+
+/// Epoch slots of the accelerometer triad in the onboard channel list.
+fn accel_slots(onboard: &Onboard) -> Option<[usize; 3]> {
+    let slot = |axis: u8| {
+        onboard
+            .channels
+            .iter()
+            .position(|c| c.channel == Channel::Accel(axis))
+    };
+    Some([slot(0)?, slot(1)?, slot(2)?])
+}
+
+/// The sensed drag in `epoch`, when all three accelerometers were read.
+fn sensed_drag(onboard: &Onboard, slots: &[usize; 3], epoch: &MeasurementEpoch) -> Option<f64> {
+    let v = |i: usize| epoch.values.get(slots[i]).copied().flatten();
+    let a = [v(0)?, v(1)?, v(2)?];
+    Some(onboard.measurement.imu_frame.drag_from(&a))
+}
+
+/// The trigger function on a truth sample (airspeed from the dynamic pressure, so it is the
+/// planet-relative air speed on a rotating planet too).
+fn trigger_on(trigger: &Trigger, s: &TruthSample) -> f64 {
+    let airspeed = if s.density > 0.0 {
+        (2.0 * s.dynamic_pressure / s.density).sqrt()
+    } else {
+        s.spherical[3]
+    };
+    trigger.function(s.density, airspeed)
+}
+
+/// The deployment point between the truth samples `prev` (trigger `c_prev > 0`) and `s`
+/// (`c ≤ 0`), and its miss to `target` on a sphere of `radius`.
+pub(crate) fn deployment(
+    prev: &TruthSample,
+    s: &TruthSample,
+    c_prev: f64,
+    c: f64,
+    target: &Target,
+    radius: f64,
+) -> Delivery {
+    let w = c_prev / (c_prev - c);
+    let lerp = |i: usize| prev.spherical[i] + w * (s.spherical[i] - prev.spherical[i]);
+    let (lat, lon, psi) = (lerp(2), lerp(1), lerp(5));
+    let dist = central_angle(lat, lon, target.lat, target.lon);
+    let b = bearing(lat, lon, target.lat, target.lon);
+    Delivery {
+        t_deploy_s: prev.t + w * (s.t - prev.t),
+        lat_deg: lat.to_degrees(),
+        lon_deg: lon.to_degrees(),
+        altitude_m: lerp(0) - radius,
+        miss_m: radius * dist,
+        downrange_m: -radius * dist * (b - psi).cos(),
+        crossrange_m: radius * (dist.sin() * (b - psi).sin()).asin(),
+        max_bank_rate_deg_s: 0.0,
+        nav_error: None,
+    }
+}
+
+/// Fly Monte Carlo run `run` of a study with master seed `seed` on `scenario` (its `[guidance]`)
+/// with filter `kind` in the loop (module documentation). The truth realisation is the trade's
+/// for the same (seed, run) ([`EntryCoSim::for_run`]). The result carries the largest bank rate
+/// flown, for the caller to hold against the limits ([`within_rate_limit`]).
+pub fn fly_with_filter(
+    scenario: &Arc<Scenario>,
+    kind: FilterKind,
+    seed: u64,
+    run: usize,
+) -> Result<Delivery, GuidedRunError> {
+    let name = || scenario.config.name.clone();
+    let cfg = scenario
+        .config
+        .guidance
+        .as_ref()
+        .ok_or_else(|| GuidedRunError::NoGuidance(name()))?;
+    let slots =
+        accel_slots(&scenario.onboard).ok_or_else(|| GuidedRunError::NoAccelerometers(name()))?;
+    let mut built = scenario
+        .build_guidance()
+        .ok_or_else(|| GuidedRunError::NoGuidance(name()))??;
+    let dt = scenario.config.timing.truth_step_s;
+    let every = guidance_every(cfg.period_s(), dt)?;
+    let mut cosim = EntryCoSim::for_run(Arc::clone(scenario), kind, seed, run)?;
+    let onboard = Arc::clone(cosim.nav().onboard());
+    let omega = onboard.model.omega();
+    let cartesian = onboard.model.kind.is_cartesian();
+    let mut actuator = BankActuator::new(built.limits, cfg.reference_bank_deg.to_radians());
+    let radius = cosim.truth().draw().model.planet.radius;
+    // Before the first epoch the vehicle has no accelerometer reading: guidance sees zero drag
+    // (both algorithms fly their reference bank until the drag builds up).
+    let mut drag = 0.0;
+    let mut prev = cosim.truth().outputs().sample.clone();
+    let mut c_prev = trigger_on(&cfg.trigger, &prev);
+    let mut armed = c_prev > 0.0;
+    let mut command = actuator.bank;
+    let mut max_rate: f64 = 0.0;
+    for k in 0usize.. {
+        if k % every == 0 {
+            if let NavStatus::Failed { t, reason } = cosim.nav().status() {
+                return Err(GuidedRunError::FilterFailed {
+                    t_s: *t,
+                    reason: reason.to_string(),
+                });
+            }
+            let est = cosim.nav().estimate();
+            let nav = NavState::from_estimate(&est.x, cartesian, est.t, omega, drag)?;
+            command = built.guidance.command(&nav)?;
+        }
+        let before = actuator.bank;
+        let bank = actuator.step(command, dt);
+        max_rate = max_rate.max((bank - before).abs() / dt);
+        let t = cosim.time();
+        let report = cosim.do_step(t, dt, bank, &[])?;
+        if let Some(d) = cosim
+            .truth()
+            .last_epoch()
+            .and_then(|e| sensed_drag(&onboard, &slots, e))
+        {
+            drag = d;
+        }
+        let s = &cosim.truth().outputs().sample;
+        let c = trigger_on(&cfg.trigger, s);
+        if report.truth_steps > 0 && armed && c <= 0.0 {
+            let mut d = deployment(&prev, s, c_prev, c, &built.target, radius);
+            d.max_bank_rate_deg_s = max_rate.to_degrees();
+            let j = cosim.judgement();
+            d.nav_error = Some(DeployNavError {
+                position_m: j.pos_vel_err.0,
+                velocity_mps: j.pos_vel_err.1,
+                downrange_m: j.downrange_crossrange.0,
+                crossrange_m: j.downrange_crossrange.1,
+            });
+            return Ok(d);
+        }
+        if report.truth_steps == 0 || cosim.truth().stop().is_some() {
+            break;
+        }
+        armed |= c > 0.0;
+        c_prev = c;
+        prev = s.clone();
+    }
+    let s = &cosim.truth().outputs().sample;
+    Err(GuidedRunError::NoTrigger {
+        t_s: s.t,
+        altitude_m: s.altitude,
+        speed_mps: s.spherical[3],
+    })
+}
+
+/// Truth steps per guidance cycle.
+pub(crate) fn guidance_every(period_s: f64, step_s: f64) -> Result<usize, GuidedRunError> {
+    let ratio = period_s / step_s;
+    let every = ratio.round() as usize;
+    if every == 0 || (ratio - every as f64).abs() > 1e-9 {
+        return Err(GuidedRunError::Period { period_s, step_s });
+    }
+    Ok(every)
+}
+
+/// Whether every bank rate of a delivery stayed within `limits` (relative tolerance 1e-9).
+pub fn within_rate_limit(d: &Delivery, limits: &BankLimits) -> bool {
+    d.max_bank_rate_deg_s <= limits.rate_max.to_degrees() * (1.0 + 1e-9)
+}

@@ -168,7 +168,7 @@ pub fn write_trade_report(
     report::check_path(Some(path))?;
     let names = plot::labels::WeightNames::of_scenario(scenario);
     let provenance = provenance::Provenance::new(overrides).with_scenario(scenario, None);
-    report::write_trade(path, report, &names, &provenance, 0.0)
+    report::write_trade(path, report, &names, &provenance, 0.0, &Default::default())
 }
 
 /// Run one `entrynav` command line in this process (`args[0]` is the program name) and return

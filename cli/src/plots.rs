@@ -96,7 +96,21 @@ fn frame<'a>(title: &'a str, y_label: &'a str, log_y: bool, size: (u32, u32)) ->
 }
 
 /// Every figure of `report`; `names` names the weights.
+#[cfg(test)]
 pub fn trade_figures(report: &TradeReport, names: &WeightNames) -> Result<Vec<Figure>> {
+    trade_figures_with(report, names, &ExtraCurves::new())
+}
+
+/// Curves drawn into a trade's RMSE charts beside the Monte Carlo's, by metric (a state name,
+/// `pos_m`, `vel_mps`): LinCov's predictions of `trade --method both`.
+pub type ExtraCurves = std::collections::BTreeMap<String, Vec<Curve>>;
+
+/// [`trade_figures`] with `extra` curves in the RMSE charts.
+pub fn trade_figures_with(
+    report: &TradeReport,
+    names: &WeightNames,
+    extra: &ExtraCurves,
+) -> Result<Vec<Figure>> {
     let sc = report.scenario.as_str();
     let mut out = Out {
         sc,
@@ -125,6 +139,7 @@ pub fn trade_figures(report: &TradeReport, names: &WeightNames) -> Result<Vec<Fi
                 curve(f.name.clone(), pts, false)
             })
             .collect();
+        curves.extend(extra.get(*st).into_iter().flatten().cloned());
         curves.extend(pcrlb_curve(report, st));
         let title = format!("{}: RMSE over runs", quantity(st).0);
         let y = axis(st, "error RMSE");
@@ -344,9 +359,14 @@ fn dispersion_figures(report: &TradeReport, out: &mut Out) -> Result<()> {
 }
 
 /// Write every figure of `report` into `dir`.
-pub fn trade_plots(dir: &Path, report: &TradeReport, names: &WeightNames) -> Result<()> {
+pub fn trade_plots(
+    dir: &Path,
+    report: &TradeReport,
+    names: &WeightNames,
+    extra: &ExtraCurves,
+) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    for fig in trade_figures(report, names)? {
+    for fig in trade_figures_with(report, names, extra)? {
         let path = dir.join(&fig.file);
         crate::atomic_file::write(&path, &fig.svg)?;
     }

@@ -423,13 +423,14 @@ fn write_results(
         outputs.record(done.map(|()| Some(format!("wrote CSV series to {}", dir.display()))));
     }
     let names = WeightNames::of_scenario(&setup.scenario);
+    let extra = lincov.map(Comparison::curves).unwrap_or_default();
     if let Some(dir) = &args.plots {
-        let done = crate::plots::trade_plots(dir, report, &names);
+        let done = crate::plots::trade_plots(dir, report, &names, &extra);
         outputs.record(done.map(|()| Some(format!("wrote plots to {}", dir.display()))));
     }
     if let Some(path) = &args.report {
         let provenance = setup.provenance(args);
-        let done = crate::report::write_trade(path, report, &names, &provenance, elapsed);
+        let done = crate::report::write_trade(path, report, &names, &provenance, elapsed, &extra);
         outputs.record(done.map(|s| Some(format!("wrote report {} in {s:.3} s", path.display()))));
     }
     if !to_stdout {
@@ -516,7 +517,7 @@ fn merge(
     }
     let names = WeightNames::of_channels(&report.channels);
     if let Some(dir) = plots {
-        let done = crate::plots::trade_plots(dir, &report, &names);
+        let done = crate::plots::trade_plots(dir, &report, &names, &Default::default());
         outputs.record(done.map(|()| Some(format!("wrote plots to {}", dir.display()))));
     }
     if !to_stdout {

@@ -184,6 +184,34 @@ impl Comparison {
         Ok(Comparison { analysed, json })
     }
 
+    /// LinCov's RMSE curves per metric (every state, `pos_m`, `vel_mps`), dashed and named
+    /// "<filter> LinCov", for the RMSE charts of `--plots` and `--report`.
+    pub fn curves(&self) -> crate::plots::ExtraCurves {
+        let mut out = crate::plots::ExtraCurves::new();
+        for a in &self.analysed {
+            let l = &a.lincov;
+            let name = format!("{} LinCov", l.filter);
+            let series = |f: &dyn Fn(&entrynav::sim::lincov_entry::EntryLinCovEpoch) -> f64| {
+                l.epochs.iter().map(|e| (e.t, f(e))).collect::<Vec<_>>()
+            };
+            let mut add = |metric: &str, points: Vec<(f64, f64)>| {
+                out.entry(metric.to_string())
+                    .or_default()
+                    .push(crate::plot::Curve {
+                        name: name.clone(),
+                        points,
+                        dashed: true,
+                    });
+            };
+            add("pos_m", series(&|e| e.pos_m));
+            add("vel_mps", series(&|e| e.vel_mps));
+            for (i, state) in l.states.iter().enumerate() {
+                add(state, series(&|e| e.rmse[i]));
+            }
+        }
+        out
+    }
+
     /// The `lincov` block of the summary.
     pub fn json(&self) -> &Value {
         &self.json

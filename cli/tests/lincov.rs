@@ -130,9 +130,19 @@ fn trade_method_both_puts_lincov_beside_the_monte_carlo() {
         "--quiet",
         "--json",
         json_path.to_str().unwrap(),
+        "--plots",
+        dir.join("plots").to_str().unwrap(),
     ]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("LinCov beside the Monte Carlo"), "{out}");
+    // The RMSE charts carry LinCov's curve beside the Monte Carlo's.
+    let pos_chart = std::fs::read_dir(dir.join("plots"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.to_string_lossy().contains("rmse_pos_m"))
+        .expect("a position RMSE chart");
+    let svg = std::fs::read_to_string(&pos_chart).unwrap();
+    assert!(svg.contains("ekf LinCov"), "{}", pos_chart.display());
     let v = json(&std::fs::read_to_string(&json_path).unwrap());
     assert_eq!(v["runs"], 200);
     let l = &v["lincov"];

@@ -9,6 +9,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 /// One curve: legend name, points, dashed or solid.
+#[derive(Debug, Clone)]
 pub struct Curve {
     /// Legend entry.
     pub name: String,

@@ -26,9 +26,10 @@ pub fn write_trade(
     names: &crate::plot::labels::WeightNames,
     provenance: &crate::provenance::Provenance,
     wall_s: f64,
+    extra: &crate::plots::ExtraCurves,
 ) -> Result<f64> {
     write(path, || {
-        let figures = crate::plots::trade_figures(report, names)?;
+        let figures = crate::plots::trade_figures_with(report, names, extra)?;
         Ok(trade_page::TradePage {
             report,
             figures: &figures,

@@ -1,4 +1,4 @@
-//! `entrynav guidance deliver`: the Monte Carlo of delivery at deployment with navigation filters
+//! `entrynav guidance deliver` (and `reference`, in `guidance_reference`): the Monte Carlo of delivery at deployment with navigation filters
 //! in the guidance loop, against perfect navigation and the unguided reference bank on the same
 //! dispersion draws (`entrynav::sim::delivery`).
 
@@ -29,6 +29,10 @@ pub enum GuidanceAction {
     /// on the same dispersion draws. The scenario needs a `[guidance]` section, e.g.
     /// `--set 'guidance={algorithm="apollo",reference_bank_deg=60.0,trigger={speed_mps=450.0}}'`.
     Deliver(DeliverArgs),
+    /// The reference trajectory `[guidance]` builds from the onboard nominal entry at the
+    /// reference bank: drag, altitude rate and range to go against speed with the adjoint gains
+    /// F1-F3 (summary, `--csv`, `--json`).
+    Reference(crate::guidance_reference::ReferenceArgs),
 }
 
 /// Arguments of `entrynav guidance deliver`.
@@ -65,6 +69,7 @@ pub struct DeliverArgs {
 pub fn run(args: &GuidanceArgs) -> Result<()> {
     match &args.action {
         GuidanceAction::Deliver(a) => deliver(a),
+        GuidanceAction::Reference(a) => crate::guidance_reference::run(a),
     }
 }
 

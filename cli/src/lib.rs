@@ -20,6 +20,7 @@ mod grid_files;
 mod grid_lincov;
 mod grid_plots;
 mod guidance;
+mod guidance_reference;
 mod interrupt;
 mod lincov;
 mod observe;
@@ -118,8 +119,8 @@ enum Command {
     /// Optimize beacon and orbiter geometry (seed 002 Sec. 4): orbiters, ground sites, certified
     /// site selection.
     Optimize(optimize::OptimizeArgs),
-    /// Entry guidance flown in closed loop: `deliver`, the Monte Carlo of delivery at deployment
-    /// with navigation filters in the loop (docs/guidance.md).
+    /// Entry guidance: `deliver`, the Monte Carlo of delivery at deployment with navigation
+    /// filters in the loop; `reference`, the reference trajectory and gains (docs/guidance.md).
     Guidance(guidance::GuidanceArgs),
 }
 

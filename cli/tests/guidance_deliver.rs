@@ -88,3 +88,56 @@ fn deliver_refuses_a_scenario_without_guidance_and_a_bad_run_count() {
         "{err}"
     );
 }
+
+/// `guidance reference`: the table a user plots — speed strictly decreasing from the peak to the
+/// trigger, downrange flown + range to go = the reference's whole downrange at every point, the
+/// CSV and JSON hold the same points; a scenario without `[guidance]` is refused (exit 2).
+#[test]
+fn guidance_reference_writes_the_profiles_and_gains() {
+    let dir = common::scratch_dir("guidance", "reference");
+    let (csv, json) = (dir.join("ref.csv"), dir.join("ref.json"));
+    let set = "guidance={algorithm=\"apollo\",reference_bank_deg=60.0,trigger={speed_mps=450.0}}";
+    let (code, out, err) = common::entrynav(&[
+        "guidance",
+        "reference",
+        "--scenario",
+        "msl-airdata",
+        "--set",
+        set,
+        "--csv",
+        csv.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{out}\n{err}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let total = v["downrange_to_trigger_m"].as_f64().unwrap();
+    let points = v["points"].as_array().unwrap();
+    assert!(points.len() > 100);
+    let col = |name: &str| {
+        v["columns"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .position(|c| c == name)
+            .unwrap()
+    };
+    let (speed, flown, to_go) = (col("speed_mps"), col("downrange_m"), col("range_to_go_m"));
+    let get = |p: &serde_json::Value, i: usize| p[i].as_f64().unwrap();
+    for w in points.windows(2) {
+        assert!(get(&w[1], speed) < get(&w[0], speed));
+    }
+    for p in points {
+        let sum = get(p, flown) + get(p, to_go);
+        assert!((sum - total).abs() < 1e-6 * total, "{sum} vs {total}");
+    }
+    let last = points.last().unwrap();
+    assert!((get(last, speed) - 450.0).abs() < 5.0, "{last}");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert_eq!(text.lines().count(), points.len() + 1);
+    assert!(text.starts_with("t_s,speed_mps,altitude_m"));
+    let (code, _, err) = common::entrynav(&["guidance", "reference", "--scenario", "msl-airdata"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("[guidance]"), "{err}");
+}

@@ -136,3 +136,37 @@ fn orbiters_lincov_final_polishes_the_bound_optimum() {
     let (_, last) = lincov_of(&toml);
     assert!(close(last, fig("optimum", "final_pos_m")), "{last} vs {l}");
 }
+
+#[test]
+fn select_lincov_final_exchanges_from_the_bound_selection() {
+    let dir = scratch_dir("optimize-lincov", "select");
+    let (json, toml) = (dir.join("s.json"), dir.join("s.toml"));
+    let (code, out, err) = entrynav(&[
+        "optimize",
+        "select",
+        "--scenario",
+        "ground-beacons-3",
+        "--k",
+        "3",
+        "--grid-deg",
+        "1.0",
+        "--objective",
+        "lincov-final",
+        "--no-check",
+        "--quiet",
+        "--json",
+        json.to_str().unwrap(),
+        "--write-scenario",
+        toml.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{out}\n{err}");
+    let v = read_json(&json);
+    assert_eq!(v["objective"], "lincov-final");
+    let l = &v["lincov"];
+    let fig = |k: &str| l[k]["final_pos_m"].as_f64().unwrap();
+    assert!(fig("optimum") <= fig("bound_selection") + 1e-12, "{l}");
+    assert!(close(l["value"].as_f64().unwrap(), fig("optimum")), "{l}");
+    assert!(l["evaluations"].as_u64().unwrap() > 1);
+    let (_, last) = lincov_of(&toml);
+    assert!(close(last, fig("optimum")), "{last} vs {l}");
+}

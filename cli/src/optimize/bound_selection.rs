@@ -9,6 +9,7 @@ use super::ground_sites::{print_sites, scenario_sites, sites_json};
 use super::names::SelectObjectiveArg;
 use super::site_candidates::load_candidates;
 use super::*;
+use entrynav_optimizer::{LinCovFigures, LinCovScore};
 
 pub(super) fn run_select_on_bound(a: &SelectArgs, objective: SelectObjectiveArg) -> Result<()> {
     let wall = Instant::now();
@@ -42,7 +43,19 @@ pub(super) fn run_select_on_bound(a: &SelectArgs, objective: SelectObjectiveArg)
     .with_min_separation(a.min_separation_deg.to_radians())?
     .with_reference(&own, own_mask.to_radians())?;
     let candidates = load_candidates(a, &cfg, &ground)?;
-    let sel = ground.select_on_bound(&candidates.sites)?;
+    let mut sel = ground.select_on_bound(&candidates.sites)?;
+    let lincov = match objective.lincov() {
+        Some(figure) => {
+            let filter = entrynav::estimation::nav::FilterKind::parse(&a.lincov_filter)?;
+            let score = LinCovScore::new(ground.scenario(), filter, figure)?
+                .with_reference(ground.beacons_masked(&own, own_mask.to_radians()))?;
+            let l = ground.exchange_on_lincov(&candidates.sites, &sel.indices, &score)?;
+            sel.indices = l.indices.clone();
+            sel.value = l.value;
+            Some((filter, score.reference(), l))
+        }
+        None => None,
+    };
     let chosen: Vec<Site> = sel.indices.iter().map(|&i| candidates.sites[i]).collect();
     let noise = template_noise(&cfg, false)?;
     let stem = a
@@ -95,6 +108,21 @@ pub(super) fn run_select_on_bound(a: &SelectArgs, objective: SelectObjectiveArg)
                 "input": {"time_avg_pos_m": bounds[1].0, "final_pos_m": bounds[1].1},
             },
             "check": check.as_ref().map(DesignCheck::json),
+            "lincov": lincov.as_ref().map(|(f, input, l)| {
+                let fig = |x: &LinCovFigures| json!({
+                    "time_avg_pos_m": x.avg_m, "final_pos_m": x.final_m, "nees_dof": x.nees_ratio,
+                });
+                json!({
+                    "objective": objective.name(),
+                    "filter": f.name(),
+                    "value": l.value,
+                    "input": input.as_ref().map(fig),
+                    "bound_selection": fig(&l.start_figures),
+                    "optimum": fig(&l.figures),
+                    "evaluations": l.evaluations,
+                    "exchanges": l.exchanges,
+                })
+            }),
         });
         write_text(path, &(serde_json::to_string_pretty(&v)? + "\n"))?;
     }
@@ -104,11 +132,11 @@ pub(super) fn run_select_on_bound(a: &SelectArgs, objective: SelectObjectiveArg)
          {} deg apart",
         candidates.grid_count, a.grid_deg, a.k, a.min_separation_deg
     );
-    println!(
-        "objective   {}: {}",
-        objective.name(),
-        objective.ground().units()
-    );
+    let units = match &lincov {
+        Some((f, _, _)) => objective.lincov().map_or_else(String::new, |l| l.units(*f)),
+        None => objective.ground().units(),
+    };
+    println!("objective   {}: {units}", objective.name());
     println!(
         "search      greedy + exchanges: {} bound evaluations, {} improving exchanges, {:.2} s; a \
          local optimum, no certificate (the bound is not concave in the selection)",
@@ -121,6 +149,38 @@ pub(super) fn run_select_on_bound(a: &SelectArgs, objective: SelectObjectiveArg)
     print_sites(&chosen, None);
     for (label, (avg, last)) in [("answer", bounds[0]), ("input ", bounds[1])] {
         println!("  nominal position PCRLB, {label}: {avg:.2} m time-averaged, {last:.2} m final");
+    }
+    if let Some((f, input, l)) = &lincov {
+        let fig = |x: &LinCovFigures| {
+            format!(
+                "{:.2} m time-averaged, {:.2} m final, NEES/dof {:.2}",
+                x.avg_m, x.final_m, x.nees_ratio
+            )
+        };
+        println!(
+            "lincov      {} exchanges on LinCov of {} ({} evaluations): {}",
+            l.exchanges,
+            f.name(),
+            l.evaluations,
+            objective.name()
+        );
+        if let Some(i) = input {
+            println!(
+                "  predicted {} position RMSE, input:           {}",
+                f.name(),
+                fig(i)
+            );
+        }
+        println!(
+            "  predicted {} position RMSE, bound selection: {}",
+            f.name(),
+            fig(&l.start_figures)
+        );
+        println!(
+            "  predicted {} position RMSE, answer:          {}",
+            f.name(),
+            fig(&l.figures)
+        );
     }
     print_check(check.as_ref());
     for path in [&a.write_scenario, &a.json].into_iter().flatten() {

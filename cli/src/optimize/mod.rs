@@ -232,8 +232,13 @@ pub struct SelectArgs {
     /// Choose on the nominal position bound instead (nav, pcrlb-avg, pcrlb-final): greedy +
     /// exchanges, a local optimum without certificate (the bound is not concave in the
     /// selection).
+    /// lincov-nav, lincov-avg, lincov-final: the bound's selection of the same figure, then
+    /// exchanges scored by the filter's LinCov (--lincov-filter).
     #[arg(long, value_enum, conflicts_with_all = ["criterion", "exact", "eig_epochs"])]
     objective: Option<names::SelectObjectiveArg>,
+    /// Filter whose LinCov the lincov-* objectives score (ekf, or ukf as its EKF equivalent).
+    #[arg(long, default_value = "ekf")]
+    lincov_filter: String,
     /// With min-eig: maximise the minimum over epochs this many seconds apart of lambda_min of
     /// the instantaneous FIM (max-min over time) instead of lambda_min of the time-averaged FIM.
     #[arg(long, value_name = "SECONDS")]

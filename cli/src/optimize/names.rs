@@ -171,6 +171,16 @@ pub(super) enum SelectObjectiveArg {
     /// The final nominal position bound.
     #[value(name = "pcrlb-final")]
     PcrlbFinal,
+    /// nav's selection, then exchanges on the filter's LinCov (both figures relative to the
+    /// input's).
+    #[value(name = "lincov-nav")]
+    LincovNav,
+    /// pcrlb-avg's selection, then exchanges on the filter's time-averaged LinCov RMSE.
+    #[value(name = "lincov-avg")]
+    LincovAvg,
+    /// pcrlb-final's selection, then exchanges on the filter's final LinCov RMSE.
+    #[value(name = "lincov-final")]
+    LincovFinal,
 }
 
 impl SelectObjectiveArg {
@@ -178,14 +188,30 @@ impl SelectObjectiveArg {
     pub(super) fn ground(self) -> entrynav_optimizer::GroundObjective {
         use entrynav_optimizer::GroundObjective;
         match self {
-            SelectObjectiveArg::Nav => GroundObjective::Navigation,
-            SelectObjectiveArg::PcrlbAvg => GroundObjective::PcrlbAvg,
-            SelectObjectiveArg::PcrlbFinal => GroundObjective::PcrlbFinal,
+            SelectObjectiveArg::Nav | SelectObjectiveArg::LincovNav => GroundObjective::Navigation,
+            SelectObjectiveArg::PcrlbAvg | SelectObjectiveArg::LincovAvg => {
+                GroundObjective::PcrlbAvg
+            }
+            SelectObjectiveArg::PcrlbFinal | SelectObjectiveArg::LincovFinal => {
+                GroundObjective::PcrlbFinal
+            }
+        }
+    }
+
+    /// The LinCov figure the exchanges use (lincov-*), if any.
+    pub(super) fn lincov(self) -> Option<entrynav_optimizer::LinCovFigure> {
+        use entrynav_optimizer::LinCovFigure;
+        match self {
+            SelectObjectiveArg::LincovNav => Some(LinCovFigure::Navigation),
+            SelectObjectiveArg::LincovAvg => Some(LinCovFigure::Average),
+            SelectObjectiveArg::LincovFinal => Some(LinCovFigure::Final),
+            _ => None,
         }
     }
 
     /// Its name.
     pub(super) fn name(self) -> &'static str {
-        self.ground().name()
+        self.lincov()
+            .map_or_else(|| self.ground().name(), |f| f.name())
     }
 }

@@ -58,10 +58,12 @@ use std::time::Instant;
 mod bound_selection;
 mod evaluation;
 mod lincov_polish;
+mod lincov_selection;
 mod visibility;
 
 pub use bound_selection::BoundSelection;
 pub use lincov_polish::{GroundLinCovSolution, default_lincov_polish};
+pub use lincov_selection::LinCovSelection;
 
 /// Base cost of an infeasible configuration (above every feasible cost).
 pub const INFEASIBLE_COST: f64 = 1e4;

@@ -137,11 +137,27 @@ fn deliver(args: &DeliverArgs) -> Result<()> {
     Ok(())
 }
 
+/// `trade` on a scenario with `[guidance]`: the delivery Monte Carlo of the study's filters on
+/// the same run seeds (`run_seed(seed, r)`, the trade's truths), on `threads` workers.
+pub(crate) fn delivery_of_study(
+    scenario: &entrynav::scenario::Scenario,
+    filters: &[FilterKind],
+    runs: usize,
+    seed: u64,
+    threads: Option<usize>,
+) -> Result<DeliveryReport> {
+    with_threads(threads, || {
+        Ok(run_delivery(scenario, filters, runs, seed, &|_| {})
+            .context("the delivery at deployment of the study's filters in the guidance loop")?)
+    })
+}
+
 fn opt(v: Option<f64>, digits: usize) -> String {
     v.map_or_else(|| "-".to_string(), |x| format!("{x:.digits$}"))
 }
 
-fn print_table(r: &DeliveryReport) {
+/// The delivery table (also printed by `trade` for a scenario with `[guidance]`).
+pub(crate) fn print_table(r: &DeliveryReport) {
     println!(
         "Delivery at deployment: scenario {}, {} guidance, {} runs, seed {} (bank rate limit {:.1} deg/s)",
         r.scenario, r.algorithm, r.runs, r.seed, r.bank_rate_limit_deg_s

@@ -105,6 +105,10 @@ pub struct Summary<'a> {
     /// (`trade_lincov::Comparison`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lincov: Option<&'a serde_json::Value>,
+    /// Only for a scenario with `[guidance]`: delivery at deployment with each filter in the
+    /// guidance loop, perfect navigation and the unguided reference bank (`entrynav::sim::delivery`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub delivery: Option<&'a entrynav::sim::delivery::DeliveryReport>,
     /// Wall-clock timing.
     pub timing: Timing,
 }

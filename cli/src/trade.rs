@@ -14,14 +14,15 @@ use crate::threads::with_threads;
 pub use crate::trade_args::{TradeAction, TradeArgs};
 use crate::trade_checkpoint::{self, SummaryCheckpoints};
 use crate::trade_files::{
-    ShardFile, StudyProvenance, check_outputs, read_resume, read_shards, write_csv_dir, write_file,
-    write_summary, write_summary_with,
+    Extras, ShardFile, StudyProvenance, check_outputs, read_resume, read_shards, write_csv_dir,
+    write_file, write_summary, write_summary_with,
 };
 use crate::trade_lincov::{Comparison, Method};
 use crate::trade_tables::print_tables;
 use anyhow::{Context, Result};
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
+use entrynav::sim::delivery::DeliveryReport;
 use entrynav::sim::shard::fold_partial;
 use entrynav::sim::{
     Checkpoint, McOptions, NoCheckpoint, Shard, ShardResult, TradeReport, merge_shards, run_shard,
@@ -317,6 +318,22 @@ fn run_study(args: &TradeArgs, resume: Option<&Path>) -> Result<()> {
     let lincov = (args.method == Method::Both && report.complete)
         .then(|| Comparison::of(&setup.scenario, &setup.filters, &report))
         .transpose()?;
+    // A scenario with `[guidance]`: the same runs flown with each filter in the guidance loop.
+    // A failure here never costs the Monte Carlo's results: it is a warning.
+    let delivery = (report.complete && setup.scenario.config.guidance.is_some())
+        .then(|| {
+            crate::guidance::delivery_of_study(
+                &setup.scenario,
+                &setup.filters,
+                setup.runs,
+                args.seed,
+                args.threads,
+            )
+        })
+        .and_then(|d| {
+            d.map_err(|e| eprintln!("warning: no delivery table: {e:#}"))
+                .ok()
+        });
     write_results(
         args,
         &setup,
@@ -324,6 +341,7 @@ fn run_study(args: &TradeArgs, resume: Option<&Path>) -> Result<()> {
         partial.as_ref(),
         elapsed,
         lincov.as_ref(),
+        delivery.as_ref(),
     )?;
     if !report.complete {
         return Err(Interrupted(format!(
@@ -402,6 +420,7 @@ fn write_results(
     resume: Option<&ShardResult>,
     elapsed: f64,
     lincov: Option<&Comparison>,
+    delivery: Option<&DeliveryReport>,
 ) -> Result<()> {
     // With `--json -` the JSON is standard output: no tables, notes to stderr.
     let to_stdout = args.json.as_deref().is_some_and(is_stdout);
@@ -413,7 +432,10 @@ fn write_results(
             report,
             resume,
             elapsed,
-            lincov.map(Comparison::json),
+            Extras {
+                lincov: lincov.map(Comparison::json),
+                delivery,
+            },
         );
         let note = (!to_stdout).then(|| format!("wrote {}", path.display()));
         outputs.record(done.map(|()| note));
@@ -437,6 +459,10 @@ fn write_results(
         print_tables(report, &format!("{elapsed:.2} s wall"));
         if let Some(c) = lincov {
             c.print(report);
+        }
+        if let Some(d) = delivery {
+            println!();
+            crate::guidance::print_table(d);
         }
     }
     outputs.finish(to_stdout)

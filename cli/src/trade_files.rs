@@ -35,24 +35,34 @@ pub fn write_summary(
     resume: Option<&ShardResult>,
     wall_s: f64,
 ) -> Result<()> {
-    write_summary_with(path, provenance, report, resume, wall_s, None)
+    write_summary_with(path, provenance, report, resume, wall_s, Extras::default())
 }
 
-/// [`write_summary`] with the `lincov` block of `trade --method both`.
+/// The optional blocks of a study's summary.
+#[derive(Default, Clone, Copy)]
+pub struct Extras<'a> {
+    /// `trade --method both`: LinCov beside the Monte Carlo.
+    pub lincov: Option<&'a serde_json::Value>,
+    /// A scenario with `[guidance]`: delivery at deployment.
+    pub delivery: Option<&'a entrynav::sim::delivery::DeliveryReport>,
+}
+
+/// [`write_summary`] with the optional blocks (`lincov`, `delivery`).
 pub fn write_summary_with(
     path: &Path,
     provenance: &Provenance,
     report: &TradeReport,
     resume: Option<&ShardResult>,
     wall_s: f64,
-    lincov: Option<&serde_json::Value>,
+    extras: Extras<'_>,
 ) -> Result<()> {
     let summary = Summary {
         provenance,
         report,
         resume,
         resume_checksum: resume.map(resume_checksum),
-        lincov,
+        lincov: extras.lincov,
+        delivery: extras.delivery,
         timing: Timing::of(report, wall_s),
     };
     write_file(path, |w| {

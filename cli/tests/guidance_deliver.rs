@@ -141,3 +141,79 @@ fn guidance_reference_writes_the_profiles_and_gains() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("[guidance]"), "{err}");
 }
+
+/// `trade` on a scenario with `[guidance]` adds the delivery of its filters in the guidance loop
+/// on the same run seeds: the summary's `delivery` equals `guidance deliver`'s, and the table is
+/// printed after the trade's.
+#[test]
+fn trade_with_guidance_reports_the_delivery_of_its_filters() {
+    let set = "guidance={algorithm=\"apollo\",reference_bank_deg=60.0,trigger={speed_mps=450.0}}";
+    let common_args = [
+        "--scenario",
+        "msl-airdata",
+        "--set",
+        set,
+        "--runs",
+        "8",
+        "--seed",
+        "3",
+    ];
+    let (code, out, err) = entrynav(
+        &[
+            &[
+                "trade",
+                "--filters",
+                "ekf",
+                "--no-pcrlb",
+                "--quiet",
+                "--json",
+                "-",
+            ][..],
+            &common_args[..],
+        ]
+        .concat(),
+    );
+    assert_eq!(code, 0, "{err}");
+    let trade: Value = serde_json::from_str(&out).unwrap();
+    let (code, out, err) = entrynav(
+        &[
+            &["guidance", "deliver", "--filters", "ekf", "--json", "-"][..],
+            &common_args[..],
+        ]
+        .concat(),
+    );
+    assert_eq!(code, 0, "{err}");
+    let deliver: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(trade["delivery"], deliver["delivery"]);
+    let names: Vec<&str> = trade["delivery"]["rows"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["perfect-nav", "unguided", "ekf"]);
+    let (code, out, err) = entrynav(
+        &[
+            &["trade", "--filters", "ekf", "--no-pcrlb", "--quiet"][..],
+            &common_args[..],
+        ]
+        .concat(),
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("Delivery at deployment"), "{out}");
+    // Without [guidance] there is no delivery block.
+    let (code, out, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "msl-airdata",
+        "--runs",
+        "4",
+        "--no-pcrlb",
+        "--quiet",
+        "--json",
+        "-",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: Value = serde_json::from_str(&out).unwrap();
+    assert!(v.get("delivery").is_none());
+}

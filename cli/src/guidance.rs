@@ -147,8 +147,8 @@ pub(crate) fn delivery_of_study(
     threads: Option<usize>,
 ) -> Result<DeliveryReport> {
     with_threads(threads, || {
-        Ok(run_delivery(scenario, filters, runs, seed, &|_| {})
-            .context("the delivery at deployment of the study's filters in the guidance loop")?)
+        run_delivery(scenario, filters, runs, seed, &|_| {})
+            .context("the delivery at deployment of the study's filters in the guidance loop")
     })
 }
 

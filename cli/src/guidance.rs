@@ -81,7 +81,7 @@ struct RunRow<'a> {
     #[serde(skip_serializing_if = "Option::is_none")]
     delivery: Option<&'a entrynav::sim::guided_run::Delivery>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    failure: Option<&'a str>,
+    failure: Option<String>,
 }
 
 #[derive(Serialize)]
@@ -120,7 +120,7 @@ fn deliver(args: &DeliverArgs) -> Result<()> {
                         run,
                         row: name,
                         delivery: r.as_ref().ok(),
-                        failure: r.as_ref().err().map(String::as_str),
+                        failure: r.as_ref().err().map(ToString::to_string),
                     })
                 })
                 .collect(),

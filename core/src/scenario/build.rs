@@ -152,25 +152,7 @@ impl Scenario {
         filter_initial.extend_from_slice(&f.initial_augmented);
         filter_initial.extend_from_slice(&f.initial_consider);
 
-        // Surface beacons turn with the planet only if the truth planet rotates.
-        let mut beacon_planet = planet;
-        beacon_planet.rotation_rate = truth_model.omega();
-        let mut beacons = Vec::with_capacity(config.beacons.len());
-        for b in &config.beacons {
-            beacons.push(b.build(&beacon_planet)?);
-        }
-        let beacon_names: Vec<String> = config
-            .beacons
-            .iter()
-            .map(|b| b.name().to_string())
-            .collect();
-
-        // Validation checked every fault's beacon name, so none is dropped here.
-        let faults = config
-            .faults
-            .iter()
-            .filter_map(|f| Fault::resolve(f, &beacon_names))
-            .collect();
+        let (beacons, beacon_names, faults) = beacon_parts(&config, &planet, truth_model.omega())?;
         let climatology = climatology(&config, &filter_model, &planet, entry_lat, load)?;
         let channels = channel_specs(&config, &beacon_names);
         let ephemerides = Arc::new(ephemeris_table(&config, &channels, &beacons));
@@ -238,6 +220,37 @@ impl Scenario {
     pub fn beacon_states(&self, t: f64) -> Cow<'_, [BeaconState]> {
         self.ephemerides.states_at(&self.beacons, t)
     }
+}
+
+/// Built beacons, their names and the resolved faults.
+pub(super) type BeaconParts = (Vec<Beacon>, Vec<String>, Vec<Fault>);
+
+/// The beacons of `config` built on `planet` (surface beacons turn with it only if the truth
+/// planet rotates, `truth_omega`), their names, and the faults resolved against those names
+/// (validation checked every fault's beacon name, so none is dropped).
+pub(super) fn beacon_parts(
+    config: &ScenarioConfig,
+    planet: &Planet,
+    truth_omega: f64,
+) -> Result<BeaconParts, ScenarioError> {
+    let mut beacon_planet = *planet;
+    beacon_planet.rotation_rate = truth_omega;
+    let beacons = config
+        .beacons
+        .iter()
+        .map(|b| b.build(&beacon_planet))
+        .collect::<Result<Vec<_>, _>>()?;
+    let names: Vec<String> = config
+        .beacons
+        .iter()
+        .map(|b| b.name().to_string())
+        .collect();
+    let faults = config
+        .faults
+        .iter()
+        .filter_map(|f| Fault::resolve(f, &names))
+        .collect();
+    Ok((beacons, names, faults))
 }
 
 /// The onboard climatology (`filter.density.climatology`, default the filter's own atmosphere):

@@ -5,11 +5,10 @@
 //! keeping the atmospheres, vehicle, initial states and tuning already built — no file is read
 //! again, so it works for scenarios whose atmospheres are tables.
 
-use super::build::{Scenario, channel_specs, ephemeris_table};
+use super::build::{Scenario, beacon_parts, channel_specs, ephemeris_table};
 use super::error::ScenarioError;
 use super::onboard::{OnboardParts, onboard_view};
 use crate::beacons::BeaconConfig;
-use crate::sensors::Fault;
 use std::sync::Arc;
 
 impl Scenario {
@@ -20,23 +19,8 @@ impl Scenario {
         let mut config = self.config.clone();
         config.beacons = beacons;
         config.validate()?;
-        let mut beacon_planet = self.planet;
-        beacon_planet.rotation_rate = self.truth_model.omega();
-        let built = config
-            .beacons
-            .iter()
-            .map(|b| b.build(&beacon_planet))
-            .collect::<Result<Vec<_>, _>>()?;
-        let beacon_names: Vec<String> = config
-            .beacons
-            .iter()
-            .map(|b| b.name().to_string())
-            .collect();
-        let faults = config
-            .faults
-            .iter()
-            .filter_map(|f| Fault::resolve(f, &beacon_names))
-            .collect();
+        let (built, beacon_names, faults) =
+            beacon_parts(&config, &self.planet, self.truth_model.omega())?;
         let channels = channel_specs(&config, &beacon_names);
         let ephemerides = Arc::new(ephemeris_table(&config, &channels, &built));
         let old = &self.onboard;

@@ -53,7 +53,7 @@ impl Guidance for ConstantBank {
 }
 
 /// One run: the deliveries in row order ([`DeliveryReport::rows`]), or why each failed.
-pub type RunDeliveries = Vec<Result<Delivery, String>>;
+pub type RunDeliveries = Vec<Result<Delivery, GuidedRunError>>;
 
 /// The 99 % delivery ellipse of the (downrange, crossrange) deployment errors.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -130,10 +130,10 @@ pub fn deliver_run(
 ) -> RunDeliveries {
     let mut out = Vec::with_capacity(filters.len() + 2);
     for constant in [false, true] {
-        out.push(reference_run(scenario, seed, run, constant).map_err(|e| e.to_string()));
+        out.push(reference_run(scenario, seed, run, constant));
     }
     for &kind in filters {
-        out.push(fly_with_filter(scenario, kind, seed, run).map_err(|e| e.to_string()));
+        out.push(fly_with_filter(scenario, kind, seed, run));
     }
     out
 }
@@ -144,17 +144,16 @@ fn reference_run(
     seed: u64,
     run: usize,
     constant: bool,
-) -> Result<Delivery, String> {
+) -> Result<Delivery, GuidedRunError> {
     let name = || scenario.config.name.clone();
     let cfg = scenario
         .config
         .guidance
         .as_ref()
-        .ok_or_else(|| GuidedRunError::NoGuidance(name()).to_string())?;
+        .ok_or_else(|| GuidedRunError::NoGuidance(name()))?;
     let mut built = scenario
         .build_guidance()
-        .ok_or_else(|| GuidedRunError::NoGuidance(name()).to_string())?
-        .map_err(|e| e.to_string())?;
+        .ok_or_else(|| GuidedRunError::NoGuidance(name()))??;
     let mut rng = ChaCha8Rng::seed_from_u64(super::run_seed(seed, run as u64));
     let draw = scenario.draw_truth_run(run, &mut rng);
     let bank0 = cfg.reference_bank_deg.to_radians();
@@ -177,8 +176,7 @@ fn reference_run(
             max_time_s: timing.duration_s,
             trigger: cfg.trigger,
         },
-    )
-    .map_err(|e| e.to_string())?;
+    )?;
     Ok(Delivery::from_flight(&flight))
 }
 
@@ -244,7 +242,7 @@ pub fn run_delivery(
 /// The statistics of one row over the runs, in run order.
 fn row_stats<'a>(
     name: String,
-    results: impl Iterator<Item = &'a Result<Delivery, String>>,
+    results: impl Iterator<Item = &'a Result<Delivery, GuidedRunError>>,
     limits: &crate::guidance::BankLimits,
 ) -> DeliveryRow {
     let mut ok = Vec::new();
@@ -255,7 +253,7 @@ fn row_stats<'a>(
             Ok(d) => ok.push(*d),
             Err(e) => {
                 failures += 1;
-                first_failure.get_or_insert((run, e.clone()));
+                first_failure.get_or_insert_with(|| (run, e.to_string()));
             }
         }
     }

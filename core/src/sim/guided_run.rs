@@ -59,6 +59,9 @@ pub enum GuidedRunError {
     /// Guidance failed (also: the filter's estimate was not finite).
     #[error(transparent)]
     Guidance(#[from] GuidanceError),
+    /// A reference flight (perfect navigation or the unguided bank) failed.
+    #[error(transparent)]
+    Reference(#[from] super::guided_flight::GuidedFlightError),
     /// The filter stopped on a numerical failure before deployment.
     #[error("the navigation filter failed at t = {t_s:.2} s: {reason}")]
     FilterFailed {

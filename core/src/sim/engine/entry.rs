@@ -80,7 +80,7 @@ impl EntryCoSim {
                     epochs.push((epoch.clone(), sample.clone()));
                 })?;
         report.epochs = 0;
-        self.nav.set_bank_angle(bank)?;
+        self.nav.command_bank(t, bank);
         let scenario = self.truth.scenario();
         for (epoch, sample) in &epochs {
             if self.nav.process(epoch) {

@@ -72,6 +72,12 @@ pub struct Judgement {
 /// Object-safe view of a `NavFilter<N>` for every supported N.
 pub(crate) trait ErasedFilter: Send {
     fn set_bank_angle(&mut self, bank: f64);
+    /// The bank the onboard models currently fly \[rad\].
+    fn bank_angle(&self) -> f64;
+    /// Time of the estimate \[s\].
+    fn time(&self) -> f64;
+    /// Propagate to `t` (no update), checking the result is finite.
+    fn predict_to(&mut self, t: f64) -> Result<(), FilterFailure>;
     fn step(
         &mut self,
         epoch: &MeasurementEpoch,
@@ -86,6 +92,23 @@ struct Dim<const N: usize>(Box<dyn NavFilter<N>>);
 impl<const N: usize> ErasedFilter for Dim<N> {
     fn set_bank_angle(&mut self, bank: f64) {
         self.0.set_bank_angle(bank);
+    }
+
+    fn bank_angle(&self) -> f64 {
+        self.0.bank_angle()
+    }
+
+    fn time(&self) -> f64 {
+        self.0.time()
+    }
+
+    fn predict_to(&mut self, t: f64) -> Result<(), FilterFailure> {
+        self.0.predict(t)?;
+        let (x, p) = self.0.estimate();
+        if x.iter().chain(p.iter()).any(|v| !v.is_finite()) {
+            return Err(FilterFailure::NonFiniteEstimate);
+        }
+        Ok(())
     }
 
     fn step(

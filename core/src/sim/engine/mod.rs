@@ -40,13 +40,18 @@
 //!
 //! The commanded bank is known onboard, so the filter's onboard dynamics and measurement models
 //! use it too (`NavFilter::set_bank_angle`). [`EntryCoSim::do_step`] gives the step's bank to
-//! both the truth and the filter, and [`Navigator::do_step`] takes it as an input; the filter
-//! starts with the scenario's bank (`truth.bank_deg`) and uses the bank of a step for every epoch
-//! that step processes (the prediction from the previous epoch included). When the measurement
-//! epochs fall on communication points (a communication step that is a multiple of the sensor
-//! periods) the filter's bank history is therefore exactly the truth's. A [`Navigator`] fed the
-//! epochs of a separate [`TruthSensors`] one step late should get the bank of the step those
-//! epochs were measured in (the command delayed by the same step).
+//! both the truth and the filter, and [`Navigator::do_step`] takes it as an input: the bank given
+//! with the step from `t` is flown from `t` on, by the truth and by the filter. The filter starts
+//! with the scenario's bank (`truth.bank_deg`). A [`Navigator`] holds the commands given since its
+//! last epoch and, when it predicts to the next epoch, predicts piecewise: to the start of each
+//! command with the bank before it, then on with that command. The filter's bank history is
+//! therefore the truth's whatever the communication step (a guidance loop stepping 0.05 s against
+//! 1 Hz sensors included); a command given at an epoch's own time is flown after that epoch's
+//! update, as the truth flew the step ending there with the bank before. With a constant bank
+//! nothing is held and the filter predicts in one piece from epoch to epoch, as it always did.
+//! A [`Navigator`] fed the epochs of a separate [`TruthSensors`] (the FMUs) is given the truth's
+//! bank of the same step: an epoch measured before a command's start is predicted to with the
+//! earlier bank.
 //!
 //! Everything is deterministic: the same parameters and the same sequence of `do_step` calls give
 //! bit-identical outputs, which is what the FMU's state serialisation (a replay log) relies on.

@@ -51,7 +51,17 @@ pub struct Navigator {
     status: NavStatus,
     time: f64,
     last_epoch_t: f64,
+    /// Bank commands not yet flown by the filter: (communication point from which it is flown
+    /// \[s\], bank \[rad\]), in time order, each different from the one before.
+    pending_banks: Vec<(f64, f64)>,
 }
+
+/// Most bank changes held for epochs still to come; beyond it the oldest is flown at once (a
+/// master that never sends measurements must not grow memory without bound).
+const MAX_PENDING_BANKS: usize = 1024;
+
+/// Two times closer than this are the same instant \[s\] (as the engine's step checks).
+const SAME_INSTANT_S: f64 = 1e-9;
 
 impl std::fmt::Debug for Navigator {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -90,6 +100,7 @@ impl Navigator {
             status: NavStatus::Initial,
             time: 0.0,
             last_epoch_t: 0.0,
+            pending_banks: Vec::new(),
         })
     }
 
@@ -151,13 +162,71 @@ impl Navigator {
         self.time
     }
 
-    /// Set the bank-angle command \[rad\] the filter's onboard models use from now on (the filter
-    /// starts with the onboard initial bank).
+    /// Command bank `bank` \[rad\] from the current communication point on (the filter starts with
+    /// the onboard initial bank). The filter flies each command over the time it was in force: a
+    /// prediction to an epoch that spans several commands is made piecewise, each piece with its
+    /// own bank (module documentation, "Bank angle"). Setting the bank in force changes nothing.
     pub fn set_bank_angle(&mut self, bank: f64) -> Result<(), EngineError> {
         if !bank.is_finite() {
             return Err(EngineError::NonFiniteInput("bank angle"));
         }
-        self.filter.set_bank_angle(bank);
+        self.command_bank(self.time, bank);
+        Ok(())
+    }
+
+    /// Record bank `bank` in force from `t` (the communication point the master gave).
+    pub(super) fn command_bank(&mut self, t: f64, bank: f64) {
+        if matches!(self.status, NavStatus::Failed { .. }) {
+            return;
+        }
+        let in_force = self
+            .pending_banks
+            .last()
+            .map_or_else(|| self.filter.bank_angle(), |&(_, b)| b);
+        if bank == in_force {
+            return;
+        }
+        match self.pending_banks.last_mut() {
+            // A second command at the same point replaces the first.
+            Some(last) if last.0 == t => last.1 = bank,
+            _ => self.pending_banks.push((t, bank)),
+        }
+        // A replacement may have restored the bank before it: drop the no-op entry.
+        let n = self.pending_banks.len();
+        let before = if n >= 2 {
+            self.pending_banks[n - 2].1
+        } else {
+            self.filter.bank_angle()
+        };
+        if self.pending_banks[n - 1].1 == before {
+            self.pending_banks.pop();
+        }
+        if self.pending_banks.len() > MAX_PENDING_BANKS {
+            let (t_next, _) = self.pending_banks[1];
+            if let Err(reason) = self.fly_banks_before(t_next) {
+                self.status = NavStatus::Failed { t: t_next, reason };
+            }
+        }
+    }
+
+    /// Fly the pending bank commands that start before `t`: predict to each one's start with the
+    /// bank before it, then switch. The filter is left at the latest such start (or where it was)
+    /// with the bank in force just before `t`.
+    fn fly_banks_before(&mut self, t: f64) -> Result<(), FilterFailure> {
+        let mut flown = 0;
+        for &(t_from, bank) in &self.pending_banks {
+            if t_from >= t {
+                break;
+            }
+            // A start within 1 ns of the filter's time is that time (communication points
+            // accumulated in floating point), not a prediction of 1e-16 s.
+            if t_from > self.filter.time() + SAME_INSTANT_S {
+                self.filter.predict_to(t_from)?;
+            }
+            self.filter.set_bank_angle(bank);
+            flown += 1;
+        }
+        self.pending_banks.drain(..flown);
         Ok(())
     }
 
@@ -172,6 +241,10 @@ impl Navigator {
             return false;
         }
         self.last_epoch_t = epoch.t;
+        if let Err(reason) = self.fly_banks_before(epoch.t) {
+            self.status = NavStatus::Failed { t: epoch.t, reason };
+            return true;
+        }
         let beacons = self.onboard.beacon_states(epoch.t);
         match self.filter.step(epoch, &beacons) {
             Ok(info) => {
@@ -187,7 +260,8 @@ impl Navigator {
 
     /// Advance from `t` by `h` with bank-angle command `bank` \[rad\], processing `epoch`
     /// (measurements taken at `epoch.t ≤ t + h`) if it is newer than the last one processed. The
-    /// filter uses `bank` from this step on (prediction to the epoch included).
+    /// filter flies `bank` from `t` on: an epoch measured before `t` is predicted to with the
+    /// bank in force then ([`Navigator::set_bank_angle`]).
     pub fn do_step(
         &mut self,
         t: f64,
@@ -205,7 +279,7 @@ impl Navigator {
         {
             return Err(EngineError::NonFiniteInput("measurement"));
         }
-        self.filter.set_bank_angle(bank);
+        self.command_bank(t, bank);
         if let Some(e) = epoch {
             if e.t <= t + h + 1e-9 && self.process(e) {
                 report.epochs = 1;

@@ -21,19 +21,18 @@ use nalgebra::SVector;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
-/// Seed 001's MSL entry (`msl-airdata`) with `[guidance]` of `algorithm`: reference bank 60°,
-/// deployment at 450 m/s, every other setting its default.
+/// The built-in `msl-guided` (seed 001's MSL entry with `[guidance]`: reference bank 60°,
+/// deployment at 450 m/s, every other setting its default) flown by `algorithm`.
 fn msl(algorithm: &str) -> Scenario {
-    let mut cfg = ScenarioConfig::builtin("msl-airdata").unwrap();
-    cfg.guidance = Some(
-        toml::from_str(&format!(
-            "algorithm = \"{algorithm}\"\nreference_bank_deg = 60.0\ntrigger = {{ speed_mps = 450.0 }}\n"
-        ))
-        .unwrap(),
-    );
-    let text = cfg.to_toml_string();
-    let cfg = ScenarioConfig::from_toml_str(&text, "msl-guided test").unwrap();
-    Scenario::build(cfg, &entrynav::files::no_files).unwrap()
+    let mut cfg = ScenarioConfig::builtin("msl-guided").unwrap();
+    let g = cfg.guidance.as_mut().unwrap();
+    g.algorithm = match algorithm {
+        "apollo" => GuidanceAlgorithm::Apollo,
+        "fnpeg" => GuidanceAlgorithm::Fnpeg,
+        other => panic!("no algorithm {other}"),
+    };
+    let s = Scenario::build(cfg, &entrynav::files::no_files).unwrap();
+    s
 }
 
 fn guidance_config(s: &Scenario) -> &GuidanceConfig {

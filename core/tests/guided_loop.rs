@@ -3,25 +3,25 @@
 //! perfect navigation and the unguided reference bank on the same dispersion draws.
 
 use entrynav::estimation::nav::FilterKind;
+use entrynav::guidance::GuidanceAlgorithm;
 use entrynav::scenario::{Scenario, ScenarioConfig};
 use entrynav::sim::delivery::{DeliveryReport, run_delivery};
 use entrynav::sim::engine::EntryCoSim;
 use entrynav::sim::run_seed;
 use std::sync::Arc;
 
-/// `msl-airdata` with `[guidance]` of `algorithm`: reference bank 60°, deployment at 450 m/s,
-/// every other setting its default (as `core/tests/guidance.rs`).
+/// The built-in `msl-guided` (`msl-airdata` with `[guidance]`: reference bank 60°, deployment at
+/// 450 m/s, every other setting its default) flown by `algorithm` (as `core/tests/guidance.rs`).
 fn msl(algorithm: &str) -> Arc<Scenario> {
-    let mut cfg = ScenarioConfig::builtin("msl-airdata").unwrap();
-    cfg.guidance = Some(
-        toml::from_str(&format!(
-            "algorithm = \"{algorithm}\"\nreference_bank_deg = 60.0\ntrigger = {{ speed_mps = 450.0 }}\n"
-        ))
-        .unwrap(),
-    );
-    let text = cfg.to_toml_string();
-    let cfg = ScenarioConfig::from_toml_str(&text, "msl-guided test").unwrap();
-    Arc::new(Scenario::build(cfg, &entrynav::files::no_files).unwrap())
+    let mut cfg = ScenarioConfig::builtin("msl-guided").unwrap();
+    let g = cfg.guidance.as_mut().unwrap();
+    g.algorithm = match algorithm {
+        "apollo" => GuidanceAlgorithm::Apollo,
+        "fnpeg" => GuidanceAlgorithm::Fnpeg,
+        other => panic!("no algorithm {other}"),
+    };
+    let s = Scenario::build(cfg, &entrynav::files::no_files).unwrap();
+    Arc::new(s)
 }
 
 fn print(report: &DeliveryReport) {

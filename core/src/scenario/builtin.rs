@@ -1,7 +1,7 @@
 //! The built-in scenarios, embedded from this crate's `scenarios/` folder (`core/scenarios/`, inside the crate so that `cargo package` carries them).
 
 /// Names of the built-in scenarios, in listing order.
-pub const BUILTIN_NAMES: [&str; 10] = [
+pub const BUILTIN_NAMES: [&str; 12] = [
     "four-beacon-fusion",
     "four-beacon-fusion-fault",
     "four-beacon-fusion-faults",
@@ -12,6 +12,8 @@ pub const BUILTIN_NAMES: [&str; 10] = [
     "orbiters-3",
     "msl-pressure",
     "msl-pressure-orbiter",
+    "msl-guided",
+    "four-beacon-fusion-guided",
 ];
 
 /// TOML text of a built-in scenario, if `name` is one.
@@ -33,6 +35,10 @@ pub fn builtin_toml(name: &str) -> Option<&'static str> {
         "orbiters-3" => include_str!("../../scenarios/orbiters-3.toml"),
         "msl-pressure" => include_str!("../../scenarios/msl-pressure.toml"),
         "msl-pressure-orbiter" => include_str!("../../scenarios/msl-pressure-orbiter.toml"),
+        "msl-guided" => include_str!("../../scenarios/msl-guided.toml"),
+        "four-beacon-fusion-guided" => {
+            include_str!("../../scenarios/four-beacon-fusion-guided.toml")
+        }
         _ => return None,
     })
 }

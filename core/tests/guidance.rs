@@ -31,8 +31,7 @@ fn msl(algorithm: &str) -> Scenario {
         "fnpeg" => GuidanceAlgorithm::Fnpeg,
         other => panic!("no algorithm {other}"),
     };
-    let s = Scenario::build(cfg, &entrynav::files::no_files).unwrap();
-    s
+    Scenario::build(cfg, &entrynav::files::no_files).unwrap()
 }
 
 fn guidance_config(s: &Scenario) -> &GuidanceConfig {

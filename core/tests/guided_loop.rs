@@ -20,8 +20,7 @@ fn msl(algorithm: &str) -> Arc<Scenario> {
         "fnpeg" => GuidanceAlgorithm::Fnpeg,
         other => panic!("no algorithm {other}"),
     };
-    let s = Scenario::build(cfg, &entrynav::files::no_files).unwrap();
-    Arc::new(s)
+    Arc::new(Scenario::build(cfg, &entrynav::files::no_files).unwrap())
 }
 
 fn print(report: &DeliveryReport) {

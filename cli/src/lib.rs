@@ -13,6 +13,7 @@ mod compare_scenarios;
 mod compare_stats;
 mod compare_table;
 mod csv_file;
+mod delivery_plots;
 mod exit;
 mod fmu;
 mod grid;
@@ -169,7 +170,15 @@ pub fn write_trade_report(
     report::check_path(Some(path))?;
     let names = plot::labels::WeightNames::of_scenario(scenario);
     let provenance = provenance::Provenance::new(overrides).with_scenario(scenario, None);
-    report::write_trade(path, report, &names, &provenance, 0.0, &Default::default())
+    report::write_trade(
+        path,
+        report,
+        &names,
+        &provenance,
+        0.0,
+        &Default::default(),
+        None,
+    )
 }
 
 /// Run one `entrynav` command line in this process (`args[0]` is the program name) and return

@@ -26,6 +26,8 @@ pub enum Kind {
     Weights(String),
     /// Final downrange/crossrange errors per run with the 3σ ellipse.
     Dispersion,
+    /// Deployment misses per run with the 99 % ellipse (guidance in the loop).
+    Delivery,
 }
 
 /// One rendered figure.
@@ -358,15 +360,21 @@ fn dispersion_figures(report: &TradeReport, out: &mut Out) -> Result<()> {
     Ok(())
 }
 
-/// Write every figure of `report` into `dir`.
+/// Write every figure of `report` into `dir`, and the delivery footprints of `delivery` (a
+/// scenario with `[guidance]`).
 pub fn trade_plots(
     dir: &Path,
     report: &TradeReport,
     names: &WeightNames,
     extra: &ExtraCurves,
+    delivery: Option<&entrynav::sim::delivery::DeliveryReport>,
 ) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    for fig in trade_figures_with(report, names, extra)? {
+    let mut figs = trade_figures_with(report, names, extra)?;
+    if let Some(d) = delivery {
+        figs.extend(crate::delivery_plots::delivery_figures(d)?);
+    }
+    for fig in figs {
         let path = dir.join(&fig.file);
         crate::atomic_file::write(&path, &fig.svg)?;
     }

@@ -447,12 +447,20 @@ fn write_results(
     let names = WeightNames::of_scenario(&setup.scenario);
     let extra = lincov.map(Comparison::curves).unwrap_or_default();
     if let Some(dir) = &args.plots {
-        let done = crate::plots::trade_plots(dir, report, &names, &extra);
+        let done = crate::plots::trade_plots(dir, report, &names, &extra, delivery);
         outputs.record(done.map(|()| Some(format!("wrote plots to {}", dir.display()))));
     }
     if let Some(path) = &args.report {
         let provenance = setup.provenance(args);
-        let done = crate::report::write_trade(path, report, &names, &provenance, elapsed, &extra);
+        let done = crate::report::write_trade(
+            path,
+            report,
+            &names,
+            &provenance,
+            elapsed,
+            &extra,
+            delivery,
+        );
         outputs.record(done.map(|s| Some(format!("wrote report {} in {s:.3} s", path.display()))));
     }
     if !to_stdout {
@@ -543,7 +551,7 @@ fn merge(
     }
     let names = WeightNames::of_channels(&report.channels);
     if let Some(dir) = plots {
-        let done = crate::plots::trade_plots(dir, &report, &names, &Default::default());
+        let done = crate::plots::trade_plots(dir, &report, &names, &Default::default(), None);
         outputs.record(done.map(|()| Some(format!("wrote plots to {}", dir.display()))));
     }
     if !to_stdout {

@@ -217,3 +217,73 @@ fn trade_with_guidance_reports_the_delivery_of_its_filters() {
     let v: Value = serde_json::from_str(&out).unwrap();
     assert!(v.get("delivery").is_none());
 }
+
+/// The built-in `four-beacon-fusion-guided`'s trade draws the delivery footprint: `--plots`
+/// writes the guided rows' deployment points with their 99 % ellipses and the target, and the
+/// unguided bank's on its own; `--report` has a delivery section whose table carries the
+/// summary JSON's figures and embeds the footprints.
+#[test]
+fn a_guided_trade_plots_and_reports_the_delivery_footprint() {
+    let dir = scratch_dir("guidance_deliver", "footprint");
+    let (plots, report, json) = (
+        dir.join("plots"),
+        dir.join("report.html"),
+        dir.join("summary.json"),
+    );
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "four-beacon-fusion-guided",
+        "--filters",
+        "ekf",
+        "--runs",
+        "6",
+        "--seed",
+        "4",
+        "--no-pcrlb",
+        "--quiet",
+        "--plots",
+        plots.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let rows = v["delivery"]["rows"].as_array().unwrap();
+    let ekf = rows.iter().find(|r| r["name"] == "ekf").unwrap();
+    let footprint =
+        std::fs::read_to_string(plots.join("four-beacon-fusion-guided_delivery_footprint.svg"))
+            .unwrap();
+    for name in ["perfect-nav", "ekf", "target", "fnpeg guidance"] {
+        assert!(footprint.contains(name), "footprint lacks '{name}'");
+    }
+    assert!(
+        !footprint.contains(">unguided<"),
+        "unguided belongs on its own chart"
+    );
+    // One dot per deployed run of each guided row, plus the target.
+    let dots = footprint.matches("<circle").count();
+    let deployed = |n: &str| {
+        rows.iter().find(|r| r["name"] == n).unwrap()["deployed"]
+            .as_u64()
+            .unwrap() as usize
+    };
+    assert!(
+        dots > deployed("perfect-nav") + deployed("ekf"),
+        "{dots} circles"
+    );
+    let unguided =
+        std::fs::read_to_string(plots.join("four-beacon-fusion-guided_delivery_unguided.svg"))
+            .unwrap();
+    assert!(unguided.contains("unguided"));
+    let html = std::fs::read_to_string(&report).unwrap();
+    let section = &html[html.find("id=\"delivery\"").expect("no delivery section")..];
+    let rms = format!("{:.1}", ekf["rms_miss_m"].as_f64().unwrap());
+    assert!(
+        section.contains(&rms),
+        "the report lacks ekf's RMS miss {rms}"
+    );
+    assert!(section.contains("fnpeg guidance: deployment miss"));
+}

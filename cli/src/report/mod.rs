@@ -27,14 +27,19 @@ pub fn write_trade(
     provenance: &crate::provenance::Provenance,
     wall_s: f64,
     extra: &crate::plots::ExtraCurves,
+    delivery: Option<&entrynav::sim::delivery::DeliveryReport>,
 ) -> Result<f64> {
     write(path, || {
-        let figures = crate::plots::trade_figures_with(report, names, extra)?;
+        let mut figures = crate::plots::trade_figures_with(report, names, extra)?;
+        if let Some(d) = delivery {
+            figures.extend(crate::delivery_plots::delivery_figures(d)?);
+        }
         Ok(trade_page::TradePage {
             report,
             figures: &figures,
             provenance,
             wall_s,
+            delivery,
         }
         .html())
     })

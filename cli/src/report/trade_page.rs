@@ -1,6 +1,7 @@
 //! The HTML report of one trade study (`trade --report FILE.html`): summary and consistency
 //! verdicts, RMSE beside the PCRLB, per-state errors with ±3σ, NEES/NIS with χ² bands, fusion
-//! weights and model probabilities, the deployment dispersion, provenance.
+//! weights and model probabilities, the deployment dispersion, the delivery at deployment with
+//! guidance in the loop (a scenario with `[guidance]`), provenance.
 
 use super::html::{self, Cell, escape, figures, note, section};
 use super::summary;
@@ -18,6 +19,8 @@ pub struct TradePage<'a> {
     pub provenance: &'a Provenance,
     /// Wall time of the study (s).
     pub wall_s: f64,
+    /// Delivery at deployment with guidance in the loop (a scenario with `[guidance]`).
+    pub delivery: Option<&'a entrynav::sim::delivery::DeliveryReport>,
 }
 
 fn svgs(figs: &[Figure], keep: impl Fn(&Kind) -> bool) -> Vec<&str> {
@@ -231,6 +234,13 @@ impl TradePage<'_> {
             body += &section("gating", "Innovation gate and beacon exclusion", &g);
         }
         body += &section("dispersion", "Deployment dispersion", &self.dispersion());
+        if let Some(d) = self.delivery {
+            body += &section(
+                "delivery",
+                "Delivery at deployment (guidance in the loop)",
+                &crate::delivery_plots::delivery_section(d, self.figures),
+            );
+        }
         body += &section("provenance", "Provenance", &self.provenance());
         html::page(&format!("entrynav trade report: {}", r.scenario), &body)
     }

@@ -63,6 +63,10 @@ pub struct DeliverArgs {
     /// `delivery`, and every run's deliveries under `runs`. Checked before the first run.
     #[arg(long)]
     pub json: Option<PathBuf>,
+    /// Write the delivery footprints (SVG) into this folder: the guided rows' deployment misses
+    /// with their 99 % ellipses and the target, and the unguided bank's.
+    #[arg(long, value_name = "DIR")]
+    pub plots: Option<PathBuf>,
 }
 
 /// Run the command.
@@ -132,6 +136,15 @@ fn deliver(args: &DeliverArgs) -> Result<()> {
             crate::atomic_file::write(path, text)
                 .with_context(|| format!("writing {}", path.display()))?;
             println!("wrote {}", path.display());
+        }
+    }
+    if let Some(dir) = &args.plots {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        for fig in crate::delivery_plots::delivery_figures(&report)? {
+            crate::atomic_file::write(&dir.join(&fig.file), &fig.svg)?;
+        }
+        if !to_stdout {
+            println!("wrote plots to {}", dir.display());
         }
     }
     Ok(())

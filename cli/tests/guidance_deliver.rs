@@ -286,4 +286,25 @@ fn a_guided_trade_plots_and_reports_the_delivery_footprint() {
         "the report lacks ekf's RMS miss {rms}"
     );
     assert!(section.contains("fnpeg guidance: deployment miss"));
+    // `guidance deliver --plots` on the same runs draws the same footprint.
+    let own = dir.join("deliver_plots");
+    let (code, _, err) = entrynav(&[
+        "guidance",
+        "deliver",
+        "--scenario",
+        "four-beacon-fusion-guided",
+        "--filters",
+        "ekf",
+        "--runs",
+        "6",
+        "--seed",
+        "4",
+        "--plots",
+        own.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let again =
+        std::fs::read_to_string(own.join("four-beacon-fusion-guided_delivery_footprint.svg"))
+            .unwrap();
+    assert_eq!(again, footprint);
 }

@@ -40,6 +40,7 @@ __all__ = [
     "optimize_ground",
     "optimize_select",
     "optimize_orbiters",
+    "deliver",
     "fmu_pack",
     "__version__",
 ]
@@ -479,6 +480,33 @@ def observe(scenario: Union[Scenario, str], method: str = "lie", step: float = 1
             args.append("--fim")
         _cli(args, "observe")
         return json.loads(out.read_text())
+
+
+def deliver(
+    scenario: Union[Scenario, str],
+    filters: Union[Sequence[str], str] = ("ekf",),
+    runs: int = 100,
+    seed: int = 1,
+    threads: Optional[int] = None,
+) -> Dict[str, Any]:
+    """`entrynav guidance deliver`: a scenario with `[guidance]` (e.g. the built-ins `msl-guided`,
+    `four-beacon-fusion-guided`) flown `runs` times with each filter's estimate in the guidance
+    loop, with perfect navigation and the unguided reference bank on the same draws. Returns the
+    CLI's JSON: `{"delivery": {..., "rows": [{name, deployed, failures, rms_miss_m, ellipse_99,
+    rms_nav_position_error_m, ...}]}, "runs": [...]}` (docs/guidance.md). A scenario without
+    `[guidance]` raises ValueError."""
+    import tempfile
+
+    names = [filters] if isinstance(filters, str) else list(filters)
+    files = _ScenarioFile(scenario)
+    with files as sc, tempfile.TemporaryDirectory() as tmp:
+        js = Path(tmp) / "delivery.json"
+        args = ["guidance", "deliver", "--scenario", sc, "--filters", ",".join(names), "--runs", runs, "--seed", seed,
+                "--json", js]
+        if threads is not None:
+            args += ["--threads", threads]
+        _cli(args, "guidance deliver")
+        return json.loads(js.read_text())
 
 
 class DesignResult:

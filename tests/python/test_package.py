@@ -258,3 +258,17 @@ def test_the_html_report_from_python(tmp_path):
         assert f'<section id="{section}">' in page
     with pytest.raises(ValueError):
         res.report(tmp_path)  # a folder, not a file
+
+
+def test_deliver_equals_the_cli_and_refuses_a_scenario_without_guidance(tmp_path):
+    d = entrynav.deliver("four-beacon-fusion-guided", ["ekf"], runs=3, seed=2)
+    js = tmp_path / "d.json"
+    r = run([ENTRYNAV, "guidance", "deliver", "--scenario", "four-beacon-fusion-guided", "--filters", "ekf",
+             "--runs", 3, "--seed", 2, "--json", js])
+    assert r.returncode == 0, r.stderr
+    assert d == json.loads(js.read_text())
+    rows = {row["name"]: row for row in d["delivery"]["rows"]}
+    assert set(rows) == {"perfect-nav", "unguided", "ekf"}
+    assert rows["ekf"]["deployed"] == 3 and rows["ekf"]["rms_miss_m"] < 2 * rows["perfect-nav"]["rms_miss_m"]
+    with pytest.raises(ValueError, match=r"\[guidance\]"):
+        entrynav.deliver("four-beacon-fusion", runs=2)

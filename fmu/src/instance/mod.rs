@@ -12,6 +12,7 @@
 mod allowed;
 mod engine;
 mod fmi3;
+mod guidance;
 mod lifecycle;
 mod outputs;
 mod scenario;
@@ -22,6 +23,7 @@ mod values;
 pub use allowed::{Fmi2, Phases};
 pub use engine::{Engine, InstanceError};
 pub use fmi3::{Ref3, Type3};
+pub use guidance::{GuidanceEngine, GuidanceInputs, GuidanceReport, GuidanceStepError};
 pub use lifecycle::{StatusAnswer, StatusType};
 pub use scenario::{ScenarioFileError, load_resource_scenario};
 pub use spec::resolve_spec;

@@ -136,6 +136,8 @@ fn specific(name: &str, filter: Option<&str>) -> Result<(ModelSpec, Resources)> 
     Ok((spec, resources))
 }
 
+/// The built-in scenario files and the guided scenario (`msl-guided.toml`: msl-airdata with
+/// `[guidance]`, the guidance FMU's default, also for the truth and filter FMUs of the guided SSP).
 fn generic_resources() -> Resources {
     BUILTIN_NAMES
         .iter()
@@ -145,6 +147,10 @@ fn generic_resources() -> Resources {
                 builtin_toml(n).unwrap_or_default().to_string(),
             )
         })
+        .chain(std::iter::once((
+            mars_entry_nav::vars::GUIDED_SCENARIO_FILE.to_string(),
+            mars_entry_nav::vars::guided_scenario_toml(),
+        )))
         .collect()
 }
 

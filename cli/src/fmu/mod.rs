@@ -46,7 +46,7 @@ pub struct FmuArgs {
 
 #[derive(Subcommand)]
 enum FmuAction {
-    /// Build MarsEntryNav.fmu, MarsEntryNavFilter.fmu and MarsEntryTruth.fmu (or, with
+    /// Build MarsEntryNav.fmu, MarsEntryNavFilter.fmu, MarsEntryTruth.fmu and MarsEntryGuidance.fmu (or, with
     /// --scenario, the combined model specific to one scenario), each with a stripped library
     /// bound to its model.
     Pack(PackArgs),

@@ -126,7 +126,7 @@ fn phase_name(p: Phase) -> &'static str {
     }
 }
 
-/// The model a GUID names when no binding restricts it: one of the three generic models.
+/// The model a GUID names when no binding restricts it: one of the four generic models.
 pub fn generic_spec(guid: &str) -> Result<Arc<ModelSpec>, InstantiateError> {
     match Model::from_guid(guid) {
         Some(m) => Ok(Arc::new(ModelSpec::generic(m))),

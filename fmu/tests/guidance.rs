@@ -239,3 +239,33 @@ fn the_bank_does_not_depend_on_the_communication_grid() {
     // saw the same inputs.
     assert_eq!(run(end), (bank, 3, true));
 }
+
+#[test]
+fn an_fmu_state_taken_mid_flight_replays_the_rest_bit_for_bit() {
+    use mars_entry_nav::ffi::{fmi2FreeFMUstate, fmi2GetFMUstate, fmi2SetFMUstate};
+    let (steps, dt) = core_run(28);
+    let i = guidance("state");
+    assert_eq!(i.init(), [0, 0, 0]);
+    let half = steps.len() / 2;
+    let run = |from: usize, to: usize| -> Vec<u64> {
+        (from..to)
+            .map(|k| {
+                set_inputs(&i, &steps[k]);
+                assert_eq!(i.step(steps[k].t, dt), 0, "{}", i.last());
+                i.real(Key::GuidanceBank).to_bits()
+            })
+            .collect()
+    };
+    run(0, half);
+    let mut st = std::ptr::null_mut();
+    // SAFETY: our instance and a pointer to receive the state.
+    assert_eq!(unsafe { fmi2GetFMUstate(i.c, &mut st) }, 0, "{}", i.last());
+    let first = run(half, half + 400);
+    // SAFETY: the state this instance gave.
+    assert_eq!(unsafe { fmi2SetFMUstate(i.c, st) }, 0, "{}", i.last());
+    assert_eq!(run(half, half + 400), first);
+    // The replayed bank is the core loop's.
+    assert_eq!(first[399], steps[half + 399].bank.to_bits());
+    // SAFETY: the state this instance gave, freed once.
+    assert_eq!(unsafe { fmi2FreeFMUstate(i.c, &mut st) }, 0);
+}

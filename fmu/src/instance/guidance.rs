@@ -67,6 +67,11 @@ pub enum GuidanceStepError {
         "nav_status_code = 2: the navigation filter failed (at nav_time = {0} s); guidance will not fly its frozen estimate"
     )]
     NavFailed(f64),
+    /// The guidance law returned a command that is not finite.
+    #[error(
+        "the guidance law returned a bank command that is not finite (estimate at nav_time = {0} s)"
+    )]
+    NonFiniteCommand(f64),
     /// A navigation state outside the bounds guidance accepts.
     #[error(
         "the navigation estimate at nav_time = {t} s is not a state guidance can fly: {what} (connect the navigation FMU's est_x_1..6 and nav_time)"
@@ -329,7 +334,12 @@ impl GuidanceEngine {
             return Ok(());
         }
         self.armed |= c > 0.0;
-        self.command = self.built.guidance.command(&nav)?;
+        let command = self.built.guidance.command(&nav)?;
+        if !command.is_finite() {
+            // The actuator would carry a NaN for the rest of the run while the output reads 0.
+            return Err(GuidanceStepError::NonFiniteCommand(nav.t));
+        }
+        self.command = command;
         Ok(())
     }
 

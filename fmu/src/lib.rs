@@ -6,6 +6,8 @@
 //! - `MarsEntryNavFilter`: the navigation filter alone, fed with measurements and validity flags;
 //! - `MarsEntryTruth`: truth dynamics and sensors, whose measurement outputs have the same names as
 //!   the filter FMU's inputs;
+//! - `MarsEntryGuidance`: the scenario's `[guidance]` and its bank actuator, fed with the
+//!   navigation estimate and the accelerometer triad (the inputs named as those FMUs' outputs);
 //! - `MarsEntryNav_<scenario>`: the combined model with one scenario embedded, whose state outputs
 //!   carry the scenario's state names and units.
 //!

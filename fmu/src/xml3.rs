@@ -65,25 +65,28 @@ fn write(spec: &ModelSpec) -> io::Result<String> {
                 .with_attribute(("providesEvaluateDiscreteStates", "false"))
                 .write_empty()?;
             write_units(w)?;
-            w.create_element("TypeDefinitions")
-                .write_inner_content(|w| {
-                    for e in &used_enums {
-                        w.create_element("EnumerationType")
-                            .with_attribute(("name", e.name))
-                            .with_attribute(("description", e.description))
-                            .write_inner_content(|w| {
-                                for (k, (name, d)) in e.items.iter().enumerate() {
-                                    w.create_element("Item")
-                                        .with_attribute(("name", *name))
-                                        .with_attribute(("value", k.to_string().as_str()))
-                                        .with_attribute(("description", *d))
-                                        .write_empty()?;
-                                }
-                                Ok(())
-                            })?;
-                    }
-                    Ok(())
-                })?;
+            // The schema needs at least one type in TypeDefinitions (the guidance FMU has none).
+            if !used_enums.is_empty() {
+                w.create_element("TypeDefinitions")
+                    .write_inner_content(|w| {
+                        for e in &used_enums {
+                            w.create_element("EnumerationType")
+                                .with_attribute(("name", e.name))
+                                .with_attribute(("description", e.description))
+                                .write_inner_content(|w| {
+                                    for (k, (name, d)) in e.items.iter().enumerate() {
+                                        w.create_element("Item")
+                                            .with_attribute(("name", *name))
+                                            .with_attribute(("value", k.to_string().as_str()))
+                                            .with_attribute(("description", *d))
+                                            .write_empty()?;
+                                    }
+                                    Ok(())
+                                })?;
+                        }
+                        Ok(())
+                    })?;
+            }
             write_log_categories(w)?;
             let (start, stop, step) = spec.default_experiment();
             w.create_element("DefaultExperiment")

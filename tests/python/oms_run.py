@@ -4,7 +4,8 @@ and a crash must not take pytest down).
 argv[1] is a JSON spec: {"components": {name: {"fmu": path, "params": {var: value}}},
 "connections": [["truth.meas_epoch", "filter.meas_epoch"], ...], "step": h, "stop": T,
 "observe": {name: [var, ...]}, "result": csv path}, or, for an SSP package, {"ssp": path,
-"system": name, "inputs": {connector: [[t_from, value], ...]}, ...}: the system's input
+"system": name, "inputs": {connector: [[t_from, value], ...]}, "params": {"comp.var": value},
+...}: the system's input
 connectors follow the piecewise-constant schedules (the value of the last t_from <= the step's
 start holds over the step). The system is stepped one communication step
 at a time with stepUntil; after initialisation and after every step the observed variables are read
@@ -39,6 +40,11 @@ def main():
     for a, b in spec.get("connections", []):
         model.addConnection(CRef("default", *a.split(".", 1)), CRef("default", *b.split(".", 1)))
     inst = model.instantiate()
+    # OMSimulator 3.0.0.post114 does not apply an SSP's .ssv String parameters (after instantiate
+    # `truth.scenario` still reads the FMU's default): "params" sets component parameters
+    # through the API, {"component.variable": value}, before initialisation.
+    for name, value in spec.get("params", {}).items():
+        inst.setValue(CRef(root, *name.split(".", 1)), value)
     inst.setResultFile(spec["result"])
     inst.setStopTime(spec["stop"])
     inst.setFixedStepSize(spec["step"])

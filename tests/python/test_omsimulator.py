@@ -8,7 +8,7 @@ output (it drops the step's whole result row) and stops on fmi2Warning from a st
 * the split pair connected in OMSimulator (truth measurements into the filter) beside the combined
   FMU: the filter's estimate is the combined FMU's one step late, bitwise;
 * the SSP packages of `entrynav fmu pack --ssp` (valid against the SSP 1.0 schemas OMSimulator
-  ships): the split system, flown with a bank profile and a beacon outage through its system
+  ships; the guided one is run in test_guidance.py): the split system, flown with a bank profile and a beacon outage through its system
   inputs, is the combined system one step late, bitwise."""
 
 import csv
@@ -127,7 +127,8 @@ def ssps(tmp_path_factory):
     out = tmp_path_factory.mktemp("ssp")
     r = run([ENTRYNAV, "fmu", "pack", "--out", out, "--ssp"], timeout=300)
     assert r.returncode == 0, r.stdout + r.stderr
-    return {"split": out / "MarsEntrySplit.ssp", "combined": out / "MarsEntryNav.ssp"}
+    return {"split": out / "MarsEntrySplit.ssp", "combined": out / "MarsEntryNav.ssp",
+            "guided": out / "MarsEntryGuided.ssp"}
 
 
 def test_ssp_packages_are_valid_ssp_1_0(ssps):

@@ -4,6 +4,7 @@
 #![allow(non_snake_case)]
 
 use super::*;
+use entrynav::sim::guided_run::GuidedStep;
 use entrynav_fmi_host::*;
 
 /// The input values at communication point `t` for a check run (bank profile, beacon 2 outage,
@@ -42,6 +43,7 @@ pub(super) fn check_inputs(
     t: f64,
     h: f64,
     truth: Option<&TruthSensors>,
+    guided: Option<&GuidedStep>,
 ) -> Vec<(usize, Value)> {
     let bank = bank_input(model, t, h);
     let available = check_available(t);
@@ -59,6 +61,9 @@ pub(super) fn check_inputs(
         .enumerate()
         .filter(|(_, v)| v.causality == Causality::Input)
         .map(|(i, v)| {
+            if let Some(val) = guided.and_then(|g| super::guided::guided_input(v.key, g)) {
+                return (i, val);
+            }
             let val = match v.key {
                 Key::Bank => Value::Real(bank),
                 Key::BeaconAvailable(b) => {
@@ -86,6 +91,18 @@ pub(super) fn scenario_timing(sc: &entrynav::scenario::Scenario) -> (f64, f64) {
         sc.config.timing.duration_s,
         if step.is_finite() { step } else { 1.0 },
     )
+}
+
+/// The scenario a check runs: `--scenario`, else the guided scenario for the guidance FMU and
+/// four-beacon-fusion for the others.
+fn scenario_param(a: &CheckArgs, m: Model) -> String {
+    a.scenario.clone().unwrap_or_else(|| {
+        match m {
+            Model::Guidance => mars_entry_nav::vars::GUIDED_SCENARIO_FILE,
+            _ => mars_entry_nav::vars::DEFAULT_SCENARIO,
+        }
+        .to_string()
+    })
 }
 
 /// The filter a check runs: `--filter`, else the FMU's default.
@@ -116,10 +133,22 @@ pub(super) fn check(a: &CheckArgs) -> Result<()> {
     let spec = Arc::clone(&u.spec);
     let vars = spec.vars().to_vec();
     let res = u.dir.join("resources");
-    let scenario = check_scenario(&u, &a.scenario, &res)?;
-    let (duration, default_step) = scenario_timing(&scenario);
+    let scenario_name = scenario_param(a, m);
+    let scenario = check_scenario(&u, &scenario_name, &res)?;
+    let (duration, default_step) = match m {
+        // The guidance FMU's default experiment: one step per guidance period.
+        Model::Guidance => {
+            let (_, stop, step) = spec.default_experiment();
+            (stop, step)
+        }
+        _ => scenario_timing(&scenario),
+    };
     let h = a.step.unwrap_or(default_step);
     let n_steps = (duration / h).round() as usize;
+    let guided = match m {
+        Model::Guidance => super::guided::guided_rows(&scenario, a.seed as u64, h, n_steps)?,
+        _ => Vec::new(),
+    };
     let guid = spec.guid().to_string();
     // SAFETY: plain C strings from the library.
     let (platform, version) = unsafe {
@@ -141,7 +170,7 @@ pub(super) fn check(a: &CheckArgs) -> Result<()> {
         .enumerate()
         .filter_map(|(i, v)| {
             let val = match v.key {
-                Key::Scenario => Value::String(a.scenario.clone()),
+                Key::Scenario => Value::String(scenario_name.clone()),
                 Key::Filter => Value::String(filter_of(a, &spec)),
                 Key::Seed => Value::Integer(a.seed),
                 Key::Dispersed => Value::Boolean(!a.nominal),
@@ -225,7 +254,7 @@ pub(super) fn check(a: &CheckArgs) -> Result<()> {
     let mut warnings = 0;
     for k in 0..n_steps {
         let t = k as f64 * h;
-        for (i, v) in check_inputs(spec.model(), &vars, t, h, feeder.as_ref()) {
+        for (i, v) in check_inputs(spec.model(), &vars, t, h, feeder.as_ref(), guided.get(k)) {
             ensure!(
                 slave.set(&vars[i], &v) == 0,
                 "set {}: {:?}",
@@ -317,7 +346,7 @@ pub(super) fn bench(
         .find(|v| v.key == Key::Bank)
         .map(|v| v.vr)
         .unwrap_or(0);
-    let scenario = check_scenario(u, &a.scenario, &u.dir.join("resources"))?;
+    let scenario = check_scenario(u, &scenario_param(a, u.model), &u.dir.join("resources"))?;
     let kind = entrynav::estimation::nav::FilterKind::parse(&filter_of(a, &u.spec))?;
     let guid = u.spec.guid().to_string();
     let (mut host, mut direct, mut wrapped) = (Vec::new(), Vec::new(), Vec::new());

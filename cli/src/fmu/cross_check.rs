@@ -79,6 +79,20 @@ fn reference_outputs(spec: &ModelSpec) -> Vec<String> {
         ]
         .map(String::from)
         .to_vec(),
+        (Model::Guidance, None) => [
+            "bank_command",
+            "bank_rate",
+            "guidance_command",
+            "guidance_time",
+            "guidance_cycles",
+            "sensed_drag",
+            "range_to_go",
+            "crossrange",
+            "deploy_trigger",
+            "deployed",
+        ]
+        .map(String::from)
+        .to_vec(),
         (Model::Truth, None) => [
             "truth_r",
             "truth_lon",
@@ -98,7 +112,8 @@ fn reference_outputs(spec: &ModelSpec) -> Vec<String> {
 }
 
 /// The input table of a cross-check run: the `fmu check` inputs at every communication point.
-/// For the filter FMU, row t holds the measurements of a truth run with the FMU's default seed
+/// For the guidance FMU, row t holds what the in-process guided loop (EKF, run 0 of the default
+/// seed) gave its guidance at t ([`super::guided`]). For the filter FMU, row t holds the measurements of a truth run with the FMU's default seed
 /// that flew the combined FMU's inputs (bank, beacon availability) over the step ending at t, and
 /// the bank of that step: the filter fed from it reproduces the combined FMU one step late.
 fn input_table(spec: &ModelSpec, resources: &Path, stop: f64, step: f64) -> Result<Table> {
@@ -117,10 +132,19 @@ fn input_table(spec: &ModelSpec, resources: &Path, stop: f64, step: f64) -> Resu
         _ => None,
     };
     let n = (stop / step).round() as usize;
+    let guided = match spec.model() {
+        Model::Guidance => super::guided::guided_rows(
+            &load_scenario(mars_entry_nav::vars::GUIDED_SCENARIO_FILE, resources)?,
+            DEFAULT_SEED as u64,
+            step,
+            n,
+        )?,
+        _ => Vec::new(),
+    };
     let mut rows = Vec::with_capacity(n + 1);
     for k in 0..=n {
         let t = k as f64 * step;
-        let vals = check_inputs(spec.model(), vars, t, step, feeder.as_ref());
+        let vals = check_inputs(spec.model(), vars, t, step, feeder.as_ref(), guided.get(k));
         rows.push((t, vals.into_iter().map(|(_, v)| v).collect()));
         if let Some(ts) = feeder.as_mut() {
             // What the combined FMU's truth flies on this step (bank, beacon availability): the

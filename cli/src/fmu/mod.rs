@@ -12,6 +12,7 @@ mod check;
 mod cross_check;
 mod fuzz;
 mod fuzz3;
+mod guided;
 mod library;
 mod pack;
 mod run;
@@ -45,7 +46,7 @@ pub struct FmuArgs {
 
 #[derive(Subcommand)]
 enum FmuAction {
-    /// Build MarsEntryNav.fmu, MarsEntryNavFilter.fmu and MarsEntryTruth.fmu (or, with
+    /// Build MarsEntryNav.fmu, MarsEntryNavFilter.fmu, MarsEntryTruth.fmu and MarsEntryGuidance.fmu (or, with
     /// --scenario, the combined model specific to one scenario), each with a stripped library
     /// bound to its model.
     Pack(PackArgs),
@@ -98,9 +99,11 @@ struct RunArgs {
 struct CheckArgs {
     /// The .fmu file.
     file: PathBuf,
-    /// Scenario parameter (built-in name or a file in the FMU's resources).
-    #[arg(long, default_value = "four-beacon-fusion")]
-    scenario: String,
+    /// Scenario parameter (built-in name or a file in the FMU's resources). Default:
+    /// four-beacon-fusion, or msl-guided.toml for MarsEntryGuidance (whose inputs come from the
+    /// in-process guided loop on it, the EKF in the loop, run 0 of --seed).
+    #[arg(long)]
+    scenario: Option<String>,
     /// Filter parameter (default: the FMU's, dcifaif for the generic FMUs).
     #[arg(long)]
     filter: Option<String>,

@@ -1,5 +1,5 @@
 //! `entrynav fmu pack`: the `.fmu` archives (model description, a stripped copy of the FMU
-//! crate's cdylib bound to its model, resources, documentation). Without `--scenario` the three
+//! crate's cdylib bound to its model, resources, documentation). Without `--scenario` the four
 //! generic FMUs; with `--scenario S` the combined model specific to S, which embeds the scenario
 //! (and the files it refers to) in `resources/` and names its state outputs after its states.
 
@@ -25,7 +25,7 @@ pub(super) struct PackArgs {
     #[arg(long, visible_alias = "library")]
     lib: Option<PathBuf>,
     /// Pack the combined model specific to this scenario (a built-in name or a TOML file) instead
-    /// of the three generic FMUs.
+    /// of the four generic FMUs.
     #[arg(long)]
     scenario: Option<String>,
     /// Default filter of the scenario-specific FMU (default: dcifaif if it fits the scenario,
@@ -33,8 +33,9 @@ pub(super) struct PackArgs {
     #[arg(long, requires = "scenario")]
     filter: Option<String>,
     /// Also write SSP 1.0 packages of the generic FMUs: `MarsEntrySplit.ssp` (truth -> filter,
-    /// the filter one step late) and `MarsEntryNav.ssp` (the combined FMU), each with its
-    /// parameters in an .ssv.
+    /// the filter one step late), `MarsEntryNav.ssp` (the combined FMU) and `MarsEntryGuided.ssp`
+    /// (truth -> filter -> guidance -> truth bank on msl-guided.toml), each with its parameters
+    /// in an .ssv.
     #[arg(long, conflicts_with = "scenario")]
     ssp: bool,
     /// FMI version of the packed FMUs: 2 (FMI 2.0, `<id>.fmu`) or 3 (FMI 3.0, `<id>-fmi3.fmu`:
@@ -136,6 +137,8 @@ fn specific(name: &str, filter: Option<&str>) -> Result<(ModelSpec, Resources)> 
     Ok((spec, resources))
 }
 
+/// The built-in scenario files (`msl-guided.toml` among them: the guidance FMU's default, also
+/// for the truth and filter FMUs of the guided SSP).
 fn generic_resources() -> Resources {
     BUILTIN_NAMES
         .iter()

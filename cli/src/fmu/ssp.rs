@@ -7,6 +7,10 @@
 //!   after each step, so the filter receives each step's measurements with the bank they were flown
 //!   with, one step late, and its estimate is the combined FMU's one step late.
 //! * `MarsEntryNav.ssp` — the combined FMU alone with the same system inputs.
+//! * `MarsEntryGuided.ssp` — the closed guidance loop on `msl-guided.toml`: `truth` → `navfilter`
+//!   (EKF) as in the split pair, the filter's `est_x_1..6`, `est_sigma_1..6`, `nav_time`,
+//!   `nav_status_code` and the truth's accelerometer triad → `guidance` (MarsEntryGuidance), whose
+//!   `bank_command` → the truth's `bank_angle`. System inputs `beacon_available_*` only.
 //!
 //! Each holds `SystemStructure.ssd`, the FMUs under `resources/`, and the parameters (scenario,
 //! seed, dispersion, filter; the FMUs' defaults) in `resources/<system>.ssv`, bound at system
@@ -44,6 +48,12 @@ struct SystemSpec {
     description: &'static str,
     elements: Vec<Element>,
     connections: Vec<(Option<&'static str>, String, Option<&'static str>, String)>,
+    /// The system's inputs.
+    inputs: Vec<String>,
+    /// Parameters set to other values than the FMUs' defaults: (component, variable, value).
+    params: Vec<(&'static str, &'static str, Value)>,
+    /// Stop time of the default experiment \[s\].
+    stop: f64,
 }
 
 fn ssc_type(v: &Var) -> &'static str {
@@ -70,12 +80,11 @@ fn system_inputs() -> Vec<String> {
         .collect()
 }
 
-fn split_system() -> SystemSpec {
+/// The connections truth → filter of the split pair and the guided loop: every measurement and
+/// the flown bank.
+fn truth_to_filter() -> Vec<(Option<&'static str>, String, Option<&'static str>, String)> {
     let truth = variables(Model::Truth);
-    let mut connections: Vec<_> = system_inputs()
-        .into_iter()
-        .map(|n| (None, n.clone(), Some("truth"), n))
-        .collect();
+    let mut connections = Vec::new();
     for v in variables(Model::Filter)
         .iter()
         .filter(|v| v.causality == Causality::Input && v.name.starts_with("meas_"))
@@ -93,6 +102,15 @@ fn split_system() -> SystemSpec {
         Some(FILTER),
         "bank_angle".into(),
     ));
+    connections
+}
+
+fn split_system(stop: f64) -> SystemSpec {
+    let mut connections: Vec<_> = system_inputs()
+        .into_iter()
+        .map(|n| (None, n.clone(), Some("truth"), n))
+        .collect();
+    connections.extend(truth_to_filter());
     SystemSpec {
         name: "MarsEntrySplit",
         description: "Mars entry truth and navigation filter as two FMUs: the filter receives the truth's measurements and flown bank angle one step late",
@@ -107,10 +125,84 @@ fn split_system() -> SystemSpec {
             },
         ],
         connections,
+        inputs: system_inputs(),
+        params: Vec::new(),
+        stop,
     }
 }
 
-fn combined_system() -> SystemSpec {
+/// The guidance component's name.
+const GUIDANCE: &str = "guidance";
+
+/// The closed loop truth → filter → guidance → truth (issue 28) on the guided scenario: the
+/// split pair, the filter's estimate (kinematic states, 1σ, epoch, status) and the truth's
+/// accelerometer triad into the guidance FMU, whose limited bank drives the truth. Every
+/// transfer is one step late; the filter is the EKF (the default dcifaif needs beacons).
+fn guided_system() -> Result<SystemSpec> {
+    let guidance = variables(Model::Guidance);
+    let filter = variables(Model::Filter);
+    let truth = variables(Model::Truth);
+    let mut connections: Vec<_> = (1..=MAX_BEACONS)
+        .map(|i| format!("beacon_available_{i}"))
+        .map(|n| (None, n.clone(), Some("truth"), n))
+        .collect();
+    connections.extend(truth_to_filter());
+    for v in guidance.iter().filter(|v| v.causality == Causality::Input) {
+        let from = |vars: &[Var]| {
+            vars.iter()
+                .any(|o| o.name == v.name && o.causality == Causality::Output)
+        };
+        let source = if from(&filter) {
+            FILTER
+        } else if from(&truth) {
+            "truth"
+        } else {
+            bail!(
+                "no FMU of the guided loop outputs the guidance input {}",
+                v.name
+            )
+        };
+        connections.push((Some(source), v.name.clone(), Some(GUIDANCE), v.name.clone()));
+    }
+    connections.push((
+        Some(GUIDANCE),
+        "bank_command".into(),
+        Some("truth"),
+        "bank_angle".into(),
+    ));
+    let scenario = mars_entry_nav::vars::guided_scenario()?;
+    let file = mars_entry_nav::vars::GUIDED_SCENARIO_FILE;
+    Ok(SystemSpec {
+        name: "MarsEntryGuided",
+        description: "Mars entry guided in closed loop as three FMUs: truth -> navigation filter -> guidance -> truth bank angle, each transfer one step late",
+        elements: vec![
+            Element {
+                name: "truth",
+                model: Model::Truth,
+            },
+            Element {
+                name: FILTER,
+                model: Model::Filter,
+            },
+            Element {
+                name: GUIDANCE,
+                model: Model::Guidance,
+            },
+        ],
+        connections,
+        inputs: (1..=MAX_BEACONS)
+            .map(|i| format!("beacon_available_{i}"))
+            .collect(),
+        params: vec![
+            ("truth", "scenario", Value::String(file.into())),
+            (FILTER, "scenario", Value::String(file.into())),
+            (FILTER, "filter", Value::String("ekf".into())),
+        ],
+        stop: scenario.config.timing.duration_s,
+    })
+}
+
+fn combined_system(stop: f64) -> SystemSpec {
     SystemSpec {
         name: "MarsEntryNav",
         description: "Mars entry truth and navigation filter in one FMU",
@@ -122,11 +214,15 @@ fn combined_system() -> SystemSpec {
             .into_iter()
             .map(|n| (None, n.clone(), Some("nav"), n))
             .collect(),
+        inputs: system_inputs(),
+        params: Vec::new(),
+        stop,
     }
 }
 
-/// `SystemStructure.ssd` of `sys` (stop time `stop` s).
-fn ssd(sys: &SystemSpec, stop: f64) -> String {
+/// `SystemStructure.ssd` of `sys`.
+fn ssd(sys: &SystemSpec) -> String {
+    let stop = sys.stop;
     let mut x = String::new();
     let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     let _ = writeln!(
@@ -138,7 +234,7 @@ fn ssd(sys: &SystemSpec, stop: f64) -> String {
     );
     let _ = writeln!(x, r#"  <ssd:System name="{}">"#, sys.name);
     let _ = writeln!(x, "    <ssd:Connectors>");
-    for n in system_inputs() {
+    for n in &sys.inputs {
         let ty = if n == "bank_angle" {
             "<ssc:Real/>"
         } else {
@@ -204,7 +300,8 @@ fn ssd(sys: &SystemSpec, stop: f64) -> String {
     x
 }
 
-/// `<system>.ssv`: every parameter of every component at the FMU's default.
+/// `<system>.ssv`: every parameter of every component, at the FMU's default unless the system
+/// sets it.
 fn ssv(sys: &SystemSpec) -> String {
     let mut x = String::new();
     let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
@@ -219,7 +316,12 @@ fn ssv(sys: &SystemSpec) -> String {
             .iter()
             .filter(|v| v.causality == Causality::Parameter && v.name != "allow_external_files")
         {
-            let value = match &v.start {
+            let set = sys
+                .params
+                .iter()
+                .find(|(c, n, _)| *c == e.name && *n == v.name)
+                .map(|p| &p.2);
+            let value = match set.or(v.start.as_ref()) {
                 Some(Value::Real(r)) => format!(r#"<ssv:Real value="{r:?}"/>"#),
                 Some(Value::Integer(i)) => format!(r#"<ssv:Integer value="{i}"/>"#),
                 Some(Value::Boolean(b)) => format!(r#"<ssv:Boolean value="{b}"/>"#),
@@ -243,7 +345,7 @@ fn ssv(sys: &SystemSpec) -> String {
 /// files in `out`; `stop` is the default experiment's stop time.
 pub(super) fn write_ssps(out: &Path, stop: f64) -> Result<Vec<PathBuf>> {
     let mut written = Vec::new();
-    for sys in [split_system(), combined_system()] {
+    for sys in [split_system(stop), combined_system(stop), guided_system()?] {
         let path = out.join(format!("{}.ssp", sys.name));
         let file = crate::atomic_file::AtomicFile::create(&path)?;
         let mut zip = zip::ZipWriter::new(file);
@@ -251,7 +353,7 @@ pub(super) fn write_ssps(out: &Path, stop: f64) -> Result<Vec<PathBuf>> {
             .compression_method(zip::CompressionMethod::Deflated)
             .unix_permissions(0o644);
         zip.start_file("SystemStructure.ssd", opts)?;
-        zip.write_all(ssd(&sys, stop).as_bytes())?;
+        zip.write_all(ssd(&sys).as_bytes())?;
         zip.add_directory("resources/", opts)?;
         zip.start_file(format!("resources/{}.ssv", sys.name), opts)?;
         zip.write_all(ssv(&sys).as_bytes())?;

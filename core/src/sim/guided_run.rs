@@ -156,11 +156,11 @@ fn accel_slots(onboard: &Onboard) -> Option<[usize; 3]> {
     Some([slot(0)?, slot(1)?, slot(2)?])
 }
 
-/// The sensed drag in `epoch`, when all three accelerometers were read.
-fn sensed_drag(onboard: &Onboard, slots: &[usize; 3], epoch: &MeasurementEpoch) -> Option<f64> {
+/// The accelerometer triad in `epoch` (IMU frame), when all three were read; the sensed drag is
+/// `onboard.measurement.imu_frame.drag_from` of it.
+fn triad(slots: &[usize; 3], epoch: &MeasurementEpoch) -> Option<[f64; 3]> {
     let v = |i: usize| epoch.values.get(slots[i]).copied().flatten();
-    let a = [v(0)?, v(1)?, v(2)?];
-    Some(onboard.measurement.imu_frame.drag_from(&a))
+    Some([v(0)?, v(1)?, v(2)?])
 }
 
 /// The trigger function on a truth sample (airspeed from the dynamic pressure, so it is the
@@ -202,6 +202,32 @@ pub(crate) fn deployment(
     }
 }
 
+/// What guidance was given and what it flew on one truth step of [`fly_with_filter_recorded`]:
+/// the onboard inputs (what a guidance FMU connected to the navigation and truth FMUs receives)
+/// and the bank flown. Never the truth.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GuidedStep {
+    /// Start of the truth step \[s\].
+    pub t: f64,
+    /// The filter's latest estimate (filter coordinates, every state) at the start of the step.
+    pub est_x: Vec<f64>,
+    /// Its 1σ.
+    pub est_sigma: Vec<f64>,
+    /// Its epoch \[s\].
+    pub est_t: f64,
+    /// The filter's status code ([`NavStatus::code`]).
+    pub nav_status: i32,
+    /// The accelerometer triad of the last measurement epoch of the previous step, in the IMU
+    /// frame (`None`: no epoch with all three in that step, or the first step).
+    pub accel: Option<[f64; 3]>,
+    /// Whether a guidance cycle ran at the start of this step.
+    pub cycle: bool,
+    /// The command of the latest guidance cycle \[rad\].
+    pub command: f64,
+    /// The bank flown over the step, after the [`BankActuator`] \[rad\].
+    pub bank: f64,
+}
+
 /// Fly Monte Carlo run `run` of a study with master seed `seed` on `scenario` (its `[guidance]`)
 /// with filter `kind` in the loop (module documentation). The truth realisation is the trade's
 /// for the same (seed, run) ([`EntryCoSim::for_run`]). The result carries the largest bank rate
@@ -211,6 +237,18 @@ pub fn fly_with_filter(
     kind: FilterKind,
     seed: u64,
     run: usize,
+) -> Result<Delivery, GuidedRunError> {
+    fly_with_filter_recorded(scenario, kind, seed, run, |_| {})
+}
+
+/// [`fly_with_filter`], handing every truth step's guidance inputs and flown bank to `record`
+/// ([`GuidedStep`]; the guidance FMU's tests replay them).
+pub fn fly_with_filter_recorded(
+    scenario: &Arc<Scenario>,
+    kind: FilterKind,
+    seed: u64,
+    run: usize,
+    mut record: impl FnMut(&GuidedStep),
 ) -> Result<Delivery, GuidedRunError> {
     let name = || scenario.config.name.clone();
     let cfg = scenario
@@ -239,7 +277,20 @@ pub fn fly_with_filter(
     let mut armed = c_prev > 0.0;
     let mut command = actuator.bank;
     let mut max_rate: f64 = 0.0;
+    let mut accel: Option<[f64; 3]> = None;
     for k in 0usize.. {
+        let est = cosim.nav().estimate();
+        let mut step = GuidedStep {
+            t: cosim.time(),
+            est_x: est.x.clone(),
+            est_sigma: est.sigma.clone(),
+            est_t: est.t,
+            nav_status: cosim.nav().status().code(),
+            accel,
+            cycle: k % every == 0,
+            command,
+            bank: 0.0,
+        };
         if k % every == 0 {
             if let NavStatus::Failed { t, reason } = cosim.nav().status() {
                 return Err(GuidedRunError::FilterFailed {
@@ -253,15 +304,15 @@ pub fn fly_with_filter(
         }
         let before = actuator.bank;
         let bank = actuator.step(command, dt);
+        step.command = command;
+        step.bank = bank;
+        record(&step);
         max_rate = max_rate.max((bank - before).abs() / dt);
         let t = cosim.time();
         let report = cosim.do_step(t, dt, bank, &[])?;
-        if let Some(d) = cosim
-            .truth()
-            .last_epoch()
-            .and_then(|e| sensed_drag(&onboard, &slots, e))
-        {
-            drag = d;
+        accel = cosim.truth().last_epoch().and_then(|e| triad(&slots, e));
+        if let Some(a) = accel {
+            drag = onboard.measurement.imu_frame.drag_from(&a);
         }
         let s = &cosim.truth().outputs().sample;
         let c = trigger_on(&cfg.trigger, s);

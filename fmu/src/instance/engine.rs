@@ -1,6 +1,7 @@
 //! The simulation behind an instance: which engine a model runs, the scenario it is built from
 //! (see [`super::scenario`]), the work bounds of a step, and one communication step.
 
+use super::guidance::{GuidanceEngine, GuidanceInputs, GuidanceStepError};
 use super::scenario::{ScenarioFileError, load_parameter_scenario};
 use super::{Instance, Status};
 use crate::limits::{self, LimitError, STEP_CHUNK_TRUTH_STEPS};
@@ -44,6 +45,15 @@ pub enum InstanceError {
     /// No engine where one must exist (an internal error).
     #[error("no engine")]
     NoEngine,
+    /// The guidance FMU cannot be built, refuses its inputs or failed.
+    #[error(transparent)]
+    Guidance(#[from] GuidanceStepError),
+    /// A negative 1σ input.
+    #[error("a 1-sigma must be >= 0, got {0}")]
+    NegativeSigma(f64),
+    /// A filter status code that is not 0, 1 or 2.
+    #[error("{0} is not a filter status code (0 initial, 1 running, 2 failed)")]
+    StatusCode(i32),
 }
 
 /// The simulation behind an instance.
@@ -61,6 +71,8 @@ pub enum Engine {
         /// The scenario's `timing.duration_s`.
         duration_s: f64,
     },
+    /// Guidance alone: the onboard view and `[guidance]` only.
+    Guidance(Box<GuidanceEngine>),
 }
 
 impl Engine {
@@ -73,6 +85,8 @@ impl Engine {
             Engine::Filter { nav, .. } => {
                 nav.onboard().channels.iter().map(|c| c.channel).collect()
             }
+            // Its accelerometer inputs are read by key, not through an epoch's channel list.
+            Engine::Guidance(_) => Vec::new(),
         }
     }
 
@@ -80,7 +94,7 @@ impl Engine {
         match self {
             Engine::Combined(c) => Some(c.truth()),
             Engine::Truth(t) => Some(t),
-            Engine::Filter { .. } => None,
+            Engine::Filter { .. } | Engine::Guidance(_) => None,
         }
     }
 
@@ -88,7 +102,7 @@ impl Engine {
         match self {
             Engine::Combined(c) => Some(c.nav()),
             Engine::Filter { nav, .. } => Some(nav),
-            Engine::Truth(_) => None,
+            Engine::Truth(_) | Engine::Guidance(_) => None,
         }
     }
 
@@ -98,6 +112,7 @@ impl Engine {
             Engine::Combined(c) => c.time(),
             Engine::Truth(t) => t.time(),
             Engine::Filter { nav, .. } => nav.time(),
+            Engine::Guidance(g) => g.time(),
         }
     }
 }
@@ -146,6 +161,7 @@ impl Instance {
                 }
             }
             Model::Truth => Engine::Truth(Box::new(TruthSensors::new(scenario, seed, dispersed))),
+            Model::Guidance => Engine::Guidance(Box::new(GuidanceEngine::new(&scenario)?)),
         })
     }
 
@@ -246,11 +262,22 @@ impl Instance {
             .as_ref()
             .and_then(|e| e.nav())
             .map(|n| n.status().code());
+        let guidance_inputs = self.guidance_inputs();
         let engine = self.engine.as_mut().ok_or(InstanceError::NoEngine)?;
         let report = match engine {
             Engine::Combined(c) => Self::step_combined(c, t, h, bank, &avail),
             Engine::Truth(ts) => ts.do_step(t, h, bank, &avail),
             Engine::Filter { nav, .. } => nav.do_step(t, h, bank, epoch.as_ref()),
+            Engine::Guidance(g) => {
+                let r = g.do_step(t, h, &guidance_inputs)?;
+                if r.cycles > 1 {
+                    self.report_multi_step(&format!(
+                        "step from {t} by {h} runs {} guidance cycles, all with the inputs set before the step (use a communication step no longer than the guidance period for an estimate per cycle)",
+                        r.cycles
+                    ));
+                }
+                return Ok(Status::Ok);
+            }
         }?;
         let mut status = Status::Ok;
         if self.model.has_truth() {
@@ -265,12 +292,7 @@ impl Instance {
                  longer than the fastest sensor period to pass every epoch)",
                 report.epochs
             );
-            if self.multi_epoch_reported {
-                self.info(&msg);
-            } else {
-                self.multi_epoch_reported = true;
-                self.warn(&msg);
-            }
+            self.report_multi_step(&msg);
         }
         if let Some(nav) = self.engine.as_ref().and_then(|e| e.nav())
             && let NavStatus::Failed { t, reason } = nav.status()
@@ -282,5 +304,41 @@ impl Instance {
             status = Status::Warning;
         }
         Ok(status)
+    }
+
+    /// Report a step that spans several epochs or guidance cycles: at warning level the first
+    /// time, under `logEvents` after that.
+    fn report_multi_step(&mut self, msg: &str) {
+        if self.multi_epoch_reported {
+            self.info(msg);
+        } else {
+            self.multi_epoch_reported = true;
+            self.warn(msg);
+        }
+    }
+
+    /// The guidance FMU's inputs.
+    fn guidance_inputs(&self) -> GuidanceInputs {
+        use crate::vars::Slot::Accel;
+        let valid = (0..3).all(|k| self.input_bool(Key::MeasValid(Accel(k)), false));
+        GuidanceInputs {
+            est_x: std::array::from_fn(|i| self.input_real(Key::EstX(i))),
+            est_t: self.input_real(Key::NavTime),
+            nav_status: match self.value_of(Key::NavStatusCode) {
+                Some(Value::Integer(c)) => *c,
+                _ => 0,
+            },
+            accel: valid
+                .then(|| std::array::from_fn(|k| self.input_real(Key::Meas(Accel(k as u8))))),
+        }
+    }
+
+    /// Refuse, before anything changes, a guidance step whose cycles would fly inputs guidance
+    /// cannot use ([`GuidanceEngine::check`]).
+    pub(super) fn check_guidance_step(&self, t: f64, h: f64) -> Result<(), InstanceError> {
+        if let Some(Engine::Guidance(g)) = &self.engine {
+            g.check(t, h, &self.guidance_inputs())?;
+        }
+        Ok(())
     }
 }

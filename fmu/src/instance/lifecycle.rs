@@ -185,6 +185,11 @@ impl Instance {
                 "fmi2DoStep: refused, the instance is unchanged: {e}"
             ));
         }
+        if let Err(e) = self.check_guidance_step(t, h) {
+            return self.error(&format!(
+                "fmi2DoStep: refused, the instance is unchanged: {e}"
+            ));
+        }
         let inputs = self.step_inputs();
         match self.step_engine(t, h) {
             Ok(status) => {

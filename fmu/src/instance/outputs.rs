@@ -108,6 +108,23 @@ impl Instance {
                 _ => {}
             }
         }
+        if let Engine::Guidance(g) = engine {
+            match key {
+                Key::GuidanceBank => return real(g.bank()),
+                Key::GuidanceBankRate => return real(g.bank_rate()),
+                Key::GuidanceCommand => return real(g.command()),
+                Key::GuidanceTime => return real(g.last_cycle_time()),
+                Key::GuidanceCycles => {
+                    return Value::Integer(i32::try_from(g.cycles()).unwrap_or(i32::MAX));
+                }
+                Key::SensedDrag => return real(g.drag()),
+                Key::RangeToGo => return real(g.range().0),
+                Key::Crossrange => return real(g.range().1),
+                Key::DeployTrigger => return real(g.trigger_value()),
+                Key::Deployed => return Value::Boolean(g.deployed()),
+                _ => {}
+            }
+        }
         if let Engine::Combined(c) = engine {
             let j = c.judgement();
             let n = j.err.len();
@@ -156,6 +173,11 @@ pub(super) fn validate(key: Key, v: &Value) -> Result<(), InstanceError> {
             }))
         }
         (Key::Seed, Value::Integer(s)) if *s < 0 => Err(InstanceError::NegativeSeed(*s)),
+        // Inputs of the guidance FMU (outputs, never set, in the other models).
+        (Key::EstSigma(_), Value::Real(x)) if *x < 0.0 => Err(InstanceError::NegativeSigma(*x)),
+        (Key::NavStatusCode, Value::Integer(c)) if !(0..=2).contains(c) => {
+            Err(InstanceError::StatusCode(*c))
+        }
         (Key::Filter, Value::String(s)) => Ok(FilterKind::parse(s).map(|_| ())?),
         (Key::Scenario, Value::String(s)) if s.trim().is_empty() => {
             Err(InstanceError::EmptyScenario)

@@ -14,7 +14,7 @@
 //!   dimensions refer to `n_state_slots`. `est_x[i]` and `est_sigma[i]` are bit for bit the scalar
 //!   outputs of slot i; slots past the filter's dimension read 0, as the scalars do.
 //!
-//! Models without a filter (`MarsEntryTruth`) have only `time`.
+//! Models without a filter (`MarsEntryTruth`, `MarsEntryGuidance`) have only `time`.
 
 use super::{Key, ModelSpec};
 
@@ -65,8 +65,12 @@ impl Var3 {
     }
 }
 
-/// The number of filter-state slots of `spec` (0 for a model without a filter).
+/// The number of filter-state slots of `spec` (0 for a model without a filter; the guidance
+/// FMU's `est_x_*` are inputs, not a filter's state).
 pub fn state_slots(spec: &ModelSpec) -> usize {
+    if !spec.model().has_filter() {
+        return 0;
+    }
     spec.vars()
         .iter()
         .filter(|v| matches!(v.key, Key::EstX(_)))

@@ -15,11 +15,15 @@ pub mod fmi3;
 mod model;
 mod slot;
 mod table;
+mod table_guidance;
 mod table_outputs;
 
-pub use model::{Model, ModelSpec, SpecError, Specific, StateVar, specific_identifier};
+pub use model::{
+    Model, ModelSpec, SpecError, Specific, StateVar, guided_scenario, specific_identifier,
+};
 pub use slot::{Key, Slot};
 pub use table::variables;
+pub use table_guidance::{GUIDED_SCENARIO_FILE, guided_scenario_toml};
 
 /// Filter state slots of the generic FMUs: every supported filter dimension.
 pub const MAX_STATES: usize = entrynav::state_dim::MAX_STATE_DIM;
@@ -234,7 +238,7 @@ impl Var {
 pub type UnitDef = (&'static str, [i32; 4], Option<(&'static str, f64)>);
 
 /// The units the variables use ("1": dimensionless).
-pub const UNITS: [UnitDef; 10] = [
+pub const UNITS: [UnitDef; 11] = [
     ("m", [0, 1, 0, 0], None),
     ("rad", [0, 0, 0, 1], Some(("deg", 57.29577951308232))),
     ("m/s", [0, 1, -1, 0], None),
@@ -245,6 +249,7 @@ pub const UNITS: [UnitDef; 10] = [
     ("W/m2", [1, 0, -3, 0], None),
     ("m2/kg", [-1, 2, 0, 0], None),
     ("1", [0, 0, 0, 0], None),
+    ("rad/s", [0, 0, -1, 1], Some(("deg/s", 57.29577951308232))),
 ];
 
 /// Default parameter values.
@@ -309,6 +314,7 @@ pub fn guid_of(model: Model) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use entrynav::scenario::ScenarioConfig;
     use std::collections::HashSet;
 
     #[test]
@@ -331,5 +337,24 @@ mod tests {
             assert_eq!(ModelSpec::generic(m).guid(), guid_of(m));
         }
         assert_eq!(Model::from_guid("{nope}"), None);
+    }
+
+    #[test]
+    fn the_guided_scenario_builds_with_guidance_and_an_accelerometer_triad() {
+        let s = guided_scenario().unwrap();
+        assert_eq!(s.config.name, "msl-guided");
+        assert!(s.build_guidance().unwrap().is_ok());
+        let (_, stop, step) = ModelSpec::generic(Model::Guidance).default_experiment();
+        let period = s.config.guidance.as_ref().unwrap().period_s();
+        assert_eq!((stop, step), (s.config.timing.duration_s, period));
+        // Without the section (and with msl-airdata's name, description and constant bank) it
+        // is msl-airdata again.
+        let base = ScenarioConfig::builtin("msl-airdata").unwrap();
+        let mut cfg = s.config.clone();
+        cfg.guidance = None;
+        cfg.name = base.name.clone();
+        cfg.description = base.description.clone();
+        cfg.truth.bank_deg = base.truth.bank_deg;
+        assert_eq!(cfg.to_toml_string(), base.to_toml_string());
     }
 }

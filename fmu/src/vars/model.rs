@@ -19,11 +19,19 @@ pub enum Model {
     Filter,
     /// Truth dynamics and sensors, producing the measurements (`MarsEntryTruth`).
     Truth,
+    /// Entry guidance alone, fed with the navigation estimate and the accelerometer triad
+    /// (`MarsEntryGuidance`): its output is the bank command.
+    Guidance,
 }
 
 impl Model {
     /// All models.
-    pub const ALL: [Model; 3] = [Model::Combined, Model::Filter, Model::Truth];
+    pub const ALL: [Model; 4] = [
+        Model::Combined,
+        Model::Filter,
+        Model::Truth,
+        Model::Guidance,
+    ];
 
     /// FMI model identifier (the shared library's file stem inside the `.fmu`).
     pub fn identifier(self) -> &'static str {
@@ -31,6 +39,7 @@ impl Model {
             Model::Combined => "MarsEntryNav",
             Model::Filter => "MarsEntryNavFilter",
             Model::Truth => "MarsEntryTruth",
+            Model::Guidance => "MarsEntryGuidance",
         }
     }
 
@@ -46,17 +55,20 @@ impl Model {
             Model::Truth => {
                 "Mars entry truth dynamics and sensors (entrynav): true trajectory and noisy measurements with validity flags"
             }
+            Model::Guidance => {
+                "Mars entry guidance (entrynav, the scenario's [guidance]): bank command through the rate and acceleration limits, from the navigation estimate and the accelerometer triad"
+            }
         }
     }
 
     /// Whether this model runs the truth.
     pub fn has_truth(self) -> bool {
-        self != Model::Filter
+        matches!(self, Model::Combined | Model::Truth)
     }
 
     /// Whether this model runs a filter.
     pub fn has_filter(self) -> bool {
-        self != Model::Truth
+        matches!(self, Model::Combined | Model::Filter)
     }
 
     /// The generic model whose GUID is `guid`.
@@ -320,8 +332,20 @@ impl ModelSpec {
     }
 
     /// Start time, stop time and step size of the default experiment: the scenario's duration
-    /// (the default scenario's for a generic model) with one step per fastest sensor sample.
+    /// (the default scenario's for a generic model) with one step per fastest sensor sample; for
+    /// the guidance FMU, the guided scenario's duration with one step per guidance period (one
+    /// cycle per step, each with the estimate given at its start).
     pub fn default_experiment(&self) -> (f64, f64, f64) {
+        if self.model == Model::Guidance {
+            // The guided scenario builds with [guidance] (tested), so the fallback is never taken.
+            return guided_scenario()
+                .ok()
+                .and_then(|s| {
+                    let g = s.config.guidance.as_ref()?;
+                    Some((0.0, s.config.timing.duration_s, g.period_s()))
+                })
+                .unwrap_or((0.0, 1.0, 1.0));
+        }
         let timing = |s: &Scenario| {
             let step = s
                 .channels
@@ -340,4 +364,11 @@ impl ModelSpec {
                 .unwrap_or((0.0, 1.0, 1.0)),
         }
     }
+}
+
+/// The scenario of [`super::GUIDED_SCENARIO_FILE`] (it refers to no other file).
+pub fn guided_scenario() -> Result<Scenario, entrynav::scenario::ScenarioError> {
+    let cfg =
+        ScenarioConfig::from_toml_str(&super::guided_scenario_toml(), super::GUIDED_SCENARIO_FILE)?;
+    Scenario::build(cfg, &entrynav::files::no_files)
 }

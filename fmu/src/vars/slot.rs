@@ -168,4 +168,24 @@ pub enum Key {
     NeesDof,
     /// True density at the estimate's epoch.
     NavTruthDensity,
+    /// Guidance: the actuator's bank (the bank to fly).
+    GuidanceBank,
+    /// Guidance: the actuator's bank rate.
+    GuidanceBankRate,
+    /// Guidance: the latest command, before the limits.
+    GuidanceCommand,
+    /// Guidance: time of the latest cycle.
+    GuidanceTime,
+    /// Guidance: cycles run.
+    GuidanceCycles,
+    /// Guidance: sensed drag of the latest cycle.
+    SensedDrag,
+    /// Guidance: range to go to the target.
+    RangeToGo,
+    /// Guidance: crossrange of the target.
+    Crossrange,
+    /// Guidance: deployment trigger function on the estimate.
+    DeployTrigger,
+    /// Guidance: the trigger was reached.
+    Deployed,
 }

@@ -13,7 +13,7 @@ pub(super) const SPH: [(&str, &str, &str); 6] = [
     ("heading", "rad", "heading (north-clockwise)"),
 ];
 
-pub(super) struct Builder {
+pub(crate) struct Builder {
     pub(super) vars: Vec<Var>,
 }
 
@@ -36,7 +36,7 @@ fn real_variability(key: Key) -> Variability {
 
 impl Builder {
     #[allow(clippy::too_many_arguments)]
-    fn add(
+    pub(super) fn add(
         &mut self,
         name: impl Into<String>,
         ty: Type,
@@ -101,6 +101,22 @@ pub(super) fn build(model: Model, specific: Option<&Specific>) -> Vec<Var> {
     use Causality::*;
     use Type::*;
     let mut b = Builder { vars: Vec::new() };
+    if model == Model::Guidance {
+        b.add(
+            "scenario",
+            String,
+            Parameter,
+            None,
+            Some(Value::String(GUIDED_SCENARIO_FILE.into())),
+            format!(
+                "Scenario with a [guidance] section (refused without one): a TOML file in the FMU's resources folder (default {GUIDED_SCENARIO_FILE}, the built-in msl-guided: msl-airdata with Apollo guidance) or a built-in name ({}; msl-guided and four-beacon-fusion-guided have [guidance]); a file elsewhere only with allow_external_files = true",
+                entrynav::scenario::BUILTIN_NAMES.join(", ")
+            ),
+            Key::Scenario,
+        );
+        super::table_guidance::guidance_vars(&mut b);
+        return b.vars;
+    }
     if specific.is_none() {
         b.add(
             "scenario",
@@ -178,7 +194,9 @@ pub(super) fn build(model: Model, specific: Option<&Specific>) -> Vec<Var> {
             Model::Filter => {
                 "Bank-angle command the vehicle flies, held over each communication step: used by the filter's onboard dynamics and measurement models"
             }
-            Model::Truth => "Bank-angle command, held over each communication step",
+            Model::Truth | Model::Guidance => {
+                "Bank-angle command, held over each communication step"
+            }
         },
         Key::Bank,
     );

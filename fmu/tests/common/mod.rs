@@ -128,6 +128,23 @@ impl Inst {
         unsafe { fmi2SetReal(self.c, &self.vr(key), 1, &x) }
     }
 
+    pub fn set_int(&self, key: Key, x: i32) -> i32 {
+        // SAFETY: our instance; one reference and one value.
+        unsafe { fmi2SetInteger(self.c, &self.vr(key), 1, &x) }
+    }
+
+    pub fn boolean(&self, key: Key) -> bool {
+        let mut x = -1;
+        // SAFETY: our instance; one reference and room for one value.
+        assert_eq!(
+            unsafe { fmi2GetBoolean(self.c, &self.vr(key), 1, &mut x) },
+            0,
+            "{}",
+            self.last()
+        );
+        x != 0
+    }
+
     pub fn real(&self, key: Key) -> f64 {
         let mut x = f64::NAN;
         // SAFETY: our instance; one reference and room for one value.

@@ -1,0 +1,182 @@
+//! The variables of `MarsEntryGuidance` (see [`super::table`]) and the guided scenario file every
+//! generic FMU ships in `resources/`.
+//!
+//! Inputs carry the names of the outputs they connect to, so a system connects them 1:1: the
+//! navigation FMUs' `est_x_1..6`, `est_sigma_1..6`, `nav_time`, `nav_status_code`, and the truth
+//! FMU's accelerometer triad `meas_accel_{x,y,z}` with its `_valid` flags (the sensed drag).
+
+use super::table::Builder;
+use super::*;
+
+/// The scenario file (in every generic FMU's `resources/`, as every built-in is) that the
+/// guidance FMU's `scenario` parameter names by default: the built-in `msl-guided` (`msl-airdata`
+/// with Apollo final-phase guidance on the 60° reference, deployment at 450 m/s).
+pub const GUIDED_SCENARIO_FILE: &str = "msl-guided.toml";
+
+/// The text of [`GUIDED_SCENARIO_FILE`]: the built-in `msl-guided`.
+pub fn guided_scenario_toml() -> String {
+    entrynav::scenario::builtin_toml("msl-guided")
+        .unwrap_or_default()
+        .to_string()
+}
+
+/// The guidance FMU's variables after its `scenario` parameter.
+pub(super) fn guidance_vars(b: &mut Builder) {
+    use Causality::*;
+    use Type::*;
+    b.add(
+        "allow_external_files",
+        Boolean,
+        Parameter,
+        None,
+        Some(Value::Boolean(false)),
+        "Let scenario name a file outside the FMU's resources folder (an absolute path or one with ..); off by default, so a parameter cannot make the FMU read host files",
+        Key::AllowExternalFiles,
+    );
+    b.add(
+        "nav_time",
+        Real,
+        Input,
+        Some("s"),
+        Some(Value::Real(0.0)),
+        "Epoch of the navigation estimate (connect the navigation FMU's nav_time)",
+        Key::NavTime,
+    );
+    b.add(
+        "nav_status_code",
+        Integer,
+        Input,
+        None,
+        Some(Value::Integer(0)),
+        "Navigation filter status, 0 initial, 1 running, 2 failed (connect nav_status_code); guidance refuses to fly a failed filter's estimate",
+        Key::NavStatusCode,
+    );
+    for (i, (n, _, _)) in super::table::SPH.iter().enumerate() {
+        b.add(
+            format!("est_x_{}", i + 1),
+            Real,
+            Input,
+            None,
+            Some(Value::Real(0.0)),
+            format!(
+                "Navigation estimate, kinematic filter state {} (connect est_x_{}): spherical {n} when the scenario's filter model is spherical, else inertial Cartesian x y z vx vy vz",
+                i + 1,
+                i + 1
+            ),
+            Key::EstX(i),
+        );
+    }
+    for i in 0..6 {
+        b.add(
+            format!("est_sigma_{}", i + 1),
+            Real,
+            Input,
+            None,
+            Some(Value::Real(0.0)),
+            format!(
+                "1-sigma of kinematic filter state {} (connect est_sigma_{}); must be >= 0; not used by the guidance laws",
+                i + 1,
+                i + 1
+            ),
+            Key::EstSigma(i),
+        );
+    }
+    for k in 0..3u8 {
+        let s = Slot::Accel(k);
+        b.add(
+            s.name(),
+            Real,
+            Input,
+            Some(s.unit()),
+            Some(Value::Real(0.0)),
+            format!(
+                "Measured {} of the last measurement epoch (connect the truth FMU's {}): the sensed drag",
+                s.what(),
+                s.name()
+            ),
+            Key::Meas(s),
+        );
+        b.add(
+            format!("{}_valid", s.name()),
+            Boolean,
+            Input,
+            None,
+            Some(Value::Boolean(false)),
+            format!(
+                "{} is valid (the sensed drag is updated only when all three axes are)",
+                s.name()
+            ),
+            Key::MeasValid(s),
+        );
+    }
+    b.out(
+        "bank_command",
+        Real,
+        Some("rad"),
+        "Bank angle to fly, after the rate and acceleration limits (connect to the truth FMU's bank_angle): the actuator's bank at this communication point",
+        Key::GuidanceBank,
+    );
+    b.out(
+        "bank_rate",
+        Real,
+        Some("rad/s"),
+        "Bank rate of the actuator at this communication point",
+        Key::GuidanceBankRate,
+    );
+    b.out(
+        "guidance_command",
+        Real,
+        Some("rad"),
+        "Command of the latest guidance cycle, before the rate and acceleration limits (the reference bank before the first cycle)",
+        Key::GuidanceCommand,
+    );
+    b.out(
+        "guidance_time",
+        Real,
+        Some("s"),
+        "Time of the latest guidance cycle (0 before the first)",
+        Key::GuidanceTime,
+    );
+    b.out(
+        "guidance_cycles",
+        Integer,
+        None,
+        "Guidance cycles run",
+        Key::GuidanceCycles,
+    );
+    b.out(
+        "sensed_drag",
+        Real,
+        Some("m/s2"),
+        "Sensed drag of the last valid accelerometer triad (read at the start of each step), rotated to the wind frame; 0 before the first",
+        Key::SensedDrag,
+    );
+    b.out(
+        "range_to_go",
+        Real,
+        Some("m"),
+        "Great-circle range from the navigated position to the target at the latest cycle",
+        Key::RangeToGo,
+    );
+    b.out(
+        "crossrange",
+        Real,
+        Some("m"),
+        "Crossrange of the target from the navigated velocity's great circle at the latest cycle (positive: to the right)",
+        Key::Crossrange,
+    );
+    b.out(
+        "deploy_trigger",
+        Real,
+        None,
+        "Deployment trigger function on the navigation estimate at the latest cycle (speed minus trigger speed [m/s], or dynamic pressure minus trigger pressure [Pa] in the onboard atmosphere): positive before deployment",
+        Key::DeployTrigger,
+    );
+    b.out(
+        "deployed",
+        Boolean,
+        None,
+        "The trigger was reached on the navigation estimate (after having been positive): guidance stops cycling and the actuator holds the last command",
+        Key::Deployed,
+    );
+}

@@ -336,17 +336,21 @@ mod tests {
     use crate::state_dim::with_state_dim;
 
     /// One local filter over every channel: the fusion's LinCov (stacked moments, the CI of one
-    /// estimate, for `dcifaif` the batch update and the feedback) is the EKF's, epoch by epoch.
-    /// msl-pressure has a consider state, a relative-noise channel and θ; orbiters-3 a start
-    /// drawn around the truth.
+    /// estimate, for `dcifaif` the feedback with the exact covariance's batch update or the
+    /// paper's scalar updates) is the EKF's, epoch by epoch. msl-pressure has a consider state, a
+    /// relative-noise channel and θ; orbiters-3 a start drawn around the truth.
     #[test]
     fn one_local_filter_is_the_ekf() {
-        for (name, feedback) in [
-            ("msl-pressure", false),
-            ("orbiters-3", false),
-            ("orbiters-3", true),
+        let (exact, paper) = (FusionCovariance::Exact, FusionCovariance::Paper);
+        for (name, feedback, covariance) in [
+            ("msl-pressure", false, exact),
+            ("msl-pressure", true, paper),
+            ("orbiters-3", false, exact),
+            ("orbiters-3", true, exact),
+            ("orbiters-3", true, paper),
         ] {
-            let cfg = ScenarioConfig::builtin(name).unwrap();
+            let mut cfg = ScenarioConfig::builtin(name).unwrap();
+            cfg.filter.fusion_covariance = covariance;
             let s = Scenario::build(cfg, &crate::files::no_files).unwrap();
             let onboard = s.onboard.for_filter(FilterKind::Ekf);
             let n = onboard.state_dim();
@@ -366,7 +370,14 @@ mod tests {
             };
             let one = with_state_dim(n, one).unwrap().unwrap();
             assert_eq!(one.len(), ekf.len());
-            let close = |a: f64, b: f64| (a - b).abs() <= 1e-6 * a.abs().max(b.abs()) + 1e-300;
+            // The paper's feedback re-inverts P every epoch (P_CI/ω of (ωP⁻¹)⁻¹), a round-off
+            // that accumulates to ~1e-6 over orbiters-3's 240 epochs.
+            let tol = if covariance == paper && feedback {
+                1e-5
+            } else {
+                1e-6
+            };
+            let close = |a: f64, b: f64| (a - b).abs() <= tol * a.abs().max(b.abs()) + 1e-300;
             for (a, b) in one.iter().zip(&ekf) {
                 let pairs = [
                     (a.pos_m, b.pos_m),
@@ -382,7 +393,7 @@ mod tests {
                 for (x, y) in pairs.iter().copied().chain(states.map(|(x, y)| (*x, *y))) {
                     assert!(
                         close(x, y) || (x.is_nan() && y.is_nan()),
-                        "{name} feedback {feedback} t = {}: {x} vs {y}",
+                        "{name} feedback {feedback} {covariance:?} t = {}: {x} vs {y}",
                         a.t
                     );
                 }

@@ -278,10 +278,6 @@ impl DimVisitor for FusionRecursion<'_> {
             .map_err(failed)?;
         let mut ps = vec![local.p0; members];
         let mut joint = Joint::replicated(&c, &chh, &m, members);
-        let no_input = (
-            DMatrix::zeros(N * members, 0),
-            DMatrix::zeros(0, truth.params.len()),
-        );
         let mut out = Vec::with_capacity(truth.epochs.len());
         for ep in &truth.epochs {
             // Time update of every local from the nominal with the filter's own model.
@@ -295,13 +291,7 @@ impl DimVisitor for FusionRecursion<'_> {
             }
             xbar = fill(&ep.x, &x_minus);
             let drift = estimation_error(sc, &x_minus, &xbar);
-            joint.apply(
-                &block_diagonal(&vec![phi; members]),
-                &no_input.0,
-                &no_input.1,
-                &[],
-                &stack(&vec![drift; members]),
-            );
+            joint.propagate(&phi, &drift);
             let beacons = onboard.beacon_states(ep.t);
             let slots: Vec<usize> = ep.meas.iter().map(|z| z.slot).collect();
             let items = navs[0].items_at(&xbar, &ep.epoch, &beacons, &slots);

@@ -65,6 +65,21 @@ impl Joint {
         SVector::from_fn(|r, _| v[r])
     }
 
+    /// Time update of every block with the same transition and drift: δx̂_i ← Φ δx̂_i + d.
+    pub(super) fn propagate<const N: usize>(
+        &mut self,
+        phi: &SMatrix<f64, N, N>,
+        drift: &SVector<f64, N>,
+    ) {
+        let members = self.m.len() / N;
+        let none = (
+            DMatrix::zeros(N * members, 0),
+            DMatrix::zeros(0, self.xt.ncols()),
+        );
+        let a = block_diagonal(&vec![*phi; members]);
+        self.apply(&a, &none.0, &none.1, &[], &stack(&vec![*drift; members]));
+    }
+
     /// X ← A X + G (Z θ + v) + b with v's variances `r_t` (`g` is MN × m, `z` m × p).
     pub(super) fn apply(
         &mut self,

@@ -27,7 +27,7 @@ pub struct LinCovArgs {
     /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable).
     #[arg(long = "set", value_name = "PATH=VALUE")]
     sets: Vec<String>,
-    /// Comma-separated filters to analyse (LinCov supports: ekf, the consider EKF included, and ukf as its EKF equivalent).
+    /// Comma-separated filters to analyse (LinCov supports: ekf, the consider EKF included, ukf as its EKF equivalent, and the fusion filters ci and dcifaif).
     #[arg(long, default_value = "ekf")]
     filter: String,
     /// Write the result as JSON (`-`: to standard output, and no table).
@@ -126,7 +126,9 @@ fn parse_filters(list: &str, scenario: &Scenario) -> Result<Vec<FilterKind>> {
     let kinds = FilterKind::parse_list(list, &scenario.onboard)
         .with_context(|| format!("--filter '{list}'"))?;
     if kinds.is_empty() {
-        bail!("--filter '{list}': name at least one filter (LinCov supports: ekf, ukf)");
+        bail!(
+            "--filter '{list}': name at least one filter (LinCov supports: ekf, ukf, ci, dcifaif)"
+        );
     }
     Ok(kinds)
 }

@@ -156,20 +156,27 @@ fn ukf_is_analysed_as_its_ekf_equivalent() {
 #[test]
 fn filters_it_cannot_analyse_are_refused_with_the_reason() {
     let s = build(builtin("four-beacon-fusion"));
-    for kind in [FilterKind::Mmae, FilterKind::Dcifaif, FilterKind::Ci] {
+    for kind in [FilterKind::Mmae, FilterKind::MmaeMoe, FilterKind::UkfCm] {
         let e = entry_lincov(&s, kind).unwrap_err();
         assert!(
             matches!(&e, EntryLinCovError::UnsupportedFilter { filter, .. } if filter == kind.name()),
             "{e}"
         );
-        assert!(e.to_string().contains("supported filters: ekf"), "{e}");
+        assert!(
+            e.to_string()
+                .contains("supported filters: ekf, ukf, ci, dcifaif"),
+            "{e}"
+        );
     }
+    // The gate's exclusions and the faults are refused for the fusion filters too.
     let gated = build(builtin("four-beacon-fusion-faults"));
-    let e = entry_lincov(&gated, FilterKind::Ekf).unwrap_err();
-    assert!(e.to_string().contains("filter.gating.enabled"), "{e}");
+    for kind in [FilterKind::Ekf, FilterKind::Ci, FilterKind::Dcifaif] {
+        let e = entry_lincov(&gated, kind).unwrap_err();
+        assert!(e.to_string().contains("filter.gating.enabled"), "{e}");
+    }
     let mut cfg = builtin("four-beacon-fusion-faults");
     cfg.filter.gating = None;
-    let e = entry_lincov(&build(cfg), FilterKind::Ekf).unwrap_err();
+    let e = entry_lincov(&build(cfg), FilterKind::Dcifaif).unwrap_err();
     assert!(e.to_string().contains("faults"), "{e}");
 }
 

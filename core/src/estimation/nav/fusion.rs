@@ -44,6 +44,42 @@ pub struct FusionNav<const N: usize> {
     excluded: Vec<usize>,
 }
 
+/// The channel slots of each local filter: the non-radio channels (the IMU) plus the radio
+/// channels of one beacon, one local per beacon with radio channels (seed 000 §3.4).
+pub fn local_masks(onboard: &Onboard) -> Vec<Vec<usize>> {
+    let of_beacon = |b: Option<usize>| -> Vec<usize> {
+        (0..onboard.channels.len())
+            .filter(|&i| onboard.channels[i].channel.beacon() == b)
+            .collect()
+    };
+    let common = of_beacon(None);
+    onboard
+        .radio_beacons()
+        .into_iter()
+        .map(|b| [common.clone(), of_beacon(Some(b))].concat())
+        .collect()
+}
+
+/// The CI weights of the fusion: determinant-optimal without feedback (`ci`), the fast ∞-norm
+/// rule of seed 000 eq. 21 with it (`dcifaif`).
+pub fn weighting(with_feedback: bool) -> CiWeighting {
+    if with_feedback {
+        CiWeighting::FastInfNorm
+    } else {
+        CiWeighting::OptimalDet
+    }
+}
+
+/// The factor on P0 of every local filter's start: `n_locals` for the paper's feedback (the
+/// equal-weight feedback of (x̂0, P0), eq. 22), 1 otherwise.
+pub fn local_start_scale(n_locals: usize, with_feedback: bool, exact: bool) -> f64 {
+    if with_feedback && !exact {
+        n_locals as f64
+    } else {
+        1.0
+    }
+}
+
 impl<const N: usize> FusionNav<N> {
     /// Local filters over the non-radio channels plus the radio channels of each beacon.
     pub fn new(
@@ -51,30 +87,12 @@ impl<const N: usize> FusionNav<N> {
         start: &FilterStart<N>,
         with_feedback: bool,
     ) -> Result<Self, EstimationError> {
-        let common: Vec<usize> = onboard
-            .channels
-            .iter()
-            .enumerate()
-            .filter(|(_, c)| c.channel.beacon().is_none())
-            .map(|(i, _)| i)
-            .collect();
-        let mut locals = Vec::new();
-        let radio = onboard.radio_beacons();
+        let masks = local_masks(onboard);
         let exact = with_feedback && onboard.tuning.fusion_covariance == FusionCovariance::Exact;
         let mut local_start = start.clone();
-        if with_feedback && !exact {
-            local_start.p0 = start.p0 * radio.len() as f64;
-        }
-        for b in radio {
-            let mut mask = common.clone();
-            mask.extend(
-                onboard
-                    .channels
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, c)| c.channel.beacon() == Some(b))
-                    .map(|(i, _)| i),
-            );
+        local_start.p0 = start.p0 * local_start_scale(masks.len(), with_feedback, exact);
+        let mut locals = Vec::new();
+        for mask in masks {
             locals.push(EkfNav::new(onboard, &local_start, Some(mask), 1.0)?);
         }
         if locals.len() < 2 {
@@ -82,11 +100,7 @@ impl<const N: usize> FusionNav<N> {
                 "CI fusion needs at least two beacons with radio channels".into(),
             ));
         }
-        let method = if with_feedback {
-            CiWeighting::FastInfNorm
-        } else {
-            CiWeighting::OptimalDet
-        };
+        let method = weighting(with_feedback);
         Ok(FusionNav {
             ens: EkfEnsemble::new(onboard, locals, (start.x0, start.p0)),
             method,

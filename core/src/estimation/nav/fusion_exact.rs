@@ -29,20 +29,20 @@
 //! paper's bound-and-divide scheme stays available as `fusion_covariance = "paper"`.
 
 use crate::estimation::EstimationError;
-use crate::estimation::ci::{CiWeighting, covariance_intersection};
+use crate::estimation::ci::{CiResult, CiWeighting, covariance_intersection};
 use crate::estimation::ekf::LinearizedMeasurement;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
 /// One local filter's update of the common prior.
-pub(super) struct LocalUpdate<const N: usize> {
+pub(crate) struct LocalUpdate<const N: usize> {
     /// Posterior estimate.
     pub x: SVector<f64, N>,
     /// Posterior covariance (Joseph form).
     pub p: SMatrix<f64, N, N>,
     /// A = I − K H.
-    a: SMatrix<f64, N, N>,
+    pub a: SMatrix<f64, N, N>,
     /// Per channel used: slot, gain column and noise variance.
-    gains: Vec<(usize, SVector<f64, N>, f64)>,
+    pub gains: Vec<(usize, SVector<f64, N>, f64)>,
     /// Per channel: slot and the marginal ν²/S of the batch update.
     pub nis_terms: Vec<(usize, f64)>,
     /// νᵀS⁻¹ν of the batch update.
@@ -53,7 +53,7 @@ pub(super) struct LocalUpdate<const N: usize> {
 /// linearised at `x_lin` (the prior itself, or an iterated-EKF iterate: ν = z − h(x_lin) −
 /// H (x − x_lin)); the last `n_consider` states get zero gain (Schmidt). `None` when the local has
 /// nothing to measure this epoch.
-pub(super) fn local_update<const N: usize>(
+pub(crate) fn local_update<const N: usize>(
     x: &SVector<f64, N>,
     p: &SMatrix<f64, N, N>,
     x_lin: &SVector<f64, N>,
@@ -121,7 +121,7 @@ pub(super) fn local_update<const N: usize>(
 }
 
 /// A fused estimate, its covariance and the fusion weights.
-pub(super) type Fused<const N: usize> = (SVector<f64, N>, SMatrix<f64, N, N>, Vec<f64>);
+pub(crate) type Fused<const N: usize> = (SVector<f64, N>, SMatrix<f64, N, N>, Vec<f64>);
 
 /// The fused estimate with fast CI weights and its exact covariance, from the local updates of
 /// the common prior covariance `p`: `(x̂, P, ω)`.
@@ -129,13 +129,19 @@ pub(super) fn fuse_exact<const N: usize>(
     p: &SMatrix<f64, N, N>,
     locals: &[LocalUpdate<N>],
 ) -> Result<Fused<N>, EstimationError> {
-    let estimates: Vec<_> = locals.iter().map(|l| (l.x, l.p)).collect();
-    let ci = covariance_intersection(&estimates, CiWeighting::FastInfNorm)?;
-    // W_i = ω_i P_CI P_i⁻¹, from scaled Cholesky solves.
-    let mut w = Vec::with_capacity(locals.len());
-    for (l, &omega) in locals.iter().zip(&ci.weights) {
-        let d = SVector::<f64, N>::from_fn(|i, _| l.p[(i, i)].sqrt());
-        let c = SMatrix::<f64, N, N>::from_fn(|i, j| l.p[(i, j)] / (d[i] * d[j]));
+    fuse_exact_with_gains(p, locals).map(|(fused, _)| fused)
+}
+
+/// The fused estimate's gains W_i = ω_i P_CI P_i⁻¹ on the local estimates of a CI fusion
+/// (x̂_CI = Σ W_i x̂_i, seed 000 eq. 19, and Σ W_i = I), from scaled Cholesky solves.
+pub(crate) fn ci_gains<const N: usize>(
+    ci: &CiResult<N>,
+    covariances: &[SMatrix<f64, N, N>],
+) -> Result<Vec<SMatrix<f64, N, N>>, EstimationError> {
+    let mut w = Vec::with_capacity(covariances.len());
+    for (p, &omega) in covariances.iter().zip(&ci.weights) {
+        let d = SVector::<f64, N>::from_fn(|i, _| p[(i, i)].sqrt());
+        let c = SMatrix::<f64, N, N>::from_fn(|i, j| p[(i, j)] / (d[i] * d[j]));
         let chol = c.cholesky().ok_or(EstimationError::NotPositiveDefinite {
             what: "a local filter's covariance".into(),
         })?;
@@ -143,6 +149,17 @@ pub(super) fn fuse_exact<const N: usize>(
         let inv_d = SMatrix::<f64, N, N>::from_diagonal(&d.map(|v| 1.0 / v));
         w.push(ci.p * inv_d * chol.inverse() * inv_d * omega);
     }
+    Ok(w)
+}
+
+/// [`fuse_exact`] with the gains W_i of the fused estimate on the local ones ([`ci_gains`]).
+pub(crate) fn fuse_exact_with_gains<const N: usize>(
+    p: &SMatrix<f64, N, N>,
+    locals: &[LocalUpdate<N>],
+) -> Result<(Fused<N>, Vec<SMatrix<f64, N, N>>), EstimationError> {
+    let estimates: Vec<_> = locals.iter().map(|l| (l.x, l.p)).collect();
+    let ci = covariance_intersection(&estimates, CiWeighting::FastInfNorm)?;
+    let w = ci_gains(&ci, &locals.iter().map(|l| l.p).collect::<Vec<_>>())?;
     // Σ_ij W_i C_ij W_jᵀ = B P Bᵀ + Σ_c r_c g_c g_cᵀ, with B = Σ_i W_i A_i and, per channel c,
     // g_c = Σ_{i uses c} W_i K_i,c: the double sum regrouped by the shared prior and by channel.
     let mut b = SMatrix::<f64, N, N>::zeros();
@@ -167,7 +184,7 @@ pub(super) fn fuse_exact<const N: usize>(
             what: "the fused covariance".into(),
         });
     }
-    Ok((ci.x, fused, ci.weights))
+    Ok(((ci.x, fused, ci.weights), w))
 }
 
 #[cfg(test)]

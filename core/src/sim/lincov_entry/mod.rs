@@ -44,6 +44,19 @@
 //! x̄: LinCov analyses both the same way. What the iterations buy (less linearisation error for
 //! large initial errors) is second order and is the gap between this and a Monte Carlo.
 //!
+//! # The fusion filters (`ci`, `dcifaif`)
+//!
+//! [`crate::estimation::nav::FusionNav`] runs one local EKF per beacon (the IMU plus that
+//! beacon's ranges) and fuses them by covariance intersection (seed 000 eq. 19–22). Each local
+//! is the EKF above along the nominal, with its own P and gains; the recursion keeps the joint
+//! moments of \[θ; δx̂_1 … δx̂_M\], whose cross-blocks are the locals' correlations through the
+//! common start, the shared IMU noise and θ. The CI weights come from the onboard covariances by
+//! the filter's own code, so along the nominal the fused deviation is the linear combination
+//! δx̂_CI = Σ W_i δx̂_i with W_i = ω_i P_CI P_i⁻¹ (Σ W_i = I); with information feedback
+//! (`dcifaif`) every local restarts from it, and with `fusion_covariance = "exact"` each local's
+//! update of the common prior is the filter's batch update. The NEES uses the fused covariance the
+//! filter reports (P_CI, or the exact covariance).
+//!
 //! # What it does not model
 //!
 //! Listed per run in [`EntryLinCov::notes`]: profile cycling of a table of stacked profiles, the
@@ -58,11 +71,14 @@
 //! gain depends on the measurements or on something beside their own P are refused
 //! ([`unsupported_reason`]), and so is an innovation gate or a scenario with sensor faults.
 
+mod fusion;
+mod joint;
 mod recursion;
 mod truth;
 
 use super::engine::SimError;
 use crate::estimation::nav::FilterKind;
+use crate::estimation::nav::fusion::local_masks;
 use crate::scenario::Scenario;
 use crate::state_dim::{UnsupportedDimension, with_state_dim};
 use thiserror::Error;
@@ -71,7 +87,9 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum EntryLinCovError {
     /// The filter's gain is not a function of its own covariance along the nominal.
-    #[error("LinCov cannot analyse filter '{filter}': {reason}; supported filters: ekf, ukf")]
+    #[error(
+        "LinCov cannot analyse filter '{filter}': {reason}; supported filters: ekf, ukf, ci, dcifaif"
+    )]
     UnsupportedFilter {
         /// Filter name.
         filter: String,
@@ -184,12 +202,7 @@ impl EntryLinCov {
 /// Why LinCov cannot analyse filter `kind` (`None`: it can).
 pub fn unsupported_reason(kind: FilterKind) -> Option<&'static str> {
     Some(match kind {
-        FilterKind::Ekf | FilterKind::Ukf => return None,
-        FilterKind::Ci | FilterKind::Dcifaif => {
-            "its covariance-intersection weights are an optimisation over the local covariances \
-             and its fused estimate is not the output of one Kalman gain; its LinCov is not \
-             implemented"
-        }
+        FilterKind::Ekf | FilterKind::Ukf | FilterKind::Ci | FilterKind::Dcifaif => return None,
         FilterKind::Mmae | FilterKind::MmaeMoe => {
             "its model probabilities depend on the measured innovations, so its gain is not \
              linear in the measurements"
@@ -272,14 +285,34 @@ pub fn entry_lincov(
             "a dispersed run ends before the nominal: epochs from t = {t} s are left out"
         ));
     }
-    let epochs = with_state_dim(
-        n,
-        recursion::Recursion {
-            scenario,
-            onboard: &onboard,
-            truth: &truth,
-        },
-    )??;
+    let epochs = match kind {
+        FilterKind::Ci | FilterKind::Dcifaif => {
+            notes.push(format!(
+                "{}: the fusion weights are those of the nominal's onboard covariances (each run's \
+                 differ to second order); a local filter dropped after a numerical failure is \
+                 not modelled",
+                kind.name()
+            ));
+            with_state_dim(
+                n,
+                fusion::FusionRecursion {
+                    scenario,
+                    onboard: &onboard,
+                    truth: &truth,
+                    masks: local_masks(&onboard),
+                    feedback: kind == FilterKind::Dcifaif,
+                },
+            )??
+        }
+        _ => with_state_dim(
+            n,
+            recursion::Recursion {
+                scenario,
+                onboard: &onboard,
+                truth: &truth,
+            },
+        )??,
+    };
     Ok(EntryLinCov {
         filter: kind.name().into(),
         states: super::monte_carlo::state_names(scenario),

@@ -70,7 +70,7 @@ fn trace_ratio<const N: usize>(
 
 /// ∂R_f/∂z of the variance the filter assumes for channel `slot` at the measured value `z`
 /// (zero for an absolute σ; 2f²z for σ = f|z|).
-fn noise_slope(onboard: &Onboard, slot: usize, z: f64) -> f64 {
+pub(super) fn noise_slope(onboard: &Onboard, slot: usize, z: f64) -> f64 {
     let Some(spec) = onboard.channels.get(slot) else {
         return 0.0;
     };
@@ -79,13 +79,104 @@ fn noise_slope(onboard: &Onboard, slot: usize, z: f64) -> f64 {
     (var(z + dz) - var(z - dz)) / (2.0 * dz)
 }
 
-fn column<const N: usize>(s: &DMatrix<f64>, j: usize) -> SVector<f64, N> {
+pub(super) fn column<const N: usize>(s: &DMatrix<f64>, j: usize) -> SVector<f64, N> {
     SVector::from_fn(|i, _| s[(i, j)])
 }
 
 /// `x` with its non-finite entries (no truth counterpart) taken from `fallback`.
-fn fill<const N: usize>(x: &[f64], fallback: &SVector<f64, N>) -> SVector<f64, N> {
+pub(super) fn fill<const N: usize>(x: &[f64], fallback: &SVector<f64, N>) -> SVector<f64, N> {
     SVector::from_fn(|i, _| if x[i].is_finite() { x[i] } else { fallback[i] })
+}
+
+/// Why the filter failed along the nominal.
+pub(super) fn failed(e: crate::estimation::EstimationError) -> EntryLinCovError {
+    EntryLinCovError::Filter(e.to_string())
+}
+
+/// The start of the recursion: the nominal x̄_0, the filter's start and the moments of its
+/// deviation δx̂_0 (the rows c_j = E\[θ_j δx̂_0\], C_ĥĥ and the mean).
+pub(super) struct Start<const N: usize> {
+    pub xbar: SVector<f64, N>,
+    pub filter: FilterStart<N>,
+    pub c: Vec<SVector<f64, N>>,
+    pub chh: SMatrix<f64, N, N>,
+    pub m: SVector<f64, N>,
+}
+
+/// x̂_0 drawn around the truth (δx̂_0 = S_0θ + P0^½w) or the fixed nominal start.
+pub(super) fn start<const N: usize>(
+    sc: &Scenario,
+    onboard: &Onboard,
+    truth: &NominalTruth,
+) -> Start<N> {
+    let nominal_start =
+        SVector::<f64, N>::from_fn(|i, _| onboard.initial_estimate.get(i).copied().unwrap_or(0.0));
+    let xbar = fill(&truth.x0, &nominal_start);
+    let filter = FilterStart::<N>::with_estimate(onboard, xbar.as_slice());
+    let p_count = truth.params.len();
+    let (c, chh, m) = if sc.config.filter.sample_initial_from_p0 {
+        let c: Vec<SVector<f64, N>> = (0..p_count).map(|j| column(&truth.s0, j)).collect();
+        let chh = c.iter().fold(filter.p0, |acc, s| acc + s * s.transpose());
+        (c, chh, SVector::<f64, N>::zeros())
+    } else {
+        let m0 = estimation_error(sc, &nominal_start, &xbar);
+        (vec![SVector::zeros(); p_count], SMatrix::zeros(), m0)
+    };
+    Start {
+        xbar,
+        filter,
+        c,
+        chh,
+        m,
+    }
+}
+
+/// Time update of `navs` (all holding the same estimate, each its own P) to `t` with the
+/// filter's own model: every sub-step's mean and Φ from the first, as the EKF and the fusion's
+/// shared prediction compute them. Returns the transition Φ over the whole step.
+pub(super) fn time_update<const N: usize>(
+    navs: &mut [EkfNav<N>],
+    t: f64,
+) -> Result<SMatrix<f64, N, N>, EntryLinCovError> {
+    let mut phi = SMatrix::<f64, N, N>::identity();
+    let Some(first) = navs.first() else {
+        return Ok(phi);
+    };
+    let (steps, h, q) = first.substeps_to(t).map_err(failed)?;
+    for _ in 0..steps {
+        let (x_next, f) = navs[0].substep(h);
+        for nav in navs.iter_mut() {
+            nav.apply_substep(x_next, &f, &q).map_err(failed)?;
+        }
+        phi = f * phi;
+    }
+    for nav in navs.iter_mut() {
+        nav.finish_prediction(t);
+    }
+    Ok(phi)
+}
+
+/// The EKF's scalar gain K = P h/(hᵀP h + r_f) with the consider rows zero, and hᵀP h + r_f.
+pub(super) fn scalar_gain<const N: usize>(
+    p: &SMatrix<f64, N, N>,
+    hrow: &SVector<f64, N>,
+    r_f: f64,
+    n_consider: usize,
+    t: f64,
+) -> Result<(SVector<f64, N>, f64), EntryLinCovError> {
+    let ph = p * hrow;
+    let s = hrow.dot(&ph) + r_f;
+    if !(s.is_finite() && s > 0.0) {
+        return Err(EntryLinCovError::NonFinite {
+            what: "innovation variance".into(),
+            t,
+        });
+    }
+    let mut k = ph / s;
+    for i in N.saturating_sub(n_consider)..N {
+        k[i] = 0.0;
+    }
+    Ok((k, s))
 }
 
 impl DimVisitor for Recursion<'_> {
@@ -93,40 +184,24 @@ impl DimVisitor for Recursion<'_> {
 
     fn visit<const N: usize, const L: usize>(self) -> Self::Output {
         let (sc, onboard, truth) = (self.scenario, self.onboard, self.truth);
-        let failed =
-            |e: crate::estimation::EstimationError| EntryLinCovError::Filter(e.to_string());
         let spherical = !sc.filter_model().kind.is_cartesian();
-        let nominal_start = SVector::<f64, N>::from_fn(|i, _| {
-            onboard.initial_estimate.get(i).copied().unwrap_or(0.0)
-        });
-        let mut xbar = fill(&truth.x0, &nominal_start);
-        let start = FilterStart::<N>::with_estimate(onboard, xbar.as_slice());
-        let mut nav = EkfNav::<N>::new(onboard, &start, None, 1.0).map_err(failed)?;
+        let Start {
+            mut xbar,
+            filter: start,
+            mut c,
+            mut chh,
+            mut m,
+        } = start::<N>(sc, onboard, truth);
+        let mut navs = [EkfNav::<N>::new(onboard, &start, None, 1.0).map_err(failed)?];
         let n_consider = onboard.tuning.n_consider;
-        let p_count = truth.params.len();
         let identity = SMatrix::<f64, N, N>::identity();
-        // Start: x̂_0 drawn around the truth (δx̂_0 = S_0θ + P0^½w) or the fixed nominal start.
-        let (mut c, mut chh, mut m) = if sc.config.filter.sample_initial_from_p0 {
-            let c: Vec<SVector<f64, N>> = (0..p_count).map(|j| column(&truth.s0, j)).collect();
-            let chh = c.iter().fold(start.p0, |acc, s| acc + s * s.transpose());
-            (c, chh, SVector::<f64, N>::zeros())
-        } else {
-            let m0 = estimation_error(sc, &nominal_start, &xbar);
-            (vec![SVector::zeros(); p_count], SMatrix::zeros(), m0)
-        };
         let mut p = start.p0;
         let mut out = Vec::with_capacity(truth.epochs.len());
         for ep in &truth.epochs {
             // Time update with the filter's own model from the nominal.
-            nav.set_estimate(xbar, p);
-            let (steps, h, q) = nav.substeps_to(ep.t).map_err(failed)?;
-            let mut phi = identity;
-            for _ in 0..steps {
-                let (x_next, f) = nav.substep(h);
-                nav.apply_substep(x_next, &f, &q).map_err(failed)?;
-                phi = f * phi;
-            }
-            nav.finish_prediction(ep.t);
+            navs[0].set_estimate(xbar, p);
+            let phi = time_update(&mut navs, ep.t)?;
+            let nav = &navs[0];
             let (x_minus, p_minus) = nav.state();
             xbar = fill(&ep.x, &x_minus);
             let drift = estimation_error(sc, &x_minus, &xbar);
@@ -141,18 +216,7 @@ impl DimVisitor for Recursion<'_> {
             let slots: Vec<usize> = ep.meas.iter().map(|z| z.slot).collect();
             let items = nav.items_at(&xbar, &ep.epoch, &beacons, &slots);
             for ((h0, hrow, z, r_f), tm) in items.iter().zip(&ep.meas) {
-                let ph = p * hrow;
-                let s = hrow.dot(&ph) + r_f;
-                if !(s.is_finite() && s > 0.0) {
-                    return Err(EntryLinCovError::NonFinite {
-                        what: "innovation variance".into(),
-                        t: ep.t,
-                    });
-                }
-                let mut k = ph / s;
-                for i in N.saturating_sub(n_consider)..N {
-                    k[i] = 0.0;
-                }
+                let (k, s) = scalar_gain(&p, hrow, *r_f, n_consider, ep.t)?;
                 let a = identity - k * hrow.transpose();
                 let g = c
                     .iter()
@@ -186,7 +250,7 @@ impl DimVisitor for Recursion<'_> {
 
 /// The epoch's predicted statistics from the augmented moments.
 #[allow(clippy::too_many_arguments)]
-fn statistics<const N: usize>(
+pub(super) fn statistics<const N: usize>(
     spherical: bool,
     t: f64,
     truth_x: &[f64],

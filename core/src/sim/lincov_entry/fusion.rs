@@ -1,0 +1,393 @@
+//! LinCov of the CI and DCIFAIF fusion filters ([`crate::estimation::nav::FusionNav`], seed 000
+//! §3.3–3.4) along the nominal entry: the recursion of [`super`] on the local filters' stacked
+//! deviations ([`super::joint`]), the fused estimate a linear combination of them.
+//!
+//! Each local filter (the IMU plus one beacon's ranges,
+//! [`crate::estimation::nav::fusion::local_masks`]) is an EKF, so along the
+//! nominal its deviation δx̂_i obeys the single EKF's linearised recursion with its own P_i and
+//! gains (Maybeck vol. 1 ch. 6; Geller 2006, eq. 20–38): δx̂_i⁻ = Φ δx̂_i + d, and per scalar
+//! measurement it uses, δx̂_i ← A_i δx̂_i + K_i (ζᵀθ + v + r). The locals share the start, the
+//! IMU's noise and θ, so their deviations are correlated; the stacked moments keep those
+//! correlations (the cross-covariances covariance intersection assumes unknown).
+//!
+//! The fused estimate is x̂_CI = P_CI Σ ω_i P_i⁻¹ x̂_i (seed 000 eq. 19–20) = Σ W_i x̂_i with
+//! W_i = ω_i P_CI P_i⁻¹ and Σ W_i = I, so δx̂_CI = Σ W_i δx̂_i. The weights ω come from the
+//! onboard covariances only (the filter's own code: determinant-optimal for `ci`, eq. 21's fast
+//! ∞-norm rule for `dcifaif`), which along the nominal do not depend on the dispersions to first
+//! order; so the fusion is linear given the weights.
+//!
+//! * `ci`: the locals run on their own and are fused after every update; the reported covariance
+//!   is P_CI.
+//! * `dcifaif`, `fusion_covariance = "paper"`: every local is reset to (x̂_CI, P_CI/ω_i) (eq. 22),
+//!   i.e. every block of the stacked deviation to δx̂_CI; the reported covariance is P_CI.
+//! * `dcifaif`, `"exact"` (`nav/fusion_exact.rs`): every local makes a batch update of the common
+//!   prior, the updates are fused with eq. 21's weights and the exact covariance, which is
+//!   reported and fed back.
+//!
+//! The iterated update (all locals relinearised at the fused iterate for `dcifaif`) is linearised
+//! at the nominal, as the EKF's is ([`super`]). Not modelled: a local filter dropped after a
+//! numerical failure (along the nominal every local lives, or the LinCov fails) and the innovation
+//! gate's exclusions (refused, with the gate).
+
+use super::joint::{Joint, block_diagonal, stack};
+use super::recursion::{
+    Start, failed, fill, noise_slope, scalar_gain, start, statistics, time_update,
+};
+use super::truth::{NominalTruth, TruthEpoch};
+use super::{EntryLinCovEpoch, EntryLinCovError};
+use crate::estimation::ci::{covariance_intersection, feedback};
+use crate::estimation::ekf::LinearizedMeasurement;
+use crate::estimation::nav::fusion::{local_start_scale, weighting};
+use crate::estimation::nav::{EkfNav, FilterCore, ci_gains, fuse_exact_with_gains, local_update};
+use crate::estimation::{FusionCovariance, Onboard};
+use crate::scenario::Scenario;
+use crate::sim::judge::estimation_error;
+use crate::state_dim::DimVisitor;
+use nalgebra::{DMatrix, SMatrix, SVector};
+use std::sync::Arc;
+
+pub(super) struct FusionRecursion<'a> {
+    pub scenario: &'a Scenario,
+    pub onboard: &'a Arc<Onboard>,
+    pub truth: &'a NominalTruth,
+    /// Channel slots of each local filter ([`crate::estimation::nav::fusion::local_masks`]).
+    pub masks: Vec<Vec<usize>>,
+    /// Information feedback (`dcifaif`).
+    pub feedback: bool,
+}
+
+/// What one fusion step reports: the gains \[W_1 … W_M\] (N × MN) of the fused estimate on the
+/// locals' and the fused covariance the filter reports.
+type Fusion<const N: usize> = (DMatrix<f64>, SMatrix<f64, N, N>);
+
+/// \[W_1 … W_M\] with `w[i]` at the blocks `at[i]` and zero elsewhere.
+fn gains_row<const N: usize>(
+    members: usize,
+    at: &[usize],
+    w: &[SMatrix<f64, N, N>],
+) -> DMatrix<f64> {
+    let mut out = DMatrix::zeros(N, N * members);
+    for (&i, wi) in at.iter().zip(w) {
+        out.view_mut((0, i * N), (N, N)).copy_from(wi);
+    }
+    out
+}
+
+/// The epoch's measurements as (slot, item) pairs and their sensitivities Z (m × p).
+fn sensitivities(ep: &TruthEpoch, p_count: usize) -> DMatrix<f64> {
+    DMatrix::from_fn(ep.meas.len(), p_count, |a, j| ep.meas[a].zeta[j])
+}
+
+impl FusionRecursion<'_> {
+    /// The locals' scalar updates in the EKF's order (`ci`, and `dcifaif` with the paper's
+    /// covariance), each channel applied at once to every local that uses it.
+    fn sequential<const N: usize>(
+        &self,
+        joint: &mut Joint,
+        ps: &mut [SMatrix<f64, N, N>],
+        items: &[LinearizedMeasurement<N>],
+        ep: &TruthEpoch,
+    ) -> Result<(), EntryLinCovError> {
+        let members = ps.len();
+        let n_consider = self.onboard.tuning.n_consider;
+        let z_all = sensitivities(ep, self.truth.params.len());
+        for (row, ((h0, hrow, z, r_f), tm)) in items.iter().zip(&ep.meas).enumerate() {
+            let dr_dz = noise_slope(self.onboard, tm.slot, *z);
+            let zz = tm.zeta.dot(&tm.zeta) + tm.r;
+            let mut a = vec![SMatrix::<f64, N, N>::identity(); members];
+            let mut g = vec![SVector::<f64, N>::zeros(); members];
+            let mut b = vec![SVector::<f64, N>::zeros(); members];
+            for i in (0..members).filter(|&i| self.masks[i].contains(&tm.slot)) {
+                let (k, s) = scalar_gain(&ps[i], hrow, *r_f, n_consider, ep.t)?;
+                // As the EKF's: a σ taken from the measured value correlates gain and innovation.
+                let cross = joint.cross::<N>(i, &tm.zeta);
+                b[i] = k * (z - h0) + k * (-(dr_dz / s) * (zz - hrow.dot(&cross)));
+                a[i] = SMatrix::identity() - k * hrow.transpose();
+                ps[i] = a[i] * ps[i] * a[i].transpose() + k * k.transpose() * *r_f;
+                g[i] = k;
+            }
+            let g = DMatrix::from_column_slice(N * members, 1, stack(&g).as_slice());
+            joint.apply(
+                &block_diagonal(&a),
+                &g,
+                &z_all.rows(row, 1).into_owned(),
+                &[tm.r],
+                &stack(&b),
+            );
+        }
+        for p in ps.iter_mut() {
+            *p = (*p + p.transpose()) * 0.5;
+        }
+        Ok(())
+    }
+
+    /// CI of the locals' posteriors with the filter's weights; with feedback (the paper's
+    /// `dcifaif`) every local is reset to (x̂_CI, P_CI/ω_i), eq. 22.
+    fn intersect<const N: usize>(
+        &self,
+        xbar: &SVector<f64, N>,
+        ps: &mut [SMatrix<f64, N, N>],
+    ) -> Result<Fusion<N>, EntryLinCovError> {
+        let estimates: Vec<_> = ps.iter().map(|p| (*xbar, *p)).collect();
+        let ci = covariance_intersection(&estimates, weighting(self.feedback)).map_err(failed)?;
+        let w = ci_gains(&ci, ps).map_err(failed)?;
+        if self.feedback {
+            for (p, (_, reset)) in ps.iter_mut().zip(feedback(&ci)) {
+                *p = reset;
+            }
+        }
+        let all: Vec<usize> = (0..ps.len()).collect();
+        Ok((gains_row(ps.len(), &all, &w), ci.p))
+    }
+
+    /// `dcifaif` with the exact covariance: every local's batch update of the common prior
+    /// (`fusion_exact::local_update`), fused with eq. 21's weights; every local is reset to the
+    /// result.
+    fn exact<const N: usize>(
+        &self,
+        joint: &mut Joint,
+        ps: &mut [SMatrix<f64, N, N>],
+        xbar: &SVector<f64, N>,
+        items: &[LinearizedMeasurement<N>],
+        ep: &TruthEpoch,
+    ) -> Result<Fusion<N>, EntryLinCovError> {
+        let (members, prior) = (ps.len(), ps[0]);
+        let slots: Vec<usize> = ep.meas.iter().map(|m| m.slot).collect();
+        let all: Vec<(usize, LinearizedMeasurement<N>)> =
+            slots.iter().copied().zip(items.iter().copied()).collect();
+        let n_consider = self.onboard.tuning.n_consider;
+        let (mut updates, mut who) = (Vec::new(), Vec::new());
+        for (i, mask) in self.masks.iter().enumerate() {
+            if let Some(u) =
+                local_update(xbar, &prior, xbar, &all, mask, n_consider).map_err(failed)?
+            {
+                updates.push(u);
+                who.push(i);
+            }
+        }
+        let mut a = vec![SMatrix::<f64, N, N>::identity(); members];
+        let mut g = DMatrix::zeros(N * members, slots.len());
+        let mut b = vec![SVector::<f64, N>::zeros(); members];
+        for (u, &i) in updates.iter().zip(&who) {
+            a[i] = u.a;
+            let cols = u
+                .gains
+                .iter()
+                .map(|(slot, _, _)| slots.iter().position(|s| s == slot))
+                .collect::<Option<Vec<usize>>>()
+                .ok_or_else(|| {
+                    EntryLinCovError::Filter("a local used an unknown channel".into())
+                })?;
+            for ((_, k, _), &col) in u.gains.iter().zip(&cols) {
+                g.view_mut((i * N, col), (N, 1)).copy_from(k);
+                b[i] += k * (items[col].2 - items[col].0);
+            }
+            b[i] += self.batch_gain_noise(joint, i, &prior, items, ep, u.gains.as_slice(), &cols);
+        }
+        let r_t: Vec<f64> = ep.meas.iter().map(|m| m.r).collect();
+        let z_all = sensitivities(ep, self.truth.params.len());
+        joint.apply(&block_diagonal(&a), &g, &z_all, &r_t, &stack(&b));
+        let (w, p) = match updates.len() {
+            0 => (
+                gains_row(members, &[0], &[SMatrix::<f64, N, N>::identity()]),
+                prior,
+            ),
+            1 => (
+                gains_row(members, &who, &[SMatrix::<f64, N, N>::identity()]),
+                updates[0].p,
+            ),
+            _ => {
+                let ((_, p, _), w) = fuse_exact_with_gains(&prior, &updates).map_err(failed)?;
+                (gains_row(members, &who, &w), p)
+            }
+        };
+        ps.iter_mut().for_each(|pi| *pi = p);
+        Ok((w, p))
+    }
+
+    /// E\[ΔK ν\] of a batch gain K = P Hᵀ S⁻¹ whose noise σ is taken from the measured values:
+    /// ∂K/∂z_c = −K e_c (S⁻¹)_c,: ∂R_c/∂z_c, and E\[(z_c − z̄_c) ν_d\] = ζ_cᵀζ_d + δ_cd R_t,c −
+    /// h_dᵀ E\[δx̂ θᵀ\] ζ_c (the batch form of the EKF's scalar term, [`super::recursion`]).
+    #[allow(clippy::too_many_arguments)]
+    fn batch_gain_noise<const N: usize>(
+        &self,
+        joint: &Joint,
+        i: usize,
+        prior: &SMatrix<f64, N, N>,
+        items: &[LinearizedMeasurement<N>],
+        ep: &TruthEpoch,
+        gains: &[(usize, SVector<f64, N>, f64)],
+        cols: &[usize],
+    ) -> SVector<f64, N> {
+        let slopes: Vec<f64> = gains
+            .iter()
+            .zip(cols)
+            .map(|((slot, _, _), &c)| noise_slope(self.onboard, *slot, items[c].2))
+            .collect();
+        if slopes.iter().all(|s| *s == 0.0) {
+            return SVector::zeros();
+        }
+        let m = cols.len();
+        let s = DMatrix::from_fn(m, m, |a, d| {
+            let (ha, hd) = (&items[cols[a]].1, &items[cols[d]].1);
+            ha.dot(&(prior * hd)) + if a == d { items[cols[a]].3 } else { 0.0 }
+        });
+        let Some(s_inv) = s.try_inverse() else {
+            return SVector::repeat(f64::NAN);
+        };
+        let mut out = SVector::<f64, N>::zeros();
+        for (a, ((_, k, _), slope)) in gains.iter().zip(&slopes).enumerate() {
+            let ma = &ep.meas[cols[a]];
+            let cross = joint.cross::<N>(i, &ma.zeta);
+            let e: f64 = (0..m)
+                .map(|d| {
+                    let md = &ep.meas[cols[d]];
+                    let cov = ma.zeta.dot(&md.zeta) + if a == d { ma.r } else { 0.0 }
+                        - items[cols[d]].1.dot(&cross);
+                    s_inv[(a, d)] * cov
+                })
+                .sum();
+            out -= k * (slope * e);
+        }
+        out
+    }
+}
+
+impl DimVisitor for FusionRecursion<'_> {
+    type Output = Result<Vec<EntryLinCovEpoch>, EntryLinCovError>;
+
+    fn visit<const N: usize, const L: usize>(self) -> Self::Output {
+        let (sc, onboard, truth) = (self.scenario, self.onboard, self.truth);
+        let spherical = !sc.filter_model().kind.is_cartesian();
+        let Start {
+            mut xbar,
+            filter: start,
+            c,
+            chh,
+            m,
+        } = start::<N>(sc, onboard, truth);
+        let members = self.masks.len();
+        let exact = self.feedback && onboard.tuning.fusion_covariance == FusionCovariance::Exact;
+        let mut local = start.clone();
+        local.p0 = start.p0 * local_start_scale(members, self.feedback, exact);
+        let mut navs = self
+            .masks
+            .iter()
+            .map(|mask| EkfNav::<N>::new(onboard, &local, Some(mask.clone()), 1.0))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(failed)?;
+        let mut ps = vec![local.p0; members];
+        let mut joint = Joint::replicated(&c, &chh, &m, members);
+        let mut out = Vec::with_capacity(truth.epochs.len());
+        for ep in &truth.epochs {
+            // Time update of every local from the nominal with the filter's own model.
+            for (nav, p) in navs.iter_mut().zip(&ps) {
+                nav.set_estimate(xbar, *p);
+            }
+            let phi = time_update(&mut navs, ep.t)?;
+            let x_minus = navs[0].state().0;
+            for (p, nav) in ps.iter_mut().zip(&navs) {
+                *p = nav.state().1;
+            }
+            xbar = fill(&ep.x, &x_minus);
+            let drift = estimation_error(sc, &x_minus, &xbar);
+            joint.propagate(&phi, &drift);
+            let beacons = onboard.beacon_states(ep.t);
+            let slots: Vec<usize> = ep.meas.iter().map(|z| z.slot).collect();
+            let items = navs[0].items_at(&xbar, &ep.epoch, &beacons, &slots);
+            let (w, p_fused) = if exact {
+                self.exact(&mut joint, &mut ps, &xbar, &items, ep)?
+            } else {
+                self.sequential(&mut joint, &mut ps, &items, ep)?;
+                self.intersect(&xbar, &mut ps)?
+            };
+            let (cf, chh_f, m_f) = joint.combined::<N>(&w);
+            if self.feedback {
+                // Every local restarts from the fused estimate: X ← (1 ⊗ W) X.
+                joint.map(&DMatrix::from_fn(N * members, N * members, |r, col| {
+                    w[(r % N, col)]
+                }));
+            }
+            out.push(statistics(
+                spherical, ep.t, &ep.x, &ep.s, &cf, &chh_f, &m_f, &p_fused, &xbar,
+            )?);
+        }
+        Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::estimation::nav::FilterKind;
+    use crate::scenario::ScenarioConfig;
+    use crate::sim::lincov_entry::recursion::Recursion;
+    use crate::sim::lincov_entry::truth::nominal_truth;
+    use crate::state_dim::with_state_dim;
+
+    /// One local filter over every channel: the fusion's LinCov (stacked moments, the CI of one
+    /// estimate, for `dcifaif` the feedback with the exact covariance's batch update or the
+    /// paper's scalar updates) is the EKF's, epoch by epoch. msl-pressure has a consider state, a
+    /// relative-noise channel and θ; orbiters-3 a start drawn around the truth.
+    #[test]
+    fn one_local_filter_is_the_ekf() {
+        let (exact, paper) = (FusionCovariance::Exact, FusionCovariance::Paper);
+        for (name, feedback, covariance) in [
+            ("msl-pressure", false, exact),
+            ("msl-pressure", true, paper),
+            ("orbiters-3", false, exact),
+            ("orbiters-3", true, exact),
+            ("orbiters-3", true, paper),
+        ] {
+            let mut cfg = ScenarioConfig::builtin(name).unwrap();
+            cfg.filter.fusion_covariance = covariance;
+            let s = Scenario::build(cfg, &crate::files::no_files).unwrap();
+            let onboard = s.onboard.for_filter(FilterKind::Ekf);
+            let n = onboard.state_dim();
+            let truth = nominal_truth(&s, n).unwrap();
+            let ekf = Recursion {
+                scenario: &s,
+                onboard: &onboard,
+                truth: &truth,
+            };
+            let ekf = with_state_dim(n, ekf).unwrap().unwrap();
+            let one = FusionRecursion {
+                scenario: &s,
+                onboard: &onboard,
+                truth: &truth,
+                masks: vec![(0..onboard.channels.len()).collect()],
+                feedback,
+            };
+            let one = with_state_dim(n, one).unwrap().unwrap();
+            assert_eq!(one.len(), ekf.len());
+            // The paper's feedback re-inverts P every epoch (P_CI/ω of (ωP⁻¹)⁻¹), a round-off
+            // that accumulates to ~1e-6 over orbiters-3's 240 epochs.
+            let tol = if covariance == paper && feedback {
+                1e-5
+            } else {
+                1e-6
+            };
+            let close = |a: f64, b: f64| (a - b).abs() <= tol * a.abs().max(b.abs()) + 1e-300;
+            for (a, b) in one.iter().zip(&ekf) {
+                let pairs = [
+                    (a.pos_m, b.pos_m),
+                    (a.vel_mps, b.vel_mps),
+                    (a.nees, b.nees),
+                    (a.pos_sigma_m, b.pos_sigma_m),
+                ];
+                let states = a
+                    .rmse
+                    .iter()
+                    .zip(&b.rmse)
+                    .chain(a.sigma.iter().zip(&b.sigma));
+                for (x, y) in pairs.iter().copied().chain(states.map(|(x, y)| (*x, *y))) {
+                    assert!(
+                        close(x, y) || (x.is_nan() && y.is_nan()),
+                        "{name} feedback {feedback} {covariance:?} t = {}: {x} vs {y}",
+                        a.t
+                    );
+                }
+            }
+        }
+    }
+}

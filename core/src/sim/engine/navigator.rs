@@ -56,8 +56,9 @@ pub struct Navigator {
     pending_banks: Vec<(f64, f64)>,
 }
 
-/// Most bank changes held for epochs still to come; beyond it the oldest is flown at once (a
-/// master that never sends measurements must not grow memory without bound).
+/// Most bank changes held for epochs still to come; beyond it the oldest becomes the filter's
+/// bank from its current time (a master that never sends measurements must not grow memory
+/// without bound; the bank history before the next epoch is then approximate).
 const MAX_PENDING_BANKS: usize = 1024;
 
 /// Two times closer than this are the same instant \[s\] (as the engine's step checks).
@@ -202,10 +203,10 @@ impl Navigator {
             self.pending_banks.pop();
         }
         if self.pending_banks.len() > MAX_PENDING_BANKS {
-            let (t_next, _) = self.pending_banks[1];
-            if let Err(reason) = self.fly_banks_before(t_next) {
-                self.status = NavStatus::Failed { t: t_next, reason };
-            }
+            // No epoch for that many commands: the oldest is flown from the filter's own time
+            // (not predicted to, which a master that sends no measurements never asked for).
+            let (_, oldest) = self.pending_banks.remove(0);
+            self.filter.set_bank_angle(oldest);
         }
     }
 

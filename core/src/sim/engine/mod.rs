@@ -49,9 +49,10 @@
 //! 1 Hz sensors included); a command given at an epoch's own time is flown after that epoch's
 //! update, as the truth flew the step ending there with the bank before. With a constant bank
 //! nothing is held and the filter predicts in one piece from epoch to epoch, as it always did.
-//! A [`Navigator`] fed the epochs of a separate [`TruthSensors`] (the FMUs) is given the truth's
-//! bank of the same step: an epoch measured before a command's start is predicted to with the
-//! earlier bank.
+//! A [`Navigator`] stepped on its own ([`Navigator::do_step`], the navigation FMUs) is fed the
+//! epochs of a separate [`TruthSensors`] one step late, with the bank the truth flew over that
+//! previous step (its `truth_bank_angle`): that bank is flown from the previous step's start,
+//! so the split system equals the combined one one step late, whatever the step.
 //!
 //! Everything is deterministic: the same parameters and the same sequence of `do_step` calls give
 //! bit-identical outputs, which is what the FMU's state serialisation (a replay log) relies on.

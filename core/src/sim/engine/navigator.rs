@@ -54,6 +54,8 @@ pub struct Navigator {
     /// Bank commands not yet flown by the filter: (communication point from which it is flown
     /// \[s\], bank \[rad\]), in time order, each different from the one before.
     pending_banks: Vec<(f64, f64)>,
+    /// Start of the previous [`Navigator::do_step`] (the step whose bank the next one is given).
+    previous_step_start: Option<f64>,
 }
 
 /// Most bank changes held for epochs still to come; beyond it the oldest becomes the filter's
@@ -102,6 +104,7 @@ impl Navigator {
             time: 0.0,
             last_epoch_t: 0.0,
             pending_banks: Vec::new(),
+            previous_step_start: None,
         })
     }
 
@@ -260,9 +263,11 @@ impl Navigator {
     }
 
     /// Advance from `t` by `h` with bank-angle command `bank` \[rad\], processing `epoch`
-    /// (measurements taken at `epoch.t ≤ t + h`) if it is newer than the last one processed. The
-    /// filter flies `bank` from `t` on: an epoch measured before `t` is predicted to with the
-    /// bank in force then ([`Navigator::set_bank_angle`]).
+    /// (measurements taken at `epoch.t ≤ t + h`) if it is newer than the last one processed.
+    /// `bank` is the bank the truth flew over the *previous* step (the FMUs' one-step-late wiring,
+    /// the truth's `truth_bank_angle` output, as the epoch is that step's): the filter flies it
+    /// from the previous step's start (from `t` at the first step), piecewise with the others
+    /// ([`Navigator::set_bank_angle`]).
     pub fn do_step(
         &mut self,
         t: f64,
@@ -280,7 +285,10 @@ impl Navigator {
         {
             return Err(EngineError::NonFiniteInput("measurement"));
         }
-        self.command_bank(t, bank);
+        // The bank the truth flew over the previous step (the one-step-late wiring): flown from
+        // that step's start.
+        self.command_bank(self.previous_step_start.unwrap_or(t), bank);
+        self.previous_step_start = Some(t);
         if let Some(e) = epoch {
             if e.t <= t + h + 1e-9 && self.process(e) {
                 report.epochs = 1;

@@ -256,7 +256,7 @@ fn bank_changes_between_epochs_are_flown_piecewise() {
     }
     assert_eq!(co.nav().estimate().x, x_ref, "combined engine");
     // The FMU wiring: each step the navigator gets the truth's newest epoch (measured before the
-    // step) and the bank the truth flies in the step.
+    // step) and the bank the truth flew over the previous step.
     let mut nav = Navigator::for_seed(&sc, kind, seed, true).unwrap();
     let mut next = 0;
     for k in 0..=steps {
@@ -267,7 +267,8 @@ fn bank_changes_between_epochs_are_flown_piecewise() {
         let t_k = k as f64 * h;
         // Epochs the master would have delivered at earlier steps are never skipped here: every
         // step produces at most one (1 Hz against 0.1 s).
-        nav.do_step(t_k, h, bank_at(t_k), newest).unwrap();
+        let flown = bank_at(k.saturating_sub(1) as f64 * h);
+        nav.do_step(t_k, h, flown, newest).unwrap();
     }
     assert_eq!(nav.estimate().x, x_ref, "navigator fed one step late");
     println!(

@@ -145,8 +145,9 @@ impl Delivery {
     }
 }
 
-/// Epoch slots of the accelerometer triad in the onboard channel list.
-fn accel_slots(onboard: &Onboard) -> Option<[usize; 3]> {
+/// Epoch slots of the accelerometer triad in the onboard channel list (`None` without all three:
+/// there is no sensed drag for guidance).
+pub fn accel_slots(onboard: &Onboard) -> Option<[usize; 3]> {
     let slot = |axis: u8| {
         onboard
             .channels
@@ -343,8 +344,8 @@ pub fn fly_with_filter_recorded(
     })
 }
 
-/// Truth steps per guidance cycle.
-pub(crate) fn guidance_every(period_s: f64, step_s: f64) -> Result<usize, GuidedRunError> {
+/// Truth steps per guidance cycle (an error unless the period is a positive multiple of the step).
+pub fn guidance_every(period_s: f64, step_s: f64) -> Result<usize, GuidedRunError> {
     let ratio = period_s / step_s;
     let every = ratio.round() as usize;
     if every == 0 || (ratio - every as f64).abs() > 1e-9 {

@@ -33,7 +33,7 @@ use entrynav::guidance::{
     BankActuator, BuiltGuidance, GuidanceError, NavState, Trigger, range_crossrange,
 };
 use entrynav::scenario::Scenario;
-use entrynav::sensors::Channel;
+use entrynav::sim::guided_run;
 use std::sync::Arc;
 use thiserror::Error;
 
@@ -42,7 +42,7 @@ use thiserror::Error;
 pub enum GuidanceStepError {
     /// The scenario has no `[guidance]`.
     #[error(
-        "scenario '{0}' has no [guidance] section: the guidance FMU needs one (the default {file} is msl-airdata with Apollo guidance)",
+        "scenario '{0}' has no [guidance] section: the guidance FMU needs one (the default {file} is the built-in msl-guided: msl-airdata with Apollo guidance)",
         file = crate::vars::GUIDED_SCENARIO_FILE
     )]
     NoGuidance(String),
@@ -153,14 +153,7 @@ impl GuidanceEngine {
             .guidance
             .as_ref()
             .ok_or_else(|| GuidanceStepError::NoGuidance(name()))?;
-        let has = |k: u8| {
-            scenario
-                .onboard
-                .channels
-                .iter()
-                .any(|c| c.channel == Channel::Accel(k))
-        };
-        if !(has(0) && has(1) && has(2)) {
+        if guided_run::accel_slots(&scenario.onboard).is_none() {
             return Err(GuidanceStepError::NoAccelerometers(name()));
         }
         let built = scenario
@@ -171,14 +164,12 @@ impl GuidanceEngine {
             .ok_or_else(|| GuidanceStepError::NoGuidance(name()))?;
         let timing = &scenario.config.timing;
         let dt = timing.truth_step_s;
-        let ratio = cfg.period_s() / dt;
-        let every = ratio.round() as usize;
-        if every == 0 || (ratio - every as f64).abs() > 1e-9 {
-            return Err(GuidanceStepError::Period {
+        let every = guided_run::guidance_every(cfg.period_s(), dt).map_err(|_| {
+            GuidanceStepError::Period {
                 period_s: cfg.period_s(),
                 step_s: dt,
-            });
-        }
+            }
+        })?;
         // Checked against the run bound by `limits::check_scenario` before this is called.
         let max_steps = (timing.duration_s / dt).round() as usize;
         let bank0 = cfg.reference_bank_deg.to_radians();

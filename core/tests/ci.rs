@@ -5,7 +5,7 @@
 use entrynav::estimation::EstimationError;
 use entrynav::estimation::ci::{
     CiResult, CiWeighting, FEEDBACK_WEIGHT_FLOOR, ci_fuse, ci_weights, covariance_intersection,
-    feedback,
+    covariance_intersection_from, covariance_intersection_with_gains, feedback,
 };
 use nalgebra::{DMatrix, Matrix2, SMatrix, SVector, Vector2};
 use rand::SeedableRng;
@@ -186,6 +186,82 @@ fn optimal_weights_beat_a_simplex_grid_for_four_estimates() {
                         );
                     }
                 }
+            }
+        }
+    }
+}
+
+/// The filters start each epoch's optimal-weight search from the last epoch's weights: from any
+/// admissible start — a vertex (three weights starting inactive), the optimum itself, a nearby
+/// point, or an unusable start (ignored) — the search reaches the cold start's optimum.
+#[test]
+fn warm_started_weights_reach_the_cold_optimum() {
+    let mut rng = ChaCha8Rng::seed_from_u64(9);
+    let mut vertex_moved = 0;
+    for _ in 0..20 {
+        let est: Vec<(SVector<f64, 3>, SMatrix<f64, 3, 3>)> = (0..4)
+            .map(|_| (randn(&mut rng), random_spd(&mut rng)))
+            .collect();
+        for (m, trace) in [
+            (CiWeighting::OptimalTrace, true),
+            (CiWeighting::OptimalDet, false),
+        ] {
+            let cold = covariance_intersection(&est, m).unwrap();
+            let ps: Vec<_> = est.iter().map(|e| e.1).collect();
+            let fcold = objective(&ps, &cold.weights, trace);
+            let near: Vec<f64> = cold.weights.iter().map(|w| w + 0.05).collect();
+            let starts: [&[f64]; 5] = [
+                &[1.0, 0.0, 0.0, 0.0],
+                &cold.weights,
+                &near,
+                &[0.0, 0.0, 0.0, 0.0],
+                &[f64::NAN, 1.0, 0.0, 0.0],
+            ];
+            for start in starts {
+                let warm = covariance_intersection_from(&est, m, start).unwrap();
+                let fwarm = objective(&ps, &warm.weights, trace);
+                assert!(
+                    fwarm <= fcold * (1.0 + 1e-12),
+                    "{m:?} from {start:?}: {:?} ({fwarm}) vs cold {:?} ({fcold})",
+                    warm.weights,
+                    cold.weights
+                );
+                assert!((warm.p - cold.p).abs().max() <= 1e-8 * cold.p.abs().max());
+            }
+            let from_vertex = covariance_intersection_from(&est, m, starts[0]).unwrap();
+            vertex_moved += usize::from(from_vertex.weights[1..].iter().any(|w| *w > 1e-6));
+        }
+    }
+    // The vertex start must have re-admitted weights that started at zero.
+    assert!(vertex_moved > 5, "only {vertex_moved} vertex starts moved");
+}
+
+/// The fusion gains W_i = ω_i P_CI P_i⁻¹ reproduce the fused estimate (x̂_CI = Σ W_i x̂_i) and sum
+/// to the identity, on badly scaled entry covariances.
+#[test]
+fn fusion_gains_reproduce_the_fused_estimate() {
+    let mut rng = ChaCha8Rng::seed_from_u64(4);
+    for _ in 0..10 {
+        let est = entry_estimates(&mut rng);
+        for m in METHODS {
+            let (fused, gains) = covariance_intersection_with_gains(&est, m).unwrap();
+            assert_eq!(fused, covariance_intersection(&est, m).unwrap());
+            let x: SVector<f64, 8> = gains.iter().zip(&est).map(|(w, (xi, _))| w * xi).sum();
+            let sum: SMatrix<f64, 8, 8> = gains.iter().sum();
+            let scale = fused.p.diagonal().map(f64::sqrt);
+            let dx = (x - fused.x).component_div(&scale).abs().max();
+            assert!(dx < 1e-7, "{m:?}: Σ W_i x̂_i − x̂_CI = {dx:e} σ");
+            let d = SMatrix::<f64, 8, 8>::from_fn(|r, c| {
+                (sum[(r, c)] - if r == c { 1.0 } else { 0.0 }) * scale[c] / scale[r]
+            });
+            assert!(d.abs().max() < 1e-8, "{m:?}: Σ W_i − I = {}", d.abs().max());
+            // Each gain is ω_i P_CI P_i⁻¹ (formed directly here, in the same scaled metric).
+            for ((w, (_, p)), wi) in gains.iter().zip(&est).zip(&fused.weights) {
+                let direct = fused.p * inv(p) * *wi;
+                let d = SMatrix::<f64, 8, 8>::from_fn(|r, c| {
+                    (w[(r, c)] - direct[(r, c)]) * scale[c] / scale[r]
+                });
+                assert!(d.abs().max() < 1e-6, "{m:?}: W_i off by {}", d.abs().max());
             }
         }
     }

@@ -20,6 +20,7 @@
 //! The fused result is mapped back exactly (`P_CI = D⁻¹ P'_CI D⁻¹`).
 
 use super::ci_weights::optimal_weights;
+use super::spd::inverse_from_cholesky;
 use super::{EstimationError, symmetrize};
 use nalgebra::{SMatrix, SVector};
 use serde::{Deserialize, Serialize};
@@ -81,11 +82,11 @@ fn spd_inverse<const N: usize>(
         return Err(nonfinite(what()));
     }
     let chol = symmetrize(m).cholesky().ok_or_else(|| not_pd(what()))?;
-    let inv = chol.inverse();
+    let inv = inverse_from_cholesky(chol.l_dirty());
     if inv.iter().any(|v| !v.is_finite()) {
         return Err(not_pd(what()));
     }
-    Ok(symmetrize(&inv))
+    Ok(inv)
 }
 
 /// Scale vector `s = diag(D)`, `s_k = 1/√p̄_k`, from the summed covariance diagonals.
@@ -128,13 +129,14 @@ fn scaled_infos<const N: usize>(
     Ok((ys, s))
 }
 
-/// Fusion (eq. 19–20) on the scaled problem; `w` already validated.
+/// Fusion (eq. 19–20) on the scaled problem; `w` already validated. Also returns the scaled
+/// fused covariance `Y'⁻¹ = (Σ ω_i Y'_i)⁻¹` (for [`covariance_intersection_with_gains`]).
 fn fuse_scaled<const N: usize>(
     estimates: &[(Vect<N>, Mat<N>)],
     ys: &[Mat<N>],
     s: &Vect<N>,
     w: Vec<f64>,
-) -> Result<CiResult<N>, EstimationError> {
+) -> Result<(CiResult<N>, Mat<N>), EstimationError> {
     let mut y = Mat::<N>::zeros();
     let mut yx = Vect::<N>::zeros();
     for ((wi, yi), (xi, _)) in w.iter().zip(ys).zip(estimates) {
@@ -148,11 +150,12 @@ fn fuse_scaled<const N: usize>(
         .ok_or_else(|| not_pd("fused CI information".into()))?;
     let x = chol.solve(&yx).component_div(s);
     let inv_s = s.map(|v| 1.0 / v);
-    let p = symmetrize(&congruence(&chol.inverse(), &inv_s));
+    let yinv = inverse_from_cholesky(chol.l_dirty());
+    let p = symmetrize(&congruence(&yinv, &inv_s));
     if x.iter().chain(p.iter()).any(|v| !v.is_finite()) {
         return Err(nonfinite("fused CI estimate".into()));
     }
-    Ok(CiResult { x, p, weights: w })
+    Ok((CiResult { x, p, weights: w }, yinv))
 }
 
 /// Seed 000 eq. 21 generalised to `n` estimates:
@@ -203,7 +206,7 @@ pub fn ci_weights<const N: usize>(
         .iter()
         .map(|y| symmetrize(&congruence(y, &inv_s)))
         .collect();
-    optimal_weights(&ys, method == CiWeighting::OptimalTrace)
+    optimal_weights(&ys, method == CiWeighting::OptimalTrace, None)
 }
 
 /// Fuse `(x̂_i, P_i)` with given weights by seed 000 eq. 19–20. Weights must be finite, in
@@ -225,7 +228,7 @@ pub fn ci_fuse<const N: usize>(
     }
     let (ys, s) = scaled_infos(estimates)?;
     let w = weights.iter().map(|w| w / sum).collect();
-    fuse_scaled(estimates, &ys, &s, w)
+    fuse_scaled(estimates, &ys, &s, w).map(|(fused, _)| fused)
 }
 
 /// Choose the weights by `method` ([`ci_weights`]) and fuse ([`ci_fuse`]), seed 000 eq. 19–21.
@@ -233,14 +236,65 @@ pub fn covariance_intersection<const N: usize>(
     estimates: &[(SVector<f64, N>, SMatrix<f64, N, N>)],
     method: CiWeighting,
 ) -> Result<CiResult<N>, EstimationError> {
+    intersect(estimates, method, None).map(|(fused, _)| fused)
+}
+
+/// [`covariance_intersection`] whose optimal-weight search (trace or determinant) starts from
+/// `start` (e.g. the previous epoch's weights, which change little between epochs) instead of
+/// uniform weights. `start` must be as many finite non-negative weights as estimates with a
+/// positive sum (it is renormalised); otherwise, or for [`CiWeighting::FastInfNorm`], it is
+/// ignored. The optimum is the same to the solver's tolerance (weights to ~1e-9), reached in
+/// fewer Newton iterations.
+pub fn covariance_intersection_from<const N: usize>(
+    estimates: &[(SVector<f64, N>, SMatrix<f64, N, N>)],
+    method: CiWeighting,
+    start: &[f64],
+) -> Result<CiResult<N>, EstimationError> {
+    intersect(estimates, method, Some(start)).map(|(fused, _)| fused)
+}
+
+/// [`covariance_intersection`] with the gains `W_i = ω_i P_CI P_i⁻¹` of the fused estimate on
+/// the local ones (`x̂_CI = Σ W_i x̂_i`, seed 000 eq. 19; `Σ W_i = I`), from the scaled
+/// information matrices the fusion already holds: with `Y'_i = (D P_i D)⁻¹` and
+/// `Y' = Σ ω_i Y'_i`, `W_i = D⁻¹ (ω_i Y'⁻¹ Y'_i) D` — no further factorisation.
+pub fn covariance_intersection_with_gains<const N: usize>(
+    estimates: &[(SVector<f64, N>, SMatrix<f64, N, N>)],
+    method: CiWeighting,
+) -> Result<(CiResult<N>, Vec<SMatrix<f64, N, N>>), EstimationError> {
+    let (fused, (ys, s, yinv)) = intersect(estimates, method, None)?;
+    let gains = ys
+        .iter()
+        .zip(&fused.weights)
+        .map(|(yi, wi)| {
+            let m = yinv * yi * *wi;
+            Mat::<N>::from_fn(|r, c| m[(r, c)] * s[c] / s[r])
+        })
+        .collect();
+    Ok((fused, gains))
+}
+
+/// The scaled information matrices, the scale and the scaled fused covariance of a fusion.
+type Scaled<const N: usize> = (Vec<Mat<N>>, Vect<N>, Mat<N>);
+
+fn intersect<const N: usize>(
+    estimates: &[(SVector<f64, N>, SMatrix<f64, N, N>)],
+    method: CiWeighting,
+    start: Option<&[f64]>,
+) -> Result<(CiResult<N>, Scaled<N>), EstimationError> {
     let (ys, s) = scaled_infos(estimates)?;
+    let start = start.filter(|w| {
+        w.len() == ys.len()
+            && w.iter().all(|v| v.is_finite() && *v >= 0.0)
+            && w.iter().sum::<f64>() > 0.0
+    });
     let w = match method {
         CiWeighting::FastInfNorm => {
             fast_weights(&ys.iter().map(|y| congruence(y, &s)).collect::<Vec<_>>())?
         }
-        m => optimal_weights(&ys, m == CiWeighting::OptimalTrace)?,
+        m => optimal_weights(&ys, m == CiWeighting::OptimalTrace, start)?,
     };
-    fuse_scaled(estimates, &ys, &s, w)
+    let (fused, yinv) = fuse_scaled(estimates, &ys, &s, w)?;
+    Ok((fused, (ys, s, yinv)))
 }
 
 /// Information feedback, seed 000 eq. 22: each local filter `i` is reset to

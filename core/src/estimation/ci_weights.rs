@@ -4,6 +4,7 @@
 
 use super::EstimationError;
 use super::ci::not_pd;
+use super::spd::inverse_from_cholesky;
 use nalgebra::{Cholesky, Const, DMatrix, DVector, SMatrix};
 
 /// Iteration cap of the optimal-weight Newton solver (it normally needs 3–10 iterations).
@@ -52,7 +53,7 @@ impl<'a, const N: usize> Problem<'a, N> {
     fn factor(&self, w: &[f64]) -> Option<Factor<N>> {
         let y: Mat<N> = self.ys.iter().zip(w).map(|(yi, wi)| yi * *wi).sum();
         let chol = y.cholesky()?;
-        let yinv = self.trace.then(|| chol.inverse());
+        let yinv = self.trace.then(|| inverse_from_cholesky(chol.l_dirty()));
         let f = match &yinv {
             Some(yi) => yi.trace(),
             None => -2.0 * chol.l_dirty().diagonal().map(f64::ln).sum(),
@@ -62,7 +63,9 @@ impl<'a, const N: usize> Problem<'a, N> {
 
     /// Gradient `g` and Hessian `h` at a factorisation.
     fn derivatives(&mut self, fac: &Factor<N>) {
-        let yinv = fac.yinv.unwrap_or_else(|| fac.chol.inverse());
+        let yinv = fac
+            .yinv
+            .unwrap_or_else(|| inverse_from_cholesky(fac.chol.l_dirty()));
         let (m, s) = (&mut self.m, &mut self.s);
         for i in 0..self.ys.len() {
             m[i] = yinv * self.ys[i];
@@ -108,7 +111,8 @@ fn newton_direction(free: &[usize], g: &[f64], h: &DMatrix<f64>) -> Option<Vec<f
 }
 
 /// Active-set projected Newton method on the simplex for the convex objectives of
-/// [`Problem`]. Starts from uniform weights; on each face takes damped Newton steps with an
+/// [`Problem`]. Starts from `start` (renormalised; its zero weights start inactive) or uniform
+/// weights; on each face takes damped Newton steps with an
 /// Armijo backtracking line search and a ratio test that drops weights reaching 0; when the
 /// face is stationary (projected gradient ≤ 1e-13 ‖g‖∞, Newton step ≤ 1e-12, or a final full
 /// Newton step with decrement ≤ 1e-12 (1 + |f|)), re-admits the zero weight whose KKT
@@ -118,13 +122,19 @@ fn newton_direction(free: &[usize], g: &[f64], h: &DMatrix<f64>) -> Option<Vec<f
 pub(super) fn optimal_weights<const N: usize>(
     ys: &[Mat<N>],
     trace: bool,
+    start: Option<&[f64]>,
 ) -> Result<Vec<f64>, EstimationError> {
     let n = ys.len();
     if n == 1 {
         return Ok(vec![1.0]);
     }
     let mut prob = Problem::new(ys, trace);
-    let (mut w, mut trial, mut active) = (vec![1.0 / n as f64; n], vec![0.0; n], vec![true; n]);
+    let mut w = vec![1.0 / n as f64; n];
+    if let Some(s) = start {
+        let sum: f64 = s.iter().sum();
+        w = s.iter().map(|v| v / sum).collect();
+    }
+    let (mut trial, mut active) = (vec![0.0; n], w.iter().map(|v| *v > 0.0).collect::<Vec<_>>());
     let not_pd_sum = || not_pd("CI weighted information".into());
     let mut fac = prob.factor(&w).ok_or_else(not_pd_sum)?;
     for _ in 0..MAX_ITER {

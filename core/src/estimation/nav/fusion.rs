@@ -7,7 +7,7 @@ use super::fusion_exact::{fuse_exact, local_update};
 use super::start::FilterStart;
 use super::{FilterCore, NavFilter, StepInfo};
 use crate::estimation::EstimationError;
-use crate::estimation::ci::{CiWeighting, covariance_intersection, feedback};
+use crate::estimation::ci::{CiWeighting, covariance_intersection_from, feedback};
 use crate::estimation::ekf::LinearizedMeasurement;
 use crate::estimation::{FusionCovariance, Onboard};
 use crate::math::V3;
@@ -42,6 +42,9 @@ pub struct FusionNav<const N: usize> {
     n_consider: usize,
     /// Beacons the innovation gate has excluded: their local filters leave the fusion.
     excluded: Vec<usize>,
+    /// The last fusion's weights per local filter (0 for those not fused): the next epoch's
+    /// optimal-weight search starts from them (`covariance_intersection_from`).
+    last_weights: Vec<f64>,
 }
 
 /// The channel slots of each local filter: the non-radio channels (the IMU) plus the radio
@@ -108,6 +111,7 @@ impl<const N: usize> FusionNav<N> {
             exact,
             n_consider: onboard.tuning.n_consider,
             excluded: Vec::new(),
+            last_weights: Vec::new(),
         })
     }
 
@@ -372,7 +376,13 @@ impl<const N: usize> NavFilter<N> for FusionNav<N> {
             .iter()
             .filter_map(|&i| self.ens.members[i].as_ref().map(|f| f.estimate()))
             .collect();
-        let fused = covariance_intersection(&estimates, self.method)?;
+        // The optimal weights move little between epochs: start their search from the last ones
+        // (uniform at the first epoch, or when none of the fused locals had weight).
+        let start: Vec<f64> = alive
+            .iter()
+            .map(|&i| self.last_weights.get(i).copied().unwrap_or(0.0))
+            .collect();
+        let fused = covariance_intersection_from(&estimates, self.method, &start)?;
         if self.feedback {
             for (&i, (x, p)) in alive.iter().zip(feedback(&fused)) {
                 if let Some(f) = self.ens.members[i].as_mut() {
@@ -384,6 +394,7 @@ impl<const N: usize> NavFilter<N> for FusionNav<N> {
         for (&i, w) in alive.iter().zip(&fused.weights) {
             weights[i] = *w;
         }
+        self.last_weights.clone_from(&weights);
         self.ens.fused = (fused.x, fused.p);
         Ok(StepInfo {
             nis: Some(nis),

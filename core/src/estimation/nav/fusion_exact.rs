@@ -29,7 +29,7 @@
 //! paper's bound-and-divide scheme stays available as `fusion_covariance = "paper"`.
 
 use crate::estimation::EstimationError;
-use crate::estimation::ci::{CiResult, CiWeighting, covariance_intersection};
+use crate::estimation::ci::{CiWeighting, covariance_intersection_with_gains};
 use crate::estimation::ekf::LinearizedMeasurement;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
@@ -43,6 +43,8 @@ pub(crate) struct LocalUpdate<const N: usize> {
     pub a: SMatrix<f64, N, N>,
     /// Per channel used: slot, gain column and noise variance.
     pub gains: Vec<(usize, SVector<f64, N>, f64)>,
+    /// Per channel used, in the order of `gains`: the measurement Jacobian row h_c (H's row).
+    pub rows: Vec<SVector<f64, N>>,
     /// Per channel: slot and the marginal ν²/S of the batch update.
     pub nis_terms: Vec<(usize, f64)>,
     /// νᵀS⁻¹ν of the batch update.
@@ -53,6 +55,11 @@ pub(crate) struct LocalUpdate<const N: usize> {
 /// linearised at `x_lin` (the prior itself, or an iterated-EKF iterate: ν = z − h(x_lin) −
 /// H (x − x_lin)); the last `n_consider` states get zero gain (Schmidt). `None` when the local has
 /// nothing to measure this epoch.
+///
+/// Work is O(N² m) for m channels, never O(N³): with u_c = P h_c (P Hᵀ's columns),
+/// S = H P Hᵀ + R, K = P Hᵀ S⁻¹, the Joseph posterior A P Aᵀ + K R Kᵀ is formed as
+/// A P = P − Σ_c k_c u_cᵀ and (A P) Aᵀ = A P − Σ_c (A P h_c) k_cᵀ (the same product, A never
+/// multiplied as an N × N matrix).
 pub(crate) fn local_update<const N: usize>(
     x: &SVector<f64, N>,
     p: &SMatrix<f64, N, N>,
@@ -67,14 +74,14 @@ pub(crate) fn local_update<const N: usize>(
     if m == 0 {
         return Ok(None);
     }
-    let h = DMatrix::from_fn(m, N, |a, j| mine[a].1.1[j]);
+    let rows: Vec<SVector<f64, N>> = mine.iter().map(|it| it.1.1).collect();
     let r: Vec<f64> = mine.iter().map(|it| it.1.3).collect();
     let offset = x - x_lin;
     let nu = DVector::from_fn(m, |a, _| {
         mine[a].1.2 - mine[a].1.0 - mine[a].1.1.dot(&offset)
     });
-    let pd = DMatrix::from_fn(N, N, |i, j| p[(i, j)]);
-    let mut s = &h * &pd * h.transpose();
+    let u: Vec<SVector<f64, N>> = rows.iter().map(|h| p * h).collect();
+    let mut s = DMatrix::from_fn(m, m, |a, b| rows[a].dot(&u[b]));
     for (a, ra) in r.iter().enumerate() {
         s[(a, a)] += ra;
     }
@@ -85,22 +92,37 @@ pub(crate) fn local_update<const N: usize>(
             what: "a local filter's innovation covariance".into(),
         })?;
     let nis = nu.dot(&chol.solve(&nu));
-    let mut k = &pd * h.transpose() * chol.inverse();
-    for i in N - n_consider..N {
-        k.row_mut(i).fill(0.0);
+    let s_inv = chol.inverse();
+    // K's columns k_c = Σ_b u_b (S⁻¹)_bc, consider rows zero.
+    let k: Vec<SVector<f64, N>> = (0..m)
+        .map(|c| {
+            let mut kc = SVector::<f64, N>::zeros();
+            for (b, ub) in u.iter().enumerate() {
+                kc += ub * s_inv[(b, c)];
+            }
+            kc.rows_mut(N - n_consider, n_consider).fill(0.0);
+            kc
+        })
+        .collect();
+    let mut dx = SVector::<f64, N>::zeros();
+    let mut ap = *p;
+    let mut a = SMatrix::<f64, N, N>::identity();
+    for c in 0..m {
+        dx += k[c] * nu[c];
+        ap -= k[c] * u[c].transpose();
+        a -= k[c] * rows[c].transpose();
     }
-    let dx = &k * &nu;
-    let kh = &k * &h;
-    let a = SMatrix::<f64, N, N>::from_fn(|i, j| if i == j { 1.0 } else { 0.0 } - kh[(i, j)]);
-    let mut post = a * p * a.transpose();
+    let mut post = ap;
+    for c in 0..m {
+        post -= (ap * rows[c]) * k[c].transpose();
+    }
     let mut gains = Vec::with_capacity(m);
-    for (col, it) in mine.iter().enumerate() {
-        let kc = SVector::<f64, N>::from_fn(|i, _| k[(i, col)]);
-        post += kc * kc.transpose() * r[col];
-        gains.push((it.0, kc, r[col]));
+    for (c, it) in mine.iter().enumerate() {
+        post += k[c] * k[c].transpose() * r[c];
+        gains.push((it.0, k[c], r[c]));
     }
     let post = (post + post.transpose()) * 0.5;
-    let x_post = x + SVector::<f64, N>::from_fn(|i, _| dx[i]);
+    let x_post = x + dx;
     if x_post.iter().chain(post.iter()).any(|v| !v.is_finite()) {
         return Err(EstimationError::NonFinite {
             what: "a local filter's update".into(),
@@ -116,6 +138,7 @@ pub(crate) fn local_update<const N: usize>(
             .map(|(col, it)| (it.0, nu[col] * nu[col] / s[(col, col)]))
             .collect(),
         gains,
+        rows,
         nis,
     }))
 }
@@ -132,42 +155,24 @@ pub(super) fn fuse_exact<const N: usize>(
     fuse_exact_with_gains(p, locals).map(|(fused, _)| fused)
 }
 
-/// The fused estimate's gains W_i = ω_i P_CI P_i⁻¹ on the local estimates of a CI fusion
-/// (x̂_CI = Σ W_i x̂_i, seed 000 eq. 19, and Σ W_i = I), from scaled Cholesky solves.
-pub(crate) fn ci_gains<const N: usize>(
-    ci: &CiResult<N>,
-    covariances: &[SMatrix<f64, N, N>],
-) -> Result<Vec<SMatrix<f64, N, N>>, EstimationError> {
-    let mut w = Vec::with_capacity(covariances.len());
-    for (p, &omega) in covariances.iter().zip(&ci.weights) {
-        let d = SVector::<f64, N>::from_fn(|i, _| p[(i, i)].sqrt());
-        let c = SMatrix::<f64, N, N>::from_fn(|i, j| p[(i, j)] / (d[i] * d[j]));
-        let chol = c.cholesky().ok_or(EstimationError::NotPositiveDefinite {
-            what: "a local filter's covariance".into(),
-        })?;
-        // P_i⁻¹ = D⁻¹ C⁻¹ D⁻¹, so W_i = ω_i P_CI D⁻¹ C⁻¹ D⁻¹.
-        let inv_d = SMatrix::<f64, N, N>::from_diagonal(&d.map(|v| 1.0 / v));
-        w.push(ci.p * inv_d * chol.inverse() * inv_d * omega);
-    }
-    Ok(w)
-}
-
-/// [`fuse_exact`] with the gains W_i of the fused estimate on the local ones ([`ci_gains`]).
+/// [`fuse_exact`] with the gains W_i = ω_i P_CI P_i⁻¹ of the fused estimate on the local ones
+/// ([`covariance_intersection_with_gains`]).
 pub(crate) fn fuse_exact_with_gains<const N: usize>(
     p: &SMatrix<f64, N, N>,
     locals: &[LocalUpdate<N>],
 ) -> Result<(Fused<N>, Vec<SMatrix<f64, N, N>>), EstimationError> {
     let estimates: Vec<_> = locals.iter().map(|l| (l.x, l.p)).collect();
-    let ci = covariance_intersection(&estimates, CiWeighting::FastInfNorm)?;
-    let w = ci_gains(&ci, &locals.iter().map(|l| l.p).collect::<Vec<_>>())?;
+    let (ci, w) = covariance_intersection_with_gains(&estimates, CiWeighting::FastInfNorm)?;
     // Σ_ij W_i C_ij W_jᵀ = B P Bᵀ + Σ_c r_c g_c g_cᵀ, with B = Σ_i W_i A_i and, per channel c,
     // g_c = Σ_{i uses c} W_i K_i,c: the double sum regrouped by the shared prior and by channel.
+    // B = Σ_i W_i (I − Σ_c k_ic h_icᵀ) = Σ_i W_i − Σ_i Σ_c (W_i k_ic) h_icᵀ: O(N²) per channel.
     let mut b = SMatrix::<f64, N, N>::zeros();
     let mut g: Vec<(usize, SVector<f64, N>, f64)> = Vec::new();
     for (l, wi) in locals.iter().zip(&w) {
-        b += wi * l.a;
-        for (slot, k, r) in &l.gains {
+        b += wi;
+        for ((slot, k, r), h) in l.gains.iter().zip(&l.rows) {
             let term = wi * k;
+            b -= term * h.transpose();
             match g.iter_mut().find(|e| e.0 == *slot) {
                 Some(e) => e.1 += term,
                 None => g.push((*slot, term, *r)),
@@ -190,10 +195,63 @@ pub(crate) fn fuse_exact_with_gains<const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::estimation::ci::covariance_intersection;
     use nalgebra::{Matrix3, Vector3};
     use rand::SeedableRng;
     use rand_chacha::ChaCha8Rng;
     use rand_distr::{Distribution, StandardNormal};
+
+    /// The O(N² m) update equals the textbook dense one: K = P Hᵀ S⁻¹ with the consider row
+    /// zeroed, A = I − K H, Joseph A P Aᵀ + K R Kᵀ, x̂⁺ = x̂ + K ν.
+    #[test]
+    fn local_update_equals_the_dense_joseph_update() {
+        use nalgebra::{SMatrix, SVector};
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let mut n01 = || -> f64 { StandardNormal.sample(&mut rng) };
+        for _ in 0..20 {
+            let g = SMatrix::<f64, 5, 5>::from_fn(|_, _| n01());
+            let p = g * g.transpose() + SMatrix::<f64, 5, 5>::identity() * 0.1;
+            let x = SVector::<f64, 5>::from_fn(|_, _| n01());
+            let lin = x + SVector::<f64, 5>::from_fn(|_, _| 0.1 * n01());
+            let items: Vec<(usize, LinearizedMeasurement<5>)> = (0..4)
+                .map(|c| {
+                    let h = SVector::<f64, 5>::from_fn(|_, _| n01());
+                    (c, (n01(), h, n01(), 0.1 + n01().abs()))
+                })
+                .collect();
+            let mask = [0, 2, 3];
+            let u = local_update(&x, &p, &lin, &items, &mask, 1)
+                .unwrap()
+                .unwrap();
+            let h = SMatrix::<f64, 3, 5>::from_fn(|a, j| items[mask[a]].1.1[j]);
+            let r = SMatrix::<f64, 3, 3>::from_diagonal(&SVector::<f64, 3>::from_fn(|a, _| {
+                items[mask[a]].1.3
+            }));
+            let nu = SVector::<f64, 3>::from_fn(|a, _| {
+                let it = &items[mask[a]].1;
+                it.2 - it.0 - it.1.dot(&(x - lin))
+            });
+            let s = h * p * h.transpose() + r;
+            let mut k = p * h.transpose() * s.try_inverse().unwrap();
+            k.row_mut(4).fill(0.0);
+            let a = SMatrix::<f64, 5, 5>::identity() - k * h;
+            let post = a * p * a.transpose() + k * r * k.transpose();
+            let scale = p.abs().max();
+            assert!(
+                (u.p - post).abs().max() < 1e-12 * scale,
+                "{} vs {}",
+                u.p,
+                post
+            );
+            assert!((u.a - a).abs().max() < 1e-12);
+            assert!((u.x - (x + k * nu)).abs().max() < 1e-12);
+            assert!((u.nis - nu.dot(&(s.try_inverse().unwrap() * nu))).abs() < 1e-10);
+            for (c, (row, (_, kc, _))) in u.rows.iter().zip(&u.gains).enumerate() {
+                assert_eq!(*row, h.row(c).transpose());
+                assert!((kc - k.column(c)).abs().max() < 1e-12);
+            }
+        }
+    }
 
     /// Linear-Gaussian check: three locals share one channel (the IMU's role) and each has its
     /// own; the covariance `fuse_exact` reports equals the empirical covariance of the fused

@@ -24,7 +24,7 @@ pub use bank::BankNav;
 pub use build::build_filter;
 pub use ekf_nav::EkfNav;
 pub use fusion::FusionNav;
-pub(crate) use fusion_exact::{ci_gains, fuse_exact_with_gains, local_update};
+pub(crate) use fusion_exact::{fuse_exact_with_gains, local_update};
 pub use gate::{GateReport, GatedNav};
 pub use kind::{FilterKind, NavError};
 pub use start::FilterStart;

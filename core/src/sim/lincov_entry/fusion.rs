@@ -35,10 +35,10 @@ use super::recursion::{
 };
 use super::truth::{NominalTruth, TruthEpoch};
 use super::{EntryLinCovEpoch, EntryLinCovError};
-use crate::estimation::ci::{covariance_intersection, feedback};
+use crate::estimation::ci::{covariance_intersection_with_gains, feedback};
 use crate::estimation::ekf::LinearizedMeasurement;
 use crate::estimation::nav::fusion::{local_start_scale, weighting};
-use crate::estimation::nav::{EkfNav, FilterCore, ci_gains, fuse_exact_with_gains, local_update};
+use crate::estimation::nav::{EkfNav, FilterCore, fuse_exact_with_gains, local_update};
 use crate::estimation::{FusionCovariance, Onboard};
 use crate::scenario::Scenario;
 use crate::sim::judge::estimation_error;
@@ -129,8 +129,8 @@ impl FusionRecursion<'_> {
         ps: &mut [SMatrix<f64, N, N>],
     ) -> Result<Fusion<N>, EntryLinCovError> {
         let estimates: Vec<_> = ps.iter().map(|p| (*xbar, *p)).collect();
-        let ci = covariance_intersection(&estimates, weighting(self.feedback)).map_err(failed)?;
-        let w = ci_gains(&ci, ps).map_err(failed)?;
+        let (ci, w) = covariance_intersection_with_gains(&estimates, weighting(self.feedback))
+            .map_err(failed)?;
         if self.feedback {
             for (p, (_, reset)) in ps.iter_mut().zip(feedback(&ci)) {
                 *p = reset;

@@ -173,11 +173,17 @@ impl<const N: usize> Ekf<N> {
     /// nothing). The covariance is the Joseph form with the last H_i; consider rows keep zero gain.
     /// One iteration is [`Ekf::update_linearized`]. Returns the per-scalar ν²/s terms and the NIS
     /// of the last pass.
+    ///
+    /// The stopping test needs only the measurement *values* at the iterate: `values(x)` gives
+    /// them (the same channels in the same order, equal to the `.0` of `relinearize(x)`), and the
+    /// Jacobians of `relinearize` are computed only when another pass follows — in an entry filter
+    /// nearly every epoch stops after the first pass, so this saves an AD linearisation per epoch.
     pub fn update_iterated(
         &mut self,
         items: &[LinearizedMeasurement<N>],
         iterations: usize,
         tolerance: f64,
+        mut values: impl FnMut(&SVector<f64, N>) -> Vec<f64>,
         mut relinearize: impl FnMut(&SVector<f64, N>) -> Vec<LinearizedMeasurement<N>>,
     ) -> Result<(Vec<f64>, f64), EstimationError> {
         let prior = self.clone();
@@ -193,17 +199,27 @@ impl<const N: usize> Ekf<N> {
                 });
             }
             let done = it >= iterations || {
-                let next = relinearize(&trial.x);
-                if next.len() != current.len() {
+                let at_x = values(&trial.x);
+                if at_x.len() != current.len() {
                     return Err(EstimationError::InvalidInput(format!(
                         "relinearisation returned {} measurements for {}",
-                        next.len(),
+                        at_x.len(),
                         current.len()
                     )));
                 }
-                let small = linearization_error(&lin, &current, &trial.x, &next) <= tolerance;
-                lin = trial.x;
-                current = next;
+                let small = linearization_error_values(&lin, &current, &trial.x, &at_x) <= tolerance;
+                if !small {
+                    let next = relinearize(&trial.x);
+                    if next.len() != current.len() {
+                        return Err(EstimationError::InvalidInput(format!(
+                            "relinearisation returned {} measurements for {}",
+                            next.len(),
+                            current.len()
+                        )));
+                    }
+                    lin = trial.x;
+                    current = next;
+                }
                 small
             };
             if done {
@@ -224,11 +240,22 @@ pub fn linearization_error<const N: usize>(
     x: &SVector<f64, N>,
     at_x: &[LinearizedMeasurement<N>],
 ) -> f64 {
+    let values: Vec<f64> = at_x.iter().map(|it| it.0).collect();
+    linearization_error_values(lin, items, x, &values)
+}
+
+/// [`linearization_error`] from the measurement values `h(x)` alone.
+pub fn linearization_error_values<const N: usize>(
+    lin: &SVector<f64, N>,
+    items: &[LinearizedMeasurement<N>],
+    x: &SVector<f64, N>,
+    at_x: &[f64],
+) -> f64 {
     let dx = x - lin;
     items
         .iter()
         .zip(at_x)
-        .map(|((h0, hrow, _, r), (h1, _, _, _))| (h1 - h0 - hrow.dot(&dx)).abs() / r.sqrt())
+        .map(|((h0, hrow, _, r), h1)| (h1 - h0 - hrow.dot(&dx)).abs() / r.sqrt())
         .fold(0.0, f64::max)
 }
 
@@ -294,10 +321,16 @@ mod tests {
         kalman.update_linearized(&x0, &items).unwrap();
         let mut calls = 0;
         let mut iekf = Ekf::new(x0, p0).unwrap();
-        iekf.update_iterated(&items, 10, 1e-12, |x| {
-            calls += 1;
-            vec![(row.dot(x), row, 0.7, 0.5)]
-        })
+        iekf.update_iterated(
+            &items,
+            10,
+            1e-12,
+            |x| {
+                calls += 1;
+                vec![row.dot(x)]
+            },
+            |x| vec![(row.dot(x), row, 0.7, 0.5)],
+        )
         .unwrap();
         // A linear model is predicted exactly: one relinearisation shows it, and the update stops.
         assert_eq!(calls, 1);
@@ -318,9 +351,13 @@ mod tests {
             range(&truth, &beacons[1]).0 - 0.2,
         ];
         let mut iekf = Ekf::new(x0, p0).unwrap();
-        iekf.update_iterated(&range_items(&x0, &z, r), 50, 1e-10, |x| {
-            range_items(x, &z, r)
-        })
+        iekf.update_iterated(
+            &range_items(&x0, &z, r),
+            50,
+            1e-10,
+            |x| range_items(x, &z, r).iter().map(|it| it.0).collect(),
+            |x| range_items(x, &z, r),
+        )
         .unwrap();
         // Stationarity of ½‖x − x0‖²_{P0⁻¹} + ½ Σ (z_i − h_i(x))²/r at the result (Gauss–Newton
         // fixed point), with the gradient by central differences of the cost itself.

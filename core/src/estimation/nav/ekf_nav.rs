@@ -7,7 +7,7 @@ use crate::atmosphere::AtmosphereModel;
 use crate::dynamics::EntryModel;
 use crate::estimation::EstimationError;
 use crate::estimation::Onboard;
-pub(super) use crate::estimation::ekf::linearization_error;
+use crate::estimation::onboard::OnboardChannel;
 use crate::estimation::ekf::{Ekf, LinearizedMeasurement};
 use crate::math::{V3, dual_gradient, seed_duals};
 use crate::sensors::MeasurementEpoch;
@@ -159,10 +159,13 @@ impl<const N: usize> EkfNav<N> {
             return Ok(StepInfo::default());
         }
         let mut ekf = self.ekf.clone();
-        let (terms, nis) =
-            ekf.update_iterated(&first, iterations, RELINEARIZATION_TOLERANCE, |x| {
-                self.linearize(x, epoch, beacons, Some(&slots)).1
-            })?;
+        let (terms, nis) = ekf.update_iterated(
+            &first,
+            iterations,
+            RELINEARIZATION_TOLERANCE,
+            |x| self.values_at(x, epoch, beacons, &slots),
+            |x| self.linearize(x, epoch, beacons, Some(&slots)).1,
+        )?;
         self.ekf = ekf;
         Ok(StepInfo {
             nis: Some(nis),
@@ -232,6 +235,30 @@ impl<const N: usize> EkfNav<N> {
         self.linearize(x, epoch, beacons, Some(slots)).1
     }
 
+    /// The measurement values `h(x)` of the epoch's channels in `slots` (the `.0` of
+    /// [`EkfNav::items_at`], without the AD Jacobians).
+    pub fn values_at(
+        &self,
+        x: &SVector<f64, N>,
+        epoch: &MeasurementEpoch,
+        beacons: &[(V3<f64>, V3<f64>)],
+        slots: &[usize],
+    ) -> Vec<f64> {
+        let kin = kinematics(&self.model, x, epoch.t);
+        epoch_channels(&self.onboard, epoch, Some(slots))
+            .map(|(_, spec, _)| {
+                self.onboard.measurement.evaluate_with(
+                    &self.model,
+                    x,
+                    &kin,
+                    self.bank,
+                    beacons,
+                    spec.channel,
+                )
+            })
+            .collect()
+    }
+
     fn linearize(
         &self,
         x: &SVector<f64, N>,
@@ -251,6 +278,22 @@ impl<const N: usize> EkfNav<N> {
     }
 }
 
+/// The epoch's available channels (those in `mask`, when given): slot, onboard channel and
+/// measured value, in slot order.
+fn epoch_channels<'a>(
+    onboard: &'a Onboard,
+    epoch: &'a MeasurementEpoch,
+    mask: Option<&'a [usize]>,
+) -> impl Iterator<Item = (usize, &'a OnboardChannel, f64)> + 'a {
+    epoch.values.iter().enumerate().filter_map(move |(c, value)| {
+        let z = (*value)?;
+        if mask.is_some_and(|m| !m.contains(&c)) {
+            return None;
+        }
+        Some((c, onboard.channels.get(c)?, z))
+    })
+}
+
 /// Linearised items `(h(x), ∂h/∂x by AD, z, r)` of the epoch's available channels (those in
 /// `mask`, when given) at `x`, with the `onboard` measurement model on the dynamics `model`
 /// flying `bank`, and the noise the filter assumes; with the channel slot of each. The EKFs'
@@ -268,16 +311,7 @@ pub(super) fn linearize_epoch<const N: usize>(
     let kin = kinematics(model, &xd, epoch.t);
     let mut slots = Vec::new();
     let mut items = Vec::new();
-    for (c, value) in epoch.values.iter().enumerate() {
-        let Some(z) = *value else { continue };
-        if let Some(mask) = mask
-            && !mask.contains(&c)
-        {
-            continue;
-        }
-        let Some(spec) = onboard.channels.get(c) else {
-            continue;
-        };
+    for (c, spec, z) in epoch_channels(onboard, epoch, mask) {
         let d = onboard
             .measurement
             .evaluate_with(model, &xd, &kin, bank, beacons, spec.channel);
@@ -304,7 +338,10 @@ impl<const N: usize> NavFilter<N> for EkfNav<N> {
         epoch: &MeasurementEpoch,
         beacons: &[(V3<f64>, V3<f64>)],
     ) -> Result<StepInfo, EstimationError> {
-        let items = self.all_measurement_items(epoch, beacons);
+        // Only this filter's channels (a local filter's mask): the others would be linearised
+        // only to be dropped.
+        let (slots, items) = self.measurement_items(epoch, beacons);
+        let items: Vec<_> = slots.into_iter().zip(items).collect();
         self.update_iterated(&items, epoch, beacons)
     }
 

@@ -1,7 +1,8 @@
 //! Distributed fusion: one local EKF per beacon (IMU + that beacon), fused by covariance
 //! intersection, with or without information feedback (seed 000 §2.3.3, §3.3–3.4).
 
-use super::ekf_nav::{EkfNav, RELINEARIZATION_TOLERANCE, linearization_error};
+use super::ekf_nav::{EkfNav, RELINEARIZATION_TOLERANCE};
+use crate::estimation::ekf::linearization_error_values;
 use super::ensemble::EkfEnsemble;
 use super::fusion_exact::{fuse_exact, local_update};
 use super::start::FilterStart;
@@ -154,11 +155,25 @@ impl<const N: usize> FusionNav<N> {
             let Some((x_next, phi)) = self.ens.first().map(|f| f.substep(h)) else {
                 break;
             };
+            // Locals whose covariance equals an earlier local's (bit for bit: all of them with
+            // the exact feedback, which resets every local to the fused (x̂, P)) take its
+            // predicted covariance instead of computing Φ P Φᵀ + Q again: the same operations on
+            // the same numbers, so the same result.
+            let mut done: Vec<(SMatrix<f64, N, N>, Option<SMatrix<f64, N, N>>)> = Vec::new();
             for slot in self.ens.members.iter_mut() {
-                if let Some(f) = slot
-                    && f.apply_substep(x_next, &phi, &q).is_err()
-                {
-                    *slot = None;
+                let Some(f) = slot else { continue };
+                let prior = f.estimate().1;
+                let post = match done.iter().find(|(p, _)| *p == prior) {
+                    Some((_, post)) => *post,
+                    None => {
+                        let post = f.apply_substep(x_next, &phi, &q).ok().map(|_| f.estimate().1);
+                        done.push((prior, post));
+                        post
+                    }
+                };
+                match post {
+                    Some(p) => f.set_estimate(x_next, p),
+                    None => *slot = None,
                 }
             }
         }
@@ -211,18 +226,20 @@ impl<const N: usize> FusionNav<N> {
             if pass.x.iter().any(|v| !v.is_finite()) {
                 break;
             }
-            let next: Vec<_> = all_slots
+            // The stopping test needs only h at the iterate; the AD Jacobians follow only when
+            // another pass does (as in `Ekf::update_iterated`).
+            let old: Vec<_> = items.iter().map(|(_, it)| *it).collect();
+            let values = first.values_at(&pass.x, epoch, beacons, &all_slots);
+            if linearization_error_values(&lin, &old, &pass.x, &values) <= RELINEARIZATION_TOLERANCE
+            {
+                break;
+            }
+            lin = pass.x;
+            items = all_slots
                 .iter()
                 .copied()
                 .zip(first.items_at(&pass.x, epoch, beacons, &all_slots))
                 .collect();
-            let old: Vec<_> = items.iter().map(|(_, it)| *it).collect();
-            let new: Vec<_> = next.iter().map(|(_, it)| *it).collect();
-            if linearization_error(&lin, &old, &pass.x, &new) <= RELINEARIZATION_TOLERANCE {
-                break;
-            }
-            lin = pass.x;
-            items = next;
             pass = fusion_pass(
                 &x,
                 &p,

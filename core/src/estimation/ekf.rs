@@ -207,7 +207,8 @@ impl<const N: usize> Ekf<N> {
                         current.len()
                     )));
                 }
-                let small = linearization_error_values(&lin, &current, &trial.x, &at_x) <= tolerance;
+                let small =
+                    linearization_error_values(&lin, &current, &trial.x, &at_x) <= tolerance;
                 if !small {
                     let next = relinearize(&trial.x);
                     if next.len() != current.len() {

@@ -7,8 +7,8 @@ use crate::atmosphere::AtmosphereModel;
 use crate::dynamics::EntryModel;
 use crate::estimation::EstimationError;
 use crate::estimation::Onboard;
-use crate::estimation::onboard::OnboardChannel;
 use crate::estimation::ekf::{Ekf, LinearizedMeasurement};
+use crate::estimation::onboard::OnboardChannel;
 use crate::math::{V3, dual_gradient, seed_duals};
 use crate::sensors::MeasurementEpoch;
 use crate::sensors::channels::kinematics;
@@ -285,13 +285,17 @@ fn epoch_channels<'a>(
     epoch: &'a MeasurementEpoch,
     mask: Option<&'a [usize]>,
 ) -> impl Iterator<Item = (usize, &'a OnboardChannel, f64)> + 'a {
-    epoch.values.iter().enumerate().filter_map(move |(c, value)| {
-        let z = (*value)?;
-        if mask.is_some_and(|m| !m.contains(&c)) {
-            return None;
-        }
-        Some((c, onboard.channels.get(c)?, z))
-    })
+    epoch
+        .values
+        .iter()
+        .enumerate()
+        .filter_map(move |(c, value)| {
+            let z = (*value)?;
+            if mask.is_some_and(|m| !m.contains(&c)) {
+                return None;
+            }
+            Some((c, onboard.channels.get(c)?, z))
+        })
 }
 
 /// Linearised items `(h(x), ∂h/∂x by AD, z, r)` of the epoch's available channels (those in

@@ -2,7 +2,6 @@
 //! intersection, with or without information feedback (seed 000 §2.3.3, §3.3–3.4).
 
 use super::ekf_nav::{EkfNav, RELINEARIZATION_TOLERANCE};
-use crate::estimation::ekf::linearization_error_values;
 use super::ensemble::EkfEnsemble;
 use super::fusion_exact::{fuse_exact, local_update};
 use super::start::FilterStart;
@@ -10,6 +9,7 @@ use super::{FilterCore, NavFilter, StepInfo};
 use crate::estimation::EstimationError;
 use crate::estimation::ci::{CiWeighting, covariance_intersection_from, feedback};
 use crate::estimation::ekf::LinearizedMeasurement;
+use crate::estimation::ekf::linearization_error_values;
 use crate::estimation::{FusionCovariance, Onboard};
 use crate::math::V3;
 use crate::sensors::MeasurementEpoch;
@@ -166,7 +166,10 @@ impl<const N: usize> FusionNav<N> {
                 let post = match done.iter().find(|(p, _)| *p == prior) {
                     Some((_, post)) => *post,
                     None => {
-                        let post = f.apply_substep(x_next, &phi, &q).ok().map(|_| f.estimate().1);
+                        let post = f
+                            .apply_substep(x_next, &phi, &q)
+                            .ok()
+                            .map(|_| f.estimate().1);
                         done.push((prior, post));
                         post
                     }

@@ -20,7 +20,7 @@ pub struct GenerateArgs {
     /// Seed of the per-profile perturbation (profile i uses seed + i).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// Multiplier of the SPEC.md perturbation envelope (0: the scaled mean profiles exactly).
+    /// Multiplier of the perturbation envelope (docs/density.md) (0: the scaled mean profiles exactly).
     #[arg(long, default_value_t = 0.5)]
     pub perturbation_scale: f64,
     /// Which cases: `standard` (18: f_above x f_below), `high-latitude` (12: steeper scale height,

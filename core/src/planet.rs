@@ -1,10 +1,10 @@
-//! Planet constants (SPEC.md "Conventions"), overridable per scenario.
+//! Planet constants (the Mars values common to the four papers, docs/references.md), overridable per scenario.
 
 use serde::{Deserialize, Serialize};
 
 /// Gravitational and geometric constants of the central body.
 ///
-/// Defaults are Mars as settled in SPEC.md: μ = 4.2828e13 m³/s², mean radius 3396.2 km,
+/// Defaults are Mars as we settled it for all four papers: μ = 4.2828e13 m³/s², mean radius 3396.2 km,
 /// rotation rate 7.0882e-5 rad/s. Seed 000 uses μ = 4.282829e13; a scenario may override any value.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Planet {
@@ -17,7 +17,7 @@ pub struct Planet {
 }
 
 impl Planet {
-    /// Mars with the SPEC.md constants.
+    /// Mars with the default constants above.
     pub const MARS: Planet = Planet {
         mu: 4.2828e13,
         radius: 3_396_200.0,

@@ -471,9 +471,9 @@ fn seed000_beacons_are_all_hidden_from_the_vehicle() {
             "seed 000 {name}: {angle:.2}° from the vehicle, visibility margin {:.2}°",
             margin.to_degrees()
         );
-        // SPEC.md says 104–131° for all four; measured, surface 1, surface 2 and orbiter 2 are
-        // at 106.2°, 104.4° and 131.0°, but orbiter 1 is at 89.5° (hidden all the same: its
-        // eq. 60 margin is about −9.8°).
+        // As docs/references.md says: surface 1, surface 2 and orbiter 2 are at 106.2°, 104.4°
+        // and 131.0° from the vehicle, orbiter 1 at 89.5° (hidden all the same: its eq. 60
+        // margin is about −9.8°).
         let expected = if *name == "orbiter 1" {
             85.0..=95.0
         } else {

@@ -261,7 +261,7 @@ fn default_grid_step_km() -> f64 {
     1.0
 }
 
-/// Perturbation settings of a scenario (SPEC.md "msl-airdata"); every key is optional.
+/// Perturbation settings of a scenario (docs/density.md; seed 001 in docs/references.md); every key is optional.
 ///
 /// ```toml
 /// scale = 1.0            # multiplier of the envelope, 0 = unperturbed mean

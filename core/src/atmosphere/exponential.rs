@@ -58,7 +58,7 @@ impl Exponential {
         Self::new(rho_ref, r_ref_m - planet_radius_m, scale_height_m)
     }
 
-    /// The model of seeds 000/002/003 and SPEC.md: ρ0 = 2e-4 kg/m³ at r0 = 3437.2 km, hs = 7.5 km,
+    /// The model of seeds 000/002/003: ρ0 = 2e-4 kg/m³ at r0 = 3437.2 km, hs = 7.5 km,
     /// expressed over a sphere of radius `planet_radius_m` (3396.2 km gives h_ref = 41 km).
     pub fn mars_reference(planet_radius_m: f64) -> Self {
         Exponential {

@@ -1,8 +1,8 @@
 //! Built-in non-exponential mean Mars density profile (0-150 km).
 //!
-//! SPEC.md ("msl-airdata") asks for a truth atmosphere made of "a non-exponential mean profile plus
-//! altitude-correlated random perturbations", because the Mars-GRAM profiles of seed 001 cannot
-//! be shipped. This file defines that mean profile. It is **our own synthetic profile**, not a
+//! We cannot ship seed 001's Mars-GRAM profiles (docs/references.md), so its truth atmosphere is
+//! a non-exponential mean profile plus altitude-correlated random perturbations. This file
+//! defines that mean profile. It is **our own synthetic profile**, not a
 //! Mars-GRAM, MCD or COSPAR product; it is only meant to be physically plausible:
 //!
 //! * Temperature T(h) is a piecewise-linear profile through [`MARS_MEAN_TEMPERATURE_KNOTS`] whose
@@ -12,7 +12,7 @@
 //!   (≈ 133 K near 110 km) and a warming thermosphere (200 K at 150 km) — the qualitative
 //!   structure of Viking-era and climate-database mean profiles, with values chosen by us.
 //! * Pressure follows hydrostatic equilibrium d ln p/dh = −g(h)/(R_s·T(h)) from
-//!   p(0) = [`MARS_MEAN_SURFACE_PRESSURE_PA`], with g(h) = μ/(R + h)² (Mars constants of SPEC.md)
+//!   p(0) = [`MARS_MEAN_SURFACE_PRESSURE_PA`], with g(h) = μ/(R + h)² (the Mars constants of [`crate::planet`])
 //!   and R_s = R_u / 43.34 g/mol (CO₂-dominated air, [`MARS_MEAN_GAS_CONSTANT`]). The integral is
 //!   done with composite Simpson's rule, 20 sub-steps per km.
 //! * ρ = p/(R_s·T) on a 1 km grid from 0 to 150 km, interpolated by [`Tabulated`].

@@ -10,8 +10,8 @@
 //! | simplified COSPAR | seed 001 eq. 17 | [`Cospar`] |
 //! | ln ρ cubic-spline table (Mars-GRAM / CSV files) | seed 001 §V | [`Tabulated`], [`parse_csv`], [`parse_mars_gram`] |
 //! | stacked Mars-GRAM Monte Carlo profiles, height datum | ours (issue 15) | [`ProfileSet`], [`parse_profiles`], [`ProfileChoice`] |
-//! | built-in non-exponential mean profile | ours (SPEC.md "msl-airdata") | [`mars_mean_profile`] |
-//! | perturbed profile generator | ours (SPEC.md "msl-airdata") | [`Perturbed`] |
+//! | built-in non-exponential mean profile | ours (docs/density.md) | [`mars_mean_profile`] |
+//! | perturbed profile generator | ours (docs/density.md) | [`Perturbed`] |
 //! | synthetic test set (scaled, perturbed means; GRAM text) | ours (issue 15) | [`generate_synthetic_set`] |
 //!
 //! [`AtmosphereModel`] gathers them for scenario-driven code and [`AtmosphereConfig`] /

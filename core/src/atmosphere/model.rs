@@ -17,7 +17,7 @@ pub enum AtmosphereModel {
     Cospar(Cospar),
     /// ln ρ cubic-spline table (seed 001 §V), e.g. parsed Mars-GRAM output or the built-in mean.
     Tabulated(Tabulated),
-    /// A mean model times a random altitude-correlated factor (SPEC.md "msl-airdata").
+    /// A mean model times a random altitude-correlated factor (docs/density.md).
     Perturbed(Box<Perturbed>),
 }
 

@@ -1,6 +1,6 @@
 //! Perturbed-profile generator: mean model × positive, mean-one, altitude-correlated factor.
 //!
-//! SPEC.md ("msl-airdata") replaces seed 001's perturbed Mars-GRAM profiles with our own
+//! We replace seed 001's perturbed Mars-GRAM profiles with our own
 //! generator: a non-exponential mean profile plus random perturbations whose 1σ grows with
 //! altitude (≈ 2 % near the surface, 5 % at 40 km, 8-9 % at 60 km, 15-20 % at 80 km, 25-35 % at
 //! 100-120 km). The model here is
@@ -91,7 +91,7 @@ impl Envelope {
 }
 
 impl Default for Envelope {
-    /// SPEC.md "msl-airdata": 0 km 2 %, 40 km 5 %, 60 km 8.5 %, 80 km 17.5 %, 100-150 km 30 %.
+    /// Our envelope (docs/density.md, docs/references.md): 0 km 2 %, 40 km 5 %, 60 km 8.5 %, 80 km 17.5 %, 100-150 km 30 %.
     fn default() -> Self {
         Envelope {
             points: vec![

@@ -1,7 +1,7 @@
 //! Synthetic test set of truth atmospheres for the density-adaptation filters (issue 15).
 //!
 //! Seed 001 §V flies USKF-NN through perturbed Mars-GRAM profiles and §I motivates the adaptive
-//! density with seasonal and dust-storm variability. We cannot ship Mars-GRAM (SPEC.md), so this
+//! density with seasonal and dust-storm variability. We cannot ship Mars-GRAM (docs/references.md), so this
 //! generator builds a **synthetic** set spanning that variability around a mean profile ρ̄(h)
 //! (the built-in `mars-mean`): case *i* scales the mean by a factor `f_above` above 80 km and
 //! `f_below` below 60 km, smoothly in ln ρ in between,
@@ -9,7 +9,7 @@
 //! ln f(h) = ln f_below + (ln f_above − ln f_below)·s((h − 60 km)/20 km),  s(u) = 3u² − 2u³,
 //!
 //! and multiplies in one seeded realisation of the scenario perturbation ([`Perturbed`], the
-//! SPEC.md envelope times `perturbation_scale`, seed `seed + i`). The default grid crosses
+//! perturbation envelope (docs/density.md) times `perturbation_scale`, seed `seed + i`). The default grid crosses
 //! `f_above` ∈ {0.1, 0.3, 0.5, 1, 2, 3} with `f_below` ∈ {0.7, 1, 1.3}: cold / polar cases
 //! (thin upper atmosphere, dense lower one), dusty seasons (dust-heated, expanded thermosphere
 //! over a thinner lower atmosphere) and everything in between. These are **not** Mars-GRAM
@@ -27,7 +27,7 @@
 //! which turns every local scale height H(h) of the mean into s·H(h) (for an exponential mean,
 //! exactly an exponential of scale height s·H), held at its 60 km value above that, blended out
 //! with f_below over 60–80 km, so `f_above` stays the ratio to the mean above 80 km. Its
-//! `perturbation_factor` multiplies the set's perturbation scale (2: the full SPEC.md envelope for
+//! `perturbation_factor` multiplies the set's perturbation scale (2: the full envelope of docs/density.md for
 //! the default scale 0.5). The high-latitude grid crosses s ∈ {0.75, 0.9} with
 //! `f_above` ∈ {0.3, 1, 3} and `f_below` ∈ {1, 1.3}, perturbation ×2; [`SyntheticSetSpec::extended`]
 //! is the standard 18 cases followed by these 12.
@@ -130,7 +130,7 @@ pub struct SyntheticSetSpec {
     pub cases: Vec<SyntheticCase>,
     /// Seed of the perturbation of case i: `seed + i`.
     pub seed: u64,
-    /// Multiplier of the SPEC.md perturbation envelope (0: the scaled means exactly).
+    /// Multiplier of the perturbation envelope (docs/density.md) (0: the scaled means exactly).
     pub perturbation_scale: f64,
     /// Lowest and highest altitude of every profile (m).
     pub altitude_range_m: (f64, f64),
@@ -140,7 +140,7 @@ pub struct SyntheticSetSpec {
 
 impl Default for SyntheticSetSpec {
     /// 18 cases: `f_above` ∈ {0.1, 0.3, 0.5, 1, 2, 3} × `f_below` ∈ {0.7, 1, 1.3}, seed 1, half the
-    /// SPEC.md perturbation, 0–150 km every 1 km.
+    /// the docs/density.md perturbation, 0–150 km every 1 km.
     fn default() -> Self {
         let mut cases = Vec::new();
         for factor_above in [0.1, 0.3, 0.5, 1.0, 2.0, 3.0] {
@@ -311,7 +311,7 @@ pub fn synthetic_set_gram_text(
     );
     s.push_str("# `entrynav atmosphere generate` (core/src/atmosphere/synthetic_set.rs): built-in mars-mean\n");
     s.push_str(&format!(
-        "# x f(h) (f_below below 60 km, f_above above 80 km, smooth in ln rho between) x a seeded\n# perturbation (SPEC.md envelope x {}, seed {} + profile index). Profiles, in order:\n",
+        "# x f(h) (f_below below 60 km, f_above above 80 km, smooth in ln rho between) x a seeded\n# perturbation (docs/density.md envelope x {}, seed {} + profile index). Profiles, in order:\n",
         spec.perturbation_scale, spec.seed
     ));
     if profiles.iter().any(|p| p.case.season() == "high latitude") {

@@ -1,7 +1,7 @@
 //! Offline training of the density network: seed 001 Algorithm 1 and §IV.A.1.
 //!
 //! 1. The onboard model is a least-squares exponential fit (eq. 16) to the truth *mean* profile
-//!    ([`fit_onboard_exponential`]; seed 001 fits Mars-GRAM realisations, SPEC.md replaces those
+//!    ([`fit_onboard_exponential`]; seed 001 fits Mars-GRAM realisations, we replace those
 //!    by our mean profile). With bands ([`DensityTrainingConfig::bands_km`], the multi-network
 //!    extension of §VI) each band gets its own fit over its altitudes.
 //! 2. N trajectories are simulated on that model from initial states and vehicles drawn from

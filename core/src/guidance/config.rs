@@ -8,6 +8,7 @@ use super::lateral::{Lateral, LateralConfig};
 use super::limits::BankLimits;
 use super::longitudinal::{LongModel, Trigger};
 use super::reference::{ReferenceSettings, ReferenceTrajectory};
+use super::safeguard::AltitudeSafeguard;
 use super::{Guidance, Target, destination};
 use crate::atmosphere::Atmosphere;
 use crate::dynamics::EntryModel;
@@ -95,6 +96,12 @@ pub struct GuidanceConfig {
     /// FNPEG settings.
     #[serde(default)]
     pub fnpeg: FnpegConfig,
+    /// Altitude safeguard \[m\]: when the onboard prediction from the estimate says that the
+    /// algorithm's bank, held, reaches the deployment trigger below this altitude, the bank
+    /// magnitude is capped at the largest one that keeps the predicted deployment at or above
+    /// it (altitude has priority over range; `guidance::safeguard`). Absent: no safeguard.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_deploy_altitude_m: Option<f64>,
 }
 
 fn default_rate() -> f64 {
@@ -231,6 +238,31 @@ pub fn build_guidance<A: Atmosphere + Clone + Send + 'static>(
                 max_time_s: MAX_FLIGHT_S,
             })
         }
+    };
+    let guidance: Box<dyn Guidance + Send> = match config.min_deploy_altitude_m {
+        Some(floor_m) => {
+            if !(floor_m >= 0.0 && floor_m.is_finite()) {
+                return Err(GuidanceError::Parameter {
+                    name: "min_deploy_altitude_m",
+                    value: floor_m,
+                    allowed: "must be >= 0 m and finite",
+                });
+            }
+            Box::new(AltitudeSafeguard {
+                inner: guidance,
+                model: model.clone(),
+                trigger: config.trigger,
+                floor_m,
+                limits,
+                density_scale: 1.0,
+                max_time_s: MAX_FLIGHT_S,
+                active_below_mps: reference.peak_drag_speed(),
+                period_s: config.period_s(),
+                activations: 0,
+                predictions: 0,
+            })
+        }
+        None => guidance,
     };
     Ok(BuiltGuidance {
         guidance,

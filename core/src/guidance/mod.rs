@@ -10,6 +10,8 @@
 //! * [`fnpeg::Fnpeg`]: the fully numerical predictor–corrector of Lu (J. Guid. Control Dyn.
 //!   37(4), 2014), a bank profile linear in energy corrected every cycle.
 //!
+//! Either may be wrapped in the altitude safeguard ([`safeguard`], `min_deploy_altitude_m`),
+//! which caps the bank magnitude when the predicted deployment altitude falls below a floor.
 //! Both share the lateral logic ([`lateral`]: crossrange deadband, bank reversals). The bank the
 //! vehicle flies is the command through the rate and acceleration limits ([`limits`]).
 //!
@@ -23,6 +25,7 @@ pub mod lateral;
 pub mod limits;
 pub mod longitudinal;
 pub mod reference;
+pub mod safeguard;
 
 pub use config::{
     BuiltGuidance, GuidanceAlgorithm, GuidanceAtmosphere, GuidanceConfig, TargetConfig,

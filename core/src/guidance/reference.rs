@@ -216,6 +216,14 @@ impl ReferenceTrajectory {
         }
     }
 
+    /// The speed at the reference's peak drag \[m/s\].
+    pub fn peak_drag_speed(&self) -> f64 {
+        self.points
+            .iter()
+            .max_by(|a, b| a.drag.total_cmp(&b.drag))
+            .map_or(0.0, |p| p.x[V])
+    }
+
     /// The reference's downrange flown to the trigger \[m\] on the sphere of radius `radius`.
     pub fn total_range(&self, radius: f64) -> f64 {
         radius * self.theta_final

@@ -1,5 +1,5 @@
 //! Checks of `[guidance]`: rate (a multiple of the truth step), reference bank, target,
-//! deployment trigger, bank limits, crossrange corridor and the algorithms' parameters.
+//! deployment trigger, altitude safeguard floor, bank limits, crossrange corridor and the algorithms' parameters.
 
 use super::config::ScenarioConfig;
 use super::error::ScenarioError;
@@ -52,6 +52,10 @@ impl ScenarioConfig {
             accel,
         )?;
         check_trigger(g, c)?;
+        if let Some(h) = g.min_deploy_altitude_m {
+            let floor = Range::ge(0.0).le(50_000.0).unit("m");
+            c.range("guidance.min_deploy_altitude_m", h, floor)?;
+        }
         if let Some(t) = &g.target {
             check_target(t, c)?;
         }

@@ -96,10 +96,11 @@ pub struct GuidanceConfig {
     /// FNPEG settings.
     #[serde(default)]
     pub fnpeg: FnpegConfig,
-    /// Altitude safeguard \[m\]: when the onboard prediction from the estimate says that the
-    /// algorithm's bank, held, reaches the deployment trigger below this altitude, the bank
-    /// magnitude is capped at the largest one that keeps the predicted deployment at or above
-    /// it (altitude has priority over range; `guidance::safeguard`). Absent: no safeguard.
+    /// Altitude safeguard floor \[m\], 0 to 50000: below the reference's peak-drag speed,
+    /// when the onboard prediction from the estimate says that the algorithm's bank, flown until
+    /// the vehicle could roll to lift-up, would reach the deployment trigger below this altitude
+    /// even with lift-up after that, the bank magnitude is capped at the largest one that still
+    /// can (altitude has priority over range; `guidance::safeguard`). Absent: no safeguard.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub min_deploy_altitude_m: Option<f64>,
 }

@@ -14,8 +14,8 @@ use crate::threads::with_threads;
 pub use crate::trade_args::{TradeAction, TradeArgs};
 use crate::trade_checkpoint::{self, SummaryCheckpoints};
 use crate::trade_files::{
-    Extras, ShardFile, StudyProvenance, check_outputs, read_resume, read_shards, write_csv_dir,
-    write_file, write_summary, write_summary_with,
+    Extras, ReadShards, ShardFile, StudyProvenance, check_outputs, read_resume, read_shards,
+    write_csv_dir, write_file, write_summary_with,
 };
 use crate::trade_lincov::{Comparison, Method};
 use crate::trade_tables::print_tables;
@@ -23,6 +23,7 @@ use anyhow::{Context, Result};
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
 use entrynav::sim::delivery::DeliveryReport;
+use entrynav::sim::delivery_shard::{DeliveryShard, deliver_runs, merge_delivery_shards};
 use entrynav::sim::shard::fold_partial;
 use entrynav::sim::{
     Checkpoint, McOptions, NoCheckpoint, Shard, ShardResult, TradeReport, merge_shards, run_shard,
@@ -278,10 +279,31 @@ fn run_one_shard(args: &TradeArgs, shard: Shard, path: &Path) -> Result<()> {
         ))
         .into());
     }
+    // A scenario with `[guidance]`: the delivery runs of this shard's blocks, merged by run
+    // index in `trade merge`. A failure here never costs the shard's sums: it is a warning.
+    let delivery = setup
+        .scenario
+        .config
+        .guidance
+        .is_some()
+        .then(|| {
+            let blocks = shard.blocks(setup.runs);
+            let block = entrynav::sim::shard::ACCUMULATION_BLOCK;
+            let runs = (blocks.start * block).min(setup.runs)..(blocks.end * block).min(setup.runs);
+            with_threads(args.threads, || {
+                deliver_runs(&setup.scenario, &setup.filters, setup.runs, args.seed, runs)
+                    .context("the delivery at deployment of the shard's runs")
+            })
+        })
+        .and_then(|d| {
+            d.map_err(|e| eprintln!("warning: no delivery in this shard: {e:#}"))
+                .ok()
+        });
     let file = ShardFile {
         shard: &result,
         provenance: StudyProvenance::of(&setup.provenance(args)),
         wall_s: clock.elapsed().as_secs_f64(),
+        delivery: delivery.as_ref(),
     };
     write_file(path, |w| Ok(serde_json::to_writer(&mut *w, &file)?))?;
     eprintln!(
@@ -525,8 +547,14 @@ fn merge(
     plots: Option<&Path>,
 ) -> Result<()> {
     check_outputs(json, csv_dir, plots)?;
-    let (parts, study, wall_s) = read_shards(shards)?;
+    let ReadShards {
+        parts,
+        provenance: study,
+        wall_s,
+        deliveries,
+    } = read_shards(shards)?;
     let n_shards = parts.len();
+    let delivery = merged_delivery(deliveries)?;
     let fingerprint = parts
         .first()
         .map(|p| p.scenario_fingerprint.clone())
@@ -541,7 +569,11 @@ fn merge(
             atmosphere: study.atmosphere,
             ..Provenance::new(&[])
         };
-        let done = write_summary(path, &provenance, &report, None, wall_s);
+        let extras = Extras {
+            delivery: delivery.as_ref(),
+            ..Extras::default()
+        };
+        let done = write_summary_with(path, &provenance, &report, None, wall_s, extras);
         let note = (!to_stdout).then(|| format!("wrote {}", path.display()));
         outputs.record(done.map(|()| note));
     }
@@ -551,7 +583,8 @@ fn merge(
     }
     let names = WeightNames::of_channels(&report.channels);
     if let Some(dir) = plots {
-        let done = crate::plots::trade_plots(dir, &report, &names, &Default::default(), None);
+        let done =
+            crate::plots::trade_plots(dir, &report, &names, &Default::default(), delivery.as_ref());
         outputs.record(done.map(|()| Some(format!("wrote plots to {}", dir.display()))));
     }
     if !to_stdout {
@@ -559,6 +592,30 @@ fn merge(
             &report,
             &format!("{wall_s:.2} s wall summed over the {n_shards} shards"),
         );
+        if let Some(d) = &delivery {
+            crate::guidance::print_table(d);
+        }
     }
     outputs.finish(to_stdout)
+}
+
+/// The delivery of merged shards: every shard's runs in run order (`None` when no shard has
+/// deliveries). Refuses a merge where some shards have deliveries and others not (one flown
+/// without `[guidance]`, or by an older entrynav), or whose deliveries do not fit together.
+fn merged_delivery(deliveries: Vec<Option<DeliveryShard>>) -> Result<Option<DeliveryReport>> {
+    let with = deliveries.iter().filter(|d| d.is_some()).count();
+    if with == 0 {
+        return Ok(None);
+    }
+    if with < deliveries.len() {
+        return Err(crate::exit::Usage(format!(
+            "{with} of {} shards carry a delivery table and the others do not; run the others \
+             again with this entrynav",
+            deliveries.len()
+        ))
+        .into());
+    }
+    let merged = merge_delivery_shards(deliveries.into_iter().flatten().collect())
+        .map_err(|e| crate::exit::Usage(format!("trade merge: {e}")))?;
+    Ok(Some(merged))
 }

@@ -5,6 +5,7 @@ use crate::csv_file::{self, FileWriter, opt};
 use crate::exit::{check_output_dir, check_output_file, is_stdout};
 use crate::provenance::{Provenance, Summary, Timing};
 use anyhow::{Context, Result};
+use entrynav::sim::delivery_shard::DeliveryShard;
 use entrynav::sim::{FilterReport, PcrlbReport, ShardResult, TradeReport};
 use std::io::Write;
 use std::path::Path;
@@ -144,16 +145,30 @@ pub struct ShardFile<'a> {
     pub provenance: StudyProvenance,
     /// Wall time of the shard's runs \[s\] (`trade merge` reports their sum).
     pub wall_s: f64,
+    /// A scenario with `[guidance]`: the delivery runs of the shard's blocks.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub delivery: Option<&'a DeliveryShard>,
+}
+
+/// What `trade merge` reads from its shard files.
+pub struct ReadShards {
+    /// The shards' sums.
+    pub parts: Vec<ShardResult>,
+    /// The provenance they share.
+    pub provenance: StudyProvenance,
+    /// The sum of their wall times \[s\].
+    pub wall_s: f64,
+    /// Each shard's deliveries (`None`: the shard has none — no `[guidance]`, or an older file).
+    pub deliveries: Vec<Option<DeliveryShard>>,
 }
 
 /// Read the shard files of `trade merge`: their sums, and the provenance they share. Refuses a
 /// file that is not a shard, one without provenance (an older entrynav), and shards whose
 /// overrides or atmosphere source differ (exit code 2, naming both files). Also the sum of the
-/// shards' wall times (0 for a shard file without one).
-pub fn read_shards(
-    paths: &[std::path::PathBuf],
-) -> Result<(Vec<ShardResult>, StudyProvenance, f64)> {
+/// shards' wall times (0 for a shard file without one) and their deliveries.
+pub fn read_shards(paths: &[std::path::PathBuf]) -> Result<ReadShards> {
     let mut parts = Vec::new();
+    let mut deliveries = Vec::new();
     let mut wall_s = 0.0;
     let mut shared: Option<(StudyProvenance, &Path)> = None;
     for p in paths {
@@ -178,6 +193,14 @@ pub fn read_shards(
         {
             wall_s += w;
         }
+        let delivery = match v.as_object_mut().and_then(|o| o.remove("delivery")) {
+            Some(d) => Some(
+                serde_json::from_value::<DeliveryShard>(d)
+                    .map_err(|e| usage(format!("corrupt `delivery`: {e}")))?,
+            ),
+            None => None,
+        };
+        deliveries.push(delivery);
         let part: ShardResult =
             serde_json::from_value(v).map_err(|e| usage(format!("not a shard file: {e}")))?;
         match &shared {
@@ -202,7 +225,12 @@ pub fn read_shards(
     let provenance = shared
         .map(|(p, _)| p)
         .ok_or_else(|| crate::exit::Usage("trade merge: no shard file given".into()))?;
-    Ok((parts, provenance, wall_s))
+    Ok(ReadShards {
+        parts,
+        provenance,
+        wall_s,
+        deliveries,
+    })
 }
 
 fn json_or_null(v: &Option<serde_json::Value>) -> String {

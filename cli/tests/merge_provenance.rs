@@ -199,3 +199,87 @@ fn an_empty_shard_is_named_with_the_number_of_shards_the_study_can_use() {
     assert_eq!(code, 0, "{err}");
     assert!(!err.contains("holds no runs"), "{err}");
 }
+
+/// `trade --shard` of `msl-guided` (a scenario with `[guidance]`): shard `i` of 2 into `dir`.
+fn guided_shard(dir: &Path, i: usize) -> PathBuf {
+    let out = dir.join(format!("guided{i}.json"));
+    let spec = format!("{i}/2");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "msl-guided",
+        "--filters",
+        "ekf",
+        "--runs",
+        "300",
+        "--seed",
+        "5",
+        "--shard",
+        &spec,
+        "--quiet",
+        "--json",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    out
+}
+
+#[test]
+fn merged_guided_shards_carry_the_single_process_delivery_table() {
+    let dir = scratch_dir("merge-provenance", "delivery");
+    let parts = [guided_shard(&dir, 0), guided_shard(&dir, 1)];
+    for p in &parts {
+        let runs = read_json(p)["delivery"]["runs"].as_array().unwrap().len();
+        assert!(runs > 0 && runs < 300, "{}: {runs} runs", p.display());
+    }
+    let merged = dir.join("merged.json");
+    let (code, out, err) = entrynav(&[
+        "trade",
+        "merge",
+        parts[0].to_str().unwrap(),
+        parts[1].to_str().unwrap(),
+        "--json",
+        merged.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("Delivery at deployment"), "{out}");
+    let whole = dir.join("whole.json");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "msl-guided",
+        "--filters",
+        "ekf",
+        "--runs",
+        "300",
+        "--seed",
+        "5",
+        "--quiet",
+        "--json",
+        whole.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let (m, w) = (read_json(&merged), read_json(&whole));
+    assert!(
+        w["delivery"]["rows"]
+            .as_array()
+            .is_some_and(|r| r.len() == 3)
+    );
+    assert_eq!(m["delivery"], w["delivery"]);
+    // A shard without deliveries (an older file) beside one with them is refused.
+    let mut old = read_json(&parts[1]);
+    old.as_object_mut().unwrap().remove("delivery");
+    let older = dir.join("older.json");
+    std::fs::write(&older, old.to_string()).unwrap();
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "merge",
+        parts[0].to_str().unwrap(),
+        older.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("1 of 2 shards carry a delivery table"),
+        "{err}"
+    );
+}

@@ -13,6 +13,8 @@
 
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{BUILTIN_NAMES, Scenario, ScenarioConfig};
+use entrynav::sim::delivery_shard::deliver_runs;
+use entrynav::sim::shard::ACCUMULATION_BLOCK;
 use entrynav::sim::{
     McOptions, Shard, TradeError, TradeReport, run_shard, run_trade, simulate_truth_with_peaks,
 };
@@ -338,7 +340,20 @@ fn trade_shard(
     };
     let clock = std::time::Instant::now();
     let result = py.detach(|| {
-        let job = || run_shard(&scenario, &kinds, &opts, shard, &|_| {});
+        // A scenario with `[guidance]`: the delivery runs of this shard's blocks, as the CLI's
+        // shard file carries them (merged by run index in `trade merge`).
+        let job = || {
+            let sums = run_shard(&scenario, &kinds, &opts, shard, &|_| {})?;
+            let delivery = match scenario.config.guidance {
+                Some(_) => {
+                    let (blocks, block) = (shard.blocks(runs), ACCUMULATION_BLOCK);
+                    let span = (blocks.start * block).min(runs)..(blocks.end * block).min(runs);
+                    Some(deliver_runs(&scenario, &kinds, runs, seed, span))
+                }
+                None => None,
+            };
+            Ok::<_, TradeError>((sums, delivery))
+        };
         match threads {
             Some(n) => rayon::ThreadPoolBuilder::new()
                 .num_threads(n.max(1))
@@ -348,7 +363,10 @@ fn trade_shard(
             None => job(),
         }
     });
-    let result = result.map_err(trade_err)?;
+    let (result, delivery) = result.map_err(trade_err)?;
+    let delivery = delivery
+        .transpose()
+        .map_err(|e| PyRuntimeError::new_err(format!("delivery at deployment: {e}")))?;
     let truth = &scenario.config.truth;
     let mut doc =
         serde_json::to_value(&result).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
@@ -365,6 +383,12 @@ fn trade_shard(
             }),
         );
         map.insert("wall_s".into(), clock.elapsed().as_secs_f64().into());
+        if let Some(d) = &delivery {
+            map.insert(
+                "delivery".into(),
+                serde_json::to_value(d).map_err(|e| PyRuntimeError::new_err(e.to_string()))?,
+            );
+        }
     }
     Ok(doc.to_string())
 }

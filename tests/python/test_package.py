@@ -280,3 +280,20 @@ def test_deliver_equals_the_cli_and_refuses_a_scenario_without_guidance(tmp_path
     assert rows["ekf"]["deployed"] == 3 and rows["ekf"]["rms_miss_m"] < 2 * rows["perfect-nav"]["rms_miss_m"]
     with pytest.raises(ValueError, match=r"\[guidance\]"):
         entrynav.deliver("four-beacon-fusion", runs=2)
+
+
+def test_a_package_shard_of_a_guided_study_merges_with_a_cli_shard_into_the_delivery_table(tmp_path):
+    """`trade_shard` of a scenario with `[guidance]` carries its runs' deliveries as the CLI's
+    shard file does: a package shard and a CLI shard merge into the single-process delivery."""
+    common = ["--scenario", "msl-guided", "--filters", "ekf", "--runs", "300", "--seed", "5"]
+    s0 = tmp_path / "s0.json"
+    s0.write_text(entrynav.trade_shard("msl-guided", ["ekf"], 300, 5, 0, 2))
+    assert len(json.loads(s0.read_text())["delivery"]["runs"]) == 256
+    s1 = tmp_path / "s1.json"
+    r = run([ENTRYNAV, "trade", *common, "--shard", "1/2", "--quiet", "--json", s1], timeout=600)
+    assert r.returncode == 0, r.stderr
+    merged = tmp_path / "merged.json"
+    r = run([ENTRYNAV, "trade", "merge", s0, s1, "--json", merged], timeout=600)
+    assert r.returncode == 0, r.stderr
+    whole = _cli_summary("msl-guided", "ekf", 300, 5)
+    assert json.loads(merged.read_text())["delivery"] == whole["delivery"]

@@ -217,26 +217,56 @@ pub fn run_delivery(
             r
         })
         .collect();
-    let names = ["perfect-nav".to_string(), "unguided".to_string()]
+    Ok(report_of(
+        name,
+        algorithm_name(cfg.algorithm),
+        seed,
+        &limits,
+        &row_names(filters),
+        per_run,
+    ))
+}
+
+/// The row names of a study flying `filters`: `perfect-nav`, `unguided`, then the filters.
+pub fn row_names(filters: &[FilterKind]) -> Vec<String> {
+    ["perfect-nav", "unguided"]
         .into_iter()
-        .chain(filters.iter().map(|k| k.name().to_string()));
+        .map(str::to_string)
+        .chain(filters.iter().map(|k| k.name().to_string()))
+        .collect()
+}
+
+/// `apollo` or `fnpeg`.
+pub fn algorithm_name(a: crate::guidance::GuidanceAlgorithm) -> &'static str {
+    match a {
+        crate::guidance::GuidanceAlgorithm::Apollo => "apollo",
+        crate::guidance::GuidanceAlgorithm::Fnpeg => "fnpeg",
+    }
+}
+
+/// The report of every run's deliveries `per_run` (run order, one entry per row of `names`).
+pub(crate) fn report_of(
+    scenario: String,
+    algorithm: &str,
+    seed: u64,
+    limits: &crate::guidance::BankLimits,
+    names: &[String],
+    per_run: Vec<RunDeliveries>,
+) -> DeliveryReport {
     let rows = names
+        .iter()
         .enumerate()
-        .map(|(i, n)| row_stats(n, per_run.iter().map(|r| &r[i]), &limits))
+        .map(|(i, n)| row_stats(n.clone(), per_run.iter().map(|r| &r[i]), limits))
         .collect();
-    Ok(DeliveryReport {
-        scenario: name,
-        algorithm: match cfg.algorithm {
-            crate::guidance::GuidanceAlgorithm::Apollo => "apollo",
-            crate::guidance::GuidanceAlgorithm::Fnpeg => "fnpeg",
-        }
-        .to_string(),
-        runs,
+    DeliveryReport {
+        scenario,
+        algorithm: algorithm.to_string(),
+        runs: per_run.len(),
         seed,
         bank_rate_limit_deg_s: limits.rate_max.to_degrees(),
         rows,
         per_run,
-    })
+    }
 }
 
 /// The statistics of one row over the runs, in run order.

@@ -29,7 +29,7 @@ use crate::guidance::{
 };
 use crate::scenario::Scenario;
 use crate::sensors::{Channel, MeasurementEpoch};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use thiserror::Error;
 
@@ -62,6 +62,9 @@ pub enum GuidedRunError {
     /// A reference flight (perfect navigation or the unguided bank) failed.
     #[error(transparent)]
     Reference(#[from] super::guided_flight::GuidedFlightError),
+    /// A failure read back from a shard file (`trade --shard`): its message only.
+    #[error("{0}")]
+    Stored(String),
     /// The filter stopped on a numerical failure before deployment.
     #[error("the navigation filter failed at t = {t_s:.2} s: {reason}")]
     FilterFailed {
@@ -87,7 +90,7 @@ pub enum GuidedRunError {
 
 /// The navigation error at deployment: the filter's latest estimate (the last measurement epoch
 /// at or before the trigger) against the truth at that epoch.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct DeployNavError {
     /// Position error norm \[m\].
     pub position_m: f64,
@@ -100,7 +103,7 @@ pub struct DeployNavError {
 }
 
 /// Where one flight deployed and how far from the target.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Delivery {
     /// Deployment time \[s\].
     pub t_deploy_s: f64,

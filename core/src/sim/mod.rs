@@ -23,6 +23,7 @@
 pub mod checkpoint;
 pub mod consistency;
 pub mod delivery;
+pub mod delivery_shard;
 pub mod density_eval;
 pub mod engine;
 pub mod gate_stats;

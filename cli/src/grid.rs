@@ -112,6 +112,9 @@ pub struct CellRow {
     pub us_per_step: Option<f64>,
     /// Minimum scaled observability degree of the centralised system along the nominal entry.
     pub min_delta_scaled: Option<f64>,
+    /// A Monte Carlo cell with `[guidance]`: the filter's delivery at deployment.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub delivery: Option<crate::grid_delivery::CellDelivery>,
 }
 
 struct Cell {
@@ -298,6 +301,7 @@ pub fn run(
                     diverged: None,
                     us_per_step: None,
                     min_delta_scaled: None,
+                    delivery: None,
                 }),
             }
         }
@@ -370,7 +374,12 @@ pub fn run(
             ))
             .into());
         }
+        let deliveries = crate::grid_delivery::of_cell(&scenario, &fit, grid.runs, grid.seed);
         for f in &report.filters {
+            let delivery = deliveries
+                .as_ref()
+                .and_then(|d| d.iter().find(|(n, _)| *n == f.name))
+                .map(|(_, d)| d.clone());
             rows.push(CellRow {
                 cell: cell.label.clone(),
                 scenario: scenario.config.name.clone(),
@@ -390,6 +399,7 @@ pub fn run(
                 diverged: Some(f.diverged),
                 us_per_step: Some(f.us_per_step),
                 min_delta_scaled: min_delta,
+                delivery,
             });
         }
         reports.push((

@@ -25,6 +25,12 @@ fn write_rows_csv(w: &mut crate::csv_file::FileWriter, rows: &[CellRow]) -> Resu
         "diverged",
         "us_per_step",
         "min_delta_scaled",
+        "delivery_rms_miss_m",
+        "delivery_ellipse99_semi_major_m",
+        "delivery_ellipse99_semi_minor_m",
+        "delivery_failures",
+        "perfect_nav_rms_miss_m",
+        "perfect_nav_failures",
     ])?;
     let c = crate::csv_file::opt;
     for r in rows {
@@ -42,6 +48,18 @@ fn write_rows_csv(w: &mut crate::csv_file::FileWriter, rows: &[CellRow]) -> Resu
             r.diverged.map(|d| d.to_string()).unwrap_or_default(),
             c(r.us_per_step),
             c(r.min_delta_scaled),
+            c(r.delivery.as_ref().and_then(|d| d.rms_miss_m)),
+            c(r.delivery.as_ref().and_then(|d| d.ellipse_99_semi_major_m)),
+            c(r.delivery.as_ref().and_then(|d| d.ellipse_99_semi_minor_m)),
+            r.delivery
+                .as_ref()
+                .map(|d| d.failures.to_string())
+                .unwrap_or_default(),
+            c(r.delivery.as_ref().and_then(|d| d.perfect_nav_rms_miss_m)),
+            r.delivery
+                .as_ref()
+                .map(|d| d.perfect_nav_failures.to_string())
+                .unwrap_or_default(),
         ])?;
     }
     Ok(())
@@ -113,6 +131,7 @@ pub fn write_outputs(
             )?,
         }
     }
+    write_delivery_md(&mut md, rows)?;
     md.commit()?;
     let json_path = out.join(format!("{}.json", grid.name));
     crate::atomic_file::write(
@@ -148,6 +167,45 @@ pub fn write_outputs(
             provenance: serde_json::to_value(&provenance)?,
         };
         crate::report::write(path, || Ok(page.html()))?;
+    }
+    Ok(())
+}
+
+/// The delivery table of `GRID.md` (cells with `[guidance]` only; nothing without them).
+fn write_delivery_md(md: &mut impl Write, rows: &[CellRow]) -> Result<()> {
+    let guided: Vec<_> = rows
+        .iter()
+        .filter_map(|r| r.delivery.as_ref().map(|d| (r, d)))
+        .collect();
+    if guided.is_empty() {
+        return Ok(());
+    }
+    writeln!(
+        md,
+        "\n## Delivery at deployment (cells with `[guidance]`)\n\nEach filter flown in the \
+         guidance loop on the cell's runs (same seeds), beside perfect navigation on the same \
+         runs; misses over the runs that deployed, failures counted apart.\n"
+    )?;
+    writeln!(
+        md,
+        "| cell | variation | filter | RMS miss [m] | 99 % ellipse semi-axes a × b [m] | failed | perfect-nav RMS miss [m] | perfect-nav failed |"
+    )?;
+    writeln!(md, "|---|---|---|---|---|---|---|---|")?;
+    let m = |v: Option<f64>| v.map_or_else(|| "–".into(), |x| format!("{x:.1}"));
+    for (r, d) in guided {
+        writeln!(
+            md,
+            "| {} | {} | {} | {} | {} × {} | {} | {} | {} |",
+            r.cell,
+            r.variation,
+            r.filter,
+            m(d.rms_miss_m),
+            m(d.ellipse_99_semi_major_m),
+            m(d.ellipse_99_semi_minor_m),
+            d.failures,
+            m(d.perfect_nav_rms_miss_m),
+            d.perfect_nav_failures
+        )?;
     }
     Ok(())
 }

@@ -31,6 +31,7 @@ pub fn row(
         diverged: None,
         us_per_step: None,
         min_delta_scaled,
+        delivery: None,
     };
     match entry_lincov(scenario, kind) {
         Ok(l) => {

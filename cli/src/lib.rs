@@ -17,6 +17,7 @@ mod delivery_plots;
 mod exit;
 mod fmu;
 mod grid;
+mod grid_delivery;
 mod grid_files;
 mod grid_lincov;
 mod grid_plots;

@@ -1,15 +1,17 @@
 //! One dispersed entry flown with a **navigation filter in the guidance loop** (issue 28): each
 //! guidance cycle the filter's estimate — never the truth — becomes the guidance layer's
-//! [`NavState`], the bank command goes through the [`BankActuator`] (rate and acceleration
+//! [`NavState`](crate::guidance::NavState), the bank command goes through the [`BankActuator`](crate::guidance::BankActuator) (rate and acceleration
 //! limits), and the flown bank drives both the truth and the filter's onboard models.
 //!
-//! The loop drives the engine's step API ([`EntryCoSim::do_step`]) one truth step at a time, so
+//! The loop is [`GuidedLoop`] (one truth step per [`GuidedLoop::step`], the code the guided FMU
+//! steps too): it drives the engine's step API
+//! ([`EntryCoSim::do_step`](super::engine::EntryCoSim::do_step)) one truth step at a time, so
 //! the truth, the sensors and the filter advance exactly as in the FMUs: the bank of step k is
 //! the actuator's output after the command computed from the estimate at the start of the step
 //! (the epoch at t = k·dt, processed at the end of the previous step). What guidance is given:
 //!
 //! * the kinematic state of the filter's latest estimate (spherical, or Cartesian converted with
-//!   the onboard planet rotation, [`NavState::from_estimate`]);
+//!   the onboard planet rotation, [`NavState::from_estimate`](crate::guidance::NavState::from_estimate));
 //! * the **sensed drag** from the accelerometer triad of the latest measurement epoch, noisy as the
 //!   vehicle reads it, rotated from the IMU frame to the wind frame with the onboard IMU frame
 //!   ([`crate::sensors::imu::ImuFrame::drag_from`]). A scenario without the three accelerometer
@@ -20,13 +22,12 @@
 //! truth steps around the crossing. A filter failure ends the run as a failure (the vehicle would
 //! be flying blind); so does a truth that stops before the trigger.
 
-use super::engine::{EngineError, EntryCoSim, NavStatus, TruthSample};
+use super::engine::{EngineError, TruthSample};
 use super::guided_flight::GuidedFlight;
+pub use super::guided_loop::{GuidedLoop, GuidedStep};
 use crate::estimation::Onboard;
 use crate::estimation::nav::FilterKind;
-use crate::guidance::{
-    BankActuator, BankLimits, GuidanceError, NavState, Target, Trigger, bearing, central_angle,
-};
+use crate::guidance::{BankLimits, GuidanceError, Target, Trigger, bearing, central_angle};
 use crate::scenario::Scenario;
 use crate::sensors::{Channel, MeasurementEpoch};
 use serde::{Deserialize, Serialize};
@@ -73,6 +74,9 @@ pub enum GuidedRunError {
         /// What failed.
         reason: String,
     },
+    /// A [`GuidedLoop`] was stepped after its run had ended.
+    #[error("the guided run has ended ({0}); there is nothing more to step")]
+    Ended(String),
     /// The truth stopped (ground, stop speed, duration) before the deployment trigger.
     #[error(
         "the guided truth did not reach the deployment trigger: it stopped at t = {t_s:.2} s, \
@@ -162,14 +166,14 @@ pub fn accel_slots(onboard: &Onboard) -> Option<[usize; 3]> {
 
 /// The accelerometer triad in `epoch` (IMU frame), when all three were read; the sensed drag is
 /// `onboard.measurement.imu_frame.drag_from` of it.
-fn triad(slots: &[usize; 3], epoch: &MeasurementEpoch) -> Option<[f64; 3]> {
+pub(super) fn triad(slots: &[usize; 3], epoch: &MeasurementEpoch) -> Option<[f64; 3]> {
     let v = |i: usize| epoch.values.get(slots[i]).copied().flatten();
     Some([v(0)?, v(1)?, v(2)?])
 }
 
 /// The trigger function on a truth sample (airspeed from the dynamic pressure, so it is the
 /// planet-relative air speed on a rotating planet too).
-fn trigger_on(trigger: &Trigger, s: &TruthSample) -> f64 {
+pub(super) fn trigger_on(trigger: &Trigger, s: &TruthSample) -> f64 {
     let airspeed = if s.density > 0.0 {
         (2.0 * s.dynamic_pressure / s.density).sqrt()
     } else {
@@ -180,7 +184,7 @@ fn trigger_on(trigger: &Trigger, s: &TruthSample) -> f64 {
 
 /// The deployment point between the truth samples `prev` (trigger `c_prev > 0`) and `s`
 /// (`c ≤ 0`), and its miss to `target` on a sphere of `radius`.
-pub(crate) fn deployment(
+pub(super) fn deployment(
     prev: &TruthSample,
     s: &TruthSample,
     c_prev: f64,
@@ -206,35 +210,9 @@ pub(crate) fn deployment(
     }
 }
 
-/// What guidance was given and what it flew on one truth step of [`fly_with_filter_recorded`]:
-/// the onboard inputs (what a guidance FMU connected to the navigation and truth FMUs receives)
-/// and the bank flown. Never the truth.
-#[derive(Debug, Clone, PartialEq)]
-pub struct GuidedStep {
-    /// Start of the truth step \[s\].
-    pub t: f64,
-    /// The filter's latest estimate (filter coordinates, every state) at the start of the step.
-    pub est_x: Vec<f64>,
-    /// Its 1σ.
-    pub est_sigma: Vec<f64>,
-    /// Its epoch \[s\].
-    pub est_t: f64,
-    /// The filter's status code ([`NavStatus::code`]).
-    pub nav_status: i32,
-    /// The accelerometer triad of the last measurement epoch of the previous step, in the IMU
-    /// frame (`None`: no epoch with all three in that step, or the first step).
-    pub accel: Option<[f64; 3]>,
-    /// Whether a guidance cycle ran at the start of this step.
-    pub cycle: bool,
-    /// The command of the latest guidance cycle \[rad\].
-    pub command: f64,
-    /// The bank flown over the step, after the [`BankActuator`] \[rad\].
-    pub bank: f64,
-}
-
 /// Fly Monte Carlo run `run` of a study with master seed `seed` on `scenario` (its `[guidance]`)
 /// with filter `kind` in the loop (module documentation). The truth realisation is the trade's
-/// for the same (seed, run) ([`EntryCoSim::for_run`]). The result carries the largest bank rate
+/// for the same (seed, run) ([`EntryCoSim::for_run`](super::engine::EntryCoSim::for_run)). The result carries the largest bank rate
 /// flown, for the caller to hold against the limits ([`within_rate_limit`]).
 pub fn fly_with_filter(
     scenario: &Arc<Scenario>,
@@ -254,97 +232,14 @@ pub fn fly_with_filter_recorded(
     run: usize,
     mut record: impl FnMut(&GuidedStep),
 ) -> Result<Delivery, GuidedRunError> {
-    let name = || scenario.config.name.clone();
-    let cfg = scenario
-        .config
-        .guidance
-        .as_ref()
-        .ok_or_else(|| GuidedRunError::NoGuidance(name()))?;
-    let slots =
-        accel_slots(&scenario.onboard).ok_or_else(|| GuidedRunError::NoAccelerometers(name()))?;
-    let mut built = scenario
-        .build_guidance()
-        .ok_or_else(|| GuidedRunError::NoGuidance(name()))??;
-    let dt = scenario.config.timing.truth_step_s;
-    let every = guidance_every(cfg.period_s(), dt)?;
-    let mut cosim = EntryCoSim::for_run(Arc::clone(scenario), kind, seed, run)?;
-    let onboard = Arc::clone(cosim.nav().onboard());
-    let omega = onboard.model.omega();
-    let cartesian = onboard.model.kind.is_cartesian();
-    let mut actuator = BankActuator::new(built.limits, cfg.reference_bank_deg.to_radians());
-    let radius = cosim.truth().draw().model.planet.radius;
-    // Before the first epoch the vehicle has no accelerometer reading: guidance sees zero drag
-    // (both algorithms fly their reference bank until the drag builds up).
-    let mut drag = 0.0;
-    let mut prev = cosim.truth().outputs().sample.clone();
-    let mut c_prev = trigger_on(&cfg.trigger, &prev);
-    let mut armed = c_prev > 0.0;
-    let mut command = actuator.bank;
-    let mut max_rate: f64 = 0.0;
-    let mut accel: Option<[f64; 3]> = None;
-    for k in 0usize.. {
-        let est = cosim.nav().estimate();
-        let mut step = GuidedStep {
-            t: cosim.time(),
-            est_x: est.x.clone(),
-            est_sigma: est.sigma.clone(),
-            est_t: est.t,
-            nav_status: cosim.nav().status().code(),
-            accel,
-            cycle: k % every == 0,
-            command,
-            bank: 0.0,
-        };
-        if k % every == 0 {
-            if let NavStatus::Failed { t, reason } = cosim.nav().status() {
-                return Err(GuidedRunError::FilterFailed {
-                    t_s: *t,
-                    reason: reason.to_string(),
-                });
-            }
-            let est = cosim.nav().estimate();
-            let nav = NavState::from_estimate(&est.x, cartesian, est.t, omega, drag)?;
-            command = built.guidance.command(&nav)?;
-        }
-        let before = actuator.bank;
-        let bank = actuator.step(command, dt);
-        step.command = command;
-        step.bank = bank;
+    let mut flight = GuidedLoop::new(scenario, kind, seed, run)?;
+    loop {
+        let step = flight.step(&[])?;
         record(&step);
-        max_rate = max_rate.max((bank - before).abs() / dt);
-        let t = cosim.time();
-        let report = cosim.do_step(t, dt, bank, &[])?;
-        accel = cosim.truth().last_epoch().and_then(|e| triad(&slots, e));
-        if let Some(a) = accel {
-            drag = onboard.measurement.imu_frame.drag_from(&a);
+        if let Some(end) = flight.outcome() {
+            return end.clone();
         }
-        let s = &cosim.truth().outputs().sample;
-        let c = trigger_on(&cfg.trigger, s);
-        if report.truth_steps > 0 && armed && c <= 0.0 {
-            let mut d = deployment(&prev, s, c_prev, c, &built.target, radius);
-            d.max_bank_rate_deg_s = max_rate.to_degrees();
-            let j = cosim.judgement();
-            d.nav_error = Some(DeployNavError {
-                position_m: j.pos_vel_err.0,
-                velocity_mps: j.pos_vel_err.1,
-                downrange_m: j.downrange_crossrange.0,
-                crossrange_m: j.downrange_crossrange.1,
-            });
-            return Ok(d);
-        }
-        if report.truth_steps == 0 || cosim.truth().stop().is_some() {
-            break;
-        }
-        armed |= c > 0.0;
-        c_prev = c;
-        prev = s.clone();
     }
-    let s = &cosim.truth().outputs().sample;
-    Err(GuidedRunError::NoTrigger {
-        t_s: s.t,
-        altitude_m: s.altitude,
-        speed_mps: s.spherical[3],
-    })
 }
 
 /// Truth steps per guidance cycle (an error unless the period is a positive multiple of the step).

@@ -18,7 +18,8 @@
 //! * [`density_eval`] — seed 001's density RMSPE (eq. 70) over a Monte Carlo;
 //! * [`training`] — seed 001 Algorithm 1's training trajectories and the whole offline training;
 //! * [`guided_flight`], [`guided_run`], [`delivery`] — entry guidance flown with perfect
-//!   navigation, with a filter in the loop, and the Monte Carlo of delivery at deployment.
+//!   navigation, with a filter in the loop, and the Monte Carlo of delivery at deployment;
+//!   [`guided_loop`] is the filter-in-the-loop flight one truth step at a time (the guided FMU's).
 
 pub mod checkpoint;
 pub mod consistency;
@@ -28,6 +29,7 @@ pub mod density_eval;
 pub mod engine;
 pub mod gate_stats;
 pub mod guided_flight;
+pub mod guided_loop;
 pub mod guided_run;
 pub mod judge;
 pub mod lincov_entry;

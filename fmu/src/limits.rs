@@ -39,6 +39,8 @@ pub const MAX_STRING_BYTES: usize = 4096;
 pub const MAX_GUID_BYTES: usize = 256;
 /// Bytes of the fmuResourceLocation argument (a percent-encoded path).
 pub const MAX_LOCATION_BYTES: usize = 16_384;
+/// The largest Monte Carlo run index the guided FMU's `run` parameter accepts.
+pub const MAX_RUN: i32 = 999_999_999;
 /// Log categories in one fmi2SetDebugLogging call.
 pub const MAX_CATEGORIES: usize = 64;
 /// Bytes of a serialized FMU state; an instance stops recording its replay log (and

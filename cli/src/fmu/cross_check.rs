@@ -93,6 +93,20 @@ fn reference_outputs(spec: &ModelSpec) -> Vec<String> {
         ]
         .map(String::from)
         .to_vec(),
+        (Model::Guided, None) => [
+            "truth_altitude",
+            "truth_v",
+            "truth_bank_angle",
+            "est_r",
+            "est_v",
+            "guidance_command",
+            "guided_status",
+            "deployed",
+            "miss_distance",
+            "nav_status",
+        ]
+        .map(String::from)
+        .to_vec(),
         (Model::Truth, None) => [
             "truth_r",
             "truth_lon",

@@ -46,9 +46,9 @@ pub struct FmuArgs {
 
 #[derive(Subcommand)]
 enum FmuAction {
-    /// Build MarsEntryNav.fmu, MarsEntryNavFilter.fmu, MarsEntryTruth.fmu and MarsEntryGuidance.fmu (or, with
-    /// --scenario, the combined model specific to one scenario), each with a stripped library
-    /// bound to its model.
+    /// Build MarsEntryNav.fmu, MarsEntryNavFilter.fmu, MarsEntryTruth.fmu, MarsEntryGuidance.fmu
+    /// and MarsEntryNavGuided.fmu (or, with --scenario, the combined model specific to one
+    /// scenario), each with a stripped library bound to its model.
     Pack(PackArgs),
     /// Unzip a .fmu, run a scenario through its fmi2 API with our host and compare every output
     /// with the in-process library, bit for bit.
@@ -101,10 +101,12 @@ struct CheckArgs {
     file: PathBuf,
     /// Scenario parameter (built-in name or a file in the FMU's resources). Default:
     /// four-beacon-fusion, or msl-guided.toml for MarsEntryGuidance (whose inputs come from the
-    /// in-process guided loop on it, the EKF in the loop, run 0 of --seed).
+    /// in-process guided loop on it, the EKF in the loop, run 0 of --seed) and for
+    /// MarsEntryNavGuided.
     #[arg(long)]
     scenario: Option<String>,
-    /// Filter parameter (default: the FMU's, dcifaif for the generic FMUs).
+    /// Filter parameter (default: the FMU's: dcifaif for the generic FMUs, ekf for
+    /// MarsEntryNavGuided).
     #[arg(long)]
     filter: Option<String>,
     /// Seed parameter.

@@ -25,7 +25,7 @@ pub(super) struct PackArgs {
     #[arg(long, visible_alias = "library")]
     lib: Option<PathBuf>,
     /// Pack the combined model specific to this scenario (a built-in name or a TOML file) instead
-    /// of the four generic FMUs.
+    /// of the five generic FMUs.
     #[arg(long)]
     scenario: Option<String>,
     /// Default filter of the scenario-specific FMU (default: dcifaif if it fits the scenario,

@@ -2,6 +2,7 @@
 //! (see [`super::scenario`]), the work bounds of a step, and one communication step.
 
 use super::guidance::{GuidanceEngine, GuidanceInputs, GuidanceStepError};
+use super::guided::GuidedEngine;
 use super::scenario::{ScenarioFileError, load_parameter_scenario};
 use super::{Instance, Status};
 use crate::limits::{self, LimitError, STEP_CHUNK_TRUTH_STEPS};
@@ -12,6 +13,7 @@ use entrynav::sensors::{Channel, MeasurementEpoch};
 use entrynav::sim::engine::{
     EngineError, EntryCoSim, NavStatus, Navigator, StepReport, TruthSensors,
 };
+use entrynav::sim::guided_run::GuidedRunError;
 use std::sync::Arc;
 use thiserror::Error;
 
@@ -51,6 +53,17 @@ pub enum InstanceError {
     /// A negative 1σ input.
     #[error("a 1-sigma must be >= 0, got {0}")]
     NegativeSigma(f64),
+    /// The guided FMU cannot be built or its loop failed.
+    #[error(transparent)]
+    Guided(#[from] GuidedRunError),
+    /// A Monte Carlo run index out of range.
+    #[error("run must be in 0..={max}, got {got}")]
+    Run {
+        /// The value given.
+        got: i32,
+        /// The largest allowed.
+        max: i32,
+    },
     /// A filter status code that is not 0, 1 or 2.
     #[error("{0} is not a filter status code (0 initial, 1 running, 2 failed)")]
     StatusCode(i32),
@@ -73,6 +86,8 @@ pub enum Engine {
     },
     /// Guidance alone: the onboard view and `[guidance]` only.
     Guidance(Box<GuidanceEngine>),
+    /// Truth, sensors, filter and guidance in one loop.
+    Guided(Box<GuidedEngine>),
 }
 
 impl Engine {
@@ -81,6 +96,7 @@ impl Engine {
         let of_scenario = |s: &Scenario| s.channels.iter().map(|c| c.channel).collect();
         match self {
             Engine::Combined(c) => of_scenario(c.truth().scenario()),
+            Engine::Guided(g) => of_scenario(g.flight().cosim().truth().scenario()),
             Engine::Truth(t) => of_scenario(t.scenario()),
             Engine::Filter { nav, .. } => {
                 nav.onboard().channels.iter().map(|c| c.channel).collect()
@@ -93,6 +109,7 @@ impl Engine {
     pub(super) fn truth(&self) -> Option<&TruthSensors> {
         match self {
             Engine::Combined(c) => Some(c.truth()),
+            Engine::Guided(g) => Some(g.flight().cosim().truth()),
             Engine::Truth(t) => Some(t),
             Engine::Filter { .. } | Engine::Guidance(_) => None,
         }
@@ -101,8 +118,18 @@ impl Engine {
     pub(super) fn nav(&self) -> Option<&Navigator> {
         match self {
             Engine::Combined(c) => Some(c.nav()),
+            Engine::Guided(g) => Some(g.flight().cosim().nav()),
             Engine::Filter { nav, .. } => Some(nav),
             Engine::Truth(_) | Engine::Guidance(_) => None,
+        }
+    }
+
+    /// Truth, sensors and filter together (the combined and guided models), for the judgement.
+    pub(super) fn cosim(&self) -> Option<&EntryCoSim> {
+        match self {
+            Engine::Combined(c) => Some(c),
+            Engine::Guided(g) => Some(g.flight().cosim()),
+            _ => None,
         }
     }
 
@@ -110,6 +137,7 @@ impl Engine {
     pub fn time(&self) -> f64 {
         match self {
             Engine::Combined(c) => c.time(),
+            Engine::Guided(g) => g.time(),
             Engine::Truth(t) => t.time(),
             Engine::Filter { nav, .. } => nav.time(),
             Engine::Guidance(g) => g.time(),
@@ -162,6 +190,19 @@ impl Instance {
             }
             Model::Truth => Engine::Truth(Box::new(TruthSensors::new(scenario, seed, dispersed))),
             Model::Guidance => Engine::Guidance(Box::new(GuidanceEngine::new(&scenario)?)),
+            Model::Guided => {
+                let cosim = if dispersed {
+                    let run = match self.value_of(Key::Run) {
+                        Some(Value::Integer(r)) => *r,
+                        _ => 0,
+                    };
+                    check_run(run)?;
+                    EntryCoSim::for_run(Arc::clone(&scenario), kind()?, seed, run as usize)?
+                } else {
+                    EntryCoSim::new(Arc::clone(&scenario), kind()?, seed, false)?
+                };
+                Engine::Guided(Box::new(GuidedEngine::new(&scenario, cosim)?))
+            }
         })
     }
 
@@ -266,6 +307,21 @@ impl Instance {
         let engine = self.engine.as_mut().ok_or(InstanceError::NoEngine)?;
         let report = match engine {
             Engine::Combined(c) => Self::step_combined(c, t, h, bank, &avail),
+            Engine::Guided(g) => {
+                let r = g.do_step(t, h, &avail)?;
+                self.flown_bank = g.flight().flown_bank();
+                return Ok(match r.ended {
+                    Some((true, msg)) => {
+                        self.info(&msg);
+                        Status::Ok
+                    }
+                    Some((false, msg)) => {
+                        self.warn(&msg);
+                        Status::Warning
+                    }
+                    None => Status::Ok,
+                });
+            }
             Engine::Truth(ts) => ts.do_step(t, h, bank, &avail),
             Engine::Filter { nav, .. } => nav.do_step(t, h, bank, epoch.as_ref()),
             Engine::Guidance(g) => {
@@ -340,5 +396,17 @@ impl Instance {
             g.check(t, h, &self.guidance_inputs())?;
         }
         Ok(())
+    }
+}
+
+/// Check the guided FMU's `run` parameter.
+pub(super) fn check_run(run: i32) -> Result<(), InstanceError> {
+    if (0..=limits::MAX_RUN).contains(&run) {
+        Ok(())
+    } else {
+        Err(InstanceError::Run {
+            got: run,
+            max: limits::MAX_RUN,
+        })
     }
 }

@@ -13,6 +13,7 @@ mod allowed;
 mod engine;
 mod fmi3;
 mod guidance;
+mod guided;
 mod lifecycle;
 mod outputs;
 mod scenario;
@@ -24,6 +25,7 @@ pub use allowed::{Fmi2, Phases};
 pub use engine::{Engine, InstanceError};
 pub use fmi3::{Ref3, Type3};
 pub use guidance::{GuidanceEngine, GuidanceInputs, GuidanceReport, GuidanceStepError};
+pub use guided::{GuidedEngine, GuidedReport, GuidedStatus};
 pub use lifecycle::{StatusAnswer, StatusType};
 pub use scenario::{ScenarioFileError, load_resource_scenario};
 pub use spec::resolve_spec;
@@ -126,7 +128,7 @@ fn phase_name(p: Phase) -> &'static str {
     }
 }
 
-/// The model a GUID names when no binding restricts it: one of the four generic models.
+/// The model a GUID names when no binding restricts it: one of the generic models.
 pub fn generic_spec(guid: &str) -> Result<Arc<ModelSpec>, InstantiateError> {
     match Model::from_guid(guid) {
         Some(m) => Ok(Arc::new(ModelSpec::generic(m))),

@@ -125,7 +125,29 @@ impl Instance {
                 _ => {}
             }
         }
-        if let Engine::Combined(c) = engine {
+        if let Engine::Guided(g) = engine {
+            let f = g.flight();
+            let d = g.delivery();
+            let of =
+                |x: fn(&entrynav::sim::guided_run::Delivery) -> f64| real(d.map(x).unwrap_or(0.0));
+            match key {
+                Key::GuidanceBankRate => return real(f.bank_rate()),
+                Key::GuidanceCommand => return real(f.command()),
+                Key::GuidanceCycles => {
+                    return Value::Integer(i32::try_from(f.cycles()).unwrap_or(i32::MAX));
+                }
+                Key::SensedDrag => return real(f.drag()),
+                Key::GuidedStatus => return Value::Integer(g.status() as i32),
+                Key::Deployed => return Value::Boolean(d.is_some()),
+                Key::DeployTime => return of(|d| d.t_deploy_s),
+                Key::DeployAltitude => return of(|d| d.altitude_m),
+                Key::MissDistance => return of(|d| d.miss_m),
+                Key::MissDownrange => return of(|d| d.downrange_m),
+                Key::MissCrossrange => return of(|d| d.crossrange_m),
+                _ => {}
+            }
+        }
+        if let Some(c) = engine.cosim() {
             let j = c.judgement();
             let n = j.err.len();
             let slot = |v: &[f64], i: usize| real(if i < n { v[i] } else { 0.0 });
@@ -173,6 +195,7 @@ pub(super) fn validate(key: Key, v: &Value) -> Result<(), InstanceError> {
             }))
         }
         (Key::Seed, Value::Integer(s)) if *s < 0 => Err(InstanceError::NegativeSeed(*s)),
+        (Key::Run, Value::Integer(r)) => super::engine::check_run(*r),
         // Inputs of the guidance FMU (outputs, never set, in the other models).
         (Key::EstSigma(_), Value::Real(x)) if *x < 0.0 => Err(InstanceError::NegativeSigma(*x)),
         (Key::NavStatusCode, Value::Integer(c)) if !(0..=2).contains(c) => {

@@ -23,7 +23,7 @@ pub use model::{
 };
 pub use slot::{Key, Slot};
 pub use table::variables;
-pub use table_guidance::{GUIDED_SCENARIO_FILE, guided_scenario_toml};
+pub use table_guidance::{GUIDED_FILTER, GUIDED_SCENARIO_FILE, guided_scenario_toml};
 
 /// Filter state slots of the generic FMUs: every supported filter dimension.
 pub const MAX_STATES: usize = entrynav::state_dim::MAX_STATE_DIM;

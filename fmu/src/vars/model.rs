@@ -22,15 +22,19 @@ pub enum Model {
     /// Entry guidance alone, fed with the navigation estimate and the accelerometer triad
     /// (`MarsEntryGuidance`): its output is the bank command.
     Guidance,
+    /// Entry dynamics, sensors, navigation filter and guidance in one loop
+    /// (`MarsEntryNavGuided`): guidance flies the filter's estimate, the truth flies its bank.
+    Guided,
 }
 
 impl Model {
     /// All models.
-    pub const ALL: [Model; 4] = [
+    pub const ALL: [Model; 5] = [
         Model::Combined,
         Model::Filter,
         Model::Truth,
         Model::Guidance,
+        Model::Guided,
     ];
 
     /// FMI model identifier (the shared library's file stem inside the `.fmu`).
@@ -40,6 +44,7 @@ impl Model {
             Model::Filter => "MarsEntryNavFilter",
             Model::Truth => "MarsEntryTruth",
             Model::Guidance => "MarsEntryGuidance",
+            Model::Guided => "MarsEntryNavGuided",
         }
     }
 
@@ -58,17 +63,26 @@ impl Model {
             Model::Guidance => {
                 "Mars entry guidance (entrynav, the scenario's [guidance]): bank command through the rate and acceleration limits, from the navigation estimate and the accelerometer triad"
             }
+            Model::Guided => {
+                "Mars entry dynamics, sensors, navigation filter and guidance in one loop (entrynav, the scenario's [guidance]): guidance flies the filter's estimate, the truth flies the bank through the rate and acceleration limits, until the deployment trigger"
+            }
         }
     }
 
     /// Whether this model runs the truth.
     pub fn has_truth(self) -> bool {
-        matches!(self, Model::Combined | Model::Truth)
+        matches!(self, Model::Combined | Model::Truth | Model::Guided)
     }
 
     /// Whether this model runs a filter.
     pub fn has_filter(self) -> bool {
-        matches!(self, Model::Combined | Model::Filter)
+        matches!(self, Model::Combined | Model::Filter | Model::Guided)
+    }
+
+    /// Whether the truth, the filter and their judgement run together (no measurement
+    /// variables: the filter is fed inside).
+    pub fn is_closed(self) -> bool {
+        matches!(self, Model::Combined | Model::Guided)
     }
 
     /// The generic model whose GUID is `guid`.
@@ -334,9 +348,10 @@ impl ModelSpec {
     /// Start time, stop time and step size of the default experiment: the scenario's duration
     /// (the default scenario's for a generic model) with one step per fastest sensor sample; for
     /// the guidance FMU, the guided scenario's duration with one step per guidance period (one
-    /// cycle per step, each with the estimate given at its start).
+    /// cycle per step, each with the estimate given at its start); for the guided FMU, the same
+    /// (its steps are whole truth steps, and a guidance period is).
     pub fn default_experiment(&self) -> (f64, f64, f64) {
-        if self.model == Model::Guidance {
+        if matches!(self.model, Model::Guidance | Model::Guided) {
             // The guided scenario builds with [guidance] (tested), so the fallback is never taken.
             return guided_scenario()
                 .ok()

@@ -188,4 +188,18 @@ pub enum Key {
     DeployTrigger,
     /// Guidance: the trigger was reached.
     Deployed,
+    /// Guided FMU: the Monte Carlo run index whose dispersed truth it flies.
+    Run,
+    /// Guided FMU: how the guided flight stands (flying, deployed, ended without deployment).
+    GuidedStatus,
+    /// Guided FMU: deployment time (on the truth).
+    DeployTime,
+    /// Guided FMU: surface miss distance at deployment.
+    MissDistance,
+    /// Guided FMU: along-track part of the miss.
+    MissDownrange,
+    /// Guided FMU: cross-track part of the miss.
+    MissCrossrange,
+    /// Guided FMU: deployment altitude.
+    DeployAltitude,
 }

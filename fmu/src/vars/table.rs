@@ -117,7 +117,20 @@ pub(super) fn build(model: Model, specific: Option<&Specific>) -> Vec<Var> {
         super::table_guidance::guidance_vars(&mut b);
         return b.vars;
     }
-    if specific.is_none() {
+    if model == Model::Guided {
+        b.add(
+            "scenario",
+            String,
+            Parameter,
+            None,
+            Some(Value::String(GUIDED_SCENARIO_FILE.into())),
+            format!(
+                "Scenario with a [guidance] section (refused without one): a TOML file in the FMU's resources folder (default {GUIDED_SCENARIO_FILE}, the built-in msl-guided) or a built-in name ({}; msl-guided and four-beacon-fusion-guided have [guidance]); a file elsewhere only with allow_external_files = true",
+                entrynav::scenario::BUILTIN_NAMES.join(", ")
+            ),
+            Key::Scenario,
+        );
+    } else if specific.is_none() {
         b.add(
             "scenario",
             String,
@@ -131,7 +144,13 @@ pub(super) fn build(model: Model, specific: Option<&Specific>) -> Vec<Var> {
             Key::Scenario,
         );
     }
-    let default_filter = specific.map(|s| s.filter.name()).unwrap_or(DEFAULT_FILTER);
+    // The guided FMU's default scenario (msl-guided) has no radio beacons: the EKF, as in the
+    // guided SSP's filter.
+    let default_filter = match (specific, model) {
+        (Some(s), _) => s.filter.name(),
+        (None, Model::Guided) => GUIDED_FILTER,
+        (None, _) => DEFAULT_FILTER,
+    };
     if model.has_filter() {
         b.add(
             "filter",
@@ -166,6 +185,17 @@ pub(super) fn build(model: Model, specific: Option<&Specific>) -> Vec<Var> {
         "Draw the truth from the scenario's dispersions (true) or use the nominal truth (false)",
         Key::Dispersed,
     );
+    if model == Model::Guided {
+        b.add(
+            "run",
+            Integer,
+            Parameter,
+            None,
+            Some(Value::Integer(0)),
+            "With dispersed = true: the Monte Carlo run (0 to 999999999) whose truth, noise and filter start are flown, as run `run` of entrynav guidance deliver --seed seed (the same delivery, bit for bit); not used when dispersed = false",
+            Key::Run,
+        );
+    }
     if specific.is_none() {
         b.add(
             "allow_external_files",
@@ -180,8 +210,10 @@ pub(super) fn build(model: Model, specific: Option<&Specific>) -> Vec<Var> {
     let n_beacons = specific
         .map(|s| s.scenario.beacons.len().min(MAX_BEACONS))
         .unwrap_or(MAX_BEACONS);
-    // Every model: the truth flies the command, the filter's onboard models use it (known onboard).
-    b.add(
+    // Every model but the guided one (whose guidance commands the bank): the truth flies the
+    // command, the filter's onboard models use it (known onboard).
+    if model != Model::Guided {
+        b.add(
         "bank_angle",
         Real,
         Input,
@@ -194,12 +226,13 @@ pub(super) fn build(model: Model, specific: Option<&Specific>) -> Vec<Var> {
             Model::Filter => {
                 "Bank-angle command the vehicle flies, held over each communication step: used by the filter's onboard dynamics and measurement models"
             }
-            Model::Truth | Model::Guidance => {
+            Model::Truth | Model::Guidance | Model::Guided => {
                 "Bank-angle command, held over each communication step"
             }
         },
         Key::Bank,
     );
+    }
     if model.has_truth() {
         for i in 0..n_beacons {
             b.add(
@@ -217,7 +250,7 @@ pub(super) fn build(model: Model, specific: Option<&Specific>) -> Vec<Var> {
         }
     }
     // Measurements: inputs of the filter FMU, outputs of the truth FMU.
-    if model != Model::Combined {
+    if !model.is_closed() {
         let c = if model == Model::Filter {
             Input
         } else {
@@ -269,8 +302,11 @@ pub(super) fn build(model: Model, specific: Option<&Specific>) -> Vec<Var> {
     if model.has_filter() {
         nav_outputs(&mut b, specific);
     }
-    if model == Model::Combined {
+    if model.is_closed() {
         judgement_outputs(&mut b, specific);
+    }
+    if model == Model::Guided {
+        super::table_guidance::guided_outputs(&mut b);
     }
     b.vars
 }

@@ -36,7 +36,7 @@ cargo run --release --quiet --bin entrynav -- trade --scenario four-beacon-fusio
 echo "== HTML report: a small trade's --report renders in headless Chromium (no console errors, not blank)"
 bash scripts/check_report.sh
 
-echo "== FMU: shared library, packed FMUs (MarsEntryNav, MarsEntryNavFilter, MarsEntryTruth, MarsEntryGuidance; FMI 2.0 and 3.0)"
+echo "== FMU: shared library, packed FMUs (MarsEntryNav, MarsEntryNavFilter, MarsEntryTruth, MarsEntryGuidance, MarsEntryNavGuided; FMI 2.0 and 3.0)"
 # Before the Dask and tutorial steps: both load the packed MarsEntryNav.fmu.
 cargo build --release --workspace
 target/release/entrynav fmu pack --out target/fmu
@@ -53,14 +53,14 @@ echo "== docs/tutorial.md: every command runs as documented"
 bash scripts/tutorial_check.sh
 
 echo "== FMU: our host against the in-process library (bitwise), doStep benchmark"
-for fmu in target/fmu/MarsEntryNav.fmu target/fmu/MarsEntryNavFilter.fmu target/fmu/MarsEntryTruth.fmu target/fmu/MarsEntryGuidance.fmu; do
+for fmu in target/fmu/MarsEntryNav.fmu target/fmu/MarsEntryNavFilter.fmu target/fmu/MarsEntryTruth.fmu target/fmu/MarsEntryGuidance.fmu target/fmu/MarsEntryNavGuided.fmu; do
   target/release/entrynav fmu check "$fmu"
 done
 target/release/entrynav fmu check target/fmu/MarsEntryNav.fmu --bench
 echo "== FMU: the FMI 3.0 fuzzer, 100,000 calls per FMI 3.0 FMU (exit 1 on any call the model does not predict)"
-for fmu in target/fmu/MarsEntryNav-fmi3.fmu target/fmu/MarsEntryNavFilter-fmi3.fmu target/fmu/MarsEntryTruth-fmi3.fmu; do
+for fmu in target/fmu/MarsEntryNav-fmi3.fmu target/fmu/MarsEntryNavFilter-fmi3.fmu target/fmu/MarsEntryTruth-fmi3.fmu target/fmu/MarsEntryNavGuided-fmi3.fmu; do
   target/release/entrynav fmu fuzz "$fmu" --calls 100000
 done
 
-echo "== FMU: pytest (symbols, fmpy validate/simulate/FMU2Slave/FMU3Slave, fmutool, libcosimpy, fmusim, OMSimulator, host fuzz, guidance FMU and guided SSP)"
+echo "== FMU: pytest (symbols, fmpy validate/simulate/FMU2Slave/FMU3Slave, fmutool, libcosimpy, fmusim, OMSimulator, host fuzz, guidance FMU, guided FMU and guided SSP)"
 .venv/bin/pytest -q -s -p no:cacheprovider tests/python

@@ -253,7 +253,7 @@ def test_fmu_pack_from_python(tmp_path):
     lib = ROOT / "target" / "release" / "libmars_entry_nav.so"
     paths = entrynav.fmu_pack(tmp_path, fmi=3, library=lib)
     assert [p.name for p in paths] == ["MarsEntryGuidance-fmi3.fmu", "MarsEntryNav-fmi3.fmu", "MarsEntryNavFilter-fmi3.fmu",
-                                       "MarsEntryTruth-fmi3.fmu"]
+                                       "MarsEntryNavGuided-fmi3.fmu", "MarsEntryTruth-fmi3.fmu"]
     spec = entrynav.fmu_pack(tmp_path, scenario="msl-airdata", library=lib)
     assert [p.name for p in spec] == ["MarsEntryNav_msl_airdata.fmu"]
 

@@ -93,12 +93,12 @@ pub(super) fn scenario_timing(sc: &entrynav::scenario::Scenario) -> (f64, f64) {
     )
 }
 
-/// The scenario a check runs: `--scenario`, else the guided scenario for the guidance FMU and
-/// four-beacon-fusion for the others.
+/// The scenario a check runs: `--scenario`, else the guided scenario for the guidance and guided
+/// FMUs and four-beacon-fusion for the others.
 fn scenario_param(a: &CheckArgs, m: Model) -> String {
     a.scenario.clone().unwrap_or_else(|| {
         match m {
-            Model::Guidance => mars_entry_nav::vars::GUIDED_SCENARIO_FILE,
+            Model::Guidance | Model::Guided => mars_entry_nav::vars::GUIDED_SCENARIO_FILE,
             _ => mars_entry_nav::vars::DEFAULT_SCENARIO,
         }
         .to_string()
@@ -108,8 +108,8 @@ fn scenario_param(a: &CheckArgs, m: Model) -> String {
 /// The filter a check runs: `--filter`, else the FMU's default.
 fn filter_of(a: &CheckArgs, spec: &mars_entry_nav::ModelSpec) -> String {
     a.filter.clone().unwrap_or_else(|| {
-        spec.specific()
-            .map(|s| s.filter.name())
+        super::fuzz::model::start_params(spec)
+            .map(|(_, f)| f)
             .unwrap_or(mars_entry_nav::vars::DEFAULT_FILTER)
             .to_string()
     })
@@ -136,8 +136,8 @@ pub(super) fn check(a: &CheckArgs) -> Result<()> {
     let scenario_name = scenario_param(a, m);
     let scenario = check_scenario(&u, &scenario_name, &res)?;
     let (duration, default_step) = match m {
-        // The guidance FMU's default experiment: one step per guidance period.
-        Model::Guidance => {
+        // The guidance and guided FMUs' default experiment: one step per guidance period.
+        Model::Guidance | Model::Guided => {
             let (_, stop, step) = spec.default_experiment();
             (stop, step)
         }

@@ -112,12 +112,7 @@ impl Fuzzer<'_> {
         let s = Slave::new(self.u, &name, &self.guid, &self.uri)?;
         self.stats.calls += 1;
         self.stats.sequences += 1;
-        let specific = self
-            .u
-            .spec
-            .specific()
-            .map(|sp| (sp.scenario.config.name.as_str(), sp.filter.name()));
-        let mut sim = Sim::new(specific);
+        let mut sim = Sim::new(model::start_params(&self.u.spec));
         let mut saved: Vec<(*mut std::ffi::c_void, Sim)> = Vec::new();
         for _ in 0..len {
             self.op(&s, &mut sim, &mut saved)?;

@@ -4,7 +4,10 @@
 use super::super::*;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use mars_entry_nav::vars::{DEFAULT_FILTER, DEFAULT_SCENARIO, DEFAULT_SEED};
+use mars_entry_nav::ModelSpec;
+use mars_entry_nav::vars::{
+    DEFAULT_FILTER, DEFAULT_SCENARIO, DEFAULT_SEED, GUIDED_FILTER, GUIDED_SCENARIO_FILE,
+};
 use std::collections::HashMap;
 
 /// The phases of the FMI 2.0 co-simulation state machine.
@@ -43,11 +46,24 @@ impl Expect {
     }
 }
 
+/// The parameters an instance of `spec` starts with, when they are not the generic defaults:
+/// the embedded scenario and default filter of a specific FMU, the guided scenario and filter of
+/// `MarsEntryNavGuided` (shared with the FMI 3.0 fuzzer).
+pub(in crate::fmu) fn start_params(spec: &ModelSpec) -> Option<(&str, &'static str)> {
+    match spec.specific() {
+        Some(sp) => Some((sp.scenario.config.name.as_str(), sp.filter.name())),
+        None if spec.model() == Model::Guided => Some((GUIDED_SCENARIO_FILE, GUIDED_FILTER)),
+        None => None,
+    }
+}
+
 /// Scenario timing and which filters fit, per built-in scenario (shared with the FMI 3.0
 /// fuzzer).
 pub(in crate::fmu) struct Scenarios {
     pub(in crate::fmu) timing: HashMap<String, (f64, f64)>,
     pub(in crate::fmu) fits: HashMap<String, Vec<&'static str>>,
+    /// The scenarios the guided FMU can fly (a `[guidance]` section and the accelerometers).
+    pub(in crate::fmu) guided: Vec<String>,
 }
 
 impl Scenarios {
@@ -63,8 +79,18 @@ impl Scenarios {
         if let Some(sp) = specific {
             all.push((sp.scenario.config.name.clone(), Arc::clone(&sp.scenario)));
         }
-        let (mut timing, mut fits) = (HashMap::new(), HashMap::new());
+        // The guided scenario file every generic FMU ships (the default of the guided models).
+        all.push((
+            GUIDED_SCENARIO_FILE.to_string(),
+            Arc::new(mars_entry_nav::vars::guided_scenario()?),
+        ));
+        let (mut timing, mut fits, mut guided) = (HashMap::new(), HashMap::new(), Vec::new());
         for (name, s) in all {
+            if s.config.guidance.is_some()
+                && entrynav::sim::guided_run::accel_slots(&s.onboard).is_some()
+            {
+                guided.push(name.clone());
+            }
             let t = &s.config.timing;
             timing.insert(name.clone(), (t.duration_s, s.onboard.filter_step_s));
             let ok: Vec<&'static str> = FilterKind::ALL
@@ -74,7 +100,11 @@ impl Scenarios {
                 .collect();
             fits.insert(name, ok);
         }
-        Ok(Scenarios { timing, fits })
+        Ok(Scenarios {
+            timing,
+            fits,
+            guided,
+        })
     }
 }
 
@@ -119,7 +149,8 @@ impl Sim {
         let Some(fits) = sc.fits.get(self.scenario.trim()) else {
             return false;
         };
-        !model.has_filter() || fits.contains(&self.filter.trim())
+        (!model.has_filter() || fits.contains(&self.filter.trim()))
+            && (model != Model::Guided || sc.guided.iter().any(|g| g == self.scenario.trim()))
     }
 
     /// What fmi2Get* of `vars` answers.

@@ -150,11 +150,7 @@ impl Fuzzer<'_> {
                 // SAFETY: our instance.
                 let r = unsafe { (api.fmi2Reset)(s.c) };
                 self.expect(s, "fmi2Reset", sim, Expect::Ok, r, seen)?;
-                let specific = u
-                    .spec
-                    .specific()
-                    .map(|sp| (sp.scenario.config.name.as_str(), sp.filter.name()));
-                *sim = Sim::new(specific);
+                *sim = Sim::new(super::model::start_params(&u.spec));
             }
             11..=13 => self.get(s, sim, seen)?,
             14..=16 => self.set_real(s, sim, seen)?,

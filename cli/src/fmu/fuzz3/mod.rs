@@ -238,10 +238,7 @@ impl Fuzzer<'_> {
 
     /// The scenario and filter of a specific FMU.
     fn specific(&self) -> Option<(&str, &str)> {
-        self.u
-            .spec
-            .specific()
-            .map(|sp| (sp.scenario.config.name.as_str(), sp.filter.name()))
+        crate::fmu::fuzz::model::start_params(&self.u.spec)
     }
 
     /// Null instances are refused by every function (and freed without harm).

@@ -160,7 +160,8 @@ impl Sim {
         let Some(fits) = sc.fits.get(self.scenario.trim()) else {
             return false;
         };
-        !model.has_filter() || fits.contains(&self.filter.trim())
+        (!model.has_filter() || fits.contains(&self.filter.trim()))
+            && (model != Model::Guided || sc.guided.iter().any(|g| g == self.scenario.trim()))
     }
 
     /// What fmi3EnterInitializationMode(start, stop if defined) answers.

@@ -178,12 +178,19 @@ impl Fuzzer<'_> {
                 let vr = self.vr_of(&v);
                 // SAFETY: one reference and one value.
                 let r = unsafe { (api.fmi3SetInt32)(s.c, &vr, 1, &x, 1) };
-                let is_seed =
-                    v.is_some() && v.map(|v| v.vr) == self.key_var(Key::Seed).map(|s| s.vr);
+                let is =
+                    |key: Key| v.is_some() && v.map(|v| v.vr) == self.key_var(key).map(|s| s.vr);
+                let is_seed = is(Key::Seed);
                 if is_seed {
                     seed = Some(x);
                 }
-                ("fmi3SetInt32", Type3::Int32, v, !is_seed || x >= 0, r)
+                // The guided FMU's Monte Carlo run index.
+                let valid = if is(Key::Run) {
+                    (0..=mars_entry_nav::limits::MAX_RUN).contains(&x)
+                } else {
+                    !is_seed || x >= 0
+                };
+                ("fmi3SetInt32", Type3::Int32, v, valid, r)
             }
             1 => {
                 let any = self.rng.random_bool(0.3);

@@ -160,3 +160,41 @@ fn refuses_a_scenario_without_guidance_and_a_run_out_of_range() {
     );
     assert_ne!(i.set_int(Key::Run, i32::MAX), 0);
 }
+
+#[test]
+fn an_fmu_state_taken_mid_flight_delivers_the_same_vehicle_again() {
+    use mars_entry_nav::ffi::{fmi2FreeFMUstate, fmi2GetFMUstate, fmi2SetFMUstate};
+    let (d, _, _) = core_run(5, 2);
+    let i = guided("state");
+    assert_eq!(i.set_int(Key::Seed, 5), 0);
+    assert_eq!(i.set_bool(Key::Dispersed, true), 0);
+    assert_eq!(i.set_int(Key::Run, 2), 0);
+    assert_eq!(i.init(), [0, 0, 0], "{:?}", i.messages());
+    // Fly 120 s in 1 s steps, keep the state, fly to the end, go back and fly to the end again.
+    for k in 0..120 {
+        assert_eq!(i.step(k as f64, 1.0), 0, "{}", i.last());
+    }
+    let mut st = std::ptr::null_mut();
+    // SAFETY: our instance and a pointer to receive the state.
+    assert_eq!(unsafe { fmi2GetFMUstate(i.c, &mut st) }, 0, "{}", i.last());
+    let finish = || {
+        let mut k = 120;
+        while i.int(Key::GuidedStatus) == 0 {
+            assert!(k < 400, "no deployment by t = {k}");
+            assert_eq!(i.step(k as f64, 1.0), 0, "{}", i.last());
+            k += 1;
+        }
+        (
+            i.real(Key::DeployTime).to_bits(),
+            i.real(Key::MissDistance).to_bits(),
+        )
+    };
+    let first = finish();
+    assert_eq!(first, (d.t_deploy_s.to_bits(), d.miss_m.to_bits()));
+    // SAFETY: the state this instance gave.
+    assert_eq!(unsafe { fmi2SetFMUstate(i.c, st) }, 0, "{}", i.last());
+    assert_eq!(i.int(Key::GuidedStatus), 0);
+    assert_eq!(finish(), first);
+    // SAFETY: the state this instance gave, freed once.
+    assert_eq!(unsafe { fmi2FreeFMUstate(i.c, &mut st) }, 0);
+}

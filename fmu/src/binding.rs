@@ -5,7 +5,7 @@
 //! pack` fills in each packed copy ([`patch`]) with the model identifier, the GUID and, for a
 //! scenario-specific FMU, the embedded scenario's file name and default filter. At
 //! `fmi2Instantiate` the library reads its block: a bound library accepts only the bound GUID;
-//! the unbound library of a plain `cargo build` (never shipped) serves the four generic models,
+//! the unbound library of a plain `cargo build` (never shipped) serves the five generic models,
 //! which is how the in-process tests and `entrynav fmu run` use it.
 //!
 //! The block is immutable data (read with a volatile load, so the compiler cannot assume its

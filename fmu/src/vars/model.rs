@@ -1,4 +1,4 @@
-//! Which FMU an instance is: one of the three generic models ([`Model`]), or the combined model
+//! Which FMU an instance is: one of the five generic models ([`Model`]), or the combined model
 //! specific to one embedded scenario ([`ModelSpec::for_scenario`]), whose state outputs carry the
 //! scenario's state names and units.
 
@@ -10,7 +10,7 @@ use entrynav::scenario::{Scenario, ScenarioConfig};
 use std::sync::Arc;
 use thiserror::Error;
 
-/// The three generic FMUs.
+/// The five generic FMUs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Model {
     /// Entry dynamics, sensors and navigation filter (`MarsEntryNav`).

@@ -12,7 +12,7 @@ use entrynav::sim::report::FilterReport;
 use entrynav::sim::tuning::TuningRuns;
 use entrynav_loader as load;
 use entrynav_optimizer::tune::{
-    EntryTuning, THETA_BOUND, TuneObjective, TuneOptions, TuneResult, objective, tune,
+    EntryTuning, TuneObjective, TuneOptions, TuneResult, TuningProblem, objective, tune,
 };
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -80,7 +80,8 @@ pub fn run(args: &TuneArgs) -> Result<()> {
 /// One filter's tuning.
 struct Tuned {
     kind: FilterKind,
-    factors: Vec<(String, f64)>,
+    /// Name, factor, and whether it sits at its search bound.
+    factors: Vec<(String, f64, bool)>,
     result: TuneResult,
     search_s: f64,
     /// What the file holds for it (six significant digits).
@@ -250,8 +251,8 @@ fn print_summary(args: &TuneArgs, opts: &TuneOptions, s: &Summary<'_>) {
             sig3(t.result.cost),
             objective_zero(args.nis_only)
         );
-        for (name, f) in &t.factors {
-            let bound = if f.log10().abs() >= THETA_BOUND - 1e-9 {
+        for (name, f, at_bound) in &t.factors {
+            let bound = if *at_bound {
                 "  (at the search bound)"
             } else {
                 ""
@@ -303,7 +304,12 @@ fn tune_one(
         .groups()
         .iter()
         .zip(&result.theta)
-        .map(|(g, t)| (g.name().to_string(), 10f64.powf(*t)))
+        .enumerate()
+        .map(|(k, (g, t))| {
+            let (lo, hi) = problem.bounds(k);
+            let at_bound = *t <= lo + 1e-9 || *t >= hi - 1e-9;
+            (g.name().to_string(), 10f64.powf(*t), at_bound)
+        })
         .collect();
     let retune = tuned_file::rounded(&problem.retune_config(cfg, &result.theta));
     let initial_j = objective(&result.initial, opts.objective);
@@ -435,7 +441,7 @@ fn comment_lines(
     let factors: Vec<String> = t
         .factors
         .iter()
-        .map(|(n, f)| format!("{n} x {}", tuned_file::six_digits(*f)))
+        .map(|(n, f, _)| format!("{n} x {}", tuned_file::six_digits(*f)))
         .collect();
     let pct = |r: &FilterReport| {
         r.consistency

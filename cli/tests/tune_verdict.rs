@@ -88,3 +88,60 @@ fn a_tuning_worse_than_the_input_is_refused_unless_forced() {
     ]);
     assert_eq!(code, 0, "{err}");
 }
+
+/// msl-guided's EKF (overconfident by ~10⁶ in ANEES/dof) wants its accelerometer noise inflated
+/// by more than a scenario accepts (at most 1000): the search stops at that bound, the tuning is
+/// written, and the written file loads and runs.
+#[test]
+fn a_measurement_noise_factor_stops_at_what_a_scenario_accepts() {
+    let dir = scratch_dir("tune", "noise-bound");
+    let out = dir.join("t.toml");
+    let (code, stdout, err) = entrynav(&[
+        "tune",
+        "--scenario",
+        "msl-guided",
+        "--filter",
+        "ekf",
+        "--tune-noise",
+        "--runs",
+        "16",
+        "--validation-runs",
+        "24",
+        "--max-evaluations",
+        "90",
+        "--threads",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stdout}\n{err}");
+    let line = stdout
+        .lines()
+        .find(|l| l.trim_start().starts_with("r[accel]"))
+        .unwrap_or_else(|| panic!("no r[accel] factor in {stdout}"));
+    assert!(line.contains("(at the search bound)"), "{line}");
+    let text = std::fs::read_to_string(&out).unwrap();
+    let accel: f64 = text
+        .lines()
+        .skip_while(|l| !l.starts_with("[filter.tuned.ekf"))
+        .find_map(|l| {
+            let l = l.trim();
+            l.strip_prefix("accel = ")
+                .or_else(|| l.split("accel = ").nth(1))
+                .and_then(|v| v.split([',', '}', ' ']).next())
+                .and_then(|v| v.parse().ok())
+        })
+        .unwrap_or_else(|| panic!("no tuned accel factor in {text}"));
+    assert!(accel > 100.0 && accel <= 1000.0, "accel factor {accel}");
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        out.to_str().unwrap(),
+        "--filters",
+        "ekf",
+        "--runs",
+        "4",
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+}

@@ -357,8 +357,11 @@ fn is_one_iteration(n: &usize) -> bool {
     *n == 1
 }
 
+/// The largest factor of [`NoiseInflation`] a scenario accepts.
+pub const MAX_NOISE_INFLATION: f64 = 1e3;
+
 /// Factors on the 1σ measurement noise the filter assumes, per channel kind
-/// (`[filter.noise_inflation]`; every key defaults to 1).
+/// (`[filter.noise_inflation]`; every key defaults to 1, each in (0, [`MAX_NOISE_INFLATION`]]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct NoiseInflation {

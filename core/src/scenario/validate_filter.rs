@@ -239,7 +239,7 @@ fn check_inflation(field: &str, n: &NoiseInflation, c: &mut Checker) -> R {
         ("range_rate", n.range_rate),
     ] {
         let range = Range::gt(0.0)
-            .le(1e3)
+            .le(super::config::MAX_NOISE_INFLATION)
             .note("a factor on the assumed 1-sigma noise");
         c.range(format!("{field}.{name}"), v, range)?;
     }

@@ -12,10 +12,11 @@
 //! `[filter.tuned.<name>]` if the scenario has one, else the shared `[filter]` values), and the
 //! result is written as that filter's own tuning: tuning the UKF never changes the EKF.
 
-use super::{Measured, TuningProblem};
+use super::{Measured, THETA_BOUND, TuningProblem};
 use crate::OptimizerError;
 use entrynav::estimation::Onboard;
 use entrynav::estimation::nav::FilterKind;
+use entrynav::scenario::config::MAX_NOISE_INFLATION;
 use entrynav::scenario::{FilterRetuneConfig, ScenarioConfig};
 use entrynav::sensors::Channel;
 use entrynav::sim::report::FilterReport;
@@ -57,6 +58,9 @@ pub struct EntryTuning<'a> {
     /// The onboard view the filter flies with before tuning (its own tuning applied).
     base: Arc<Onboard>,
     groups: Vec<ParameterGroup>,
+    /// Per group, the range of θ: a noise factor times the filter's current one stays within
+    /// what a scenario accepts (at most [`MAX_NOISE_INFLATION`]), so the tuning can be written.
+    bounds: Vec<(f64, f64)>,
 }
 
 fn same_kind(a: Channel, b: Channel) -> bool {
@@ -115,11 +119,30 @@ impl<'a> EntryTuning<'a> {
                 }
             }
         }
+        let current = sc
+            .config
+            .filter
+            .tuned
+            .get(kind.name())
+            .and_then(|c| c.noise_inflation)
+            .or(sc.config.filter.noise_inflation)
+            .unwrap_or_default();
+        let bounds = groups
+            .iter()
+            .map(|g| match g {
+                ParameterGroup::Process { .. } => (-THETA_BOUND, THETA_BOUND),
+                ParameterGroup::Noise { kind, .. } => {
+                    let room = (MAX_NOISE_INFLATION / current.factor(*kind)).log10();
+                    (-THETA_BOUND, room.min(THETA_BOUND))
+                }
+            })
+            .collect();
         Ok(EntryTuning {
             runs,
             kind,
             base,
             groups,
+            bounds,
         })
     }
 
@@ -183,7 +206,9 @@ impl<'a> EntryTuning<'a> {
         let mut changed = false;
         for (g, t) in self.groups.iter().zip(theta) {
             if let ParameterGroup::Noise { kind, .. } = g {
-                inflation.set_factor(*kind, inflation.factor(*kind) * 10f64.powf(*t));
+                // Within the scenario's range by the search bounds (the min only absorbs round-off).
+                let f = inflation.factor(*kind) * 10f64.powf(*t);
+                inflation.set_factor(*kind, f.min(MAX_NOISE_INFLATION));
                 changed = true;
             }
         }
@@ -244,6 +269,13 @@ pub fn measured(reports: &[FilterReport]) -> Measured {
 impl TuningProblem for EntryTuning<'_> {
     fn dim(&self) -> usize {
         self.groups.len()
+    }
+
+    fn bounds(&self, k: usize) -> (f64, f64) {
+        self.bounds
+            .get(k)
+            .copied()
+            .unwrap_or((-THETA_BOUND, THETA_BOUND))
     }
 
     fn evaluate(&self, theta: &[f64]) -> Result<Measured, OptimizerError> {

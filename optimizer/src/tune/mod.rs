@@ -9,7 +9,8 @@
 //! J(θ) = ln²(ANEES/dof) + ln²(ANIS/dof) + 25·(fraction of runs that failed or diverged)
 //! ```
 //!
-//! (`--nis-only`: the NEES term dropped), each factor 10^θ_k bounded to 10^±[`THETA_BOUND`].
+//! (`--nis-only`: the NEES term dropped), each factor 10^θ_k bounded to 10^±[`THETA_BOUND`], and a
+//! measurement-noise factor also to what the scenario accepts ([`TuningProblem::bounds`]).
 //! A filter already consistent within [`TuneOptions::consistent_within`] (5 %) is left as it is:
 //! the objective is then flat to within the Monte Carlo noise, and a search would only move Q by
 //! decades to fit that noise.
@@ -66,6 +67,12 @@ pub enum TuneObjective {
 pub trait TuningProblem: Sync {
     /// Number of factors.
     fn dim(&self) -> usize;
+    /// The range of θ_k the search stays in (clamped, with a penalty outside): ±[`THETA_BOUND`]
+    /// unless the factor's own range is narrower (a noise factor the scenario bounds).
+    fn bounds(&self, k: usize) -> (f64, f64) {
+        let _ = k;
+        (-THETA_BOUND, THETA_BOUND)
+    }
     /// Consistency of the filter tuned by the factors 10^θ.
     fn evaluate(&self, theta: &[f64]) -> Result<Measured, OptimizerError>;
 }
@@ -154,10 +161,16 @@ impl<P: TuningProblem> Cost<'_, P> {
             // moving and the executor's iteration cap ends the search.
             return f64::MAX / 4.0;
         }
-        let outside: f64 = theta.iter().map(|t| (t.abs() - THETA_BOUND).max(0.0)).sum();
+        let bounds: Vec<(f64, f64)> = (0..theta.len()).map(|k| self.problem.bounds(k)).collect();
+        let outside: f64 = theta
+            .iter()
+            .zip(&bounds)
+            .map(|(t, (lo, hi))| (lo - t).max(0.0) + (t - hi).max(0.0))
+            .sum();
         let clamped: Vec<f64> = theta
             .iter()
-            .map(|t| t.clamp(-THETA_BOUND, THETA_BOUND))
+            .zip(&bounds)
+            .map(|(t, (lo, hi))| t.clamp(*lo, *hi))
             .collect();
         let m = match self.problem.evaluate(&clamped) {
             Ok(m) => m,

@@ -131,15 +131,15 @@ fn scaled_infos<const N: usize>(
 
 /// Fusion (eq. 19–20) on the scaled problem; `w` already validated. Also returns the scaled
 /// fused covariance `Y'⁻¹ = (Σ ω_i Y'_i)⁻¹` (for [`covariance_intersection_with_gains`]).
-fn fuse_scaled<const N: usize>(
-    estimates: &[(Vect<N>, Mat<N>)],
+fn fuse_scaled<'a, const N: usize>(
+    xs: impl Iterator<Item = &'a Vect<N>>,
     ys: &[Mat<N>],
     s: &Vect<N>,
     w: Vec<f64>,
 ) -> Result<(CiResult<N>, Mat<N>), EstimationError> {
     let mut y = Mat::<N>::zeros();
     let mut yx = Vect::<N>::zeros();
-    for ((wi, yi), (xi, _)) in w.iter().zip(ys).zip(estimates) {
+    for ((wi, yi), xi) in w.iter().zip(ys).zip(xs) {
         if *wi > 0.0 {
             y += yi * *wi;
             yx += yi * xi.component_mul(s) * *wi;
@@ -228,7 +228,7 @@ pub fn ci_fuse<const N: usize>(
     }
     let (ys, s) = scaled_infos(estimates)?;
     let w = weights.iter().map(|w| w / sum).collect();
-    fuse_scaled(estimates, &ys, &s, w).map(|(fused, _)| fused)
+    fuse_scaled(estimates.iter().map(|e| &e.0), &ys, &s, w).map(|(fused, _)| fused)
 }
 
 /// Choose the weights by `method` ([`ci_weights`]) and fuse ([`ci_fuse`]), seed 000 eq. 19–21.
@@ -262,15 +262,78 @@ pub fn covariance_intersection_with_gains<const N: usize>(
     method: CiWeighting,
 ) -> Result<(CiResult<N>, Vec<SMatrix<f64, N, N>>), EstimationError> {
     let (fused, (ys, s, yinv)) = intersect(estimates, method, None)?;
-    let gains = ys
+    let gains = gains_of(&ys, &fused.weights, &s, &yinv);
+    Ok((fused, gains))
+}
+
+/// [`covariance_intersection_with_gains`] from the scaled information matrices
+/// `Y'_i = (D P_i D)⁻¹` and the scale `s = diag(D)` the caller already holds (for instance in
+/// information form, `Y'_i = D⁻¹ (P⁻¹ + H_iᵀ R_i⁻¹ H_i) D⁻¹` for Kalman updates of one prior),
+/// instead of inverting each `P_i`. `xs` are the estimates x̂_i; every `Y'_i` must be finite,
+/// symmetric and positive definite (the fusion's Cholesky factorisation checks their weighted
+/// sum).
+pub fn covariance_intersection_from_infos<const N: usize>(
+    xs: &[SVector<f64, N>],
+    ys: &[SMatrix<f64, N, N>],
+    s: &SVector<f64, N>,
+    method: CiWeighting,
+) -> Result<(CiResult<N>, Vec<SMatrix<f64, N, N>>), EstimationError> {
+    if xs.is_empty() || xs.len() != ys.len() {
+        return invalid(format!(
+            "CI of {} estimates with {} informations",
+            xs.len(),
+            ys.len()
+        ));
+    }
+    if xs
         .iter()
-        .zip(&fused.weights)
+        .flat_map(|x| x.iter())
+        .chain(ys.iter().flat_map(|y| y.iter()))
+        .any(|v| !v.is_finite())
+        || s.iter().any(|v| !v.is_finite() || *v <= 0.0)
+    {
+        return Err(nonfinite("CI estimate, information or scale".into()));
+    }
+    let w = weights_scaled(ys, s, method, None)?;
+    let (fused, yinv) = fuse_scaled(xs.iter(), ys, s, w)?;
+    let gains = gains_of(ys, &fused.weights, s, &yinv);
+    Ok((fused, gains))
+}
+
+/// `W_i = D⁻¹ (ω_i Y'⁻¹ Y'_i) D` from the scaled fused covariance `Y'⁻¹`.
+fn gains_of<const N: usize>(
+    ys: &[Mat<N>],
+    weights: &[f64],
+    s: &Vect<N>,
+    yinv: &Mat<N>,
+) -> Vec<Mat<N>> {
+    ys.iter()
+        .zip(weights)
         .map(|(yi, wi)| {
             let m = yinv * yi * *wi;
             Mat::<N>::from_fn(|r, c| m[(r, c)] * s[c] / s[r])
         })
-        .collect();
-    Ok((fused, gains))
+        .collect()
+}
+
+/// The weights of `method` from scaled information matrices (see [`intersect`]).
+fn weights_scaled<const N: usize>(
+    ys: &[Mat<N>],
+    s: &Vect<N>,
+    method: CiWeighting,
+    start: Option<&[f64]>,
+) -> Result<Vec<f64>, EstimationError> {
+    let start = start.filter(|w| {
+        w.len() == ys.len()
+            && w.iter().all(|v| v.is_finite() && *v >= 0.0)
+            && w.iter().sum::<f64>() > 0.0
+    });
+    match method {
+        CiWeighting::FastInfNorm => {
+            fast_weights(&ys.iter().map(|y| congruence(y, s)).collect::<Vec<_>>())
+        }
+        m => optimal_weights(ys, m == CiWeighting::OptimalTrace, start),
+    }
 }
 
 /// The scaled information matrices, the scale and the scaled fused covariance of a fusion.
@@ -282,18 +345,8 @@ fn intersect<const N: usize>(
     start: Option<&[f64]>,
 ) -> Result<(CiResult<N>, Scaled<N>), EstimationError> {
     let (ys, s) = scaled_infos(estimates)?;
-    let start = start.filter(|w| {
-        w.len() == ys.len()
-            && w.iter().all(|v| v.is_finite() && *v >= 0.0)
-            && w.iter().sum::<f64>() > 0.0
-    });
-    let w = match method {
-        CiWeighting::FastInfNorm => {
-            fast_weights(&ys.iter().map(|y| congruence(y, &s)).collect::<Vec<_>>())?
-        }
-        m => optimal_weights(&ys, m == CiWeighting::OptimalTrace, start)?,
-    };
-    let (fused, yinv) = fuse_scaled(estimates, &ys, &s, w)?;
+    let w = weights_scaled(&ys, &s, method, start)?;
+    let (fused, yinv) = fuse_scaled(estimates.iter().map(|e| &e.0), &ys, &s, w)?;
     Ok((fused, (ys, s, yinv)))
 }
 

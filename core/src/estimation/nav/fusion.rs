@@ -3,7 +3,7 @@
 
 use super::ekf_nav::{EkfNav, RELINEARIZATION_TOLERANCE};
 use super::ensemble::EkfEnsemble;
-use super::fusion_exact::{fuse_exact, local_update};
+use super::fusion_exact::{PriorInformation, fuse_exact, local_update};
 use super::start::FilterStart;
 use super::{FilterCore, NavFilter, StepInfo};
 use crate::estimation::EstimationError;
@@ -215,10 +215,17 @@ impl<const N: usize> FusionNav<N> {
         // prior with its channels linearised at the *fused* iterate, which the fusion centre feeds
         // back within the epoch; a local's own iterate would stay as far off as its one range
         // leaves it.
+        // The prior's information, factored once for every pass of the epoch (none with consider
+        // states, whose posteriors are not in information form).
+        let info = match self.n_consider {
+            0 => Some(PriorInformation::new(&p)?),
+            _ => None,
+        };
         let mut lin = x;
         let mut pass = fusion_pass(
             &x,
             &p,
+            info.as_ref(),
             &lin,
             &items,
             &masks,
@@ -246,6 +253,7 @@ impl<const N: usize> FusionNav<N> {
             pass = fusion_pass(
                 &x,
                 &p,
+                info.as_ref(),
                 &lin,
                 &items,
                 &masks,
@@ -292,9 +300,11 @@ struct FusionPass<const N: usize> {
     failed: Vec<usize>,
 }
 
+#[allow(clippy::too_many_arguments)]
 fn fusion_pass<const N: usize>(
     x: &SVector<f64, N>,
     p: &SMatrix<f64, N, N>,
+    info: Option<&PriorInformation<N>>,
     lin: &SVector<f64, N>,
     items: &[(usize, LinearizedMeasurement<N>)],
     masks: &[(usize, &[usize])],
@@ -325,10 +335,16 @@ fn fusion_pass<const N: usize>(
         0 => (*x, *p),
         1 => {
             weights[slots[0]] = 1.0;
-            (updates[0].x, updates[0].p)
+            let post = updates[0].posterior(p);
+            if post.iter().any(|v| !v.is_finite()) {
+                return Err(EstimationError::NonFinite {
+                    what: "a local filter's update".into(),
+                });
+            }
+            (updates[0].x, post)
         }
         _ => {
-            let (xf, pf, w) = fuse_exact(p, &updates)?;
+            let (xf, pf, w) = fuse_exact(p, info, &updates)?;
             for (&i, wi) in slots.iter().zip(w) {
                 weights[i] = wi;
             }

@@ -29,18 +29,20 @@
 //! paper's bound-and-divide scheme stays available as `fusion_covariance = "paper"`.
 
 use crate::estimation::EstimationError;
-use crate::estimation::ci::{CiWeighting, covariance_intersection_with_gains};
+use crate::estimation::ci::{
+    CiWeighting, covariance_intersection_from_infos, covariance_intersection_with_gains,
+};
 use crate::estimation::ekf::LinearizedMeasurement;
+use crate::estimation::spd::inverse_from_cholesky;
+use crate::estimation::symmetrize;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
-/// One local filter's update of the common prior.
+/// One local filter's update of the common prior: its estimate and gains. The posterior
+/// covariance and `A = I − K H` are formed only on demand ([`LocalUpdate::posterior`],
+/// [`LocalUpdate::a`]): the exact fusion needs neither when there are no consider states.
 pub(crate) struct LocalUpdate<const N: usize> {
     /// Posterior estimate.
     pub x: SVector<f64, N>,
-    /// Posterior covariance (Joseph form).
-    pub p: SMatrix<f64, N, N>,
-    /// A = I − K H.
-    pub a: SMatrix<f64, N, N>,
     /// Per channel used: slot, gain column and noise variance.
     pub gains: Vec<(usize, SVector<f64, N>, f64)>,
     /// Per channel used, in the order of `gains`: the measurement Jacobian row h_c (H's row).
@@ -49,17 +51,47 @@ pub(crate) struct LocalUpdate<const N: usize> {
     pub nis_terms: Vec<(usize, f64)>,
     /// νᵀS⁻¹ν of the batch update.
     pub nis: f64,
+    /// The number of consider states (zero gain rows): with none, the posterior information is
+    /// the prior's plus Σ_c h_c h_cᵀ / r_c (see [`PriorInformation`]).
+    pub n_consider: usize,
+    /// Per channel used: u_c = P h_c (P Hᵀ's columns).
+    u: Vec<SVector<f64, N>>,
+}
+
+impl<const N: usize> LocalUpdate<N> {
+    /// A = I − K H = I − Σ_c k_c h_cᵀ.
+    pub fn a(&self) -> SMatrix<f64, N, N> {
+        let mut a = SMatrix::<f64, N, N>::identity();
+        for ((_, k, _), h) in self.gains.iter().zip(&self.rows) {
+            a -= k * h.transpose();
+        }
+        a
+    }
+
+    /// The Joseph posterior A P Aᵀ + K R Kᵀ of the prior covariance `p` the update was made
+    /// from, in O(N² m): A P = P − Σ_c k_c u_cᵀ and (A P) Aᵀ = A P − Σ_c (A P h_c) k_cᵀ (the same
+    /// product, A never multiplied as an N × N matrix).
+    pub fn posterior(&self, p: &SMatrix<f64, N, N>) -> SMatrix<f64, N, N> {
+        let mut ap = *p;
+        for ((_, k, _), u) in self.gains.iter().zip(&self.u) {
+            ap -= k * u.transpose();
+        }
+        let mut post = ap;
+        for ((_, k, _), h) in self.gains.iter().zip(&self.rows) {
+            post -= (ap * h) * k.transpose();
+        }
+        for (_, k, r) in &self.gains {
+            post += k * k.transpose() * *r;
+        }
+        (post + post.transpose()) * 0.5
+    }
 }
 
 /// Batch EKF update of the common prior (`x`, `p`) with the `items` whose slots are in `mask`,
 /// linearised at `x_lin` (the prior itself, or an iterated-EKF iterate: ν = z − h(x_lin) −
 /// H (x − x_lin)); the last `n_consider` states get zero gain (Schmidt). `None` when the local has
-/// nothing to measure this epoch.
-///
-/// Work is O(N² m) for m channels, never O(N³): with u_c = P h_c (P Hᵀ's columns),
-/// S = H P Hᵀ + R, K = P Hᵀ S⁻¹, the Joseph posterior A P Aᵀ + K R Kᵀ is formed as
-/// A P = P − Σ_c k_c u_cᵀ and (A P) Aᵀ = A P − Σ_c (A P h_c) k_cᵀ (the same product, A never
-/// multiplied as an N × N matrix).
+/// nothing to measure this epoch. Work is O(N² m) for m channels: u_c = P h_c,
+/// S = H P Hᵀ + R, K = P Hᵀ S⁻¹.
 pub(crate) fn local_update<const N: usize>(
     x: &SVector<f64, N>,
     p: &SMatrix<f64, N, N>,
@@ -75,84 +107,128 @@ pub(crate) fn local_update<const N: usize>(
         return Ok(None);
     }
     let rows: Vec<SVector<f64, N>> = mine.iter().map(|it| it.1.1).collect();
-    let r: Vec<f64> = mine.iter().map(|it| it.1.3).collect();
     let offset = x - x_lin;
     let nu = DVector::from_fn(m, |a, _| {
         mine[a].1.2 - mine[a].1.0 - mine[a].1.1.dot(&offset)
     });
     let u: Vec<SVector<f64, N>> = rows.iter().map(|h| p * h).collect();
     let mut s = DMatrix::from_fn(m, m, |a, b| rows[a].dot(&u[b]));
-    for (a, ra) in r.iter().enumerate() {
-        s[(a, a)] += ra;
+    for (a, it) in mine.iter().enumerate() {
+        s[(a, a)] += it.1.3;
     }
-    let chol = s
-        .clone()
-        .cholesky()
-        .ok_or(EstimationError::NotPositiveDefinite {
-            what: "a local filter's innovation covariance".into(),
-        })?;
+    let s_diag: Vec<f64> = (0..m).map(|a| s[(a, a)]).collect();
+    let chol = s.cholesky().ok_or(EstimationError::NotPositiveDefinite {
+        what: "a local filter's innovation covariance".into(),
+    })?;
     let nis = nu.dot(&chol.solve(&nu));
     let s_inv = chol.inverse();
     // K's columns k_c = Σ_b u_b (S⁻¹)_bc, consider rows zero.
-    let k: Vec<SVector<f64, N>> = (0..m)
-        .map(|c| {
-            let mut kc = SVector::<f64, N>::zeros();
-            for (b, ub) in u.iter().enumerate() {
-                kc += ub * s_inv[(b, c)];
-            }
-            kc.rows_mut(N - n_consider, n_consider).fill(0.0);
-            kc
-        })
-        .collect();
     let mut dx = SVector::<f64, N>::zeros();
-    let mut ap = *p;
-    let mut a = SMatrix::<f64, N, N>::identity();
-    for c in 0..m {
-        dx += k[c] * nu[c];
-        ap -= k[c] * u[c].transpose();
-        a -= k[c] * rows[c].transpose();
-    }
-    let mut post = ap;
-    for c in 0..m {
-        post -= (ap * rows[c]) * k[c].transpose();
-    }
     let mut gains = Vec::with_capacity(m);
     for (c, it) in mine.iter().enumerate() {
-        post += k[c] * k[c].transpose() * r[c];
-        gains.push((it.0, k[c], r[c]));
+        let mut kc = SVector::<f64, N>::zeros();
+        for (b, ub) in u.iter().enumerate() {
+            kc += ub * s_inv[(b, c)];
+        }
+        kc.rows_mut(N - n_consider, n_consider).fill(0.0);
+        dx += kc * nu[c];
+        gains.push((it.0, kc, it.1.3));
     }
-    let post = (post + post.transpose()) * 0.5;
     let x_post = x + dx;
-    if x_post.iter().chain(post.iter()).any(|v| !v.is_finite()) {
-        return Err(EstimationError::NonFinite {
-            what: "a local filter's update".into(),
-        });
-    }
-    Ok(Some(LocalUpdate {
+    let update = LocalUpdate {
         x: x_post,
-        p: post,
-        a,
         nis_terms: mine
             .iter()
             .enumerate()
-            .map(|(col, it)| (it.0, nu[col] * nu[col] / s[(col, col)]))
+            .map(|(col, it)| (it.0, nu[col] * nu[col] / s_diag[col]))
             .collect(),
         gains,
         rows,
         nis,
-    }))
+        n_consider,
+        u,
+    };
+    // A finite gain on a finite prior gives a finite posterior, except where the prior
+    // overflows; the posterior is checked where it is formed.
+    if x_post.iter().any(|v| !v.is_finite())
+        || update
+            .gains
+            .iter()
+            .any(|(_, k, _)| k.iter().any(|v| !v.is_finite()))
+    {
+        return Err(EstimationError::NonFinite {
+            what: "a local filter's update".into(),
+        });
+    }
+    Ok(Some(update))
+}
+
+/// The common prior's information on CI's scale (seed 000 §3.3; [`crate::estimation::ci`]):
+/// with `D = diag(1/√P_kk)`, `(D P D)⁻¹ = C⁻¹` for the prior's correlation matrix `C`, which
+/// has unit diagonal whatever the units. A Kalman update of that prior with channels `c`
+/// (rows `h_c`, noise `r_c`, no consider states) has the posterior information
+/// `P_i⁻¹ = P⁻¹ + Σ_c h_c h_cᵀ / r_c` (Maybeck vol. 1 eq. 5-58: the inverse of the Joseph form
+/// for the optimal gain of those rows), so on the same scale
+/// `Y'_i = (D P_i D)⁻¹ = C⁻¹ + Σ_c (D⁻¹h_c)(D⁻¹h_c)ᵀ / r_c`: one factorisation of the prior per
+/// epoch serves every local and every iterated-update pass, instead of one per local and pass.
+pub(crate) struct PriorInformation<const N: usize> {
+    /// C⁻¹.
+    c_inv: SMatrix<f64, N, N>,
+    /// diag(D) = 1/√P_kk.
+    d: SVector<f64, N>,
+}
+
+impl<const N: usize> PriorInformation<N> {
+    /// Factor the prior covariance `p`.
+    pub fn new(p: &SMatrix<f64, N, N>) -> Result<Self, EstimationError> {
+        let not_pd = || EstimationError::NotPositiveDefinite {
+            what: "the common prior covariance".into(),
+        };
+        let d = p.diagonal().map(|v| 1.0 / v.sqrt());
+        if d.iter().any(|v| !v.is_finite() || *v <= 0.0) {
+            return Err(not_pd());
+        }
+        let c = SMatrix::<f64, N, N>::from_fn(|r, k| p[(r, k)] * (d[r] * d[k]));
+        let chol = symmetrize(&c).cholesky().ok_or_else(not_pd)?;
+        let c_inv = inverse_from_cholesky(chol.l_dirty());
+        if c_inv.iter().any(|v| !v.is_finite()) {
+            return Err(not_pd());
+        }
+        Ok(PriorInformation { c_inv, d })
+    }
+
+    /// `Y'_i` of a local update of this prior (no consider states), exactly symmetric.
+    fn scaled_posterior_information(&self, local: &LocalUpdate<N>) -> SMatrix<f64, N, N> {
+        let mut y = self.c_inv;
+        for ((_, _, r), h) in local.gains.iter().zip(&local.rows) {
+            let hs = h.component_div(&self.d);
+            for c in 0..N {
+                for k in 0..=c {
+                    y[(k, c)] += hs[k] * hs[c] / r;
+                }
+            }
+        }
+        for c in 0..N {
+            for k in 0..c {
+                y[(c, k)] = y[(k, c)];
+            }
+        }
+        y
+    }
 }
 
 /// A fused estimate, its covariance and the fusion weights.
 pub(crate) type Fused<const N: usize> = (SVector<f64, N>, SMatrix<f64, N, N>, Vec<f64>);
 
 /// The fused estimate with fast CI weights and its exact covariance, from the local updates of
-/// the common prior covariance `p`: `(x̂, P, ω)`.
+/// the common prior covariance `p` (whose [`PriorInformation`] is `info`, when there are no
+/// consider states): `(x̂, P, ω)`.
 pub(super) fn fuse_exact<const N: usize>(
     p: &SMatrix<f64, N, N>,
+    info: Option<&PriorInformation<N>>,
     locals: &[LocalUpdate<N>],
 ) -> Result<Fused<N>, EstimationError> {
-    fuse_exact_with_gains(p, locals).map(|(fused, _)| fused)
+    fuse_with(p, info, locals).map(|(fused, _)| fused)
 }
 
 /// [`fuse_exact`] with the gains W_i = ω_i P_CI P_i⁻¹ of the fused estimate on the local ones
@@ -161,8 +237,32 @@ pub(crate) fn fuse_exact_with_gains<const N: usize>(
     p: &SMatrix<f64, N, N>,
     locals: &[LocalUpdate<N>],
 ) -> Result<(Fused<N>, Vec<SMatrix<f64, N, N>>), EstimationError> {
-    let estimates: Vec<_> = locals.iter().map(|l| (l.x, l.p)).collect();
-    let (ci, w) = covariance_intersection_with_gains(&estimates, CiWeighting::FastInfNorm)?;
+    let info = match locals.iter().all(|l| l.n_consider == 0) {
+        true => Some(PriorInformation::new(p)?),
+        false => None,
+    };
+    fuse_with(p, info.as_ref(), locals)
+}
+
+fn fuse_with<const N: usize>(
+    p: &SMatrix<f64, N, N>,
+    info: Option<&PriorInformation<N>>,
+    locals: &[LocalUpdate<N>],
+) -> Result<(Fused<N>, Vec<SMatrix<f64, N, N>>), EstimationError> {
+    let (ci, w) = match info.filter(|_| locals.iter().all(|l| l.n_consider == 0)) {
+        Some(info) => {
+            let ys: Vec<_> = locals
+                .iter()
+                .map(|l| info.scaled_posterior_information(l))
+                .collect();
+            let xs: Vec<_> = locals.iter().map(|l| l.x).collect();
+            covariance_intersection_from_infos(&xs, &ys, &info.d, CiWeighting::FastInfNorm)?
+        }
+        None => {
+            let estimates: Vec<_> = locals.iter().map(|l| (l.x, l.posterior(p))).collect();
+            covariance_intersection_with_gains(&estimates, CiWeighting::FastInfNorm)?
+        }
+    };
     // Σ_ij W_i C_ij W_jᵀ = B P Bᵀ + Σ_c r_c g_c g_cᵀ, with B = Σ_i W_i A_i and, per channel c,
     // g_c = Σ_{i uses c} W_i K_i,c: the double sum regrouped by the shared prior and by channel.
     // B = Σ_i W_i (I − Σ_c k_ic h_icᵀ) = Σ_i W_i − Σ_i Σ_c (W_i k_ic) h_icᵀ: O(N²) per channel.
@@ -238,17 +338,76 @@ mod tests {
             let post = a * p * a.transpose() + k * r * k.transpose();
             let scale = p.abs().max();
             assert!(
-                (u.p - post).abs().max() < 1e-12 * scale,
+                (u.posterior(&p) - post).abs().max() < 1e-12 * scale,
                 "{} vs {}",
-                u.p,
+                u.posterior(&p),
                 post
             );
-            assert!((u.a - a).abs().max() < 1e-12);
+            assert!((u.a() - a).abs().max() < 1e-12);
             assert!((u.x - (x + k * nu)).abs().max() < 1e-12);
             assert!((u.nis - nu.dot(&(s.try_inverse().unwrap() * nu))).abs() < 1e-10);
             for (c, (row, (_, kc, _))) in u.rows.iter().zip(&u.gains).enumerate() {
                 assert_eq!(*row, h.row(c).transpose());
                 assert!((kc - k.column(c)).abs().max() < 1e-12);
+            }
+        }
+    }
+
+    /// The information form (one factorisation of the prior, `Y'_i = C⁻¹ + Σ (D⁻¹h)(D⁻¹h)ᵀ/r`)
+    /// gives the covariance form's fusion (every P_i formed and inverted) to round-off, on badly
+    /// scaled priors like an entry filter's (variances 1e-8 … 1e4).
+    #[test]
+    fn information_form_fusion_equals_the_covariance_form() {
+        use nalgebra::{SMatrix, SVector};
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        let mut n01 = || -> f64 { StandardNormal.sample(&mut rng) };
+        for _ in 0..30 {
+            let g = SMatrix::<f64, 5, 5>::from_fn(|_, _| n01());
+            let scale = SMatrix::<f64, 5, 5>::from_diagonal(&SVector::<f64, 5>::from_fn(|i, _| {
+                10f64.powi(2 * i as i32 - 4)
+            }));
+            let p = scale * (g * g.transpose() + SMatrix::<f64, 5, 5>::identity() * 0.1) * scale;
+            let x = SVector::<f64, 5>::from_fn(|_, _| n01());
+            let lin = x + SVector::<f64, 5>::from_fn(|_, _| 0.01 * n01());
+            let items: Vec<(usize, LinearizedMeasurement<5>)> = (0..5)
+                .map(|c| {
+                    let h = scale
+                        .try_inverse()
+                        .unwrap()
+                        .map(|v| v * (1.0 + 0.3 * n01()))
+                        .row(c % 5)
+                        .transpose()
+                        + SVector::<f64, 5>::from_fn(|_, _| 0.01 * n01());
+                    (c, (n01(), h, n01(), 0.05 + n01().abs()))
+                })
+                .collect();
+            let masks = [vec![0, 1, 2], vec![0, 3], vec![0, 4]];
+            let locals: Vec<_> = masks
+                .iter()
+                .map(|m| local_update(&x, &p, &lin, &items, m, 0).unwrap().unwrap())
+                .collect();
+            let info = PriorInformation::new(&p).unwrap();
+            let ((xi, pi, wi), gi) = fuse_with(&p, Some(&info), &locals).unwrap();
+            let ((xc, pc, wc), gc) = fuse_with(&p, None, &locals).unwrap();
+            let d = p.diagonal().map(f64::sqrt);
+            for k in 0..5 {
+                assert!(
+                    (xi[k] - xc[k]).abs() < 1e-9 * d[k],
+                    "x[{k}]: {} vs {}",
+                    xi[k],
+                    xc[k]
+                );
+                for j in 0..5 {
+                    let tol = 1e-9 * d[k] * d[j];
+                    assert!((pi[(k, j)] - pc[(k, j)]).abs() < tol, "P[{k},{j}]");
+                }
+            }
+            for (a, b) in wi.iter().zip(&wc) {
+                assert!((a - b).abs() < 1e-9, "weights {wi:?} vs {wc:?}");
+            }
+            for (a, b) in gi.iter().zip(&gc) {
+                let scaled = SMatrix::<f64, 5, 5>::from_fn(|r, c| (a - b)[(r, c)] * d[c] / d[r]);
+                assert!(scaled.abs().max() < 1e-9, "gains differ: {scaled}");
             }
         }
     }
@@ -294,9 +453,13 @@ mod tests {
                 .iter()
                 .map(|m| local_update(&x, &p, &x, &items, m, 0).unwrap().unwrap())
                 .collect();
-            let (xf, pf, _) = fuse_exact(&p, &locals).unwrap();
+            let info = PriorInformation::new(&p).unwrap();
+            let (xf, pf, _) = fuse_exact(&p, Some(&info), &locals).unwrap();
             let ci = covariance_intersection(
-                &locals.iter().map(|l| (l.x, l.p)).collect::<Vec<_>>(),
+                &locals
+                    .iter()
+                    .map(|l| (l.x, l.posterior(&p)))
+                    .collect::<Vec<_>>(),
                 CiWeighting::FastInfNorm,
             )
             .unwrap();

@@ -169,7 +169,7 @@ impl FusionRecursion<'_> {
         let mut g = DMatrix::zeros(N * members, slots.len());
         let mut b = vec![SVector::<f64, N>::zeros(); members];
         for (u, &i) in updates.iter().zip(&who) {
-            a[i] = u.a;
+            a[i] = u.a();
             let cols = u
                 .gains
                 .iter()
@@ -194,7 +194,7 @@ impl FusionRecursion<'_> {
             ),
             1 => (
                 gains_row(members, &who, &[SMatrix::<f64, N, N>::identity()]),
-                updates[0].p,
+                updates[0].posterior(&prior),
             ),
             _ => {
                 let ((_, p, _), w) = fuse_exact_with_gains(&prior, &updates).map_err(failed)?;

@@ -54,7 +54,18 @@ def test_killed_worker_leaves_no_orphan(tmp_path):
                 break
             time.sleep(0.05)
         assert child is not None, "the shard task started no entrynav"
-        assert "entrynav" in Path(f"/proc/{child}/cmdline").read_text()
+        # A child caught between fork and exec (or inside execve) shows an empty or the parent's
+        # command line for a moment: read it until it is the exec'd entrynav's.
+        cmdline = ""
+        for _ in range(100):
+            try:
+                cmdline = Path(f"/proc/{child}/cmdline").read_bytes().decode(errors="replace")
+            except OSError:
+                cmdline = ""
+            if cmdline.split("\0", 1)[0].endswith("entrynav"):
+                break
+            time.sleep(0.02)
+        assert cmdline.split("\0", 1)[0].endswith("entrynav"), f"child {child} runs {cmdline!r}"
         time.sleep(0.5)  # the shard is running
         os.kill(worker.pid, signal.SIGKILL)
         worker.wait(timeout=10)

@@ -102,34 +102,12 @@ pub(super) fn build(model: Model, specific: Option<&Specific>) -> Vec<Var> {
     use Type::*;
     let mut b = Builder { vars: Vec::new() };
     if model == Model::Guidance {
-        b.add(
-            "scenario",
-            String,
-            Parameter,
-            None,
-            Some(Value::String(GUIDED_SCENARIO_FILE.into())),
-            format!(
-                "Scenario with a [guidance] section (refused without one): a TOML file in the FMU's resources folder (default {GUIDED_SCENARIO_FILE}, the built-in msl-guided: msl-airdata with Apollo guidance) or a built-in name ({}; msl-guided and four-beacon-fusion-guided have [guidance]); a file elsewhere only with allow_external_files = true",
-                entrynav::scenario::BUILTIN_NAMES.join(", ")
-            ),
-            Key::Scenario,
-        );
+        super::table_guidance::guided_scenario_param(&mut b);
         super::table_guidance::guidance_vars(&mut b);
         return b.vars;
     }
     if model == Model::Guided {
-        b.add(
-            "scenario",
-            String,
-            Parameter,
-            None,
-            Some(Value::String(GUIDED_SCENARIO_FILE.into())),
-            format!(
-                "Scenario with a [guidance] section (refused without one): a TOML file in the FMU's resources folder (default {GUIDED_SCENARIO_FILE}, the built-in msl-guided) or a built-in name ({}; msl-guided and four-beacon-fusion-guided have [guidance]); a file elsewhere only with allow_external_files = true",
-                entrynav::scenario::BUILTIN_NAMES.join(", ")
-            ),
-            Key::Scenario,
-        );
+        super::table_guidance::guided_scenario_param(&mut b);
     } else if specific.is_none() {
         b.add(
             "scenario",

@@ -24,6 +24,23 @@ pub fn guided_scenario_toml() -> String {
         .to_string()
 }
 
+/// The `scenario` parameter of the guidance FMU and of the guided FMU `MarsEntryNavGuided`: a
+/// scenario with a `[guidance]` section, by default [`GUIDED_SCENARIO_FILE`].
+pub(super) fn guided_scenario_param(b: &mut Builder) {
+    b.add(
+        "scenario",
+        Type::String,
+        Causality::Parameter,
+        None,
+        Some(Value::String(GUIDED_SCENARIO_FILE.into())),
+        format!(
+            "Scenario with a [guidance] section (refused without one): a TOML file in the FMU's resources folder (default {GUIDED_SCENARIO_FILE}, the built-in msl-guided: msl-airdata with Apollo guidance) or a built-in name ({}; msl-guided and four-beacon-fusion-guided have [guidance]); a file elsewhere only with allow_external_files = true",
+            entrynav::scenario::BUILTIN_NAMES.join(", ")
+        ),
+        Key::Scenario,
+    );
+}
+
 /// The guidance FMU's variables after its `scenario` parameter.
 pub(super) fn guidance_vars(b: &mut Builder) {
     use Causality::*;

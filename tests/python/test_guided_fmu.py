@@ -11,21 +11,17 @@ tools: each delivers the vehicle exactly where `entrynav guidance deliver` does 
 
 fmusim and OMSimulator skip with a message where they are not installed (as test_fmusim.py)."""
 
-import csv
 import json
 import math
-import os
-import subprocess
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-from conftest import ENTRYNAV, ROOT, run
+from conftest import ENTRYNAV, run
+from test_fmusim import REASON as FMUSIM_REASON
+from test_fmusim import fmusim
+from test_omsimulator import HAVE_OMS, oms
 
-HERE = Path(__file__).resolve().parent
-FMUSIM = Path(os.environ.get("ENTRYNAV_TOOLS", ROOT.parent / "shared" / "tools")) / "fmusim"
 RATE_LIMIT = math.radians(20.0)  # msl-guided: bank_rate_limit_deg_s
 SEED, RUN = 5, 2
 PARAMS = {"dispersed": True, "seed": SEED, "run": RUN}
@@ -37,13 +33,6 @@ DELIVERY = {  # FMU output -> `guidance deliver` JSON field
     "miss_crossrange": "crossrange_m",
 }
 OUTPUTS = ["guided_status", "deployed", "truth_bank_angle", "guidance_cycles", *DELIVERY]
-
-try:
-    import OMSimulator  # noqa: F401
-
-    HAVE_OMS = True
-except ImportError:
-    HAVE_OMS = False
 
 
 @pytest.fixture(scope="module")
@@ -96,43 +85,23 @@ def test_fmpy_delivers_where_guidance_deliver_does(packed, core, name):
           "equal to guidance deliver")
 
 
-def _fmusim_reason():
-    if not FMUSIM.exists():
-        return f"{FMUSIM} not found"
-    r = subprocess.run([str(FMUSIM), "--version"], capture_output=True, text=True)
-    if r.returncode != 0:
-        return f"{FMUSIM} does not run ({r.stderr.strip()[:200]}); scripts/setup.sh installs its libraries"
-    return None
-
-
-@pytest.mark.skipif(_fmusim_reason() is not None, reason=f"fmusim unavailable: {_fmusim_reason()}")
+@pytest.mark.skipif(FMUSIM_REASON is not None, reason=f"fmusim unavailable: {FMUSIM_REASON}")
 @pytest.mark.parametrize("name", ["MarsEntryNavGuided.fmu", "MarsEntryNavGuided-fmi3.fmu"])
 def test_fmusim_delivers_where_guidance_deliver_does(packed, core, name, tmp_path):
-    out = tmp_path / "fmusim.csv"
-    args = [FMUSIM, "--interface-type", "cs", "--output-interval", 1, "--stop-time", 350]
-    for k, v in PARAMS.items():
-        args += ["--start-value", k, str(v).lower() if isinstance(v, bool) else v]
-    r = run([*args, "--log-level", "warning", "--output-file", out, packed / name])
-    assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
-    with open(out) as f:
-        rows = list(csv.reader(f))
-    header = rows[0]
-    values = {n: [float(row[header.index(n)]) for row in rows[1:]] for n in OUTPUTS}
+    params = {k: str(v).lower() if isinstance(v, bool) else str(v) for k, v in PARAMS.items()}
+    header, rows, _ = fmusim(packed / name, params, 1, 350, tmp_path)
+    values = {n: [float(row[header.index(n)]) for row in rows] for n in OUTPUTS}
     # fmusim writes 16 significant digits.
     want = {k: float("%.16g" % v) for k, v in core[RUN].items() if isinstance(v, float)}
     check_flight(values, want, f"fmusim {name}")
-    print(f"fmusim {name}: {len(rows) - 1} rows, delivery equal to guidance deliver (16 digits)")
+    print(f"fmusim {name}: {len(rows)} rows, delivery equal to guidance deliver (16 digits)")
 
 
 @pytest.mark.skipif(not HAVE_OMS, reason="OMSimulator is not installed (scripts/setup.sh installs its wheel)")
 def test_omsimulator_delivers_where_guidance_deliver_does(packed, core, tmp_path):
     spec = {"components": {"g": {"fmu": str(packed / "MarsEntryNavGuided.fmu"), "params": PARAMS}},
-            "step": 1.0, "stop": 350.0, "observe": {"g": OUTPUTS}, "result": str(tmp_path / "oms.csv")}
-    out = subprocess.run([sys.executable, HERE / "oms_run.py", json.dumps(spec)], capture_output=True, text=True,
-                         timeout=600)
-    assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-3000:]
-    line = next(x for x in out.stdout.splitlines() if x.startswith('{"times"'))
-    series = np.array(json.loads(line)["series"]["g"], dtype=np.float64)
+            "step": 1.0, "stop": 350.0, "observe": {"g": OUTPUTS}}
+    series = np.array(oms(spec, tmp_path)["series"]["g"], dtype=np.float64)
     check_flight({n: series[:, j] for j, n in enumerate(OUTPUTS)}, core[RUN], "OMSimulator")
     print(f"OMSimulator: {len(series)} points, delivery equal to guidance deliver")
 

@@ -294,5 +294,6 @@ pub(super) fn statistics<const N: usize>(
         nees: trace_ratio(p, &e2, &idx),
         nees_dof: idx.len(),
         nees_kinematic: trace_ratio(p, &e2, &kinematic),
+        onboard_cov: p.transpose().iter().copied().collect(),
     })
 }

@@ -11,9 +11,10 @@
 //! comparison under `lincov`.
 
 use crate::compare_stats::{Z95, se_anees, se_rmse_bound};
-use crate::lincov::{Analysed, analyse, print_table, to_json, write_csv};
+use crate::lincov::{Analysed, analyse, mean_error_nees, print_table, to_json, write_csv};
 use anyhow::{Context, Result};
 use clap::ValueEnum;
+use entrynav::estimation::chi_square::chi_square_quantile;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
 use entrynav::sim::{FilterReport, TradeReport};
@@ -157,6 +158,23 @@ fn rows(a: &Analysed, f: &FilterReport) -> Vec<Row> {
             mc: anees / dof,
             half: Z95 * se_anees(anees, dof, n) / dof,
         });
+        // The NEES/dof a mean error carries, q = m̄ᵀP⁻¹m̄/dof in LinCov's P. With the Monte
+        // Carlo's m̂ = m̄ + ε, ε ~ N(0, Σ/n) and P⁻¹Σ ≈ c·I (c = ANEES/dof), its estimate is
+        // q + 2m̄ᵀP⁻¹ε/dof + εᵀP⁻¹ε/dof: standard deviation ≈ 2√(q·c/n) from the first term and
+        // a noise floor whose 95 % point is χ²₀.₉₅(dof)/dof · c/n from the second. The interval
+        // is ±(Z₉₅ of the first + the floor's 95 % point), taken symmetric.
+        let (q, _) = mean_error_nees(l, None);
+        let (q_mc, _) = mean_error_nees(l, Some(f));
+        if q.is_finite() && q_mc.is_finite() && n > 0 {
+            let per_dof = anees / dof / n as f64;
+            let floor = chi_square_quantile(0.95, c.nees_dof.max(1)) / dof * per_dof;
+            out.push(Row {
+                figure: "mean_error_nees_per_dof".into(),
+                lincov: q,
+                mc: q_mc,
+                half: 2.0 * Z95 * (q_mc.max(0.0) * per_dof).sqrt() + floor,
+            });
+        }
     }
     out
 }

@@ -65,6 +65,20 @@ impl Joint {
         SVector::from_fn(|r, _| v[r])
     }
 
+    /// E\[δx̂_i δx̂_iᵀ\] of block `i` (covariance plus mean outer product).
+    pub(super) fn block_second_moment<const N: usize>(&self, i: usize) -> SMatrix<f64, N, N> {
+        SMatrix::from_fn(|r, c| {
+            self.xx[(i * N + r, i * N + c)] + self.m[i * N + r] * self.m[i * N + c]
+        })
+    }
+
+    /// E\[δx̂_i\] += b.
+    pub(super) fn add_mean<const N: usize>(&mut self, i: usize, b: &SVector<f64, N>) {
+        for r in 0..N {
+            self.m[i * N + r] += b[r];
+        }
+    }
+
     /// Time update of every block with the same transition and drift: δx̂_i ← Φ δx̂_i + d.
     pub(super) fn propagate<const N: usize>(
         &mut self,

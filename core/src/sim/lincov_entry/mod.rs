@@ -71,9 +71,11 @@
 //! gain depends on the measurements or on something beside their own P are refused
 //! ([`unsupported_reason`]), and so is an innovation gate or a scenario with sensor faults.
 
+mod epoch;
 mod fusion;
 mod joint;
 mod recursion;
+mod second_order;
 mod truth;
 
 use super::engine::SimError;
@@ -82,6 +84,8 @@ use crate::estimation::nav::fusion::local_masks;
 use crate::scenario::Scenario;
 use crate::state_dim::{UnsupportedDimension, with_state_dim};
 use thiserror::Error;
+
+pub use epoch::EntryLinCovEpoch;
 
 /// Why a LinCov cannot be formed.
 #[derive(Debug, Error, Clone, PartialEq)]
@@ -133,70 +137,25 @@ pub enum EntryLinCovError {
     /// The filter could not be built or its covariance failed.
     #[error("the filter failed along the nominal: {0}")]
     Filter(String),
+    /// The second-order terms could not be differenced (`LinCovOptions::second_order_mean`).
+    #[error(
+        "the second-order mean at t = {t} s: the filter's model fails {step:.3e} from the nominal \
+         in state {state} ({reason}): the deviations are too large for a second-order expansion \
+         (a Monte Carlo of this filter is likely to diverge); run without --second-order-mean"
+    )]
+    SecondOrder {
+        /// Epoch \[s\].
+        t: f64,
+        /// Name of the state differenced.
+        state: String,
+        /// Its step.
+        step: f64,
+        /// What failed.
+        reason: String,
+    },
     /// The filter dimension is not supported.
     #[error(transparent)]
     Dimension(#[from] UnsupportedDimension),
-}
-
-/// LinCov's prediction at one measurement epoch (after its update).
-#[derive(Debug, Clone, PartialEq)]
-pub struct EntryLinCovEpoch {
-    /// Epoch \[s\].
-    pub t: f64,
-    /// Predicted RMSE per filter state, √E\[e_i²\] (NaN for a state without truth counterpart).
-    pub rmse: Vec<f64>,
-    /// Predicted mean error per state E\[e_i\] (the model-mismatch bias).
-    pub mean_error: Vec<f64>,
-    /// The filter's own σ per state, √P_ii.
-    pub sigma: Vec<f64>,
-    /// Predicted position RMSE \[m\] (planet-fixed for spherical states, inertial for Cartesian,
-    /// as the Monte Carlo's `pos_m`).
-    pub pos_m: f64,
-    /// Predicted velocity RMSE \[m/s\] (as `vel_mps`).
-    pub vel_mps: f64,
-    /// The filter's own position σ, √tr(Jₚ P Jₚᵀ) \[m\].
-    pub pos_sigma_m: f64,
-    /// The filter's own velocity σ \[m/s\].
-    pub vel_sigma_mps: f64,
-    /// Predicted mean NEES tr(P⁻¹E\[eeᵀ\]) over the states with a truth value.
-    pub nees: f64,
-    /// Its degrees of freedom.
-    pub nees_dof: usize,
-    /// The same over the six kinematic states.
-    pub nees_kinematic: f64,
-    /// The filter's own covariance P along the nominal, N×N row-major: the metric of its NEES.
-    pub onboard_cov: Vec<f64>,
-}
-
-impl EntryLinCovEpoch {
-    /// The part of the mean NEES that a mean error `mean` carries, m̄ᵀP⁻¹m̄ / dof over the states
-    /// with a truth value (E\[eᵀP⁻¹e\] = tr(P⁻¹ Cov e) + m̄ᵀP⁻¹m̄). With LinCov's own
-    /// [`Self::mean_error`] it is the predicted bias share of [`Self::nees`] / dof; with a Monte
-    /// Carlo's mean error at this epoch it shows how much of that Monte Carlo's NEES is a mean
-    /// error (a second-order effect LinCov does not carry when it predicts none). `None` if
-    /// `mean` has the wrong length or a needed entry is not finite, or P is not positive
-    /// definite over those states.
-    pub fn nees_of_mean(&self, mean: &[f64]) -> Option<f64> {
-        let n = self.rmse.len();
-        if mean.len() != n || self.onboard_cov.len() != n * n {
-            return None;
-        }
-        let idx: Vec<usize> = (0..n).filter(|&i| self.rmse[i].is_finite()).collect();
-        if idx.is_empty() || idx.iter().any(|&i| !mean[i].is_finite()) {
-            return None;
-        }
-        let p = |a: usize, b: usize| self.onboard_cov[idx[a] * n + idx[b]];
-        let m = idx.len();
-        // Scaled to unit diagonal first, as the NEES itself.
-        let d: Vec<f64> = (0..m).map(|a| p(a, a).max(0.0).sqrt()).collect();
-        if d.iter().any(|v| v.is_nan() || *v <= 0.0) {
-            return None;
-        }
-        let c = nalgebra::DMatrix::from_fn(m, m, |a, b| p(a, b) / (d[a] * d[b]));
-        let y = nalgebra::DVector::from_fn(m, |a, _| mean[idx[a]] / d[a]);
-        let q = c.cholesky()?.solve(&y).dot(&y) / m as f64;
-        q.is_finite().then_some(q)
-    }
 }
 
 /// LinCov of one filter on one scenario.
@@ -246,10 +205,31 @@ pub fn unsupported_reason(kind: FilterKind) -> Option<&'static str> {
     })
 }
 
-/// LinCov of filter `kind` on `scenario` along its nominal trajectory.
+/// What a LinCov carries beyond the first-order recursion.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct LinCovOptions {
+    /// Carry the second-order mean: every filter's time update gains ½ Σ ∂²F/∂x_a∂x_b
+    /// (E\[δx̂δx̂ᵀ\] − E\[δxδxᵀ\])_ab and, for a single (non-iterated) update, each measurement
+    /// the same term of h (`second_order.rs`): the bias a filter's curved model gives a large
+    /// error (a CI local's drag at a km-sized altitude error). 2N more time updates and
+    /// measurement linearisations per epoch. Off by default: the first-order LinCov is the one
+    /// validated on every built-in; docs/results.md measures both.
+    pub second_order_mean: bool,
+}
+
+/// LinCov of filter `kind` on `scenario` along its nominal trajectory (first order).
 pub fn entry_lincov(
     scenario: &Scenario,
     kind: FilterKind,
+) -> Result<EntryLinCov, EntryLinCovError> {
+    entry_lincov_with(scenario, kind, LinCovOptions::default())
+}
+
+/// LinCov of filter `kind` on `scenario` with `options`.
+pub fn entry_lincov_with(
+    scenario: &Scenario,
+    kind: FilterKind,
+    options: LinCovOptions,
 ) -> Result<EntryLinCov, EntryLinCovError> {
     if let Some(reason) = unsupported_reason(kind) {
         return Err(EntryLinCovError::UnsupportedFilter {
@@ -318,6 +298,14 @@ pub fn entry_lincov(
             "a dispersed run ends before the nominal: epochs from t = {t} s are left out"
         ));
     }
+    if options.second_order_mean {
+        notes.push(
+            "second-order mean: the time update's mean carries ½ Σ ∂²F/∂x_a∂x_b (E[δx̂δx̂ᵀ] − \
+             E[δxδxᵀ])_ab and a single update's the same term of h, from central differences of \
+             the filter's Φ and H; the covariance stays first order"
+                .to_string(),
+        );
+    }
     let epochs = match kind {
         FilterKind::Ci | FilterKind::Dcifaif => {
             notes.push(format!(
@@ -334,8 +322,9 @@ pub fn entry_lincov(
                     truth: &truth,
                     masks: local_masks(&onboard),
                     feedback: kind == FilterKind::Dcifaif,
+                    second_order: options.second_order_mean,
                 },
-            )??
+            )?
         }
         _ => with_state_dim(
             n,
@@ -343,66 +332,35 @@ pub fn entry_lincov(
                 scenario,
                 onboard: &onboard,
                 truth: &truth,
+                second_order: options.second_order_mean,
             },
-        )??,
+        )?,
     };
+    let states = super::monte_carlo::state_names(scenario);
+    // A second-order failure names the state by index deep in the recursion: name it here.
+    let epochs = epochs.map_err(|e| match e {
+        EntryLinCovError::SecondOrder {
+            t,
+            state,
+            step,
+            reason,
+        } => EntryLinCovError::SecondOrder {
+            t,
+            state: state
+                .strip_prefix('#')
+                .and_then(|i| i.parse::<usize>().ok())
+                .and_then(|i| states.get(i).cloned())
+                .unwrap_or(state),
+            step,
+            reason,
+        },
+        other => other,
+    })?;
     Ok(EntryLinCov {
         filter: kind.name().into(),
-        states: super::monte_carlo::state_names(scenario),
+        states,
         parameters: truth.params.clone(),
         notes,
         epochs,
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::EntryLinCovEpoch;
-    use nalgebra::{DMatrix, DVector};
-
-    fn epoch(p: &DMatrix<f64>, rmse: Vec<f64>) -> EntryLinCovEpoch {
-        let n = p.nrows();
-        EntryLinCovEpoch {
-            t: 1.0,
-            rmse,
-            mean_error: vec![0.0; n],
-            sigma: vec![0.0; n],
-            pos_m: 0.0,
-            vel_mps: 0.0,
-            pos_sigma_m: 0.0,
-            vel_sigma_mps: 0.0,
-            nees: 0.0,
-            nees_dof: n,
-            nees_kinematic: 0.0,
-            onboard_cov: p.transpose().iter().copied().collect(),
-        }
-    }
-
-    /// m̄ᵀP⁻¹m̄/dof against an explicit inverse, on a correlated P with variances 1e-6 to 1e6,
-    /// over the states with truth only; refused for a wrong length or a missing entry.
-    #[test]
-    fn the_mean_errors_nees_is_its_quadratic_form_over_the_states_with_truth() {
-        let l = DMatrix::from_fn(4, 4, |r, c| match (r, c) {
-            _ if r == c => 10f64.powi(2 * r as i32 - 3),
-            _ if r > c => 0.3 * 10f64.powi(r as i32 + c as i32 - 3),
-            _ => 0.0,
-        });
-        let p = &l * l.transpose();
-        let m = [2e-3, -0.5, 7.0, 40.0];
-        let direct = |idx: &[usize]| {
-            let sub = DMatrix::from_fn(idx.len(), idx.len(), |a, b| p[(idx[a], idx[b])]);
-            let v = DVector::from_fn(idx.len(), |a, _| m[idx[a]]);
-            (v.transpose() * sub.try_inverse().unwrap() * &v)[(0, 0)] / idx.len() as f64
-        };
-        let all = epoch(&p, vec![1.0; 4]);
-        let got = all.nees_of_mean(&m).unwrap();
-        assert!((got / direct(&[0, 1, 2, 3]) - 1.0).abs() < 1e-9, "{got}");
-        let no_truth_2 = epoch(&p, vec![1.0, 1.0, f64::NAN, 1.0]);
-        let mut m_nan = m;
-        m_nan[2] = f64::NAN;
-        let got = no_truth_2.nees_of_mean(&m_nan).unwrap();
-        assert!((got / direct(&[0, 1, 3]) - 1.0).abs() < 1e-9, "{got}");
-        assert_eq!(all.nees_of_mean(&m_nan), None);
-        assert_eq!(all.nees_of_mean(&m[..3]), None);
-    }
 }

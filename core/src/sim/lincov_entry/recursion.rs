@@ -4,6 +4,7 @@
 //! C_θĥ is kept as its p rows c_j = E\[θ_j δx̂\] (N-vectors) and S_k as its columns s_j, so every
 //! product is of fixed-size matrices.
 
+use super::second_order::{mean_drift, measurement_bias};
 use super::truth::NominalTruth;
 use super::{EntryLinCovEpoch, EntryLinCovError};
 use crate::estimation::Onboard;
@@ -20,6 +21,8 @@ pub(super) struct Recursion<'a> {
     pub scenario: &'a Scenario,
     pub onboard: &'a Arc<Onboard>,
     pub truth: &'a NominalTruth,
+    /// Add the second-order mean drift ([`super::second_order`]).
+    pub second_order: bool,
 }
 
 /// The position and velocity maps (3×N) at the filter state `x`: Jacobians of the planet-fixed
@@ -197,15 +200,23 @@ impl DimVisitor for Recursion<'_> {
         let identity = SMatrix::<f64, N, N>::identity();
         let mut p = start.p0;
         let mut out = Vec::with_capacity(truth.epochs.len());
+        let mut s_prev = &truth.s0;
         for ep in &truth.epochs {
             // Time update with the filter's own model from the nominal.
             navs[0].set_estimate(xbar, p);
+            let second = if self.second_order {
+                let moment = chh + m * m.transpose();
+                mean_drift(&navs[0], &xbar, &p, ep.t, &[moment], s_prev)?.pop()
+            } else {
+                None
+            };
+            s_prev = &ep.s;
             let phi = time_update(&mut navs, ep.t)?;
             let nav = &navs[0];
             let (x_minus, p_minus) = nav.state();
             xbar = fill(&ep.x, &x_minus);
             let drift = estimation_error(sc, &x_minus, &xbar);
-            m = phi * m + drift;
+            m = phi * m + drift + second.unwrap_or_else(SVector::zeros);
             chh = phi * chh * phi.transpose();
             for cj in c.iter_mut() {
                 *cj = phi * *cj;
@@ -215,7 +226,16 @@ impl DimVisitor for Recursion<'_> {
             let beacons = onboard.beacon_states(ep.t);
             let slots: Vec<usize> = ep.meas.iter().map(|z| z.slot).collect();
             let items = nav.items_at(&xbar, &ep.epoch, &beacons, &slots);
-            for ((h0, hrow, z, r_f), tm) in items.iter().zip(&ep.meas) {
+            // The iterated update relinearises at its iterate, which takes the prior's
+            // measurement curvature out (to the order carried): only the single update has it.
+            let curvature = if self.second_order && onboard.tuning.update_iterations <= 1 {
+                let moment = chh + m * m.transpose();
+                let at = (&ep.epoch, &beacons[..], &slots[..]);
+                measurement_bias(nav, &xbar, at, &[moment], &ep.s)?.remove(0)
+            } else {
+                vec![0.0; items.len()]
+            };
+            for (((h0, hrow, z, r_f), tm), c2) in items.iter().zip(&ep.meas).zip(&curvature) {
                 let (k, s) = scalar_gain(&p, hrow, *r_f, n_consider, ep.t)?;
                 let a = identity - k * hrow.transpose();
                 let g = c
@@ -227,7 +247,7 @@ impl DimVisitor for Recursion<'_> {
                 // ∂K/∂z = −K (∂R_f/∂z)/s and E[(z − z̄)ν] = ζᵀζ + R_t − H_f g.
                 let dr_dz = noise_slope(onboard, tm.slot, *z);
                 let gain_noise = k * (-(dr_dz / s) * (tm.zeta.dot(&tm.zeta) + tm.r - hrow.dot(&g)));
-                m = a * m + k * (z - h0) + gain_noise;
+                m = a * m + k * (z - h0 - c2) + gain_noise;
                 let ag = a * g;
                 let zz = tm.zeta.dot(&tm.zeta) + tm.r;
                 chh = a * chh * a.transpose()

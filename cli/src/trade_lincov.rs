@@ -17,6 +17,7 @@ use clap::ValueEnum;
 use entrynav::estimation::chi_square::chi_square_quantile;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
+use entrynav::sim::lincov_entry::LinCovOptions;
 use entrynav::sim::{FilterReport, TradeReport};
 use serde_json::{Value, json};
 use std::path::Path;
@@ -41,7 +42,12 @@ pub fn run_lincov(
     json_path: Option<&Path>,
     csv_dir: Option<&Path>,
 ) -> Result<()> {
-    let analysed = analyse(scenario, filters, &scenario.config.name)?;
+    let analysed = analyse(
+        scenario,
+        filters,
+        &scenario.config.name,
+        LinCovOptions::default(),
+    )?;
     let value = to_json(scenario, &analysed, None);
     let to_stdout = json_path.is_some_and(|p| p.as_os_str() == "-");
     let mut notes = Vec::new();
@@ -188,7 +194,12 @@ pub struct Comparison {
 impl Comparison {
     /// LinCov of the report's filters on `scenario`, compared with `report`.
     pub fn of(scenario: &Scenario, filters: &[FilterKind], report: &TradeReport) -> Result<Self> {
-        let analysed = analyse(scenario, filters, &scenario.config.name)?;
+        let analysed = analyse(
+            scenario,
+            filters,
+            &scenario.config.name,
+            LinCovOptions::default(),
+        )?;
         let mut json = to_json(scenario, &analysed, None)["lincov"].take();
         let per: Vec<Value> = analysed
             .iter()

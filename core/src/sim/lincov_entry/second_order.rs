@@ -136,10 +136,37 @@ pub(super) fn mean_drift<const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::estimation::Onboard;
     use crate::estimation::nav::{FilterCore, FilterKind};
     use crate::scenario::{Scenario, ScenarioConfig};
     use crate::sim::lincov_entry::recursion::{fill, start};
-    use crate::sim::lincov_entry::truth::nominal_truth;
+    use crate::sim::lincov_entry::truth::{NominalTruth, nominal_truth};
+    use std::sync::Arc;
+
+    /// orbiters-3's nominal truth and an EKF at its start, with P0.
+    fn orbiters_3() -> (Arc<Onboard>, NominalTruth, EkfNav<6>, SMatrix<f64, 6, 6>) {
+        let s = Scenario::build(
+            ScenarioConfig::builtin("orbiters-3").unwrap(),
+            &crate::files::no_files,
+        )
+        .unwrap();
+        let onboard = s.onboard.for_filter(FilterKind::Ekf);
+        let truth = nominal_truth(&s, 6).unwrap();
+        let st = start::<6>(&s, &onboard, &truth);
+        let nav = EkfNav::<6>::new(&onboard, &st.filter, None, 1.0).unwrap();
+        (onboard, truth, nav, st.filter.p0)
+    }
+
+    /// A lower-triangular root L of the deviation's second moment L Lᵀ: 1 km and 0.5 m/s,
+    /// correlated.
+    fn deviation_root() -> SMatrix<f64, 6, 6> {
+        SMatrix::from_fn(|r, c| match (r < 3, c < 3) {
+            _ if r < c => 0.0,
+            (true, true) => 1e3 * if r == c { 1.0 } else { 0.3 },
+            (false, false) => 0.5 * if r == c { 1.0 } else { 0.2 },
+            _ => 0.1,
+        })
+    }
 
     /// Against the mean of the filter's step over a Gaussian deviation by the unscented
     /// transform (2N points x̄ ± √N L_a, exact for a quadratic map), on orbiters-3 at t = 59 s
@@ -149,27 +176,12 @@ mod tests {
     /// the velocity, the extra deceleration of a density averaged over the altitude error).
     #[test]
     fn the_drift_is_the_mean_of_the_step_over_a_gaussian_deviation() {
-        let s = Scenario::build(
-            ScenarioConfig::builtin("orbiters-3").unwrap(),
-            &crate::files::no_files,
-        )
-        .unwrap();
-        let onboard = s.onboard.for_filter(FilterKind::Ekf);
-        let truth = nominal_truth(&s, 6).unwrap();
-        let st = start::<6>(&s, &onboard, &truth);
-        let mut nav = EkfNav::<6>::new(&onboard, &st.filter, None, 1.0).unwrap();
+        let (_, truth, mut nav, p) = orbiters_3();
         let k = 58;
         time_update(std::slice::from_mut(&mut nav), truth.epochs[k].t).unwrap();
         let xbar = fill(&truth.epochs[k].x, &SVector::<f64, 6>::zeros());
         let t = truth.epochs[k + 1].t;
-        let p = st.filter.p0;
-        let l = SMatrix::<f64, 6, 6>::from_fn(|r, c| match (r < 3, c < 3) {
-            _ if r < c => 0.0,
-            (true, true) => 1e3 * if r == c { 1.0 } else { 0.3 },
-            (false, false) => 0.5 * if r == c { 1.0 } else { 0.2 },
-            (false, true) => 0.1,
-            (true, false) => unreachable!(),
-        });
+        let l = deviation_root();
         let d = l * l.transpose();
         let b = mean_drift(&nav, &xbar, &p, t, &[d], &DMatrix::zeros(6, 0)).unwrap()[0];
         let step = |x: SVector<f64, 6>| {
@@ -205,26 +217,13 @@ mod tests {
     /// the same deviation at t = 60 s (≈ 1 m: (1 km)² over ≥ 600 km).
     #[test]
     fn the_measurement_bias_is_the_mean_of_the_predicted_ranges_over_a_gaussian_deviation() {
-        let s = Scenario::build(
-            ScenarioConfig::builtin("orbiters-3").unwrap(),
-            &crate::files::no_files,
-        )
-        .unwrap();
-        let onboard = s.onboard.for_filter(FilterKind::Ekf);
-        let truth = nominal_truth(&s, 6).unwrap();
-        let st = start::<6>(&s, &onboard, &truth);
-        let nav = EkfNav::<6>::new(&onboard, &st.filter, None, 1.0).unwrap();
+        let (onboard, truth, nav, _) = orbiters_3();
         let ep = &truth.epochs[59];
         let xbar = fill(&ep.x, &SVector::<f64, 6>::zeros());
         let beacons = onboard.beacon_states(ep.t);
         let slots: Vec<usize> = ep.meas.iter().map(|z| z.slot).collect();
         assert_eq!(slots.len(), 3);
-        let l = SMatrix::<f64, 6, 6>::from_fn(|r, c| match (r < 3, c < 3) {
-            _ if r < c => 0.0,
-            (true, true) => 1e3 * if r == c { 1.0 } else { 0.3 },
-            (false, false) => 0.5 * if r == c { 1.0 } else { 0.2 },
-            _ => 0.1,
-        });
+        let l = deviation_root();
         let d = l * l.transpose();
         let at = (&ep.epoch, &beacons[..], &slots[..]);
         let c = measurement_bias(&nav, &xbar, at, &[d], &DMatrix::zeros(6, 0)).unwrap();

@@ -7,7 +7,9 @@ use crate::threads::with_threads;
 use anyhow::{Context, Result, bail};
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
-use entrynav::sim::lincov_entry::{EntryLinCov, LinCovOptions, entry_lincov_with};
+use entrynav::sim::lincov_entry::{
+    EntryLinCov, EntryLinCovEpoch, LinCovOptions, entry_lincov_with,
+};
 use entrynav::sim::report::FilterReport;
 use entrynav::sim::{McOptions, TradeReport, run_trade};
 use entrynav_loader as load;
@@ -156,7 +158,7 @@ fn rmse_map(l: &EntryLinCov, at: impl Fn(&[f64]) -> f64, pos: f64, vel: f64) -> 
 }
 
 /// The NEES/dof share of a mean error, time average and final
-/// ([`entrynav::sim::lincov_entry::EntryLinCovEpoch::nees_of_mean`]): LinCov's own with
+/// ([`EntryLinCovEpoch::nees_of_mean`]): LinCov's own with
 /// `mc = None`, else the Monte Carlo's mean error per epoch scored in LinCov's onboard
 /// covariance, over the epochs both have. A share the Monte Carlo has and LinCov does not is a
 /// second-order mean error (docs/results.md, CI on orbiters-3).
@@ -209,9 +211,7 @@ pub(crate) fn to_json(
         .iter()
         .map(|a| {
             let l = &a.lincov;
-            let e = |f: fn(&entrynav::sim::lincov_entry::EntryLinCovEpoch) -> f64| {
-                (l.time_avg(f), l.final_value(f))
-            };
+            let e = |f: fn(&EntryLinCovEpoch) -> f64| (l.time_avg(f), l.final_value(f));
             let (pos, pos_f) = e(|x| x.pos_m);
             let (vel, vel_f) = e(|x| x.vel_mps);
             let (ps, ps_f) = e(|x| x.pos_sigma_m);
@@ -229,7 +229,7 @@ pub(crate) fn to_json(
                 "nees_dof": dof,
                 "anees_kinematic": finite(l.time_avg(|x| x.nees_kinematic)),
                 "nees_ratio_time_avg": finite(l.nees_ratio_time_avg()),
-                "nees_ratio_final": finite(l.final_value(|x| x.nees / x.nees_dof.max(1) as f64)),
+                "nees_ratio_final": finite(l.final_value(EntryLinCovEpoch::nees_per_dof)),
                 "mean_error_nees_ratio_time_avg": finite(bias),
                 "mean_error_nees_ratio_final": finite(bias_f),
                 "parameters": l.parameters,
@@ -339,7 +339,7 @@ pub(crate) fn print_table(
             (
                 "NEES / dof",
                 l.nees_ratio_time_avg(),
-                l.final_value(|e| e.nees / e.nees_dof.max(1) as f64),
+                l.final_value(EntryLinCovEpoch::nees_per_dof),
                 mc_f.and_then(|f| {
                     let c = &f.consistency;
                     c.anees.map(|a| a / c.nees_dof.max(1) as f64)

@@ -42,12 +42,7 @@ pub fn run_lincov(
     json_path: Option<&Path>,
     csv_dir: Option<&Path>,
 ) -> Result<()> {
-    let analysed = analyse(
-        scenario,
-        filters,
-        &scenario.config.name,
-        LinCovOptions::default(),
-    )?;
+    let analysed = first_order(scenario, filters)?;
     let value = to_json(scenario, &analysed, None);
     let to_stdout = json_path.is_some_and(|p| p.as_os_str() == "-");
     let mut notes = Vec::new();
@@ -75,6 +70,16 @@ pub fn run_lincov(
         }
     }
     Ok(())
+}
+
+/// The first-order LinCov of `filters` (a trade's LinCov has no second-order option).
+fn first_order(scenario: &Scenario, filters: &[FilterKind]) -> Result<Vec<Analysed>> {
+    analyse(
+        scenario,
+        filters,
+        &scenario.config.name,
+        LinCovOptions::default(),
+    )
 }
 
 /// One compared figure.
@@ -194,12 +199,7 @@ pub struct Comparison {
 impl Comparison {
     /// LinCov of the report's filters on `scenario`, compared with `report`.
     pub fn of(scenario: &Scenario, filters: &[FilterKind], report: &TradeReport) -> Result<Self> {
-        let analysed = analyse(
-            scenario,
-            filters,
-            &scenario.config.name,
-            LinCovOptions::default(),
-        )?;
+        let analysed = first_order(scenario, filters)?;
         let mut json = to_json(scenario, &analysed, None)["lincov"].take();
         let per: Vec<Value> = analysed
             .iter()

@@ -13,7 +13,9 @@
 use entrynav::atmosphere::AtmosphereConfig;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use entrynav::sim::lincov_entry::{EntryLinCov, LinCovOptions, entry_lincov, entry_lincov_with};
+use entrynav::sim::lincov_entry::{
+    EntryLinCov, EntryLinCovEpoch, LinCovOptions, entry_lincov, entry_lincov_with,
+};
 use entrynav::sim::record::record_run;
 use entrynav::sim::run_record::filter_run;
 use rayon::prelude::*;
@@ -76,6 +78,16 @@ fn monte_carlo(s: &Scenario, l: &EntryLinCov, runs: usize) -> Split {
     }
 }
 
+/// `f` at every epoch of `l`.
+fn series(l: &EntryLinCov, f: impl Fn(&EntryLinCovEpoch) -> f64) -> Vec<f64> {
+    l.epochs.iter().map(f).collect()
+}
+
+/// LinCov's own mean error's share of NEES/dof at an epoch.
+fn own_mean_share(e: &EntryLinCovEpoch) -> f64 {
+    e.nees_of_mean(&e.mean_error).unwrap()
+}
+
 /// Average of `v` over the epochs of `l` with `lo ≤ t ≤ hi`.
 fn over(l: &EntryLinCov, v: &[f64], lo: f64, hi: f64) -> f64 {
     let sel: Vec<f64> = l
@@ -95,16 +107,8 @@ fn ci_nees_gap_on_orbiters_3_is_a_second_order_drag_bias() {
     const RUNS: usize = 1000;
     let s = orbiters_3(1.0);
     let l = entry_lincov(&s, FilterKind::Ci).unwrap();
-    let predicted: Vec<f64> = l
-        .epochs
-        .iter()
-        .map(|e| e.nees / e.nees_dof as f64)
-        .collect();
-    let lc_share: Vec<f64> = l
-        .epochs
-        .iter()
-        .map(|e| e.nees_of_mean(&e.mean_error).unwrap())
-        .collect();
+    let predicted = series(&l, EntryLinCovEpoch::nees_per_dof);
+    let lc_share = series(&l, own_mean_share);
     let mc = monte_carlo(&s, &l, RUNS);
     // Up to t = 40 s the aerodynamic acceleration stays below 1.5 m/s² (85 → 70 km): agreement.
     let (lc, own) = (
@@ -158,16 +162,8 @@ fn ci_nees_gap_on_orbiters_3_is_a_second_order_drag_bias() {
         },
     )
     .unwrap();
-    let predicted: Vec<f64> = so
-        .epochs
-        .iter()
-        .map(|e| e.nees / e.nees_dof as f64)
-        .collect();
-    let so_share: Vec<f64> = so
-        .epochs
-        .iter()
-        .map(|e| e.nees_of_mean(&e.mean_error).unwrap())
-        .collect();
+    let predicted = series(&so, EntryLinCovEpoch::nees_per_dof);
+    let so_share = series(&so, own_mean_share);
     let (so_nees, so_mean) = (
         over(&so, &predicted, 70.0, 240.0),
         over(&so, &so_share, 70.0, 240.0),
@@ -189,11 +185,7 @@ fn ci_nees_gap_on_orbiters_3_is_a_second_order_drag_bias() {
     // 2 m/s² only at t ≈ 89 s) the same epochs agree: the nonlinearity is the drag's.
     let thin = orbiters_3(1e-3);
     let l = entry_lincov(&thin, FilterKind::Ci).unwrap();
-    let predicted: Vec<f64> = l
-        .epochs
-        .iter()
-        .map(|e| e.nees / e.nees_dof as f64)
-        .collect();
+    let predicted = series(&l, EntryLinCovEpoch::nees_per_dof);
     let mc = monte_carlo(&thin, &l, RUNS);
     let (lc, own) = (
         over(&l, &predicted, 0.0, 80.0),

@@ -32,6 +32,12 @@ pub struct EntryLinCovEpoch {
 }
 
 impl EntryLinCovEpoch {
+    /// Predicted mean NEES per degree of freedom, [`Self::nees`] / [`Self::nees_dof`] (compare a
+    /// Monte Carlo's `anees / nees_dof`).
+    pub fn nees_per_dof(&self) -> f64 {
+        self.nees / self.nees_dof.max(1) as f64
+    }
+
     /// The part of the mean NEES that a mean error `mean` carries, m̄ᵀP⁻¹m̄ / dof over the states
     /// with a truth value (E\[eᵀP⁻¹e\] = tr(P⁻¹ Cov e) + m̄ᵀP⁻¹m̄). With LinCov's own
     /// [`Self::mean_error`] it is the predicted bias share of [`Self::nees`] / dof; with a Monte

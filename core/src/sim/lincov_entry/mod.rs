@@ -187,7 +187,7 @@ impl EntryLinCov {
     /// Predicted ANEES divided by its degrees of freedom (compare the Monte Carlo's
     /// `anees / nees_dof`).
     pub fn nees_ratio_time_avg(&self) -> f64 {
-        self.time_avg(|e| e.nees / e.nees_dof.max(1) as f64)
+        self.time_avg(EntryLinCovEpoch::nees_per_dof)
     }
 }
 

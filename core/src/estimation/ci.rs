@@ -20,7 +20,7 @@
 //! The fused result is mapped back exactly (`P_CI = D⁻¹ P'_CI D⁻¹`).
 
 use super::ci_weights::optimal_weights;
-use super::spd::inverse_from_cholesky;
+use super::spd::{cholesky, inverse_from_cholesky};
 use super::{EstimationError, symmetrize};
 use nalgebra::{SMatrix, SVector};
 use serde::{Deserialize, Serialize};
@@ -81,7 +81,7 @@ fn spd_inverse<const N: usize>(
     if m.iter().any(|v| !v.is_finite()) {
         return Err(nonfinite(what()));
     }
-    let chol = symmetrize(m).cholesky().ok_or_else(|| not_pd(what()))?;
+    let chol = cholesky(&symmetrize(m)).ok_or_else(|| not_pd(what()))?;
     let inv = inverse_from_cholesky(chol.l_dirty());
     if inv.iter().any(|v| !v.is_finite()) {
         return Err(not_pd(what()));
@@ -145,9 +145,7 @@ fn fuse_scaled<'a, const N: usize>(
             yx += yi * xi.component_mul(s) * *wi;
         }
     }
-    let chol = symmetrize(&y)
-        .cholesky()
-        .ok_or_else(|| not_pd("fused CI information".into()))?;
+    let chol = cholesky(&symmetrize(&y)).ok_or_else(|| not_pd("fused CI information".into()))?;
     let x = chol.solve(&yx).component_div(s);
     let inv_s = s.map(|v| 1.0 / v);
     let yinv = inverse_from_cholesky(chol.l_dirty());

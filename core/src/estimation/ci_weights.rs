@@ -4,7 +4,7 @@
 
 use super::EstimationError;
 use super::ci::not_pd;
-use super::spd::inverse_from_cholesky;
+use super::spd::{cholesky, inverse_from_cholesky};
 use nalgebra::{Cholesky, Const, DMatrix, DVector, SMatrix};
 
 /// Iteration cap of the optimal-weight Newton solver (it normally needs 3–10 iterations).
@@ -52,7 +52,7 @@ impl<'a, const N: usize> Problem<'a, N> {
     /// Factor `Y(ω)` and evaluate `f`; `None` if not positive definite.
     fn factor(&self, w: &[f64]) -> Option<Factor<N>> {
         let y: Mat<N> = self.ys.iter().zip(w).map(|(yi, wi)| yi * *wi).sum();
-        let chol = y.cholesky()?;
+        let chol = cholesky(&y)?;
         let yinv = self.trace.then(|| inverse_from_cholesky(chol.l_dirty()));
         let f = match &yinv {
             Some(yi) => yi.trace(),

@@ -54,7 +54,8 @@ pub enum EstimationError {
 
 /// `(P + Pᵀ)/2`.
 pub fn symmetrize<const N: usize>(p: &SMatrix<f64, N, N>) -> SMatrix<f64, N, N> {
-    (p + p.transpose()) * 0.5
+    // Entry by entry, without the transposed copy: the same (a + b) · 0.5.
+    SMatrix::from_fn(|r, c| (p[(r, c)] + p[(c, r)]) * 0.5)
 }
 
 /// Check a covariance is finite and positive definite (Cholesky succeeds).
@@ -67,7 +68,7 @@ pub fn check_covariance<const N: usize>(
             what: what.to_string(),
         });
     }
-    if p.cholesky().is_none() {
+    if spd::cholesky(p).is_none() {
         return Err(EstimationError::NotPositiveDefinite {
             what: what.to_string(),
         });

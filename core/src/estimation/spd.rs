@@ -1,5 +1,6 @@
-//! The inverse of a symmetric positive-definite matrix from its Cholesky factor, in about a third
-//! of the work of nalgebra's `Cholesky::inverse`.
+//! The Cholesky factorisation of a symmetric positive-definite matrix ([`cholesky`], nalgebra's
+//! bit for bit in fewer instructions) and the inverse from its factor
+//! ([`inverse_from_cholesky`]), in about a third of the work of nalgebra's `Cholesky::inverse`.
 //!
 //! With `A = L Lᵀ`, `A⁻¹ = L⁻ᵀ L⁻¹ = Tᵀ T` for the lower-triangular `T = L⁻¹`:
 //!
@@ -14,35 +15,70 @@
 //! `Cholesky::inverse` by round-off only (the tests bound the difference); the fusion filters'
 //! Monte Carlo statistics changed accordingly (docs/results.md, *Monte Carlo speed*).
 
-use nalgebra::SMatrix;
+use nalgebra::{Cholesky, Const, SMatrix};
+
+/// The Cholesky factorisation `A = L Lᵀ` of a symmetric positive-definite `A` (its lower
+/// triangle is read), or `None` where nalgebra's `Matrix::cholesky` gives `None` (a pivot that
+/// is zero, negative or NaN).
+///
+/// The same operations in the same order as nalgebra's (left-looking: column `j` less
+/// `L_jk` times column `k` for every `k < j`, the pivot's square root, the column divided by it),
+/// so the factor is bit-identical (a test checks it); it runs on the column-major slice
+/// instead of matrix views, in about a third of the instructions on an 11 × 11. The strictly
+/// upper triangle keeps `A`'s entries, as `Cholesky::l_dirty` does.
+pub fn cholesky<const N: usize>(a: &SMatrix<f64, N, N>) -> Option<Cholesky<f64, Const<N>>> {
+    let mut m = *a;
+    // Columns as arrays (`c[j][i]` is entry (i, j)): every index is a loop variable below N.
+    let c = &mut m.data.0;
+    for j in 0..N {
+        for k in 0..j {
+            let factor = -c[k][j];
+            for i in j..N {
+                c[j][i] = factor * c[k][i] + c[j][i];
+            }
+        }
+        let diag = c[j][j];
+        if diag == 0.0 || !(diag >= 0.0) {
+            return None;
+        }
+        let denom = diag.sqrt();
+        c[j][j] = denom;
+        for i in j + 1..N {
+            c[j][i] /= denom;
+        }
+    }
+    Some(Cholesky::pack_dirty(m))
+}
 
 /// `A⁻¹` from the Cholesky factor `L` of `A` (only its lower triangle is read). Non-finite when
 /// `L` has a zero diagonal; callers check the result.
 pub fn inverse_from_cholesky<const N: usize>(l: &SMatrix<f64, N, N>) -> SMatrix<f64, N, N> {
-    // T = L⁻¹, column-major: t[(i, j)] for i ≥ j.
-    let mut t = SMatrix::<f64, N, N>::zeros();
+    // Lᵀ's columns are L's rows (`lr[i][k]` = L_ik), so the sums run over contiguous memory.
+    let lt = l.transpose();
+    let lr = &lt.data.0;
+    // T = L⁻¹ by columns: t[j][i] = T_ij for i ≥ j.
+    let mut t = [[0.0f64; N]; N];
     for j in 0..N {
-        t[(j, j)] = 1.0 / l[(j, j)];
+        t[j][j] = 1.0 / lr[j][j];
         for i in j + 1..N {
             let mut s = 0.0;
             for k in j..i {
-                s += l[(i, k)] * t[(k, j)];
+                s += lr[i][k] * t[j][k];
             }
-            t[(i, j)] = -s / l[(i, i)];
+            t[j][i] = -s / lr[i][i];
         }
     }
     // A⁻¹ = Tᵀ T: entry (i, j), i ≤ j, is the dot product of columns i and j of T from row j on.
     let mut inv = SMatrix::<f64, N, N>::zeros();
+    let out = &mut inv.data.0;
     for j in 0..N {
-        let cj = t.column(j);
         for i in 0..=j {
-            let ci = t.column(i);
             let mut s = 0.0;
             for k in j..N {
-                s += ci[k] * cj[k];
+                s += t[i][k] * t[j][k];
             }
-            inv[(i, j)] = s;
-            inv[(j, i)] = s;
+            out[j][i] = s;
+            out[i][j] = s;
         }
     }
     inv
@@ -94,6 +130,31 @@ mod tests {
     }
 
     #[test]
+    fn cholesky_is_nalgebras_bit_for_bit_and_fails_where_it_fails() {
+        for seed in [0.3, 0.7, 1.1, 2.7, 5.9] {
+            let a = covariance(seed);
+            let ours = cholesky(&a).unwrap();
+            let theirs = a.cholesky().unwrap();
+            assert_eq!(ours.l_dirty(), theirs.l_dirty(), "seed {seed}");
+            let b = SMatrix::<f64, 11, 1>::from_fn(|r, _| (r as f64 * seed).cos());
+            assert_eq!(ours.solve(&b), theirs.solve(&b));
+        }
+        // Not positive definite: a negative pivot, a zero pivot, a NaN, a negative eigenvalue.
+        let mut bad = covariance(0.3);
+        bad[(4, 4)] = -1.0;
+        let mut zero = covariance(0.3);
+        zero.row_mut(0).fill(0.0);
+        zero.column_mut(0).fill(0.0);
+        let mut nan = covariance(0.3);
+        nan[(7, 2)] = f64::NAN;
+        let indefinite = nalgebra::Matrix2::new(1.0, 2.0, 2.0, 1.0);
+        for m in [bad, zero, nan] {
+            assert!(m.cholesky().is_none() && cholesky(&m).is_none());
+        }
+        assert!(indefinite.cholesky().is_none() && cholesky(&indefinite).is_none());
+    }
+
+    #[test]
     fn reads_only_the_lower_triangle() {
         let a = covariance(0.7);
         let l = a.cholesky().unwrap().l();
@@ -104,5 +165,13 @@ mod tests {
             }
         }
         assert_eq!(inverse_from_cholesky(&l), inverse_from_cholesky(&dirty));
+        let mut upper_nan = a;
+        for j in 1..11 {
+            for i in 0..j {
+                upper_nan[(i, j)] = f64::NAN;
+            }
+        }
+        let (c, c_nan) = (cholesky(&a).unwrap(), cholesky(&upper_nan).unwrap());
+        assert_eq!(c.l(), c_nan.l());
     }
 }

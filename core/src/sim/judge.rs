@@ -3,6 +3,7 @@
 //! and the density errors. This is the only code that puts an estimate beside the truth.
 
 use super::engine::TruthSample;
+use crate::estimation::spd::cholesky;
 use crate::frames::{inertial_to_spherical, spherical_to_fixed, spherical_to_inertial};
 use crate::math::wrap_pi;
 use crate::scenario::{Scenario, TruthDraw};
@@ -81,6 +82,10 @@ pub fn nees<const N: usize>(
 }
 
 /// eᵀP⁻¹e over the entries `idx` of `e` and `P`, on the correlation matrix (see [`nees`]).
+///
+/// When `idx` is every state or the six kinematic ones (the two a run judges every epoch) the
+/// correlation matrix is fixed-size and factored by [`cholesky`]: the same operations as the
+/// general (heap) path, so the same value, without its allocations.
 fn scaled_quadratic_form<const N: usize>(
     err: &SVector<f64, N>,
     p: &SMatrix<f64, N, N>,
@@ -90,10 +95,30 @@ fn scaled_quadratic_form<const N: usize>(
     if m == 0 || idx.iter().any(|&i| p[(i, i)].is_nan() || p[(i, i)] <= 0.0) {
         return None;
     }
+    let leading = idx.iter().enumerate().all(|(a, &i)| a == i);
+    // nalgebra's dot product takes other paths for fixed sizes 2–4: keep those on the heap.
+    if leading && m == N && N > 4 {
+        return fixed_form::<N, N>(err, p);
+    }
+    if leading && m == 6 && N >= 6 {
+        return fixed_form::<N, 6>(err, p);
+    }
     let d: Vec<f64> = idx.iter().map(|&i| p[(i, i)].sqrt()).collect();
     let c = nalgebra::DMatrix::from_fn(m, m, |a, b| p[(idx[a], idx[b])] / (d[a] * d[b]));
     let e = nalgebra::DVector::from_fn(m, |a, _| err[idx[a]] / d[a]);
     let chol = c.cholesky()?;
+    Some(e.dot(&chol.solve(&e)))
+}
+
+/// [`scaled_quadratic_form`] over the leading `M` states, on fixed-size matrices.
+fn fixed_form<const N: usize, const M: usize>(
+    err: &SVector<f64, N>,
+    p: &SMatrix<f64, N, N>,
+) -> Option<f64> {
+    let d = SVector::<f64, M>::from_fn(|a, _| p[(a, a)].sqrt());
+    let c = SMatrix::<f64, M, M>::from_fn(|a, b| p[(a, b)] / (d[a] * d[b]));
+    let e = SVector::<f64, M>::from_fn(|a, _| err[a] / d[a]);
+    let chol = cholesky(&c)?;
     Some(e.dot(&chol.solve(&e)))
 }
 

@@ -33,7 +33,7 @@ use crate::estimation::ci::{
     CiWeighting, covariance_intersection_from_infos, covariance_intersection_with_gains,
 };
 use crate::estimation::ekf::LinearizedMeasurement;
-use crate::estimation::spd::inverse_from_cholesky;
+use crate::estimation::spd::{cholesky, inverse_from_cholesky};
 use crate::estimation::symmetrize;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
@@ -189,7 +189,7 @@ impl<const N: usize> PriorInformation<N> {
             return Err(not_pd());
         }
         let c = SMatrix::<f64, N, N>::from_fn(|r, k| p[(r, k)] * (d[r] * d[k]));
-        let chol = symmetrize(&c).cholesky().ok_or_else(not_pd)?;
+        let chol = cholesky(&symmetrize(&c)).ok_or_else(not_pd)?;
         let c_inv = inverse_from_cholesky(chol.l_dirty());
         if c_inv.iter().any(|v| !v.is_finite()) {
             return Err(not_pd());
@@ -284,7 +284,7 @@ fn fuse_with<const N: usize>(
         fused += gc * gc.transpose() * *r;
     }
     let fused = (fused + fused.transpose()) * 0.5;
-    if fused.cholesky().is_none() || ci.x.iter().any(|v| !v.is_finite()) {
+    if cholesky(&fused).is_none() || ci.x.iter().any(|v| !v.is_finite()) {
         return Err(EstimationError::NotPositiveDefinite {
             what: "the fused covariance".into(),
         });

@@ -111,7 +111,7 @@ pub struct Vehicle {
 }
 
 /// An entry dynamics model: equations, planet, vehicle, atmosphere and augmented states.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct EntryModel<A> {
     /// Equations of motion.
     pub kind: DynamicsKind,

@@ -12,7 +12,7 @@ use rand::Rng;
 use rand_distr::{Distribution, StandardNormal};
 
 /// One Monte Carlo realisation of the truth world.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct TruthDraw {
     /// Initial state in the truth model's coordinates.
     pub initial: SVector<f64, 6>,

@@ -45,6 +45,7 @@ pub mod replay;
 pub mod report;
 pub mod run_record;
 pub mod shard;
+pub mod shared_truth;
 pub mod start;
 pub mod training;
 pub mod tuning;

@@ -11,8 +11,8 @@ use super::checkpoint::{Checkpoint, NoCheckpoint};
 use super::metrics::FilterAccumulator;
 use super::pcrlb::{BoundRun, bound_run};
 use super::pcrlb_sums::{BoundSums, PcrlbReport};
-use super::record::RunError;
 pub use super::record::{RecordedRun, record_run};
+use super::record::{RunError, record_run_sharing};
 use super::report::FilterReport;
 use super::run_record::RunRecord;
 pub use super::run_record::filter_run;
@@ -20,6 +20,7 @@ use super::shard::{
     ACCUMULATION_BLOCK, BlockSums, SHARD_FORMAT, Shard, ShardResult, fold_partial, merge_shards,
     scenario_fingerprint,
 };
+use super::shared_truth::SharedTruth;
 use crate::estimation::nav::{FilterKind, NavError};
 use crate::scenario::Scenario;
 use rayon::prelude::*;
@@ -343,6 +344,8 @@ fn run_blocks(
     let mut out = Vec::new();
     let mut done = 0;
     let mut previous = previous.into_iter().peekable();
+    // The realisation of the first run to fly, shared with every run of the same one.
+    let mut shared: Option<SharedTruth> = None;
     for block in shard.blocks(opts.runs) {
         if opts.cancelled() {
             return Ok((out, false));
@@ -371,6 +374,9 @@ fn run_blocks(
             }
         }
         let mut cut = false;
+        if shared.is_none() && first < last {
+            shared = Some(SharedTruth::new(scenario, opts.seed, first, opts.pcrlb)?);
+        }
         for start in (first..last).step_by(chunk) {
             let end = (start + chunk).min(last);
             // A run not started because of a cancellation is `None`; the chunk is folded up to
@@ -378,8 +384,10 @@ fn run_blocks(
             let records: Vec<Option<Result<RunWithBound, TradeError>>> = (start..end)
                 .into_par_iter()
                 .map(|run| {
-                    (!opts.cancelled())
-                        .then(|| one_run_with_bound(scenario, filters, opts.seed, run, opts.pcrlb))
+                    (!opts.cancelled()).then(|| {
+                        let shared = shared.as_ref();
+                        one_run_with_bound(scenario, filters, opts.seed, run, opts.pcrlb, shared)
+                    })
                 })
                 .collect();
             let mut chunk_bounds = Vec::with_capacity(end - start);
@@ -428,19 +436,24 @@ fn run_blocks(
 }
 
 /// One run's records (one per filter) and, when asked, its PCRLB contribution.
-pub type RunWithBound = (Vec<RunRecord>, Option<BoundRun>);
+pub type RunWithBound = (Vec<RunRecord>, Option<Arc<BoundRun>>);
 
 /// One run: the truth recorded, each filter flown over it and, with `pcrlb`, the run's
-/// contribution to the scenario's PCRLB ([`super::pcrlb`]).
+/// contribution to the scenario's PCRLB ([`super::pcrlb`]). A run of `shared`'s realisation
+/// takes its trajectory and bound instead of computing them again (`sim/shared_truth.rs`).
 pub fn one_run_with_bound(
     scenario: &Arc<Scenario>,
     filters: &[FilterKind],
     seed: u64,
     run: usize,
     pcrlb: bool,
+    shared: Option<&SharedTruth>,
 ) -> Result<RunWithBound, TradeError> {
-    let rec = record_run(scenario, seed, run)?;
-    let bound = pcrlb.then(|| bound_run(scenario, &rec));
+    let rec = record_run_sharing(scenario, seed, run, shared)?;
+    let bound = pcrlb.then(|| match shared {
+        Some(s) => s.bound_for(scenario, &rec),
+        None => Arc::new(bound_run(scenario, &rec)),
+    });
     let records = filters
         .iter()
         .map(|&kind| filter_run(scenario, &scenario.onboard, &rec, kind))

@@ -76,10 +76,10 @@ impl BoundSums {
     /// Fold consecutive runs in (call in run-index order). Every epoch's sums add the runs in
     /// run order, so the result is the same as folding them one by one; epochs are folded in
     /// parallel.
-    pub fn add_runs(&mut self, runs: &[BoundRun]) {
+    pub fn add_runs<B: std::borrow::Borrow<BoundRun>>(&mut self, runs: &[B]) {
         let mut data: Vec<&BoundRunData> = Vec::with_capacity(runs.len());
         for run in runs {
-            match run {
+            match run.borrow() {
                 Ok(d) => data.push(d),
                 Err(reason) => {
                     self.unavailable.get_or_insert_with(|| reason.to_string());

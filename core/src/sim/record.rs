@@ -2,13 +2,15 @@
 //! run's truth with its filter start ([`record_run`]), which every filter then flies
 //! ([`Navigator::fly`](super::engine::Navigator::fly)).
 
-use super::engine::{SimError, StopReason, TruthSample, TruthSensors};
+use super::engine::{SimError, StopReason, TruthSample, TruthSensors, TruthStep};
 use super::run_seed;
+use super::shared_truth::SharedTruth;
 use super::start::initial_estimate;
 use crate::scenario::{Scenario, TruthDraw};
 use crate::sensors::{Channel, MeasurementEpoch};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use std::sync::Arc;
 use thiserror::Error;
 
 /// A complete truth run.
@@ -112,7 +114,26 @@ pub fn simulate_truth<R: Rng>(
     draw: &TruthDraw,
     rng: &mut R,
 ) -> Result<TruthRun, SimError> {
-    let mut truth = TruthSensors::with_draw(scenario, draw.clone(), rng);
+    run_truth(TruthSensors::with_draw(scenario, draw.clone(), rng))
+}
+
+/// [`simulate_truth`] along `steps`, the trajectory of `draw` integrated before
+/// ([`TruthSensors::with_draw_replaying`]): the same run without integrating it again.
+pub fn simulate_truth_replaying<R: Rng>(
+    scenario: &Scenario,
+    draw: &TruthDraw,
+    rng: &mut R,
+    steps: Arc<[TruthStep]>,
+) -> Result<TruthRun, SimError> {
+    run_truth(TruthSensors::with_draw_replaying(
+        scenario,
+        draw.clone(),
+        rng,
+        steps,
+    ))
+}
+
+fn run_truth<R: Rng>(mut truth: TruthSensors<R, &Scenario>) -> Result<TruthRun, SimError> {
     let mut samples = vec![truth.outputs().sample.clone()];
     let mut epochs = Vec::new();
     let ended_on_epoch = truth.run_to_end(|e, s| {
@@ -160,10 +181,24 @@ pub struct RecordedRun {
 /// Run `run` draws everything from `ChaCha8Rng::seed_from_u64(run_seed(seed, run))`, in this
 /// order: the truth dispersions, the measurement noise of the whole run, the initial estimate.
 pub fn record_run(scenario: &Scenario, seed: u64, run: usize) -> Result<RecordedRun, RunError> {
+    record_run_sharing(scenario, seed, run, None)
+}
+
+/// [`record_run`], following `shared`'s trajectory when the run's realisation is the one it
+/// was integrated for (`sim/shared_truth.rs`): the same record.
+pub fn record_run_sharing(
+    scenario: &Scenario,
+    seed: u64,
+    run: usize,
+    shared: Option<&SharedTruth>,
+) -> Result<RecordedRun, RunError> {
     let mut rng = ChaCha8Rng::seed_from_u64(run_seed(seed, run as u64));
     let draw = scenario.draw_truth_run(run, &mut rng);
-    let truth =
-        simulate_truth(scenario, &draw, &mut rng).map_err(|source| RunError { run, source })?;
+    let truth = match shared.and_then(|s| s.trajectory_for(&draw)) {
+        Some(steps) => simulate_truth_replaying(scenario, &draw, &mut rng, steps),
+        None => simulate_truth(scenario, &draw, &mut rng),
+    }
+    .map_err(|source| RunError { run, source })?;
     let x0 = initial_estimate(scenario, &draw, &truth.samples[0], &mut rng);
     Ok(RecordedRun {
         run,

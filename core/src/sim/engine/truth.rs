@@ -199,6 +199,20 @@ impl TruthPropagator {
         self.stop
     }
 
+    /// Advance one step along `steps`, a trajectory this propagator's start and stop rules
+    /// produced before under the same model and bank (`steps[k]` is step k + 1): the same state,
+    /// index and stop as [`TruthPropagator::step`] would give, without integrating. `None` once
+    /// stopped or past the end of `steps`.
+    pub fn follow(&mut self, steps: &[TruthStep]) -> Option<TruthStep> {
+        if self.stop.is_some() {
+            return None;
+        }
+        let s = *steps.get(self.k)?;
+        debug_assert_eq!(s.k, self.k + 1, "a replayed step out of order");
+        (self.x, self.k, self.stop) = (s.x, s.k, s.stop);
+        Some(s)
+    }
+
     /// Advance one step under `model` at bank `bank` \[rad\]; `Ok(None)` once stopped, an error
     /// (and no change) if the new state is not finite.
     pub fn step<A: Atmosphere>(

@@ -2,8 +2,8 @@
 //! communication step.
 
 use super::truth::{
-    EpochSchedule, SimError, StopReason, TruthAtEpoch, TruthPropagator, TruthSample, measure_epoch,
-    truth_sample,
+    EpochSchedule, SimError, StopReason, TruthAtEpoch, TruthPropagator, TruthSample, TruthStep,
+    measure_epoch, truth_sample,
 };
 use super::{EngineError, check_step};
 use crate::scenario::{Scenario, TruthDraw};
@@ -70,6 +70,9 @@ pub struct TruthSensors<R = ChaCha8Rng, S = Arc<Scenario>> {
     last_epoch: Option<MeasurementEpoch>,
     /// Per channel, the value a stuck fault holds (`[[faults]]` `range-stuck`).
     held: Vec<Option<f64>>,
+    /// The trajectory of this realisation at the scenario's bank, integrated before
+    /// ([`TruthSensors::with_draw_replaying`]); followed while the bank is the scenario's.
+    replay: Option<Arc<[TruthStep]>>,
 }
 
 impl TruthSensors<ChaCha8Rng, Arc<Scenario>> {
@@ -107,11 +110,39 @@ impl<R: Rng, S: Deref<Target = Scenario>> TruthSensors<R, S> {
             time: 0.0,
             last_epoch: None,
             held: Vec::new(),
+            replay: None,
         };
         out.held = vec![None; out.scenario.channels.len()];
         let bank = out.scenario.truth_bank;
         out.refresh_outputs(None, bank);
         out
+    }
+
+    /// [`TruthSensors::with_draw`] following `steps`, the trajectory of `draw` at the scenario's
+    /// bank that [`TruthPropagator::for_scenario`] integrated before (the Monte Carlo runs of a
+    /// realisation shared by every run, `sim/shared_truth.rs`), instead of integrating it again:
+    /// the same steps, so the same run. A step at another bank integrates from there on.
+    pub fn with_draw_replaying(
+        scenario: S,
+        draw: TruthDraw,
+        rng: R,
+        steps: Arc<[TruthStep]>,
+    ) -> Self {
+        let mut out = Self::with_draw(scenario, draw, rng);
+        out.replay = Some(steps);
+        out
+    }
+
+    /// The next truth step at `bank`: followed from the replay while the bank is the
+    /// scenario's, integrated otherwise.
+    fn next_step(&mut self, bank: f64) -> Result<Option<TruthStep>, SimError> {
+        if let Some(steps) = &self.replay {
+            if bank.to_bits() == self.scenario.truth_bank.to_bits() {
+                return Ok(self.propagator.follow(steps));
+            }
+            self.replay = None;
+        }
+        self.propagator.step(&self.draw.model, bank)
     }
 
     /// The scenario.
@@ -183,10 +214,10 @@ impl<R: Rng, S: Deref<Target = Scenario>> TruthSensors<R, S> {
         on_epoch: &mut impl FnMut(&MeasurementEpoch, &TruthSample),
         every_step: Option<&mut dyn FnMut(&TruthSample)>,
     ) -> Result<Option<Option<TruthSample>>, SimError> {
-        let model = &self.draw.model;
-        let Some(step) = self.propagator.step(model, bank)? else {
+        let Some(step) = self.next_step(bank)? else {
             return Ok(None);
         };
+        let model = &self.draw.model;
         let k = step.k;
         let due = self.periods.iter().any(|p| k % p == 0);
         let sc = &self.scenario;

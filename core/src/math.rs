@@ -15,6 +15,13 @@ impl<T: DualNum<Primitive = f64> + Copy + nalgebra::Scalar> Real for T {}
 /// A 3-vector of scalars, used for positions, velocities and accelerations.
 pub type V3<T> = [T; 3];
 
+/// Whether every value is finite (no NaN, no ±∞), without an early exit: the test the filters
+/// run on every state and covariance each step, as one vectorisable pass over the storage
+/// (`m.as_slice()`) instead of nalgebra's strided element iterator.
+pub fn all_finite(values: &[f64]) -> bool {
+    values.iter().fold(true, |ok, v| ok & v.is_finite())
+}
+
 /// Dot product of two 3-vectors.
 #[inline]
 pub fn dot<T: Real>(a: &V3<T>, b: &V3<T>) -> T {

@@ -22,6 +22,7 @@
 use super::ci_weights::optimal_weights;
 use super::spd::{cholesky, inverse_from_cholesky};
 use super::{EstimationError, symmetrize};
+use crate::math::all_finite;
 use nalgebra::{SMatrix, SVector};
 use serde::{Deserialize, Serialize};
 
@@ -78,12 +79,12 @@ fn spd_inverse<const N: usize>(
     m: &Mat<N>,
     what: impl Fn() -> String,
 ) -> Result<Mat<N>, EstimationError> {
-    if m.iter().any(|v| !v.is_finite()) {
+    if !all_finite(m.as_slice()) {
         return Err(nonfinite(what()));
     }
     let chol = cholesky(&symmetrize(m)).ok_or_else(|| not_pd(what()))?;
     let inv = inverse_from_cholesky(chol.l_dirty());
-    if inv.iter().any(|v| !v.is_finite()) {
+    if !all_finite(inv.as_slice()) {
         return Err(not_pd(what()));
     }
     Ok(inv)
@@ -115,7 +116,7 @@ fn scaled_infos<const N: usize>(
     }
     let mut dsum = Vect::<N>::zeros();
     for (i, (x, p)) in estimates.iter().enumerate() {
-        if x.iter().chain(p.iter()).any(|v| !v.is_finite()) {
+        if !(all_finite(x.as_slice()) && all_finite(p.as_slice())) {
             return Err(nonfinite(format!("CI estimate {i}")));
         }
         dsum += p.diagonal();
@@ -150,7 +151,7 @@ fn fuse_scaled<'a, const N: usize>(
     let inv_s = s.map(|v| 1.0 / v);
     let yinv = inverse_from_cholesky(chol.l_dirty());
     let p = symmetrize(&congruence(&yinv, &inv_s));
-    if x.iter().chain(p.iter()).any(|v| !v.is_finite()) {
+    if !(all_finite(x.as_slice()) && all_finite(p.as_slice())) {
         return Err(nonfinite("fused CI estimate".into()));
     }
     Ok((CiResult { x, p, weights: w }, yinv))
@@ -283,11 +284,8 @@ pub fn covariance_intersection_from_infos<const N: usize>(
             ys.len()
         ));
     }
-    if xs
-        .iter()
-        .flat_map(|x| x.iter())
-        .chain(ys.iter().flat_map(|y| y.iter()))
-        .any(|v| !v.is_finite())
+    if !xs.iter().all(|x| all_finite(x.as_slice()))
+        || !ys.iter().all(|y| all_finite(y.as_slice()))
         || s.iter().any(|v| !v.is_finite() || *v <= 0.0)
     {
         return Err(nonfinite("CI estimate, information or scale".into()));

@@ -51,7 +51,14 @@ impl<'a, const N: usize> Problem<'a, N> {
 
     /// Factor `Y(ω)` and evaluate `f`; `None` if not positive definite.
     fn factor(&self, w: &[f64]) -> Option<Factor<N>> {
-        let y: Mat<N> = self.ys.iter().zip(w).map(|(yi, wi)| yi * *wi).sum();
+        // Σ ω_i Y_i accumulated in place, entry by entry: the same sums as adding the scaled
+        // matrices, without the temporaries.
+        let mut y = Mat::<N>::zeros();
+        for (yi, wi) in self.ys.iter().zip(w) {
+            for (acc, v) in y.as_mut_slice().iter_mut().zip(yi.as_slice()) {
+                *acc += v * *wi;
+            }
+        }
         let chol = cholesky(&y)?;
         let yinv = self.trace.then(|| inverse_from_cholesky(chol.l_dirty()));
         let f = match &yinv {

@@ -4,6 +4,7 @@
 //! Determination*, §6.4: K_c = 0, covariance by the Joseph form, which holds for any gain).
 
 use super::{EstimationError, check_covariance, symmetrize};
+use crate::math::all_finite;
 use nalgebra::{SMatrix, SVector};
 
 /// Result of one scalar measurement update.
@@ -64,7 +65,7 @@ impl<const N: usize> Ekf<N> {
         phi: &SMatrix<f64, N, N>,
         q: &SMatrix<f64, N, N>,
     ) -> Result<(), EstimationError> {
-        if x_next.iter().any(|v| !v.is_finite()) {
+        if !all_finite(x_next.as_slice()) {
             return Err(EstimationError::NonFinite {
                 what: "predicted state".into(),
             });
@@ -72,7 +73,7 @@ impl<const N: usize> Ekf<N> {
         let p = phi * self.p * phi.transpose() + q;
         self.x = x_next;
         self.p = symmetrize(&p);
-        if self.p.iter().any(|v| !v.is_finite()) {
+        if !all_finite(self.p.as_slice()) {
             return Err(EstimationError::NonFinite {
                 what: "predicted covariance".into(),
             });
@@ -102,7 +103,7 @@ impl<const N: usize> Ekf<N> {
             || !r.is_finite()
             || !z.is_finite()
             || !predicted.is_finite()
-            || h.iter().any(|v| !v.is_finite())
+            || !all_finite(h.as_slice())
         {
             return Err(EstimationError::NonFinite {
                 what: "measurement, prediction, Jacobian or noise".into(),
@@ -193,7 +194,7 @@ impl<const N: usize> Ekf<N> {
         loop {
             let mut trial = prior.clone();
             let (_, terms, nis) = trial.update_linearized(&lin, &current)?;
-            if trial.x.iter().any(|v| !v.is_finite()) {
+            if !all_finite(trial.x.as_slice()) {
                 return Err(EstimationError::NonFinite {
                     what: "iterated-EKF iterate".into(),
                 });

@@ -29,6 +29,7 @@ pub mod unscented;
 
 pub use onboard::{FilterRetune, FilterTuning, FusionCovariance, Onboard, OnboardChannel};
 
+use crate::math::all_finite;
 use nalgebra::SMatrix;
 use thiserror::Error;
 
@@ -63,7 +64,7 @@ pub fn check_covariance<const N: usize>(
     p: &SMatrix<f64, N, N>,
     what: &str,
 ) -> Result<(), EstimationError> {
-    if p.iter().any(|v| !v.is_finite()) {
+    if !all_finite(p.as_slice()) {
         return Err(EstimationError::NonFinite {
             what: what.to_string(),
         });

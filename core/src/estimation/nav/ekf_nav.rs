@@ -9,6 +9,7 @@ use crate::estimation::EstimationError;
 use crate::estimation::Onboard;
 use crate::estimation::ekf::{Ekf, LinearizedMeasurement};
 use crate::estimation::onboard::OnboardChannel;
+use crate::math::all_finite;
 use crate::math::{V3, dual_gradient, seed_duals};
 use crate::sensors::MeasurementEpoch;
 use crate::sensors::channels::kinematics;
@@ -120,7 +121,7 @@ impl<const N: usize> EkfNav<N> {
         }
         let prior = self.ekf.x;
         let (innovations, terms, nis) = self.ekf.update_linearized(&prior, &mine)?;
-        if self.ekf.x.iter().any(|v| !v.is_finite()) {
+        if !all_finite(self.ekf.x.as_slice()) {
             return Err(EstimationError::NonFinite {
                 what: "updated state".into(),
             });

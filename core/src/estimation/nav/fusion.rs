@@ -12,6 +12,7 @@ use crate::estimation::ekf::LinearizedMeasurement;
 use crate::estimation::ekf::linearization_error_values;
 use crate::estimation::{FusionCovariance, Onboard};
 use crate::math::V3;
+use crate::math::all_finite;
 use crate::sensors::MeasurementEpoch;
 use nalgebra::{SMatrix, SVector};
 use std::sync::Arc;
@@ -163,7 +164,7 @@ impl<const N: usize> FusionNav<N> {
             for slot in self.ens.members.iter_mut() {
                 let Some(f) = slot else { continue };
                 let prior = f.estimate().1;
-                let post = match done.iter().find(|(p, _)| *p == prior) {
+                let post = match done.iter().find(|(p, _)| p.as_slice() == prior.as_slice()) {
                     Some((_, post)) => *post,
                     None => {
                         let post = f
@@ -233,7 +234,7 @@ impl<const N: usize> FusionNav<N> {
             self.n_consider,
         )?;
         for _ in 1..iterations {
-            if pass.x.iter().any(|v| !v.is_finite()) {
+            if !all_finite(pass.x.as_slice()) {
                 break;
             }
             // The stopping test needs only h at the iterate; the AD Jacobians follow only when
@@ -336,7 +337,7 @@ fn fusion_pass<const N: usize>(
         1 => {
             weights[slots[0]] = 1.0;
             let post = updates[0].posterior(p);
-            if post.iter().any(|v| !v.is_finite()) {
+            if !all_finite(post.as_slice()) {
                 return Err(EstimationError::NonFinite {
                     what: "a local filter's update".into(),
                 });

@@ -35,6 +35,7 @@ use crate::estimation::ci::{
 use crate::estimation::ekf::LinearizedMeasurement;
 use crate::estimation::spd::{cholesky, inverse_from_cholesky};
 use crate::estimation::symmetrize;
+use crate::math::all_finite;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
 /// One local filter's update of the common prior: its estimate and gains. The posterior
@@ -150,11 +151,11 @@ pub(crate) fn local_update<const N: usize>(
     };
     // A finite gain on a finite prior gives a finite posterior, except where the prior
     // overflows; the posterior is checked where it is formed.
-    if x_post.iter().any(|v| !v.is_finite())
+    if !all_finite(x_post.as_slice())
         || update
             .gains
             .iter()
-            .any(|(_, k, _)| k.iter().any(|v| !v.is_finite()))
+            .any(|(_, k, _)| !all_finite(k.as_slice()))
     {
         return Err(EstimationError::NonFinite {
             what: "a local filter's update".into(),
@@ -191,7 +192,7 @@ impl<const N: usize> PriorInformation<N> {
         let c = SMatrix::<f64, N, N>::from_fn(|r, k| p[(r, k)] * (d[r] * d[k]));
         let chol = cholesky(&symmetrize(&c)).ok_or_else(not_pd)?;
         let c_inv = inverse_from_cholesky(chol.l_dirty());
-        if c_inv.iter().any(|v| !v.is_finite()) {
+        if !all_finite(c_inv.as_slice()) {
             return Err(not_pd());
         }
         Ok(PriorInformation { c_inv, d })
@@ -284,7 +285,7 @@ fn fuse_with<const N: usize>(
         fused += gc * gc.transpose() * *r;
     }
     let fused = (fused + fused.transpose()) * 0.5;
-    if cholesky(&fused).is_none() || ci.x.iter().any(|v| !v.is_finite()) {
+    if cholesky(&fused).is_none() || !all_finite(ci.x.as_slice()) {
         return Err(EstimationError::NotPositiveDefinite {
             what: "the fused covariance".into(),
         });

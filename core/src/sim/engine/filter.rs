@@ -7,6 +7,7 @@ use super::truth::TruthSample;
 use crate::estimation::nav::{FilterKind, FilterStart, NavFilter, StepInfo, build_filter};
 use crate::estimation::{EstimationError, Onboard};
 use crate::math::V3;
+use crate::math::all_finite;
 use crate::scenario::{Scenario, TruthDraw};
 use crate::sensors::MeasurementEpoch;
 use crate::sim::judge;
@@ -105,7 +106,7 @@ impl<const N: usize> ErasedFilter for Dim<N> {
     fn predict_to(&mut self, t: f64) -> Result<(), FilterFailure> {
         self.0.predict(t)?;
         let (x, p) = self.0.estimate();
-        if x.iter().chain(p.iter()).any(|v| !v.is_finite()) {
+        if !(all_finite(x.as_slice()) && all_finite(p.as_slice())) {
             return Err(FilterFailure::NonFiniteEstimate);
         }
         Ok(())
@@ -119,7 +120,7 @@ impl<const N: usize> ErasedFilter for Dim<N> {
         self.0.predict(epoch.t)?;
         let info = self.0.update(epoch, beacons)?;
         let (x, p) = self.0.estimate();
-        if x.iter().chain(p.iter()).any(|v| !v.is_finite()) {
+        if !(all_finite(x.as_slice()) && all_finite(p.as_slice())) {
             return Err(FilterFailure::NonFiniteEstimate);
         }
         Ok(info)

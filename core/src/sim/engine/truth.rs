@@ -6,6 +6,7 @@ use crate::atmosphere::Atmosphere;
 use crate::dynamics::EntryModel;
 use crate::dynamics::aero::drag_lift;
 use crate::frames::inertial_to_spherical;
+use crate::math::all_finite;
 use crate::scenario::{Scenario, TruthDraw};
 use crate::sensors::channels::{Kinematics, kinematics};
 use crate::sensors::faults::{fault_error, is_stuck};
@@ -226,7 +227,7 @@ impl TruthPropagator {
         let k = self.k + 1;
         let x = model.step(&self.x, bank, self.dt);
         let t = k as f64 * self.dt;
-        if x.iter().any(|v| !v.is_finite()) {
+        if !all_finite(x.as_slice()) {
             return Err(SimError::NonFinite {
                 t_s: t,
                 state: [x[0], x[1], x[2], x[3], x[4], x[5]],

@@ -154,6 +154,36 @@ mod tests {
         assert!(indefinite.cholesky().is_none() && cholesky(&indefinite).is_none());
     }
 
+    /// The module doc's sums as written, one running sum per entry.
+    fn inverse_by_running_sums(l: &SMatrix<f64, 11, 11>) -> SMatrix<f64, 11, 11> {
+        let mut t = SMatrix::<f64, 11, 11>::zeros();
+        for j in 0..11 {
+            t[(j, j)] = 1.0 / l[(j, j)];
+            for i in j + 1..11 {
+                let mut s = 0.0;
+                for k in j..i {
+                    s += l[(i, k)] * t[(k, j)];
+                }
+                t[(i, j)] = -s / l[(i, i)];
+            }
+        }
+        SMatrix::from_fn(|i, j| {
+            let mut s = 0.0;
+            for k in i.max(j)..11 {
+                s += t[(k, i)] * t[(k, j)];
+            }
+            s
+        })
+    }
+
+    #[test]
+    fn equals_the_indexed_running_sums_bit_for_bit() {
+        for seed in [0.3, 0.7, 1.1, 2.7, 5.9] {
+            let l = covariance(seed).cholesky().unwrap().l();
+            assert_eq!(inverse_from_cholesky(&l), inverse_by_running_sums(&l));
+        }
+    }
+
     #[test]
     fn reads_only_the_lower_triangle() {
         let a = covariance(0.7);

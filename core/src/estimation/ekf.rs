@@ -125,11 +125,13 @@ impl<const N: usize> Ekf<N> {
         // Joseph form, expanded for a rank-one gain: (I−khᵀ)P(I−khᵀ)ᵀ + k r kᵀ
         //   = P − k (Ph)ᵀ − (Ph) kᵀ + k (hᵀPh + r) kᵀ,
         // evaluated on the upper triangle and mirrored (the result is symmetric by construction).
+        // On the column arrays (`c[j][i]` is entry (i, j)), free of per-entry bounds checks.
+        let c = &mut self.p.data.0;
         for j in 0..N {
-            for i in 0..=j {
-                let v = self.p[(i, j)] - k[i] * ph[j] - ph[i] * k[j] + k[i] * k[j] * s;
-                self.p[(i, j)] = v;
-                self.p[(j, i)] = v;
+            for i in 0..j + 1 {
+                let v = c[j][i] - k[i] * ph[j] - ph[i] * k[j] + k[i] * k[j] * s;
+                c[j][i] = v;
+                c[i][j] = v;
             }
         }
         Ok(ScalarInnovation { nu, s })

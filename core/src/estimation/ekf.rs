@@ -3,6 +3,7 @@
 //! but which are never updated (Schmidt 1966; Tapley, Schutz & Born, *Statistical Orbit
 //! Determination*, §6.4: K_c = 0, covariance by the Joseph form, which holds for any gain).
 
+use super::propagate::phi_p_phit;
 use super::{EstimationError, check_covariance, symmetrize};
 use crate::math::all_finite;
 use nalgebra::{SMatrix, SVector};
@@ -70,7 +71,7 @@ impl<const N: usize> Ekf<N> {
                 what: "predicted state".into(),
             });
         }
-        let p = phi * self.p * phi.transpose() + q;
+        let p = phi_p_phit(phi, &self.p) + q;
         self.x = x_next;
         self.p = symmetrize(&p);
         if !all_finite(self.p.as_slice()) {

@@ -23,6 +23,7 @@ pub mod gating;
 pub mod mmae;
 pub mod nav;
 pub mod onboard;
+pub mod propagate;
 pub mod spd;
 pub mod ukf;
 pub mod unscented;

@@ -130,12 +130,10 @@ impl<const N: usize> ErasedFilter for Dim<N> {
         let (x, p) = self.0.estimate();
         NavEstimate {
             t,
-            x: x.iter().copied().collect(),
+            x: x.as_slice().to_vec(),
             sigma: (0..N).map(|i| p[(i, i)].max(0.0).sqrt()).collect(),
-            p: (0..N)
-                .flat_map(|i| (0..N).map(move |j| (i, j)))
-                .map(|(i, j)| p[(i, j)])
-                .collect(),
+            // Row-major: Pᵀ's column-major storage.
+            p: p.transpose().as_slice().to_vec(),
             density: self.0.density_estimate(),
             info,
         }
@@ -150,8 +148,8 @@ impl<const N: usize> ErasedFilter for Dim<N> {
         let rho = sample.density;
         let rel = |d: f64| (d - rho) / rho;
         Judgement {
-            truth: truth.iter().copied().collect(),
-            err: err.iter().copied().collect(),
+            truth: truth.as_slice().to_vec(),
+            err: err.as_slice().to_vec(),
             nees: judge::nees(&err, &p, &truth),
             nees_kinematic: judge::nees_kinematic(&err, &p),
             density_true: rho,

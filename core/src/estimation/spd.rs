@@ -26,9 +26,16 @@ use nalgebra::{Cholesky, Const, SMatrix};
 /// so the factor is bit-identical (a test checks it); it runs on the column-major slice
 /// instead of matrix views, in about a third of the instructions on an 11 × 11. The strictly
 /// upper triangle keeps `A`'s entries, as `Cholesky::l_dirty` does.
+#[allow(
+    clippy::needless_range_loop,
+    clippy::assign_op_pattern,
+    clippy::neg_cmp_op_on_partial_ord
+)]
 pub fn cholesky<const N: usize>(a: &SMatrix<f64, N, N>) -> Option<Cholesky<f64, Const<N>>> {
     let mut m = *a;
-    // Columns as arrays (`c[j][i]` is entry (i, j)): every index is a loop variable below N.
+    // Columns as arrays (`c[j][i]` is entry (i, j)): every index is a loop variable below N, so
+    // the loops carry no bounds checks. Written as nalgebra writes them (`y = a·x + y`, its
+    // pivot test): iterator and `+=` forms measured 2–4 % more instructions per trade.
     let c = &mut m.data.0;
     for j in 0..N {
         for k in 0..j {
@@ -74,6 +81,7 @@ pub fn inverse_from_cholesky<const N: usize>(l: &SMatrix<f64, N, N>) -> SMatrix<
     for j in 0..N {
         for i in 0..=j {
             let mut s = 0.0;
+            #[allow(clippy::needless_range_loop)] // two columns of `t` at one index
             for k in j..N {
                 s += t[i][k] * t[j][k];
             }

@@ -344,8 +344,10 @@ fn run_blocks(
     let mut out = Vec::new();
     let mut done = 0;
     let mut previous = previous.into_iter().peekable();
-    // The realisation of the first run to fly, shared with every run of the same one.
+    // The realisation of the first run to fly, shared with every run of the same one (built
+    // once, when the first block with runs to do starts).
     let mut shared: Option<SharedTruth> = None;
+    let mut shared_tried = false;
     for block in shard.blocks(opts.runs) {
         if opts.cancelled() {
             return Ok((out, false));
@@ -374,8 +376,9 @@ fn run_blocks(
             }
         }
         let mut cut = false;
-        if shared.is_none() && first < last {
-            shared = Some(SharedTruth::new(scenario, opts.seed, first, opts.pcrlb)?);
+        if !shared_tried && first < last {
+            shared = SharedTruth::new(scenario, opts.seed, first, opts.pcrlb);
+            shared_tried = true;
         }
         for start in (first..last).step_by(chunk) {
             let end = (start + chunk).min(last);

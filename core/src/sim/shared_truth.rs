@@ -12,7 +12,7 @@
 
 use super::engine::{TruthPropagator, TruthSample, TruthStep};
 use super::pcrlb::{BoundRun, bound_run};
-use super::record::{RecordedRun, RunError, record_run};
+use super::record::{RecordedRun, record_run};
 use crate::scenario::{Scenario, TruthDraw};
 use crate::sensors::MeasurementEpoch;
 use std::sync::Arc;
@@ -46,18 +46,30 @@ fn pattern(epochs: &[MeasurementEpoch]) -> Vec<(f64, Vec<bool>)> {
         .collect()
 }
 
+/// Whether `epochs` measured the channels of `pattern` at its times (without building the
+/// run's own pattern: this runs once per Monte Carlo run).
+fn same_pattern(epochs: &[MeasurementEpoch], pattern: &[(f64, Vec<bool>)]) -> bool {
+    epochs.len() == pattern.len()
+        && epochs.iter().zip(pattern).all(|(e, (t, seen))| {
+            e.t == *t
+                && e.values.len() == seen.len()
+                && e.values.iter().zip(seen).all(|(v, s)| v.is_some() == *s)
+        })
+}
+
 impl SharedTruth {
     /// From run `run` of a study with master seed `seed`: its realisation's trajectory and, with
-    /// `pcrlb`, its PCRLB contribution.
-    pub fn new(scenario: &Scenario, seed: u64, run: usize, pcrlb: bool) -> Result<Self, RunError> {
-        let rec = record_run(scenario, seed, run)?;
+    /// `pcrlb`, its PCRLB contribution. `None` when that run's truth cannot be simulated: the
+    /// runs then compute their own, and the failing run reports its error where it stands.
+    pub fn new(scenario: &Scenario, seed: u64, run: usize, pcrlb: bool) -> Option<Self> {
+        let rec = record_run(scenario, seed, run).ok()?;
         let steps = trajectory(scenario, &rec.draw).map(Arc::from);
         let bound = pcrlb.then(|| SharedBound {
             samples: rec.truth.samples.clone(),
             pattern: pattern(&rec.truth.epochs),
             bound: Arc::new(bound_run(scenario, &rec)),
         });
-        Ok(SharedTruth {
+        Some(SharedTruth {
             draw: rec.draw,
             steps,
             bound,
@@ -76,7 +88,7 @@ impl SharedTruth {
             Some(b)
                 if rec.draw == self.draw
                     && rec.truth.samples == b.samples
-                    && pattern(&rec.truth.epochs) == b.pattern =>
+                    && same_pattern(&rec.truth.epochs, &b.pattern) =>
             {
                 Arc::clone(&b.bound)
             }
@@ -125,6 +137,13 @@ mod tests {
             let (b_alone, b_shared) = (bound_run(&s, &alone), shared.bound_for(&s, &with));
             assert_eq!(b_alone, *b_shared);
         }
+        // A run that missed one channel at one epoch does not take the stored bound.
+        let rec = record_run(&s, 7, 1).unwrap();
+        let stored = pattern(&rec.truth.epochs);
+        assert!(same_pattern(&rec.truth.epochs, &stored));
+        let mut missed = rec.truth.epochs.clone();
+        missed[3].values[0] = None;
+        assert!(!same_pattern(&missed, &stored));
         // A scenario that disperses its truth: no run shares run 0's realisation.
         let d = scenario("msl-pressure");
         let shared = SharedTruth::new(&d, 7, 0, false).unwrap();

@@ -19,7 +19,7 @@
 //! `D = diag(1/√p̄_k)`, `p̄_k = (1/n) Σ_i (P_i)_kk`, which makes every scaled variance O(1).
 //! The fused result is mapped back exactly (`P_CI = D⁻¹ P'_CI D⁻¹`).
 
-use super::ci_weights::optimal_weights;
+use super::ci_weights::{Weights, optimal_weights};
 use super::spd::{cholesky, inverse_from_cholesky};
 use super::{EstimationError, symmetrize};
 use crate::math::all_finite;
@@ -130,23 +130,30 @@ fn scaled_infos<const N: usize>(
     Ok((ys, s))
 }
 
-/// Fusion (eq. 19–20) on the scaled problem; `w` already validated. Also returns the scaled
-/// fused covariance `Y'⁻¹ = (Σ ω_i Y'_i)⁻¹` (for [`covariance_intersection_with_gains`]).
+/// Fusion (eq. 19–20) on the scaled problem; `w` already validated. `chol`, when given, is the
+/// Cholesky factor of `Σ ω_i Y'_i` at these weights (the weight search's last factorisation).
+/// Also returns the scaled fused covariance `Y'⁻¹ = (Σ ω_i Y'_i)⁻¹` (for
+/// [`covariance_intersection_with_gains`]).
 fn fuse_scaled<'a, const N: usize>(
     xs: impl Iterator<Item = &'a Vect<N>>,
     ys: &[Mat<N>],
     s: &Vect<N>,
-    w: Vec<f64>,
+    (w, chol): Weights<N>,
 ) -> Result<(CiResult<N>, Mat<N>), EstimationError> {
     let mut y = Mat::<N>::zeros();
     let mut yx = Vect::<N>::zeros();
     for ((wi, yi), xi) in w.iter().zip(ys).zip(xs) {
         if *wi > 0.0 {
-            y += yi * *wi;
+            if chol.is_none() {
+                y += yi * *wi;
+            }
             yx += yi * xi.component_mul(s) * *wi;
         }
     }
-    let chol = cholesky(&symmetrize(&y)).ok_or_else(|| not_pd("fused CI information".into()))?;
+    let chol = match chol {
+        Some(c) => c,
+        None => cholesky(&symmetrize(&y)).ok_or_else(|| not_pd("fused CI information".into()))?,
+    };
     let x = chol.solve(&yx).component_div(s);
     let inv_s = s.map(|v| 1.0 / v);
     let yinv = inverse_from_cholesky(chol.l_dirty());
@@ -205,7 +212,7 @@ pub fn ci_weights<const N: usize>(
         .iter()
         .map(|y| symmetrize(&congruence(y, &inv_s)))
         .collect();
-    optimal_weights(&ys, method == CiWeighting::OptimalTrace, None)
+    optimal_weights(&ys, method == CiWeighting::OptimalTrace, None).map(|(w, _)| w)
 }
 
 /// Fuse `(x̂_i, P_i)` with given weights by seed 000 eq. 19–20. Weights must be finite, in
@@ -227,7 +234,7 @@ pub fn ci_fuse<const N: usize>(
     }
     let (ys, s) = scaled_infos(estimates)?;
     let w = weights.iter().map(|w| w / sum).collect();
-    fuse_scaled(estimates.iter().map(|e| &e.0), &ys, &s, w).map(|(fused, _)| fused)
+    fuse_scaled(estimates.iter().map(|e| &e.0), &ys, &s, (w, None)).map(|(fused, _)| fused)
 }
 
 /// Choose the weights by `method` ([`ci_weights`]) and fuse ([`ci_fuse`]), seed 000 eq. 19–21.
@@ -318,7 +325,7 @@ fn weights_scaled<const N: usize>(
     s: &Vect<N>,
     method: CiWeighting,
     start: Option<&[f64]>,
-) -> Result<Vec<f64>, EstimationError> {
+) -> Result<Weights<N>, EstimationError> {
     let start = start.filter(|w| {
         w.len() == ys.len()
             && w.iter().all(|v| v.is_finite() && *v >= 0.0)
@@ -327,6 +334,7 @@ fn weights_scaled<const N: usize>(
     match method {
         CiWeighting::FastInfNorm => {
             fast_weights(&ys.iter().map(|y| congruence(y, s)).collect::<Vec<_>>())
+                .map(|w| (w, None))
         }
         m => optimal_weights(ys, m == CiWeighting::OptimalTrace, start),
     }
@@ -364,4 +372,41 @@ pub fn feedback<const N: usize>(fused: &CiResult<N>) -> Vec<(SVector<f64, N>, SM
             (fused.x, symmetrize(&(fused.p / w)))
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Four badly scaled 11-state posteriors around one truth, like `ci`'s locals.
+    fn estimates() -> Vec<(Vect<11>, Mat<11>)> {
+        (0..4)
+            .map(|i| {
+                let seed = 0.7 + i as f64;
+                let a = Mat::<11>::from_fn(|r, c| ((r * 11 + c) as f64 * seed).sin());
+                let d = Vect::<11>::from_fn(|r, _| 10f64.powi(r as i32 - 5));
+                let p = Mat::<11>::from_fn(|r, c| {
+                    (a * a.transpose() + Mat::<11>::identity() * 0.05)[(r, c)] * d[r] * d[c]
+                });
+                (
+                    Vect::<11>::from_fn(|r, _| (r as f64 + seed).cos() * d[r]),
+                    p,
+                )
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_weight_searchs_last_factor_fuses_as_a_fresh_factorisation() {
+        let est = estimates();
+        let (ys, s) = scaled_infos(&est).unwrap();
+        for method in [CiWeighting::OptimalDet, CiWeighting::OptimalTrace] {
+            let (w, chol) = weights_scaled(&ys, &s, method, None).unwrap();
+            assert!(chol.is_some(), "{method:?}: the search returns its factor");
+            let xs = || est.iter().map(|e| &e.0);
+            let reused = fuse_scaled(xs(), &ys, &s, (w.clone(), chol)).unwrap();
+            let fresh = fuse_scaled(xs(), &ys, &s, (w, None)).unwrap();
+            assert_eq!(reused, fresh, "{method:?}");
+        }
+    }
 }

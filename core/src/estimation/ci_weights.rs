@@ -4,7 +4,7 @@
 
 use super::EstimationError;
 use super::ci::not_pd;
-use super::spd::{cholesky, inverse_from_cholesky};
+use super::spd::{cholesky, inverse_from_cholesky, lower_inverse};
 use nalgebra::{Cholesky, Const, DMatrix, DVector, SMatrix};
 
 /// Iteration cap of the optimal-weight Newton solver (it normally needs 3–10 iterations).
@@ -12,18 +12,28 @@ const MAX_ITER: usize = 60;
 
 type Mat<const N: usize> = SMatrix<f64, N, N>;
 
+/// Weights and, from the optimal-weight search, the Cholesky factor of `Σ ω_i Y_i` at them.
+pub(super) type Weights<const N: usize> = (Vec<f64>, Option<Cholesky<f64, Const<N>>>);
+
 /// Objective (and optionally gradient and Hessian in ω) of the optimal-weight problem on the
 /// scaled information matrices. With `Y = Σ ω_i Y_i`, `M_i = Y⁻¹ Y_i`, `S_i = M_i Y⁻¹`:
 /// * det: `f = −log det Y`, `∂f/∂ω_i = −tr(Y⁻¹Y_i) = −tr M_i`, `∂²f/∂ω_i∂ω_j = tr(M_i M_j)`;
 /// * trace: `f = tr Y⁻¹`, `∂f/∂ω_i = −tr(Y⁻¹Y_iY⁻¹) = −tr S_i`,
 ///   `∂²f/∂ω_i∂ω_j = 2 tr(Y⁻¹Y_iY⁻¹Y_jY⁻¹) = 2 tr(M_i S_j)`.
 ///
-/// `m`, `s` are work space; `g`, `h` receive the gradient and Hessian.
+/// The det derivatives are formed on the symmetric `B_i = T Y_i Tᵀ`, `T = L⁻¹` for the Cholesky
+/// factor `Y = L Lᵀ` (so `Y⁻¹ = TᵀT`): `tr M_i = tr B_i` and `tr(M_i M_j) = ⟨B_i, B_j⟩_F`. With
+/// `T` triangular and only `B_i`'s lower triangle formed, that is ≈ N³ (1/6 + 4/6 n) multiply–adds
+/// and half-size Frobenius products, against N³ (1/3 + n) for `Y⁻¹` and the products `Y⁻¹Y_i`.
+///
+/// `m`, `s` (trace) and `b` (det, lower triangles by columns) are work space; `g`, `h` receive
+/// the gradient and Hessian.
 struct Problem<'a, const N: usize> {
     ys: &'a [Mat<N>],
     trace: bool,
     m: Vec<Mat<N>>,
     s: Vec<Mat<N>>,
+    b: Vec<[[f64; N]; N]>,
     g: Vec<f64>,
     h: DMatrix<f64>,
 }
@@ -39,11 +49,13 @@ impl<'a, const N: usize> Problem<'a, N> {
     fn new(ys: &'a [Mat<N>], trace: bool) -> Self {
         let (n, z) = (ys.len(), Mat::<N>::zeros());
         let (g, h) = (vec![0.0; n], DMatrix::zeros(n, n));
+        let (mats, lowers) = if trace { (n, 0) } else { (0, n) };
         Problem {
             ys,
             trace,
-            m: vec![z; n],
-            s: vec![z; n],
+            m: vec![z; mats],
+            s: vec![z; mats],
+            b: vec![[[0.0; N]; N]; lowers],
             g,
             h,
         }
@@ -70,24 +82,71 @@ impl<'a, const N: usize> Problem<'a, N> {
 
     /// Gradient `g` and Hessian `h` at a factorisation.
     fn derivatives(&mut self, fac: &Factor<N>) {
-        let yinv = fac
-            .yinv
-            .unwrap_or_else(|| inverse_from_cholesky(fac.chol.l_dirty()));
+        match &fac.yinv {
+            Some(yinv) => self.trace_derivatives(yinv),
+            None => self.det_derivatives(fac),
+        }
+    }
+
+    /// The trace objective's derivatives from `Y⁻¹`.
+    fn trace_derivatives(&mut self, yinv: &Mat<N>) {
         let (m, s) = (&mut self.m, &mut self.s);
         for i in 0..self.ys.len() {
             m[i] = yinv * self.ys[i];
-            if self.trace {
-                s[i] = m[i] * yinv;
-            }
-            self.g[i] = -(if self.trace { s[i] } else { m[i] }).trace();
+            s[i] = m[i] * yinv;
+            self.g[i] = -s[i].trace();
             let mt = m[i].transpose();
+            for (j, sj) in s[..=i].iter().enumerate() {
+                // 2 tr(M_i S_j) = 2 Σ (M_iᵀ)_kl (S_j)_kl.
+                let hij = 2.0 * mt.dot(sj);
+                (self.h[(i, j)], self.h[(j, i)]) = (hij, hij);
+            }
+        }
+    }
+
+    /// The det objective's derivatives from `B_i = T Y_i Tᵀ` (see [`Problem`]).
+    #[allow(clippy::needless_range_loop)] // columns of several arrays at one index
+    fn det_derivatives(&mut self, fac: &Factor<N>) {
+        // t[k][r] = T_rk, zero for r < k.
+        let t = lower_inverse(fac.chol.l_dirty());
+        for i in 0..self.ys.len() {
+            // y[c][k] = (Y_i)_kc.
+            let y = &self.ys[i].data.0;
+            // C = T Y_i by columns: C[:, c] = Σ_k T[:, k] (Y_i)_kc, T[:, k] non-zero from row k.
+            let mut cm = [[0.0f64; N]; N];
+            for c in 0..N {
+                for k in 0..N {
+                    let v = y[c][k];
+                    for r in k..N {
+                        cm[c][r] += t[k][r] * v;
+                    }
+                }
+            }
+            // B = C Tᵀ, lower triangle: B[r, s] = Σ_{k ≤ s} C[r, k] T_sk for r ≥ s.
+            let b = &mut self.b[i];
+            let mut trace = 0.0;
+            for s in 0..N {
+                b[s] = [0.0; N];
+                for k in 0..=s {
+                    let v = t[k][s];
+                    for r in s..N {
+                        b[s][r] += cm[k][r] * v;
+                    }
+                }
+                trace += b[s][s];
+            }
+            self.g[i] = -trace;
             for j in 0..=i {
-                // tr(M_i X) = Σ (M_iᵀ)_kl X_kl.
-                let hij = if self.trace {
-                    2.0 * mt.dot(&s[j])
-                } else {
-                    mt.dot(&m[j])
-                };
+                // ⟨B_i, B_j⟩_F from the lower triangles: diagonal once, the rest twice.
+                let (bi, bj) = (&self.b[i], &self.b[j]);
+                let (mut diag, mut off) = (0.0, 0.0);
+                for s in 0..N {
+                    diag += bi[s][s] * bj[s][s];
+                    for r in s + 1..N {
+                        off += bi[s][r] * bj[s][r];
+                    }
+                }
+                let hij = diag + 2.0 * off;
                 (self.h[(i, j)], self.h[(j, i)]) = (hij, hij);
             }
         }
@@ -126,14 +185,17 @@ fn newton_direction(free: &[usize], g: &[f64], h: &DMatrix<f64>) -> Option<Vec<f
 /// multiplier is most violated. Weights are accurate to ~1e-9 (far below the 1e-6 the tests
 /// demand). At the iteration cap the current (feasible) iterate is returned: CI is consistent
 /// for any admissible ω, so this is safe.
+///
+/// Also returns the Cholesky factor of `Σ ω_i Y_i` at the returned weights (`None` for one
+/// estimate), which the fusion reuses.
 pub(super) fn optimal_weights<const N: usize>(
     ys: &[Mat<N>],
     trace: bool,
     start: Option<&[f64]>,
-) -> Result<Vec<f64>, EstimationError> {
+) -> Result<Weights<N>, EstimationError> {
     let n = ys.len();
     if n == 1 {
-        return Ok(vec![1.0]);
+        return Ok((vec![1.0], None));
     }
     let mut prob = Problem::new(ys, trace);
     let mut w = vec![1.0 / n as f64; n];
@@ -213,7 +275,7 @@ pub(super) fn optimal_weights<const N: usize>(
             }
         }
     }
-    Ok(w)
+    Ok((w, Some(fac.chol)))
 }
 
 #[cfg(test)]

@@ -57,13 +57,13 @@ pub fn cholesky<const N: usize>(a: &SMatrix<f64, N, N>) -> Option<Cholesky<f64, 
     Some(Cholesky::pack_dirty(m))
 }
 
-/// `A⁻¹` from the Cholesky factor `L` of `A` (only its lower triangle is read). Non-finite when
-/// `L` has a zero diagonal; callers check the result.
-pub fn inverse_from_cholesky<const N: usize>(l: &SMatrix<f64, N, N>) -> SMatrix<f64, N, N> {
+/// `T = L⁻¹` of a lower-triangular `L` (only its lower triangle is read), by columns:
+/// `t[j][i] = T_ij` for `i ≥ j`, zero above the diagonal (the module doc's first sums).
+/// Non-finite when `L` has a zero diagonal.
+pub fn lower_inverse<const N: usize>(l: &SMatrix<f64, N, N>) -> [[f64; N]; N] {
     // Lᵀ's columns are L's rows (`lr[i][k]` = L_ik), so the sums run over contiguous memory.
     let lt = l.transpose();
     let lr = &lt.data.0;
-    // T = L⁻¹ by columns: t[j][i] = T_ij for i ≥ j.
     let mut t = [[0.0f64; N]; N];
     for j in 0..N {
         t[j][j] = 1.0 / lr[j][j];
@@ -75,6 +75,13 @@ pub fn inverse_from_cholesky<const N: usize>(l: &SMatrix<f64, N, N>) -> SMatrix<
             t[j][i] = -s / lr[i][i];
         }
     }
+    t
+}
+
+/// `A⁻¹` from the Cholesky factor `L` of `A` (only its lower triangle is read). Non-finite when
+/// `L` has a zero diagonal; callers check the result.
+pub fn inverse_from_cholesky<const N: usize>(l: &SMatrix<f64, N, N>) -> SMatrix<f64, N, N> {
+    let t = lower_inverse(l);
     // A⁻¹ = Tᵀ T: entry (i, j), i ≤ j, is the dot product of columns i and j of T from row j on.
     let mut inv = SMatrix::<f64, N, N>::zeros();
     let out = &mut inv.data.0;

@@ -131,7 +131,9 @@ fn scaled_infos<const N: usize>(
 }
 
 /// Fusion (eq. 19–20) on the scaled problem; `w` already validated. `chol`, when given, is the
-/// Cholesky factor of `Σ ω_i Y'_i` at these weights (the weight search's last factorisation).
+/// Cholesky factor of `Σ ω_i Y'_i` at these weights (the weight search's last factorisation,
+/// of the sum as accumulated; the `Y'_i` are exactly symmetric, so it equals the factor of the
+/// symmetrised sum formed here without it).
 /// Also returns the scaled fused covariance `Y'⁻¹ = (Σ ω_i Y'_i)⁻¹` (for
 /// [`covariance_intersection_with_gains`]).
 fn fuse_scaled<'a, const N: usize>(
@@ -378,9 +380,10 @@ pub fn feedback<const N: usize>(fused: &CiResult<N>) -> Vec<(SVector<f64, N>, SM
 mod tests {
     use super::*;
 
-    /// Four badly scaled 11-state posteriors around one truth, like `ci`'s locals.
+    /// Four badly scaled 11-state posteriors around one truth, like `ci`'s locals, and a fifth
+    /// that is the first with 100 times its covariance (dominated: its optimal weight is 0).
     fn estimates() -> Vec<(Vect<11>, Mat<11>)> {
-        (0..4)
+        let mut est: Vec<_> = (0..4)
             .map(|i| {
                 let seed = 0.7 + i as f64;
                 let a = Mat::<11>::from_fn(|r, c| ((r * 11 + c) as f64 * seed).sin());
@@ -393,7 +396,9 @@ mod tests {
                     p,
                 )
             })
-            .collect()
+            .collect();
+        est.push((est[0].0, est[0].1 * 100.0));
+        est
     }
 
     #[test]
@@ -403,6 +408,11 @@ mod tests {
         for method in [CiWeighting::OptimalDet, CiWeighting::OptimalTrace] {
             let (w, chol) = weights_scaled(&ys, &s, method, None).unwrap();
             assert!(chol.is_some(), "{method:?}: the search returns its factor");
+            // The search sums every Y'_i, the fresh fusion only those with ω_i > 0.
+            assert_eq!(
+                w[4], 0.0,
+                "{method:?}: the dominated estimate gets no weight"
+            );
             let xs = || est.iter().map(|e| &e.0);
             let reused = fuse_scaled(xs(), &ys, &s, (w.clone(), chol)).unwrap();
             let fresh = fuse_scaled(xs(), &ys, &s, (w, None)).unwrap();

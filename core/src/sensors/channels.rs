@@ -7,7 +7,7 @@ use crate::atmosphere::Atmosphere;
 use crate::dynamics::EntryModel;
 use crate::dynamics::aero::{drag_lift, specific_force_wind};
 use crate::frames::spherical_to_inertial;
-use crate::math::{Real, V3, cross, norm, sub};
+use crate::math::{Dual, Real, V3, cross, lift_dual, norm, seed_duals, sub};
 use nalgebra::SVector;
 
 /// One scalar measurement channel.
@@ -104,6 +104,27 @@ pub fn kinematics<T: Real, A: Atmosphere, const N: usize>(
     kinematics_from_motion(model, x, pos, vel, airspeed)
 }
 
+/// [`kinematics`] on the dual numbers `xd` = [`seed_duals`]`(x)` of an EKF's linearisation, with
+/// the spherical motion differentiated with respect to the six kinematic states only (on which
+/// alone it depends) and lifted to all `N`: each gradient component is the same sum of the same
+/// terms as with `N` variables, so the kinematics are `kinematics(model, xd, t)`'s to the bit
+/// (but for the sign of their zero gradient entries), for about half of the dual arithmetic on
+/// an 11-state filter.
+pub fn kinematics_ad<A: Atmosphere, const N: usize>(
+    model: &EntryModel<A>,
+    x: &SVector<f64, N>,
+    xd: &SVector<Dual<N>, N>,
+    t: f64,
+) -> Kinematics<Dual<N>> {
+    if model.kind.is_cartesian() || N < 6 {
+        return kinematics(model, xd, t);
+    }
+    let d6 = seed_duals(&SVector::<f64, 6>::from_fn(|i, _| x[i]));
+    let (p, v) = spherical_to_inertial(&[d6[0], d6[1], d6[2], d6[3], d6[4], d6[5]], t, model.omega());
+    let lift = |w: &[Dual<6>; 3]| w.map(|d| lift_dual::<6, N>(&d));
+    kinematics_from_motion(model, xd, lift(&p), lift(&v), xd[3])
+}
+
 /// [`kinematics`] from the state's inertial position `pos`, velocity `vel` and `airspeed`,
 /// already computed (e.g. with derivatives with respect to the kinematic states only): adds the
 /// density at `pos` with the state's density scale.
@@ -176,6 +197,29 @@ impl MeasurementModel {
     ) -> T {
         let kin = kinematics(model, x, t);
         self.evaluate_with(model, x, &kin, bank, beacons, channel)
+    }
+
+    /// [`MeasurementModel::evaluate_with`] for one of several channels of the same state: the
+    /// accelerometer triad is computed at the first [`Channel::Accel`] and kept in `triad` for
+    /// the others (the same value [`MeasurementModel::evaluate_with`] computes for each).
+    #[allow(clippy::too_many_arguments)]
+    pub fn evaluate_sharing_triad<T: Real, A: Atmosphere, const N: usize>(
+        &self,
+        model: &EntryModel<A>,
+        x: &SVector<T, N>,
+        kin: &Kinematics<T>,
+        bank: f64,
+        beacons: &[(V3<f64>, V3<f64>)],
+        channel: Channel,
+        triad: &mut Option<V3<T>>,
+    ) -> T {
+        match channel {
+            Channel::Accel(axis) => {
+                let a = triad.get_or_insert_with(|| self.accel_triad(model, x, kin, bank));
+                self.accel_axis(model, x, kin, bank, axis, Some(a))
+            }
+            _ => self.evaluate_with(model, x, kin, bank, beacons, channel),
+        }
     }
 
     /// As [`MeasurementModel::evaluate`] with precomputed kinematics (saves work for many channels).

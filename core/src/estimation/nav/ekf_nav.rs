@@ -12,7 +12,7 @@ use crate::estimation::onboard::OnboardChannel;
 use crate::math::all_finite;
 use crate::math::{V3, dual_gradient, seed_duals};
 use crate::sensors::MeasurementEpoch;
-use crate::sensors::channels::kinematics;
+use crate::sensors::channels::{kinematics, kinematics_ad};
 use nalgebra::{SMatrix, SVector};
 use std::sync::Arc;
 
@@ -246,15 +246,17 @@ impl<const N: usize> EkfNav<N> {
         slots: &[usize],
     ) -> Vec<f64> {
         let kin = kinematics(&self.model, x, epoch.t);
+        let mut triad = None;
         epoch_channels(&self.onboard, epoch, Some(slots))
             .map(|(_, spec, _)| {
-                self.onboard.measurement.evaluate_with(
+                self.onboard.measurement.evaluate_sharing_triad(
                     &self.model,
                     x,
                     &kin,
                     self.bank,
                     beacons,
                     spec.channel,
+                    &mut triad,
                 )
             })
             .collect()
@@ -313,13 +315,21 @@ pub(super) fn linearize_epoch<const N: usize>(
     mask: Option<&[usize]>,
 ) -> (Vec<usize>, Vec<LinearizedMeasurement<N>>) {
     let xd = seed_duals(x);
-    let kin = kinematics(model, &xd, epoch.t);
-    let mut slots = Vec::new();
-    let mut items = Vec::new();
+    let kin = kinematics_ad(model, x, &xd, epoch.t);
+    let mut triad = None;
+    let n = mask.map_or(epoch.values.len(), <[usize]>::len);
+    let mut slots = Vec::with_capacity(n);
+    let mut items = Vec::with_capacity(n);
     for (c, spec, z) in epoch_channels(onboard, epoch, mask) {
-        let d = onboard
-            .measurement
-            .evaluate_with(model, &xd, &kin, bank, beacons, spec.channel);
+        let d = onboard.measurement.evaluate_sharing_triad(
+            model,
+            &xd,
+            &kin,
+            bank,
+            beacons,
+            spec.channel,
+            &mut triad,
+        );
         let sigma = channel_sigma(spec, z);
         slots.push(c);
         items.push((d.re, dual_gradient(&d), z, sigma * sigma));

@@ -76,14 +76,16 @@ pub(crate) fn predict_channels<A: Atmosphere, const L: usize>(
     out: &mut [f64],
 ) {
     let kin = kinematics(model, x, t);
+    let mut triad = None;
     for (o, &c) in out.iter_mut().zip(slots) {
-        *o = onboard.measurement.evaluate_with(
+        *o = onboard.measurement.evaluate_sharing_triad(
             model,
             x,
             &kin,
             bank,
             beacons,
             onboard.channels[c].channel,
+            &mut triad,
         );
     }
 }

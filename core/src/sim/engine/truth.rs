@@ -278,18 +278,20 @@ pub(crate) fn measure_epoch<A: Atmosphere, const N: usize>(
     let t = truth.t;
     let beacon_states = scenario.beacon_states(t);
     let mut values = Vec::with_capacity(scenario.channels.len());
+    let mut triad = None;
     for (c, spec) in scenario.channels.iter().enumerate() {
         if !(schedule.due)(c) {
             values.push(None);
             continue;
         }
-        let reading = scenario.measurement.evaluate_with(
+        let reading = scenario.measurement.evaluate_sharing_triad(
             truth.model,
             truth.x,
             truth.kin,
             truth.bank,
             &beacon_states,
             spec.channel,
+            &mut triad,
         );
         let z: f64 = StandardNormal.sample(rng);
         let available = match spec.channel.beacon() {

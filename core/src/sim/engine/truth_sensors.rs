@@ -189,9 +189,17 @@ impl<R: Rng, S: Deref<Target = Scenario>> TruthSensors<R, S> {
         let sample = sample.unwrap_or_else(|| truth_sample(sc, &self.draw, t, x, bank));
         let kin = kinematics(model, x, t);
         let beacons = sc.beacon_states(t);
+        let mut triad = None;
         let sensed_accel = [0u8, 1, 2].map(|a| {
-            sc.measurement
-                .evaluate_with(model, x, &kin, bank, &beacons, Channel::Accel(a))
+            sc.measurement.evaluate_sharing_triad(
+                model,
+                x,
+                &kin,
+                bank,
+                &beacons,
+                Channel::Accel(a),
+                &mut triad,
+            )
         });
         self.outputs = TruthOutputs {
             sample,

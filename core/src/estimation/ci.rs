@@ -175,12 +175,52 @@ fn fuse_scaled<'a, const N: usize>(
 /// The denominator is the sum of the numerators, so Σ ω_i = 1; every numerator is ≥ 0 by the
 /// triangle inequality (round-off negatives are clamped to 0). For `n = 1`, ω = [1].
 fn fast_weights<const N: usize>(infos: &[Mat<N>]) -> Result<Vec<f64>, EstimationError> {
-    let norm = |m: &Mat<N>| m.row_iter().map(|r| r.abs().sum()).fold(0.0, f64::max);
-    let y: Mat<N> = infos.iter().sum();
-    let ny = norm(&y);
-    let num: Vec<f64> = infos
+    fast_weights_scaled(infos, &Vect::<N>::repeat(1.0))
+}
+
+/// [`fast_weights`] of the informations `S Y'_i S` (`S = diag(s)`), without forming them: each
+/// entry `Y'_i,rc s_r s_c`, their sum and every row's absolute sums are taken in one pass, with
+/// the same operations in the same order as on the formed matrices (`Y = Σ Y_i` from zero, row
+/// sums from zero in column order), so the weights are the same to the bit.
+fn fast_weights_scaled<const N: usize>(
+    ys: &[Mat<N>],
+    s: &Vect<N>,
+) -> Result<Vec<f64>, EstimationError> {
+    let n = ys.len();
+    // Per estimate: the entries of the current column, and the running ‖Y_i‖∞ and ‖Y − Y_i‖∞
+    // with their current rows' sums.
+    let mut entry = vec![0.0; n];
+    let (mut norm_i, mut norm_rest) = (vec![0.0f64; n], vec![0.0f64; n]);
+    let (mut row_i, mut row_rest) = (vec![0.0f64; n], vec![0.0f64; n]);
+    let mut ny = 0.0f64;
+    for r in 0..N {
+        let mut row_y = 0.0;
+        row_i.fill(0.0);
+        row_rest.fill(0.0);
+        for c in 0..N {
+            let mut y = 0.0;
+            for (e, yi) in entry.iter_mut().zip(ys) {
+                *e = yi[(r, c)] * s[r] * s[c];
+                y += *e;
+            }
+            row_y += y.abs();
+            for ((e, ri), rr) in entry.iter().zip(&mut row_i).zip(&mut row_rest) {
+                *ri += e.abs();
+                *rr += (y - e).abs();
+            }
+        }
+        ny = ny.max(row_y);
+        for (nrm, row) in norm_i.iter_mut().zip(&row_i) {
+            *nrm = nrm.max(*row);
+        }
+        for (nrm, row) in norm_rest.iter_mut().zip(&row_rest) {
+            *nrm = nrm.max(*row);
+        }
+    }
+    let num: Vec<f64> = norm_i
         .iter()
-        .map(|yi| (ny - norm(&(y - yi)) + norm(yi)).max(0.0))
+        .zip(&norm_rest)
+        .map(|(ni, nr)| (ny - nr + ni).max(0.0))
         .collect();
     let den: f64 = num.iter().sum();
     if !den.is_finite() || den <= 0.0 {
@@ -286,6 +326,20 @@ pub fn covariance_intersection_from_infos<const N: usize>(
     s: &SVector<f64, N>,
     method: CiWeighting,
 ) -> Result<(CiResult<N>, Vec<SMatrix<f64, N, N>>), EstimationError> {
+    let (fused, yinv) = fuse_infos(xs, ys, s, method)?;
+    let gains = gains_of(ys, &fused.weights, s, &yinv);
+    Ok((fused, gains))
+}
+
+/// [`covariance_intersection_from_infos`] without the gains, with the inverse `Y'⁻¹` of the
+/// weighted scaled information `Y' = Σ ω_i Y'_i` instead (the fused covariance on the scale
+/// `s`): for a caller that needs the fused estimate and its covariance only.
+pub(crate) fn fuse_infos<const N: usize>(
+    xs: &[SVector<f64, N>],
+    ys: &[SMatrix<f64, N, N>],
+    s: &SVector<f64, N>,
+    method: CiWeighting,
+) -> Result<(CiResult<N>, SMatrix<f64, N, N>), EstimationError> {
     if xs.is_empty() || xs.len() != ys.len() {
         return invalid(format!(
             "CI of {} estimates with {} informations",
@@ -300,9 +354,7 @@ pub fn covariance_intersection_from_infos<const N: usize>(
         return Err(nonfinite("CI estimate, information or scale".into()));
     }
     let w = weights_scaled(ys, s, method, None)?;
-    let (fused, yinv) = fuse_scaled(xs.iter(), ys, s, w)?;
-    let gains = gains_of(ys, &fused.weights, s, &yinv);
-    Ok((fused, gains))
+    fuse_scaled(xs.iter(), ys, s, w)
 }
 
 /// `W_i = D⁻¹ (ω_i Y'⁻¹ Y'_i) D` from the scaled fused covariance `Y'⁻¹`.
@@ -335,7 +387,7 @@ fn weights_scaled<const N: usize>(
     });
     match method {
         CiWeighting::FastInfNorm => {
-            fast_weights(&ys.iter().map(|y| congruence(y, s)).collect::<Vec<_>>())
+            fast_weights_scaled(ys, s)
                 .map(|w| (w, None))
         }
         m => optimal_weights(ys, m == CiWeighting::OptimalTrace, start),
@@ -399,6 +451,26 @@ mod tests {
             .collect();
         est.push((est[0].0, est[0].1 * 100.0));
         est
+    }
+
+    /// The one-pass ∞-norm weights of scaled informations are those of the formed matrices
+    /// `S Y'_i S`, bit for bit.
+    #[test]
+    fn fast_weights_without_forming_the_informations_are_the_same() {
+        let est = estimates();
+        let (ys, s) = scaled_infos(&est).unwrap();
+        let formed: Vec<Mat<11>> = ys.iter().map(|y| congruence(y, &s)).collect();
+        let norm = |m: &Mat<11>| m.row_iter().map(|r| r.abs().sum()).fold(0.0, f64::max);
+        let y: Mat<11> = formed.iter().sum();
+        let num: Vec<f64> = formed
+            .iter()
+            .map(|yi| (norm(&y) - norm(&(y - yi)) + norm(yi)).max(0.0))
+            .collect();
+        let den: f64 = num.iter().sum();
+        let expected: Vec<f64> = num.iter().map(|v| v / den).collect();
+        assert_eq!(fast_weights_scaled(&ys, &s).unwrap(), expected);
+        assert_eq!(fast_weights(&formed).unwrap(), expected);
+        assert!(expected.iter().all(|w| *w > 0.0 && *w < 1.0));
     }
 
     #[test]

@@ -3,7 +3,8 @@
 
 use super::ekf_nav::{EkfNav, RELINEARIZATION_TOLERANCE};
 use super::ensemble::EkfEnsemble;
-use super::fusion_exact::{PriorInformation, fuse_exact, local_update};
+use super::fusion_exact::{fuse_exact, local_update};
+use super::prior_information::PriorInformation;
 use super::start::FilterStart;
 use super::{FilterCore, NavFilter, StepInfo};
 use crate::estimation::EstimationError;

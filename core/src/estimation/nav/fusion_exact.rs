@@ -28,13 +28,13 @@
 //! two-estimate case). It is fed back to every local filter, so the next prior is exact too. The
 //! paper's bound-and-divide scheme stays available as `fusion_covariance = "paper"`.
 
+use super::prior_information::{PriorInformation, fuse_information};
 use crate::estimation::EstimationError;
 use crate::estimation::ci::{
     CiWeighting, covariance_intersection_from_infos, covariance_intersection_with_gains,
 };
 use crate::estimation::ekf::LinearizedMeasurement;
-use crate::estimation::spd::{cholesky, inverse_from_cholesky};
-use crate::estimation::symmetrize;
+use crate::estimation::spd::cholesky;
 use crate::math::all_finite;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
@@ -164,60 +164,6 @@ pub(crate) fn local_update<const N: usize>(
     Ok(Some(update))
 }
 
-/// The common prior's information on CI's scale (seed 000 §3.3; [`crate::estimation::ci`]):
-/// with `D = diag(1/√P_kk)`, `(D P D)⁻¹ = C⁻¹` for the prior's correlation matrix `C`, which
-/// has unit diagonal whatever the units. A Kalman update of that prior with channels `c`
-/// (rows `h_c`, noise `r_c`, no consider states) has the posterior information
-/// `P_i⁻¹ = P⁻¹ + Σ_c h_c h_cᵀ / r_c` (Maybeck vol. 1 eq. 5-58: the inverse of the Joseph form
-/// for the optimal gain of those rows), so on the same scale
-/// `Y'_i = (D P_i D)⁻¹ = C⁻¹ + Σ_c (D⁻¹h_c)(D⁻¹h_c)ᵀ / r_c`: one factorisation of the prior per
-/// epoch serves every local and every iterated-update pass, instead of one per local and pass.
-pub(crate) struct PriorInformation<const N: usize> {
-    /// C⁻¹.
-    c_inv: SMatrix<f64, N, N>,
-    /// diag(D) = 1/√P_kk.
-    d: SVector<f64, N>,
-}
-
-impl<const N: usize> PriorInformation<N> {
-    /// Factor the prior covariance `p`.
-    pub fn new(p: &SMatrix<f64, N, N>) -> Result<Self, EstimationError> {
-        let not_pd = || EstimationError::NotPositiveDefinite {
-            what: "the common prior covariance".into(),
-        };
-        let d = p.diagonal().map(|v| 1.0 / v.sqrt());
-        if d.iter().any(|v| !v.is_finite() || *v <= 0.0) {
-            return Err(not_pd());
-        }
-        let c = SMatrix::<f64, N, N>::from_fn(|r, k| p[(r, k)] * (d[r] * d[k]));
-        let chol = cholesky(&symmetrize(&c)).ok_or_else(not_pd)?;
-        let c_inv = inverse_from_cholesky(chol.l_dirty());
-        if !all_finite(c_inv.as_slice()) {
-            return Err(not_pd());
-        }
-        Ok(PriorInformation { c_inv, d })
-    }
-
-    /// `Y'_i` of a local update of this prior (no consider states), exactly symmetric.
-    fn scaled_posterior_information(&self, local: &LocalUpdate<N>) -> SMatrix<f64, N, N> {
-        let mut y = self.c_inv;
-        for ((_, _, r), h) in local.gains.iter().zip(&local.rows) {
-            let hs = h.component_div(&self.d);
-            for c in 0..N {
-                for k in 0..=c {
-                    y[(k, c)] += hs[k] * hs[c] / r;
-                }
-            }
-        }
-        for c in 0..N {
-            for k in 0..c {
-                y[(c, k)] = y[(k, c)];
-            }
-        }
-        y
-    }
-}
-
 /// A fused estimate, its covariance and the fusion weights.
 pub(crate) type Fused<const N: usize> = (SVector<f64, N>, SMatrix<f64, N, N>, Vec<f64>);
 
@@ -229,7 +175,10 @@ pub(super) fn fuse_exact<const N: usize>(
     info: Option<&PriorInformation<N>>,
     locals: &[LocalUpdate<N>],
 ) -> Result<Fused<N>, EstimationError> {
-    fuse_with(p, info, locals).map(|(fused, _)| fused)
+    match info.filter(|_| locals.iter().all(|l| l.n_consider == 0)) {
+        Some(info) => fuse_information(info, locals),
+        None => fuse_with(p, None, locals).map(|(fused, _)| fused),
+    }
 }
 
 /// [`fuse_exact`] with the gains W_i = ω_i P_CI P_i⁻¹ of the fused estimate on the local ones
@@ -390,6 +339,23 @@ mod tests {
             let info = PriorInformation::new(&p).unwrap();
             let ((xi, pi, wi), gi) = fuse_with(&p, Some(&info), &locals).unwrap();
             let ((xc, pc, wc), gc) = fuse_with(&p, None, &locals).unwrap();
+            let d = p.diagonal().map(f64::sqrt);
+            // The fusion of the filters: information form with the gains on the channels
+            // (prior_information.rs), against the covariance form with every W_i formed.
+            let (xe, pe, we) = fuse_exact(&p, Some(&info), &locals).unwrap();
+            assert_eq!(xe, xi, "the same CI estimate");
+            assert_eq!(we, wi, "the same weights");
+            for k in 0..5 {
+                for j in 0..5 {
+                    let tol = 1e-9 * d[k] * d[j];
+                    assert!(
+                        (pe[(k, j)] - pc[(k, j)]).abs() < tol,
+                        "exact P[{k},{j}]: {} vs {}",
+                        pe[(k, j)],
+                        pc[(k, j)]
+                    );
+                }
+            }
             let d = p.diagonal().map(f64::sqrt);
             for k in 0..5 {
                 assert!(

@@ -13,6 +13,7 @@ pub mod fusion;
 mod fusion_exact;
 pub mod gate;
 pub mod kind;
+mod prior_information;
 pub mod start;
 pub mod ukf_ac;
 pub mod ukf_cm;

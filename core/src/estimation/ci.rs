@@ -179,43 +179,47 @@ fn fast_weights<const N: usize>(infos: &[Mat<N>]) -> Result<Vec<f64>, Estimation
 }
 
 /// [`fast_weights`] of the informations `S Y'_i S` (`S = diag(s)`), without forming them: each
-/// entry `Y'_i,rc s_r s_c`, their sum and every row's absolute sums are taken in one pass, with
-/// the same operations in the same order as on the formed matrices (`Y = Σ Y_i` from zero, row
-/// sums from zero in column order), so the weights are the same to the bit.
+/// entry `Y'_i,rc s_r s_c`, their sum and every row's absolute sums are taken column by column,
+/// with the same operations in the same order as on the formed matrices (`Y = Σ Y_i` from zero,
+/// row sums from zero in column order), so the weights are the same to the bit.
 fn fast_weights_scaled<const N: usize>(
     ys: &[Mat<N>],
     s: &Vect<N>,
 ) -> Result<Vec<f64>, EstimationError> {
-    let n = ys.len();
-    // Per estimate: the entries of the current column, and the running ‖Y_i‖∞ and ‖Y − Y_i‖∞
-    // with their current rows' sums.
-    let mut entry = vec![0.0; n];
-    let (mut norm_i, mut norm_rest) = (vec![0.0f64; n], vec![0.0f64; n]);
-    let (mut row_i, mut row_rest) = (vec![0.0f64; n], vec![0.0f64; n]);
-    let mut ny = 0.0f64;
-    for r in 0..N {
-        let mut row_y = 0.0;
-        row_i.fill(0.0);
-        row_rest.fill(0.0);
-        for c in 0..N {
-            let mut y = 0.0;
-            for (e, yi) in entry.iter_mut().zip(ys) {
-                *e = yi[(r, c)] * s[r] * s[c];
-                y += *e;
-            }
-            row_y += y.abs();
-            for ((e, ri), rr) in entry.iter().zip(&mut row_i).zip(&mut row_rest) {
-                *ri += e.abs();
-                *rr += (y - e).abs();
+    // Column c of S Y'_i S (entry r: (Y'_i)_rc s_r s_c, as `congruence` forms it).
+    let column = |yi: &Mat<N>, c: usize| -> [f64; N] {
+        let col = &yi.data.0[c];
+        std::array::from_fn(|r| col[r] * s[r] * s[c])
+    };
+    // Y = Σ_i S Y'_i S from zero, by columns.
+    let mut y = [[0.0f64; N]; N];
+    for yi in ys {
+        for (c, yc) in y.iter_mut().enumerate() {
+            for (acc, v) in yc.iter_mut().zip(column(yi, c)) {
+                *acc += v;
             }
         }
-        ny = ny.max(row_y);
-        for (nrm, row) in norm_i.iter_mut().zip(&row_i) {
-            *nrm = nrm.max(*row);
+    }
+    // ‖·‖∞ from the rows' absolute sums, accumulated column by column (each row in column order).
+    let max_row = |rows: &[f64; N]| rows.iter().fold(0.0, |m: f64, v| m.max(*v));
+    let mut rows = [0.0f64; N];
+    for yc in &y {
+        for (acc, v) in rows.iter_mut().zip(yc) {
+            *acc += v.abs();
         }
-        for (nrm, row) in norm_rest.iter_mut().zip(&row_rest) {
-            *nrm = nrm.max(*row);
+    }
+    let ny = max_row(&rows);
+    let (mut norm_i, mut norm_rest) = (Vec::with_capacity(ys.len()), Vec::with_capacity(ys.len()));
+    for yi in ys {
+        let (mut own, mut rest) = ([0.0f64; N], [0.0f64; N]);
+        for (c, yc) in y.iter().enumerate() {
+            for (((o, r), v), total) in own.iter_mut().zip(&mut rest).zip(column(yi, c)).zip(yc) {
+                *o += v.abs();
+                *r += (total - v).abs();
+            }
         }
+        norm_i.push(max_row(&own));
+        norm_rest.push(max_row(&rest));
     }
     let num: Vec<f64> = norm_i
         .iter()
@@ -386,10 +390,7 @@ fn weights_scaled<const N: usize>(
             && w.iter().sum::<f64>() > 0.0
     });
     match method {
-        CiWeighting::FastInfNorm => {
-            fast_weights_scaled(ys, s)
-                .map(|w| (w, None))
-        }
+        CiWeighting::FastInfNorm => fast_weights_scaled(ys, s).map(|w| (w, None)),
         m => optimal_weights(ys, m == CiWeighting::OptimalTrace, start),
     }
 }

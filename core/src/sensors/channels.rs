@@ -120,7 +120,11 @@ pub fn kinematics_ad<A: Atmosphere, const N: usize>(
         return kinematics(model, xd, t);
     }
     let d6 = seed_duals(&SVector::<f64, 6>::from_fn(|i, _| x[i]));
-    let (p, v) = spherical_to_inertial(&[d6[0], d6[1], d6[2], d6[3], d6[4], d6[5]], t, model.omega());
+    let (p, v) = spherical_to_inertial(
+        &[d6[0], d6[1], d6[2], d6[3], d6[4], d6[5]],
+        t,
+        model.omega(),
+    );
     let lift = |w: &[Dual<6>; 3]| w.map(|d| lift_dual::<6, N>(&d));
     kinematics_from_motion(model, xd, lift(&p), lift(&v), xd[3])
 }

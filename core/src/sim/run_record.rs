@@ -112,6 +112,10 @@ pub fn filter_run(
     kind: FilterKind,
 ) -> RunRecord {
     let mut rec = RunRecord::default();
+    // One record per epoch: reserved up front rather than grown (and copied) as they arrive.
+    let n_epochs = recorded.truth.epochs.len();
+    rec.epochs.reserve_exact(n_epochs);
+    rec.times.reserve_exact(n_epochs);
     let mut nav = match Navigator::new_checked(Arc::clone(onboard), kind, &recorded.x0) {
         Ok(nav) => nav,
         Err(e) => {

@@ -105,17 +105,29 @@ impl<const N: usize> EkfNav<N> {
         self.t = self.t.max(t_to);
     }
 
+    /// The slots and items of `items` on this filter's channels.
+    fn own_items(
+        &self,
+        items: &[(usize, LinearizedMeasurement<N>)],
+    ) -> (Vec<usize>, Vec<LinearizedMeasurement<N>>) {
+        let mut slots = Vec::with_capacity(items.len());
+        let mut mine = Vec::with_capacity(items.len());
+        for (c, it) in items {
+            if self.channels.as_ref().is_none_or(|m| m.contains(c)) {
+                slots.push(*c);
+                mine.push(*it);
+            }
+        }
+        (slots, mine)
+    }
+
     /// Measurement update with precomputed linearised items (channel slot, item); only the slots
     /// this filter uses are applied.
     pub fn update_with_items(
         &mut self,
         items: &[(usize, LinearizedMeasurement<N>)],
     ) -> Result<StepInfo, EstimationError> {
-        let (slots, mine): (Vec<usize>, Vec<LinearizedMeasurement<N>>) = items
-            .iter()
-            .filter(|(c, _)| self.channels.as_ref().is_none_or(|m| m.contains(c)))
-            .map(|(c, it)| (*c, *it))
-            .unzip();
+        let (slots, mine) = self.own_items(items);
         if mine.is_empty() {
             return Ok(StepInfo::default());
         }
@@ -151,11 +163,7 @@ impl<const N: usize> EkfNav<N> {
         if iterations <= 1 {
             return self.update_with_items(items);
         }
-        let (slots, first): (Vec<usize>, Vec<LinearizedMeasurement<N>>) = items
-            .iter()
-            .filter(|(c, _)| self.channels.as_ref().is_none_or(|m| m.contains(c)))
-            .map(|(c, it)| (*c, *it))
-            .unzip();
+        let (slots, first) = self.own_items(items);
         if first.is_empty() {
             return Ok(StepInfo::default());
         }

@@ -75,7 +75,10 @@ impl<const N: usize> PriorInformation<N> {
     }
 
     /// `Y'_i` of a local update of this prior (no consider states), exactly symmetric.
-    pub(super) fn scaled_posterior_information(&self, local: &LocalUpdate<N>) -> SMatrix<f64, N, N> {
+    pub(super) fn scaled_posterior_information(
+        &self,
+        local: &LocalUpdate<N>,
+    ) -> SMatrix<f64, N, N> {
         let mut y = self.c_inv;
         for ((_, _, r), h) in local.gains.iter().zip(&local.rows) {
             let hs = h.component_div(&self.d);

@@ -201,10 +201,7 @@ fn fuse_with<const N: usize>(
 ) -> Result<(Fused<N>, Vec<SMatrix<f64, N, N>>), EstimationError> {
     let (ci, w) = match info.filter(|_| locals.iter().all(|l| l.n_consider == 0)) {
         Some(info) => {
-            let ys: Vec<_> = locals
-                .iter()
-                .map(|l| info.scaled_posterior_information(l))
-                .collect();
+            let ys = info.scaled_posterior_informations(locals);
             let xs: Vec<_> = locals.iter().map(|l| l.x).collect();
             covariance_intersection_from_infos(&xs, &ys, &info.d, CiWeighting::FastInfNorm)?
         }

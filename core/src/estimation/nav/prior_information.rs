@@ -74,26 +74,53 @@ impl<const N: usize> PriorInformation<N> {
         Ok(PriorInformation { c, c_inv, d })
     }
 
-    /// `Y'_i` of a local update of this prior (no consider states), exactly symmetric.
-    pub(super) fn scaled_posterior_information(
+    /// `Y'_i` of every local update of this prior (none with consider states), exactly
+    /// symmetric. The channels every
+    /// local starts with (the IMU's, first in every local's slot order) are added to `C⁻¹` once
+    /// and their sum shared: each entry is still the same sum in the same order, so every `Y'_i`
+    /// is the same to the bit.
+    pub(super) fn scaled_posterior_informations(
         &self,
-        local: &LocalUpdate<N>,
-    ) -> SMatrix<f64, N, N> {
-        let mut y = self.c_inv;
-        for ((_, _, r), h) in local.gains.iter().zip(&local.rows) {
-            let hs = h.component_div(&self.d);
-            for c in 0..N {
-                for k in 0..=c {
-                    y[(k, c)] += hs[k] * hs[c] / r;
+        locals: &[LocalUpdate<N>],
+    ) -> Vec<SMatrix<f64, N, N>> {
+        let slots = |l: &LocalUpdate<N>| l.gains.iter().map(|g| g.0).collect::<Vec<_>>();
+        let common = match locals.split_first() {
+            Some((first, rest)) => {
+                let first = slots(first);
+                rest.iter().fold(first.len(), |n, l| {
+                    n.min(first.iter().zip(slots(l)).take_while(|(a, b)| **a == *b).count())
+                })
+            }
+            None => 0,
+        };
+        // Adds ĥ_c ĥ_cᵀ / r_c of `local`'s channels `from..to` to the upper triangle of `y`.
+        let add = |y: &mut SMatrix<f64, N, N>, local: &LocalUpdate<N>, from: usize, to: usize| {
+            for ((_, _, r), h) in local.gains[from..to].iter().zip(&local.rows[from..to]) {
+                let hs = h.component_div(&self.d);
+                for c in 0..N {
+                    for k in 0..=c {
+                        y[(k, c)] += hs[k] * hs[c] / r;
+                    }
                 }
             }
+        };
+        let mut shared = self.c_inv;
+        if let Some(first) = locals.first() {
+            add(&mut shared, first, 0, common);
         }
-        for c in 0..N {
-            for k in 0..c {
-                y[(c, k)] = y[(k, c)];
-            }
-        }
-        y
+        locals
+            .iter()
+            .map(|l| {
+                let mut y = shared;
+                add(&mut y, l, common, l.gains.len());
+                for c in 0..N {
+                    for k in 0..c {
+                        y[(c, k)] = y[(k, c)];
+                    }
+                }
+                y
+            })
+            .collect()
     }
 }
 
@@ -103,10 +130,7 @@ pub(super) fn fuse_information<const N: usize>(
     info: &PriorInformation<N>,
     locals: &[LocalUpdate<N>],
 ) -> Result<Fused<N>, EstimationError> {
-    let ys: Vec<_> = locals
-        .iter()
-        .map(|l| info.scaled_posterior_information(l))
-        .collect();
+    let ys = info.scaled_posterior_informations(locals);
     let xs: Vec<_> = locals.iter().map(|l| l.x).collect();
     let (ci, yinv) = fuse_infos(&xs, &ys, &info.d, CiWeighting::FastInfNorm)?;
     // Per channel: slot, ĥ_c, r_c and α_c = Σ of the weights of the locals that use it.

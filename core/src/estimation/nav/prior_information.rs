@@ -88,7 +88,13 @@ impl<const N: usize> PriorInformation<N> {
             Some((first, rest)) => {
                 let first = slots(first);
                 rest.iter().fold(first.len(), |n, l| {
-                    n.min(first.iter().zip(slots(l)).take_while(|(a, b)| **a == *b).count())
+                    n.min(
+                        first
+                            .iter()
+                            .zip(slots(l))
+                            .take_while(|(a, b)| **a == *b)
+                            .count(),
+                    )
                 })
             }
             None => 0,

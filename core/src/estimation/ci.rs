@@ -295,7 +295,7 @@ pub fn covariance_intersection<const N: usize>(
 /// `start` (e.g. the previous epoch's weights, which change little between epochs) instead of
 /// uniform weights. `start` must be as many finite non-negative weights as estimates with a
 /// positive sum (it is renormalised); otherwise, or for [`CiWeighting::FastInfNorm`], it is
-/// ignored. The optimum is the same to the solver's tolerance (weights to ~1e-9), reached in
+/// ignored. The optimum is the same to the solver's tolerance (weights to ~1e-7), reached in
 /// fewer Newton iterations.
 pub fn covariance_intersection_from<const N: usize>(
     estimates: &[(SVector<f64, N>, SMatrix<f64, N, N>)],

@@ -209,8 +209,8 @@ fn newton_direction(free: &[usize], g: &[f64], h: &DMatrix<f64>) -> Option<Vec<f
 /// point), which ends the search when its own decrement is ≤ [`CHORD_FINAL`] and its full step
 /// stays in the simplex (otherwise that point gets exact derivatives). Weights are accurate to
 /// ~1e-7 (a test compares them with the pure Newton search's, ~1e-9), far below the 1e-6 the
-/// other tests demand. At the iteration cap the current (feasible) iterate is returned: CI is consistent
-/// for any admissible ω, so this is safe.
+/// other tests demand. At the iteration cap the current (feasible) iterate is returned: CI is
+/// consistent for any admissible ω, so this is safe.
 ///
 /// Also returns the Cholesky factor of `Σ ω_i Y_i` at the returned weights (`None` for one
 /// estimate), which the fusion reuses.
@@ -344,8 +344,7 @@ mod tests {
     }
 
     /// Warm-started searches (from a perturbed optimum, as the filter starts each epoch from the
-    /// last one) with chord steps reach the optimum of the search without them to 1e-7, and end
-    /// with fewer full derivative evaluations.
+    /// last one) with chord steps reach the optimum of the search without them to 1e-7.
     #[test]
     fn chord_steps_reach_the_newton_optimum() {
         // Four estimates, each much the most informative along its own axis: every weight is

@@ -6,8 +6,9 @@
 //! With `D = diag(1/√P_kk)` of the prior `P`, `C = D P D`, the scaled rows `ĥ_c = D⁻¹ h_c` and
 //! the scaled local informations `Y'_i = C⁻¹ + Σ_{c ∈ i} ĥ_c ĥ_cᵀ / r_c` ([`PriorInformation`]),
 //! the fast CI weights ω_i give `Y' = Σ ω_i Y'_i` and `P_CI = D Y'⁻¹ D`. The local gains are the
-//! optimal ones, `K_i = P_i H_iᵀ R_i⁻¹` (Maybeck vol. 1 eq. 5-62 with 5-58), so the fused
-//! estimate's gain on local `i` maps each of its gain columns to
+//! optimal ones, so `K_i = P⁻H_iᵀ(H_iP⁻H_iᵀ + R_i)⁻¹ = P_i H_iᵀ R_i⁻¹` (multiply
+//! `P_i⁻¹ = P⁻⁻¹ + H_iᵀR_i⁻¹H_i` by the first form), and the fused estimate's gain on local `i`
+//! maps each of its gain columns to
 //!
 //! ```text
 //! W_i k_ic = ω_i P_CI P_i⁻¹ P_i h_c / r_c = ω_i P_CI h_c / r_c,
@@ -75,10 +76,9 @@ impl<const N: usize> PriorInformation<N> {
     }
 
     /// `Y'_i` of every local update of this prior (none with consider states), exactly
-    /// symmetric. The channels every
-    /// local starts with (the IMU's, first in every local's slot order) are added to `C⁻¹` once
-    /// and their sum shared: each entry is still the same sum in the same order, so every `Y'_i`
-    /// is the same to the bit.
+    /// symmetric. The channels every local starts with (the IMU's, first in every local's slot
+    /// order) are added to `C⁻¹` once and their sum shared: each entry is still the same sum in
+    /// the same order, so every `Y'_i` is the same to the bit.
     pub(super) fn scaled_posterior_informations(
         &self,
         locals: &[LocalUpdate<N>],

@@ -205,7 +205,7 @@ impl MeasurementModel {
 
     /// [`MeasurementModel::evaluate_with`] for one of several channels of the same state: the
     /// accelerometer triad is computed at the first [`Channel::Accel`] and kept in `triad` for
-    /// the others (the same value [`MeasurementModel::evaluate_with`] computes for each).
+    /// the others ([`MeasurementModel::evaluate_with`] is this with a triad of its own).
     #[allow(clippy::too_many_arguments)]
     pub fn evaluate_sharing_triad<T: Real, A: Atmosphere, const N: usize>(
         &self,
@@ -222,22 +222,6 @@ impl MeasurementModel {
                 let a = triad.get_or_insert_with(|| self.accel_triad(model, x, kin, bank));
                 self.accel_axis(model, x, kin, bank, axis, Some(a))
             }
-            _ => self.evaluate_with(model, x, kin, bank, beacons, channel),
-        }
-    }
-
-    /// As [`MeasurementModel::evaluate`] with precomputed kinematics (saves work for many channels).
-    pub fn evaluate_with<T: Real, A: Atmosphere, const N: usize>(
-        &self,
-        model: &EntryModel<A>,
-        x: &SVector<T, N>,
-        kin: &Kinematics<T>,
-        bank: f64,
-        beacons: &[(V3<f64>, V3<f64>)],
-        channel: Channel,
-    ) -> T {
-        match channel {
-            Channel::Accel(axis) => self.accel_axis(model, x, kin, bank, axis, None),
             Channel::DynamicPressure => dynamic_pressure(kin.density, kin.airspeed),
             Channel::Heating => sutton_graves_heating(
                 kin.density,
@@ -254,5 +238,18 @@ impl MeasurementModel {
                 None => T::from(f64::NAN),
             },
         }
+    }
+
+    /// As [`MeasurementModel::evaluate`] with precomputed kinematics (saves work for many channels).
+    pub fn evaluate_with<T: Real, A: Atmosphere, const N: usize>(
+        &self,
+        model: &EntryModel<A>,
+        x: &SVector<T, N>,
+        kin: &Kinematics<T>,
+        bank: f64,
+        beacons: &[(V3<f64>, V3<f64>)],
+        channel: Channel,
+    ) -> T {
+        self.evaluate_sharing_triad(model, x, kin, bank, beacons, channel, &mut None)
     }
 }

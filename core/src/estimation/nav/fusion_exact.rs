@@ -231,12 +231,18 @@ fn fuse_with<const N: usize>(
         fused += gc * gc.transpose() * *r;
     }
     let fused = (fused + fused.transpose()) * 0.5;
-    if cholesky(&fused).is_none() || !all_finite(ci.x.as_slice()) {
+    Ok((checked((ci.x, fused, ci.weights))?, w))
+}
+
+/// A fused estimate, refused when its covariance is not positive definite or its estimate not
+/// finite.
+pub(super) fn checked<const N: usize>(fused: Fused<N>) -> Result<Fused<N>, EstimationError> {
+    if cholesky(&fused.1).is_none() || !all_finite(fused.0.as_slice()) {
         return Err(EstimationError::NotPositiveDefinite {
             what: "the fused covariance".into(),
         });
     }
-    Ok(((ci.x, fused, ci.weights), w))
+    Ok(fused)
 }
 
 #[cfg(test)]
@@ -337,6 +343,11 @@ mod tests {
             let ((xi, pi, wi), gi) = fuse_with(&p, Some(&info), &locals).unwrap();
             let ((xc, pc, wc), gc) = fuse_with(&p, None, &locals).unwrap();
             let d = p.diagonal().map(f64::sqrt);
+            assert_eq!(
+                info.scaled_posterior_informations(&locals[..1])[0],
+                info.scaled_posterior_informations(&locals)[0],
+                "sharing channel 0's terms changes no Y'_i"
+            );
             // The fusion of the filters: information form with the gains on the channels
             // (prior_information.rs), against the covariance form with every W_i formed.
             let (xe, pe, we) = fuse_exact(&p, Some(&info), &locals).unwrap();
@@ -353,7 +364,6 @@ mod tests {
                     );
                 }
             }
-            let d = p.diagonal().map(f64::sqrt);
             for k in 0..5 {
                 assert!(
                     (xi[k] - xc[k]).abs() < 1e-9 * d[k],

@@ -31,7 +31,7 @@
 //! `W_i` (an N × N product each) and `B` from every local's gain columns. The two forms are equal
 //! in exact arithmetic; a test checks them against each other to round-off.
 
-use super::fusion_exact::{Fused, LocalUpdate};
+use super::fusion_exact::{Fused, LocalUpdate, checked};
 use crate::estimation::EstimationError;
 use crate::estimation::ci::{CiWeighting, fuse_infos};
 use crate::estimation::spd::{cholesky, inverse_from_cholesky};
@@ -160,10 +160,5 @@ pub(super) fn fuse_information<const N: usize>(
     let fused = symmetrize(&SMatrix::<f64, N, N>::from_fn(|r, k| {
         scaled[(r, k)] / (info.d[r] * info.d[k])
     }));
-    if cholesky(&fused).is_none() || !all_finite(ci.x.as_slice()) {
-        return Err(EstimationError::NotPositiveDefinite {
-            what: "the fused covariance".into(),
-        });
-    }
-    Ok((ci.x, fused, ci.weights))
+    checked((ci.x, fused, ci.weights))
 }

@@ -80,20 +80,41 @@ pub fn lower_inverse<const N: usize>(l: &SMatrix<f64, N, N>) -> [[f64; N]; N] {
 
 /// `A⁻¹` from the Cholesky factor `L` of `A` (only its lower triangle is read). Non-finite when
 /// `L` has a zero diagonal; callers check the result.
+///
+/// The module doc's sums, each in the same order (`k` ascending), so the result equals the
+/// running sums bit for bit for a finite `L` (a test checks it); but both run as `y += a·x` over
+/// whole rows of `T`, which the compiler unrolls and vectorises, instead of one dot product per
+/// entry. The rows' zeros (`T_kj = 0` for `j > k`) only add `±0` to sums that are still `+0`, and
+/// every entry of `Tᵀ T` is summed from its first non-zero term, so no mirroring is needed.
+#[allow(clippy::needless_range_loop)] // rows of several arrays at one index
 pub fn inverse_from_cholesky<const N: usize>(l: &SMatrix<f64, N, N>) -> SMatrix<f64, N, N> {
-    let t = lower_inverse(l);
-    // A⁻¹ = Tᵀ T: entry (i, j), i ≤ j, is the dot product of columns i and j of T from row j on.
-    let mut inv = SMatrix::<f64, N, N>::zeros();
-    let out = &mut inv.data.0;
-    for j in 0..N {
-        for i in 0..=j {
-            let mut s = 0.0;
-            #[allow(clippy::needless_range_loop)] // two columns of `t` at one index
-            for k in j..N {
-                s += t[i][k] * t[j][k];
+    // lc[k][i] = L_ik.
+    let lc = &l.data.0;
+    // Rows of T = L⁻¹: t[i][j] = T_ij, zero for j > i. Row i: Σ_{k=j}^{i−1} L_ik T_kj for every
+    // j < i at once, k ascending.
+    let mut t = [[0.0f64; N]; N];
+    for i in 0..N {
+        let mut acc = [0.0f64; N];
+        for k in 0..i {
+            let lik = lc[k][i];
+            for (a, v) in acc.iter_mut().zip(&t[k]) {
+                *a += lik * v;
             }
-            out[j][i] = s;
-            out[i][j] = s;
+        }
+        let d = lc[i][i];
+        for j in 0..i {
+            t[i][j] = -acc[j] / d;
+        }
+        t[i][i] = 1.0 / d;
+    }
+    // A⁻¹ = Tᵀ T: column j's entry i is Σ_{k=max(i,j)}^{N−1} T_ki T_kj, k ascending, all i at once.
+    let mut inv = SMatrix::<f64, N, N>::zeros();
+    for (j, col) in inv.data.0.iter_mut().enumerate() {
+        for k in j..N {
+            let v = t[k][j];
+            for (c, tki) in col.iter_mut().zip(&t[k]) {
+                *c += tki * v;
+            }
         }
     }
     inv

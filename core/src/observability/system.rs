@@ -4,7 +4,8 @@
 //! **What system.** A scenario is analysed through its *filter* model: `ẋ = f(x)` is
 //! [`EntryModel::rhs`] of `Scenario::filter_model` (n = 6 kinematic states plus the augmented
 //! constants, whose derivative is zero) and `y = h(x)` stacks the scenario's measurement channels
-//! ([`MeasurementModel::evaluate_with`]). The bank angle is the truth's (0 in every paper scenario).
+//! ([`MeasurementModel::evaluate_sharing_triad`], one accelerometer triad for the three axes).
+//! The bank angle is the truth's (0 in every paper scenario).
 //!
 //! **Time is frozen inside the derivatives.** Seed 002 (eq. 8) and seed 000 (eq. 10) analyse the
 //! autonomous pair (f, h). At each analysis time t the measurement function is taken as
@@ -73,10 +74,17 @@ impl<const N: usize> ObservedSystem<N> for ScenarioSystem<'_> {
 
     fn h<T: Real>(&self, x: &SVector<T, N>, out: &mut [T]) {
         let kin = kinematics(self.model, x, self.t);
+        let mut triad = None;
         for (o, &c) in out.iter_mut().zip(&self.channels) {
-            *o = self
-                .measurement
-                .evaluate_with(self.model, x, &kin, self.bank, &self.beacons, c);
+            *o = self.measurement.evaluate_sharing_triad(
+                self.model,
+                x,
+                &kin,
+                self.bank,
+                &self.beacons,
+                c,
+                &mut triad,
+            );
         }
     }
 }

@@ -282,24 +282,22 @@ pub(super) fn information<const N: usize>(
     } else {
         Cow::Borrowed(&[][..])
     };
-    let triad = any(|ch| matches!(ch, Channel::Accel(_)))
-        .then(|| scenario.measurement.accel_triad(model, &xd, &kin, bank));
+    let mut triad = None;
     let mut info = SMatrix::<f64, N, N>::zeros();
     for (c, value) in epoch.values.iter().enumerate() {
         if value.is_none() {
             continue;
         }
         let spec = &scenario.channels[c];
-        let d = match spec.channel {
-            Channel::Accel(axis) => {
-                scenario
-                    .measurement
-                    .accel_axis(model, &xd, &kin, bank, axis, triad.as_ref())
-            }
-            ch => scenario
-                .measurement
-                .evaluate_with(model, &xd, &kin, bank, &beacons, ch),
-        };
+        let d = scenario.measurement.evaluate_sharing_triad(
+            model,
+            &xd,
+            &kin,
+            bank,
+            &beacons,
+            spec.channel,
+            &mut triad,
+        );
         let g = dual_gradient(&d);
         let sigma = spec.noise.sigma(d.re);
         if !(sigma.is_finite() && sigma > 0.0) || g.iter().any(|v| !v.is_finite()) {

@@ -120,10 +120,17 @@ impl<A: Atmosphere> LossContext<'_, A> {
             density: Dual64::new(rho, 1.0),
         };
         let (mut l, mut dl) = (0.0, 0.0);
+        let mut triad = None;
         for ((&ch, &z), &ri) in term.channels.iter().zip(&term.z).zip(&term.r_inv) {
-            let h =
-                self.measurement
-                    .evaluate_with(self.model, &xd, &kin, self.bank, &term.beacons, ch);
+            let h = self.measurement.evaluate_sharing_triad(
+                self.model,
+                &xd,
+                &kin,
+                self.bank,
+                &term.beacons,
+                ch,
+                &mut triad,
+            );
             let nu = z - h.re;
             l += nu * nu * ri;
             dl += -2.0 * nu * ri * h.eps;

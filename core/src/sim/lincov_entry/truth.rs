@@ -124,17 +124,19 @@ fn readings(scenario: &Scenario, draw: &TruthDraw, s: &TruthSample, slots: &[usi
     let x = SVector::<f64, 6>::from(s.state);
     let kin = kinematics(&draw.model, &x, s.t);
     let beacons = scenario.beacon_states(s.t);
+    let mut triad = None;
     slots
         .iter()
         .map(|&c| {
             let spec = &scenario.channels[c];
-            scenario.measurement.evaluate_with(
+            scenario.measurement.evaluate_sharing_triad(
                 &draw.model,
                 &x,
                 &kin,
                 scenario.truth_bank,
                 &beacons,
                 spec.channel,
+                &mut triad,
             ) + spec.bias
         })
         .collect()

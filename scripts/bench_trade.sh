@@ -8,7 +8,7 @@
 # must agree bit for bit (a failure exits 1), and whether the two builds agree is reported.
 #
 #   scripts/bench_trade.sh                         # 3 timed runs of this checkout
-#   scripts/bench_trade.sh --baseline ace7b41      # interleaved with the code issue 25 was filed against
+#   scripts/bench_trade.sh --baseline ace7b41      # interleaved with the code before issue 25's first commit
 #   scripts/bench_trade.sh --runs 1000 --repeat 5 --threads 2
 #
 # A benchmark, not a test: nothing here asserts a time. docs/results.md (*Monte Carlo speed*)
@@ -45,6 +45,13 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$root"
 out="$root/target/bench-trade"
 mkdir -p "$out"
+tree=""
+# On any exit, also a failed build or run: no timing file and no registered worktree left behind.
+cleanup() {
+    rm -f "$out/times.$$"
+    if [ -n "$tree" ]; then git worktree remove --force "$tree" > /dev/null 2>&1 || true; fi
+}
+trap cleanup EXIT
 
 echo "bench_trade: building this checkout (release, portable)"
 cargo build --release --quiet --bin entrynav
@@ -63,6 +70,7 @@ if [ -n "$baseline" ]; then
     (cd "$tree" && CARGO_TARGET_DIR="$out/baseline-target" cargo build --release --quiet --bin entrynav)
     cp "$out/baseline-target/release/entrynav" "$out/entrynav-base"
     git worktree remove --force "$tree"
+    tree=""
     builds=(base head)
 fi
 
@@ -71,7 +79,8 @@ args=(trade --scenario four-beacon-fusion --filters ekf,ci,dcifaif --runs "$runs
 echo "bench_trade: ${args[*]}, $repeat time(s) per build, interleaved (load average: $(cut -d' ' -f1-3 /proc/loadavg))"
 for i in $(seq 1 "$repeat"); do
     for b in "${builds[@]}"; do
-        t=$({ time "$out/entrynav-$b" "${args[@]}" --json "$out/$b-$i.json" > /dev/null; } 2>&1)
+        # `time` reports on the captured stream; the trade's own errors go to the terminal (fd 4).
+        t=$({ time "$out/entrynav-$b" "${args[@]}" --json "$out/$b-$i.json" > /dev/null 2>&4; } 4>&2 2>&1)
         echo "$b $i $t" >> "$out/times.$$"
         printf '  %-4s run %d: %6.2f s wall, %6.2f s user\n' "$b" "$i" ${t}
     done
@@ -93,22 +102,21 @@ def figures(path):
     doc.pop("timing", None)
     return doc
 
-ok = True
+ok, mean_wall = True, {}
 for b in builds:
     walls = [w for w, _ in times[b]]
     users = [u for _, u in times[b]]
-    print(f"{b}: wall mean {sum(walls)/len(walls):.2f} s (min {min(walls):.2f}, max {max(walls):.2f}), "
+    mean_wall[b] = sum(walls) / len(walls)
+    print(f"{b}: wall mean {mean_wall[b]:.2f} s (min {min(walls):.2f}, max {max(walls):.2f}), "
           f"user mean {sum(users)/len(users):.2f} s")
     first = figures(f"{out}/{b}-1.json")
     same = all(figures(f"{out}/{b}-{i}.json") == first for i in range(2, repeat + 1))
     print(f"  repeats of {b} give the same figures: {'yes' if same else 'NO'}")
     ok &= same
 if len(builds) == 2:
-    mean = lambda b: sum(w for w, _ in times[b]) / len(times[b])
-    print(f"speed-up of this checkout over the baseline (mean wall): {mean('base') / mean('head'):.2f}x")
+    print(f"speed-up of this checkout over the baseline (mean wall): {mean_wall['base'] / mean_wall['head']:.2f}x")
     agree = figures(f"{out}/base-1.json") == figures(f"{out}/head-1.json")
     print(f"baseline and this checkout give the same figures: {'yes' if agree else 'no (see docs/results.md for documented round-off changes)'}")
 sys.exit(0 if ok else 1)
 EOF
-rm -f "$out/times.$$"
 exit $status

@@ -5,11 +5,16 @@
 //! * **workspace crates depend downward only** — core ← loader ← optimizer, fmu ← cli, and the
 //!   shipped FMU library carries no FMI host (`libloading`, `zip`);
 //! * **no `include_str!`/`include_bytes!` reaches outside its crate** (`cargo package` would
-//!   break).
+//!   break);
+//! * **no file-level import cycle** in any workspace crate (a file that imports one that imports
+//!   it back, directly or through others; `import_graph/` reads the `use` paths), and no
+//!   `use super::*` outside test code, which would hide such edges from a reader.
 //!
 //! A failure names the file, the line and the rule.
 
 use std::path::{Path, PathBuf};
+
+mod import_graph;
 
 /// Layer rank of each top-level module of `core/src`, as in ARCHITECTURE.md's table: numerics
 /// (0, may import each other), physics in list order (atmosphere, dynamics, beacons, sensors),
@@ -313,4 +318,92 @@ fn guidance_never_reaches_the_truth() {
             }
         }
     }
+}
+
+/// The `src` folder of every workspace crate: (crate folder, its `src`).
+fn crate_sources() -> Vec<(String, PathBuf)> {
+    let ws = workspace();
+    let mut out: Vec<(String, PathBuf)> = std::fs::read_dir(&ws)
+        .expect("workspace")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.join("Cargo.toml").exists() && p.join("src").is_dir())
+        .map(|p| {
+            let name = p.file_name().unwrap().to_string_lossy().to_string();
+            (name, p.join("src"))
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+#[test]
+fn no_crate_has_a_file_level_import_cycle() {
+    let crates = crate_sources();
+    assert!(crates.len() >= 7, "found only {crates:?}");
+    let mut bad = Vec::new();
+    for (name, src) in &crates {
+        for cycle in import_graph::cycles(&import_graph::graph(src)) {
+            bad.push(format!("{name}: a cycle of imports:\n    {}", cycle.join("\n    ")));
+        }
+    }
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
+
+#[test]
+fn the_cycle_check_sees_a_planted_cycle() {
+    // A two-file cycle through `crate::` and `super::`, and a three-file one through a parent
+    // that re-exports a child's item while another child takes the parent's own item; a
+    // downward chain beside them is no cycle.
+    let dir = std::env::temp_dir().join(format!("entrynav-cycles-{}", std::process::id()));
+    let files: &[(&str, &str)] = &[
+        ("lib.rs", "mod a;\nmod b;\nmod sim;\nmod down;\nmod leaf;\n"),
+        ("a.rs", "use crate::b::Thing; // crate::leaf in a comment is no import\n"),
+        ("b.rs", "pub struct Thing;\nfn f() { super::a::g(); }\n"),
+        ("sim/mod.rs", "mod run;\nmod bound;\npub use run::run;\npub struct TradeError;\n"),
+        ("sim/run.rs", "use super::bound::sum;\npub fn run() {}\n"),
+        ("sim/bound.rs", "use super::TradeError;\npub fn sum() {}\n"),
+        ("down.rs", "use crate::leaf::X;\nconst S: &str = \"crate::a::\";\n"),
+        ("leaf.rs", "pub struct X;\n#[cfg(test)]\nmod tests {\n    use crate::down::*;\n}\n"),
+    ];
+    for (path, text) in files {
+        let p = dir.join(path);
+        std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+        std::fs::write(p, text).unwrap();
+    }
+    let cycles = import_graph::cycles(&import_graph::graph(&dir));
+    std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(cycles.len(), 2, "{cycles:?}");
+    let all = cycles.concat().join("\n");
+    for edge in ["a.rs:1 -> ", "b.rs:2 -> ", "sim/mod.rs:3 -> ", "run.rs:1 -> ", "bound.rs:1 -> "] {
+        assert!(all.contains(edge), "{edge} missing from {all}");
+    }
+    assert!(!all.contains("down.rs") && !all.contains("leaf.rs"), "{all}");
+}
+
+#[test]
+fn no_glob_import_of_a_parent_outside_tests() {
+    let mut bad = Vec::new();
+    for (name, src) in crate_sources() {
+        let mut files = Vec::new();
+        rust_files(&src, &mut files);
+        for file in files {
+            if file.file_name().is_some_and(|n| n == "tests.rs")
+                || file.components().any(|c| c.as_os_str() == "tests")
+            {
+                continue;
+            }
+            let text = std::fs::read_to_string(&file).expect("readable source");
+            let code = import_graph::without_test_modules(&import_graph::code_only(&text));
+            for (n, line) in code.lines().enumerate() {
+                if line.contains("use super::*") {
+                    bad.push(format!(
+                        "{name}/{}:{}: `use super::*` hides what the file imports",
+                        file.strip_prefix(&src).unwrap().display(),
+                        n + 1
+                    ));
+                }
+            }
+        }
+    }
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
 }

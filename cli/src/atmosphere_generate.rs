@@ -93,7 +93,7 @@ pub fn run(args: &GenerateArgs) -> Result<()> {
     }
     let profiles = generate_synthetic_set(&mars_mean_profile(), &spec)?;
     let text = synthetic_set_gram_text(&profiles, &spec, Planet::MARS.radius);
-    crate::atomic_file::write(&args.out, text)?;
+    entrynav_studies::output::atomic_file::write(&args.out, text)?;
     println!(
         "wrote {}: {} profiles, 0-150 km every 1 km, perturbation x {} (times each case's factor), seed {}",
         args.out.display(),

@@ -1,16 +1,16 @@
 //! `entrynav trade compare A.json B.json`: per filter present in both trade summaries, the
 //! difference B − A of every RMSE (time-averaged and final, per state, `pos_m`, `vel_mps`), of
 //! the ANEES and of the bad-run fraction, with a 95 % Monte Carlo interval and whether it excludes
-//! zero. The standard errors and their assumptions are in [`crate::compare_stats`]; the table and
+//! zero. The standard errors and their assumptions are in [`entrynav_studies::statistics`]; the table and
 //! the JSON say which were used.
 
 use crate::compare_input::{FilterIn, Stats, SummaryIn, read};
 use crate::compare_paired::{self, FinalErrors};
-use crate::compare_stats::{
-    Difference, Estimate, se_anees, se_fraction, se_rmse_bound, se_rmse_with_mean,
-};
 use crate::exit::{check_output_file, is_stdout};
 use anyhow::Result;
+use entrynav_studies::statistics::{
+    Difference, Estimate, se_anees, se_fraction, se_rmse_bound, se_rmse_with_mean,
+};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -151,7 +151,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         if to_stdout {
             print!("{text}");
         } else {
-            crate::atomic_file::write(p, text)?;
+            entrynav_studies::output::atomic_file::write(p, text)?;
             println!("wrote {}", p.display());
         }
     }

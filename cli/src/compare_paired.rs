@@ -7,9 +7,9 @@
 //!
 //! Var(√M_b − √Mₐ) ≈ [Var b / (4 M_b) + Var a / (4 Mₐ) − 2 Cov(a, b) / (4 √(Mₐ M_b))] / K.
 
-use crate::compare_stats::{Difference, Estimate};
 use crate::exit::Usage;
 use anyhow::{Context, Result};
+use entrynav_studies::statistics::{Difference, Estimate};
 use std::collections::BTreeMap;
 use std::path::Path;
 

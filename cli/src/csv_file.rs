@@ -3,12 +3,12 @@
 //! columns are exactly the text the caller formatted; a name with a comma (a beacon, a scenario,
 //! a grid variation) is quoted and reads back whole.
 
-use crate::atomic_file::AtomicFile;
 use anyhow::Result;
+use entrynav_studies::output::atomic_file::AtomicFile;
 use std::io::Write;
 use std::path::Path;
 
-/// A CSV writer into a file (written whole or not at all, [`crate::atomic_file`]).
+/// A CSV writer into a file (written whole or not at all, [`entrynav_studies::output::atomic_file`]).
 pub type FileWriter = csv::Writer<AtomicFile>;
 
 /// A CSV writer over `w` (the writer buffers; call `flush` at the end to see write errors).

@@ -9,6 +9,7 @@
 //! | 130 | interrupted by SIGINT (partial results written where the command supports it) |
 
 use crate::interrupt::{EXIT_INTERRUPTED, Interrupted};
+use entrynav_studies::{ErrorKind, StudyError};
 use std::path::Path;
 
 /// A usage or configuration error found by the CLI itself (exit code 2).
@@ -42,9 +43,21 @@ pub fn code(e: &anyhow::Error) -> i32 {
     if e.downcast_ref::<Interrupted>().is_some() {
         return EXIT_INTERRUPTED;
     }
+    // A study's error says itself which of the three it is.
+    if let Some(kind) = e
+        .chain()
+        .find_map(|c| c.downcast_ref::<StudyError>())
+        .map(StudyError::kind)
+    {
+        return match kind {
+            ErrorKind::Refused => 2,
+            ErrorKind::Failed => 1,
+            ErrorKind::Interrupted => EXIT_INTERRUPTED,
+        };
+    }
     let runtime = e.chain().any(|c| {
         c.is::<Runtime>()
-            || c.is::<crate::atomic_file::OutputError>()
+            || c.is::<entrynav_studies::output::atomic_file::OutputError>()
             || c.is::<entrynav::sim::SimError>()
             || matches!(
                 c.downcast_ref::<entrynav::sim::TradeError>(),
@@ -54,17 +67,6 @@ pub fn code(e: &anyhow::Error) -> i32 {
     if runtime { 1 } else { 2 }
 }
 
-/// `--threads N`: a worker count of at least 1.
-pub fn parse_threads(text: &str) -> Result<usize, String> {
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    match text.parse::<usize>() {
-        Ok(n) if (1..=MAX_THREADS).contains(&n) => Ok(n),
-        _ => Err(format!(
-            "'{text}' is not a thread count: give 1 to {MAX_THREADS} (this machine has {cores} cores; omit --threads to use them all)"
-        )),
-    }
-}
-
 /// Warn on standard error about every value of `cfg` that passes validation but no Mars entry has
 /// (a speed in km/s, a flight-path angle in radians: `ScenarioConfig::implausible`).
 pub fn warn_implausible(cfg: &entrynav::scenario::ScenarioConfig) {
@@ -72,26 +74,6 @@ pub fn warn_implausible(cfg: &entrynav::scenario::ScenarioConfig) {
         eprintln!("warning: {w}");
     }
 }
-
-/// Largest Monte Carlo run count a flag accepts (`--runs`, `--validation-runs`, `--check-runs`):
-/// ten million runs bound the work of one command.
-pub const MAX_RUNS: usize = 10_000_000;
-
-/// Parse a run count: 1 to [`MAX_RUNS`], with a message naming the value (a negative count
-/// included: the flag is declared with `allow_hyphen_values`, so `--runs -5` reaches this instead
-/// of reading as an unknown option).
-pub fn parse_runs(text: &str) -> Result<usize, String> {
-    match text.trim().parse::<i128>() {
-        Ok(n) if n >= 1 && n <= MAX_RUNS as i128 => Ok(n as usize),
-        Ok(n) => Err(format!("{n} is not a run count: give 1 to {MAX_RUNS}")),
-        Err(_) => Err(format!(
-            "'{text}' is not a run count: give a whole number from 1 to {MAX_RUNS}"
-        )),
-    }
-}
-
-/// Largest `--threads`.
-pub const MAX_THREADS: usize = 1024;
 
 /// Whether `path` is `-` (standard output).
 pub fn is_stdout(path: &Path) -> bool {

@@ -78,9 +78,9 @@ pub fn write_outputs(
     reports: &[(String, String, TradeReport)],
     (cells_total, html): (usize, Option<&Path>),
 ) -> Result<()> {
-    let provenance = crate::provenance::Provenance::new(&[]);
+    let provenance = entrynav_studies::provenance::Provenance::new(std::env::args().collect(), &[]);
     let md_path = out.join(format!("{}.md", grid.name));
-    let mut md = crate::atomic_file::AtomicFile::create(&md_path)?;
+    let mut md = entrynav_studies::output::atomic_file::AtomicFile::create(&md_path)?;
     if grid.lincov {
         writeln!(
             md,
@@ -134,7 +134,7 @@ pub fn write_outputs(
     write_delivery_md(&mut md, rows)?;
     md.commit()?;
     let json_path = out.join(format!("{}.json", grid.name));
-    crate::atomic_file::write(
+    entrynav_studies::output::atomic_file::write(
         &json_path,
         serde_json::to_string_pretty(&serde_json::json!({
             "provenance": &provenance,
@@ -152,7 +152,7 @@ pub fn write_outputs(
     let figures = crate::grid_plots::grid_figures(&grid.name, &grid.filters, rows)?;
     for fig in &figures {
         let path = out.join(&fig.file);
-        crate::atomic_file::write(&path, &fig.svg)?;
+        entrynav_studies::output::atomic_file::write(&path, &fig.svg)?;
     }
     if let Some(path) = html {
         let page = crate::report::grid_page::GridPage {

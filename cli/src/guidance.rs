@@ -50,14 +50,14 @@ pub struct DeliverArgs {
     #[arg(long, default_value = "ekf")]
     pub filters: String,
     /// Monte Carlo runs (default: the scenario's monte_carlo.runs).
-    #[arg(long, allow_hyphen_values = true, value_parser = crate::exit::parse_runs)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::runs)]
     pub runs: Option<usize>,
     /// Master seed; run r draws its truth from run_seed(seed, r) as `trade` does, and the same
     /// seed gives the same statistics on any thread count.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = crate::exit::parse_threads)]
+    #[arg(long, value_parser = crate::args::threads)]
     pub threads: Option<usize>,
     /// Write the result as JSON (`-`: to standard output, and no table): the rows under
     /// `delivery`, and every run's deliveries under `runs`. Checked before the first run.
@@ -133,7 +133,7 @@ fn deliver(args: &DeliverArgs) -> Result<()> {
         if to_stdout {
             print!("{text}");
         } else {
-            crate::atomic_file::write(path, text)
+            entrynav_studies::output::atomic_file::write(path, text)
                 .with_context(|| format!("writing {}", path.display()))?;
             println!("wrote {}", path.display());
         }
@@ -141,7 +141,7 @@ fn deliver(args: &DeliverArgs) -> Result<()> {
     if let Some(dir) = &args.plots {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
         for fig in crate::delivery_plots::delivery_figures(&report)? {
-            crate::atomic_file::write(&dir.join(&fig.file), &fig.svg)?;
+            entrynav_studies::output::atomic_file::write(&dir.join(&fig.file), &fig.svg)?;
         }
         if !to_stdout {
             println!("wrote plots to {}", dir.display());

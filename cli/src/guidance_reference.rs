@@ -110,7 +110,10 @@ pub fn run(args: &ReferenceArgs) -> Result<()> {
             "columns": COLUMNS,
             "points": rows,
         });
-        crate::atomic_file::write(path, serde_json::to_string_pretty(&v)? + "\n")?;
+        entrynav_studies::output::atomic_file::write(
+            path,
+            serde_json::to_string_pretty(&v)? + "\n",
+        )?;
         notes.push(format!("wrote {}", path.display()));
     }
     println!(

@@ -2,15 +2,14 @@
 //! (`entrynav_cli`) so that the Python package can run them in process; `src/main.rs` is the
 //! binary.
 
+mod args;
 mod atmosphere_file;
 mod atmosphere_generate;
 mod atmosphere_inspect;
-mod atomic_file;
 mod compare;
 mod compare_input;
 mod compare_paired;
 mod compare_scenarios;
-mod compare_stats;
 mod compare_table;
 mod csv_file;
 mod delivery_plots;
@@ -32,7 +31,6 @@ mod optimize;
 mod plot;
 mod plots;
 mod progress;
-mod provenance;
 mod replay;
 mod report;
 mod scenarios;
@@ -170,7 +168,9 @@ pub fn write_trade_report(
 ) -> Result<f64> {
     report::check_path(Some(path))?;
     let names = plot::labels::WeightNames::of_scenario(scenario);
-    let provenance = provenance::Provenance::new(overrides).with_scenario(scenario, None);
+    let provenance =
+        entrynav_studies::provenance::Provenance::new(std::env::args().collect(), overrides)
+            .with_scenario(scenario, None);
     report::write_trade(
         path,
         report,

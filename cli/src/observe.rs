@@ -45,7 +45,7 @@ pub struct ObserveArgs {
     #[arg(long)]
     pub pcrlb: bool,
     /// With --pcrlb: number of Monte Carlo truth runs the bound averages over.
-    #[arg(long, default_value_t = 100, allow_hyphen_values = true, value_parser = crate::exit::parse_runs)]
+    #[arg(long, default_value_t = 100, allow_hyphen_values = true, value_parser = crate::args::runs)]
     pub runs: usize,
     /// With --pcrlb: master seed of the truth runs (the runs a `trade` with this seed flies).
     #[arg(long, default_value_t = 1)]
@@ -127,7 +127,10 @@ pub fn run(args: &ObserveArgs) -> Result<()> {
             v["pcrlb_runs"] = json!(args.runs);
             v["pcrlb_seed"] = json!(args.seed);
         }
-        crate::atomic_file::write(path, serde_json::to_string_pretty(&v)? + "\n")?;
+        entrynav_studies::output::atomic_file::write(
+            path,
+            serde_json::to_string_pretty(&v)? + "\n",
+        )?;
         println!("wrote {}", path.display());
     }
     if let Some(path) = &args.plot {

@@ -113,7 +113,7 @@ pub(crate) fn plot(
     let mut svg = String::new();
     draw(&mut svg, scenario, central, subsystems, fim)
         .map_err(|e| anyhow::anyhow!("plot {}: {e}", path.display()))?;
-    Ok(crate::atomic_file::write(path, svg)?)
+    Ok(entrynav_studies::output::atomic_file::write(path, svg)?)
 }
 
 /// The plot of [`plot`] drawn into `svg`.

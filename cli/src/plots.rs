@@ -376,7 +376,7 @@ pub fn trade_plots(
     }
     for fig in figs {
         let path = dir.join(&fig.file);
-        crate::atomic_file::write(&path, &fig.svg)?;
+        entrynav_studies::output::atomic_file::write(&path, &fig.svg)?;
     }
     Ok(())
 }

@@ -9,7 +9,6 @@ use crate::exit::{check_output_dir, is_stdout};
 use crate::interrupt::Interrupted;
 use crate::plot::labels::WeightNames;
 use crate::progress::RunProgress;
-use crate::provenance::Provenance;
 use crate::threads::with_threads;
 pub use crate::trade_args::{TradeAction, TradeArgs};
 use crate::trade_checkpoint::{self, SummaryCheckpoints};
@@ -29,6 +28,7 @@ use entrynav::sim::{
     Checkpoint, McOptions, NoCheckpoint, Shard, ShardResult, TradeReport, merge_shards, run_shard,
 };
 use entrynav_loader as load;
+use entrynav_studies::provenance::Provenance;
 use std::path::{Path, PathBuf};
 
 /// What one `trade` invocation does, decided once from its arguments (clap has already refused
@@ -226,7 +226,7 @@ impl Setup {
     }
 
     fn provenance(&self, args: &TradeArgs) -> Provenance {
-        Provenance::new(&args.sets)
+        Provenance::new(std::env::args().collect(), &args.sets)
             .with_scenario(&self.scenario, args.atmosphere.atmosphere_file.as_deref())
     }
 }
@@ -567,7 +567,7 @@ fn merge(
             scenario_fingerprint: Some(fingerprint),
             overrides: study.overrides,
             atmosphere: study.atmosphere,
-            ..Provenance::new(&[])
+            ..Provenance::new(std::env::args().collect(), &[])
         };
         let extras = Extras {
             delivery: delivery.as_ref(),

@@ -21,13 +21,13 @@ pub struct TradeArgs {
     #[arg(long, default_value = "ekf")]
     pub filters: String,
     /// Monte Carlo runs (default: the scenario's monte_carlo.runs).
-    #[arg(long, allow_hyphen_values = true, value_parser = crate::exit::parse_runs)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::runs)]
     pub runs: Option<usize>,
     /// Master seed; the same seed gives the same statistics on any thread count.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = crate::exit::parse_threads)]
+    #[arg(long, value_parser = crate::args::threads)]
     pub threads: Option<usize>,
     /// Write the summary as JSON (`-`: to standard output, and no tables). Every output path is
     /// checked before the first run.

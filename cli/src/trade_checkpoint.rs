@@ -5,10 +5,10 @@
 //! `trade --resume FILE` continues it. The file a study starts from therefore never looks
 //! current: an old `complete: true` summary at the path is replaced before the first run.
 
-use crate::provenance::Provenance;
 use crate::trade_files::write_summary;
 use entrynav::sim::shard::fold_partial;
 use entrynav::sim::{Checkpoint, ShardResult};
+use entrynav_studies::provenance::Provenance;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 

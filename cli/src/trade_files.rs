@@ -3,10 +3,10 @@
 
 use crate::csv_file::{self, FileWriter, opt};
 use crate::exit::{check_output_dir, check_output_file, is_stdout};
-use crate::provenance::{Provenance, Summary, Timing};
 use anyhow::{Context, Result};
 use entrynav::sim::delivery_shard::DeliveryShard;
 use entrynav::sim::{FilterReport, PcrlbReport, ShardResult, TradeReport};
+use entrynav_studies::provenance::{Provenance, Summary, Timing};
 use std::io::Write;
 use std::path::Path;
 
@@ -254,7 +254,7 @@ pub fn write_file(path: &Path, body: impl FnOnce(&mut dyn Write) -> Result<()>) 
         w.flush()?;
         return Ok(());
     }
-    let mut w = crate::atomic_file::AtomicFile::create(path)?;
+    let mut w = entrynav_studies::output::atomic_file::AtomicFile::create(path)?;
     body(&mut w)
         .and_then(|()| Ok(w.flush()?))
         .map_err(|e| crate::exit::Runtime(format!("writing {}: {e:#}", path.display())))?;

@@ -10,8 +10,7 @@
 //! the dispersed runs for LinCov's first-order prediction to miss. The JSON summary carries the
 //! comparison under `lincov`.
 
-use crate::compare_stats::{Z95, se_anees, se_rmse_bound};
-use crate::lincov::{Analysed, analyse, mean_error_nees, print_table, to_json, write_csv};
+use crate::lincov::print_table;
 use anyhow::{Context, Result};
 use clap::ValueEnum;
 use entrynav::estimation::chi_square::chi_square_quantile;
@@ -19,6 +18,9 @@ use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
 use entrynav::sim::lincov_entry::LinCovOptions;
 use entrynav::sim::{FilterReport, TradeReport};
+use entrynav_studies::lincov::document::{to_json, write_csv};
+use entrynav_studies::lincov::{Analysed, analyse, mean_error_nees};
+use entrynav_studies::statistics::{Z95, se_anees, se_rmse_bound};
 use serde_json::{Value, json};
 use std::path::Path;
 
@@ -59,7 +61,7 @@ pub fn run_lincov(
         if to_stdout {
             print!("{text}");
         } else {
-            crate::atomic_file::write(path, text)?;
+            entrynav_studies::output::atomic_file::write(path, text)?;
             notes.push(format!("wrote {}", path.display()));
         }
     }
@@ -74,12 +76,12 @@ pub fn run_lincov(
 
 /// The first-order LinCov of `filters` (a trade's LinCov has no second-order option).
 fn first_order(scenario: &Scenario, filters: &[FilterKind]) -> Result<Vec<Analysed>> {
-    analyse(
+    Ok(analyse(
         scenario,
         filters,
         &scenario.config.name,
         LinCovOptions::default(),
-    )
+    )?)
 }
 
 /// One compared figure.

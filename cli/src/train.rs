@@ -43,7 +43,7 @@ pub struct TrainArgs {
     #[arg(long)]
     pub bands_km: Option<String>,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = crate::exit::parse_threads)]
+    #[arg(long, value_parser = crate::args::threads)]
     pub threads: Option<usize>,
     #[arg(long, help = crate::QUIET_HELP)]
     pub quiet: bool,
@@ -105,7 +105,7 @@ pub fn run(args: &TrainArgs) -> Result<()> {
                 std::fs::create_dir_all(parent)
                     .with_context(|| format!("cannot create {}", parent.display()))?;
             }
-            crate::atomic_file::write(out, text)?;
+            entrynav_studies::output::atomic_file::write(out, text)?;
             println!("wrote {}", out.display());
             Some(file.to_set().map_err(|e| anyhow::anyhow!(e))?)
         }
@@ -254,7 +254,7 @@ fn fig10(
 ) -> Result<()> {
     let mut svg = String::new();
     draw_fig10(&mut svg, scenario, r)?;
-    Ok(crate::atomic_file::write(path, svg)?)
+    Ok(entrynav_studies::output::atomic_file::write(path, svg)?)
 }
 
 /// Fig. 10 of [`fig10`] drawn into `svg`.

@@ -35,13 +35,13 @@ pub struct TuneArgs {
     #[arg(long, value_name = "TUNED.toml")]
     out: PathBuf,
     /// Monte Carlo runs of the tuning set (common random numbers: every evaluation sees them).
-    #[arg(long, default_value_t = 24, allow_hyphen_values = true, value_parser = crate::exit::parse_runs)]
+    #[arg(long, default_value_t = 24, allow_hyphen_values = true, value_parser = crate::args::runs)]
     runs: usize,
     /// Master seed of the tuning runs (the validation runs use a different one).
     #[arg(long, default_value_t = 1)]
     seed: u64,
     /// Runs of the fresh validation set.
-    #[arg(long, default_value_t = 100, allow_hyphen_values = true, value_parser = crate::exit::parse_runs)]
+    #[arg(long, default_value_t = 100, allow_hyphen_values = true, value_parser = crate::args::validation_runs)]
     validation_runs: usize,
     /// Tune on innovations alone (ANIS/dof -> 1): what a flight team has without the truth.
     #[arg(long)]
@@ -53,7 +53,7 @@ pub struct TuneArgs {
     #[arg(long, default_value_t = 150)]
     max_evaluations: usize,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = crate::exit::parse_threads)]
+    #[arg(long, value_parser = crate::args::threads)]
     threads: Option<usize>,
     /// Write the tuned file even when it makes a filter worse than the input on the fresh
     /// validation runs (band fraction or position RMSE by more than 10 %).
@@ -211,7 +211,7 @@ fn run_tuning(args: &TuneArgs) -> Result<()> {
         bail!("internal error: the commented tuned file differs from the one validated");
     }
     // The file first: a closed standard output (`| head`) must not cost it.
-    crate::atomic_file::write(&args.out, text)?;
+    entrynav_studies::output::atomic_file::write(&args.out, text)?;
     print_summary(args, &opts, &summary);
     println!("wrote {}", args.out.display());
     Ok(())

@@ -84,7 +84,7 @@ fn deliver_refuses_a_scenario_without_guidance_and_a_bad_run_count() {
     ]);
     assert_eq!(code, 2);
     assert!(
-        err.contains("--runs") && err.contains("0 is not a run count: give 1 to"),
+        err.contains("--runs") && err.contains("runs = 0 is out of range: must be from 1 to"),
         "{err}"
     );
 }

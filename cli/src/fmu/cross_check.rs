@@ -179,7 +179,7 @@ fn write_limited(path: &Path, text: &str) -> Result<()> {
         path.display(),
         text.len()
     );
-    Ok(crate::atomic_file::write(path, text)?)
+    Ok(entrynav_studies::output::atomic_file::write(path, text)?)
 }
 
 pub(super) fn cross_check(a: &CrossCheckArgs) -> Result<()> {
@@ -233,15 +233,15 @@ pub(super) fn cross_check(a: &CrossCheckArgs) -> Result<()> {
             &dir.join(format!("{id}_in.csv")),
             &csv(&in_names, &table.rows, true)?,
         )?;
-        crate::atomic_file::write(
+        entrynav_studies::output::atomic_file::write(
             &dir.join(format!("{id}_ref.opt")),
             format!(
                 "StartTime, {start:?}\nStopTime, {stop:?}\nStepSize, {step:?}\nRelTol, 1e-06\n"
             ),
         )?;
         let bytes = std::fs::read(fmu).with_context(|| format!("cannot read {}", fmu.display()))?;
-        crate::atomic_file::write(&dir.join(format!("{id}.fmu")), bytes)?;
-        crate::atomic_file::write(
+        entrynav_studies::output::atomic_file::write(&dir.join(format!("{id}.fmu")), bytes)?;
+        entrynav_studies::output::atomic_file::write(
             &dir.join("README.md"),
             format!(
                 "# {id}\n\n{}\n\nExported by entrynav {} (`entrynav fmu pack`), FMI {version} co-simulation, {platform}.\n\n\

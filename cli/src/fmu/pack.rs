@@ -181,7 +181,7 @@ fn write_fmu(
             "linux64",
         ),
     };
-    let file = crate::atomic_file::AtomicFile::create(&path)?;
+    let file = entrynav_studies::output::atomic_file::AtomicFile::create(&path)?;
     let mut zip = zip::ZipWriter::new(file);
     let opts = zip::write::SimpleFileOptions::default()
         .compression_method(zip::CompressionMethod::Deflated)

@@ -130,6 +130,6 @@ pub(super) fn run_reference(a: &RunArgs) -> Result<()> {
         &outputs,
     )?;
     let names: Vec<&str> = outputs.iter().map(|v| v.name.as_str()).collect();
-    crate::atomic_file::write(&a.out, csv(&names, &rows, false)?)?;
+    entrynav_studies::output::atomic_file::write(&a.out, csv(&names, &rows, false)?)?;
     Ok(())
 }

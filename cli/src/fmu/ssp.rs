@@ -347,7 +347,7 @@ pub(super) fn write_ssps(out: &Path, stop: f64) -> Result<Vec<PathBuf>> {
     let mut written = Vec::new();
     for sys in [split_system(stop), combined_system(stop), guided_system()?] {
         let path = out.join(format!("{}.ssp", sys.name));
-        let file = crate::atomic_file::AtomicFile::create(&path)?;
+        let file = entrynav_studies::output::atomic_file::AtomicFile::create(&path)?;
         let mut zip = zip::ZipWriter::new(file);
         let opts = zip::write::SimpleFileOptions::default()
             .compression_method(zip::CompressionMethod::Deflated)

@@ -10,12 +10,12 @@
 //! and the objective that produced the design, and `optimize` then ends with exit code 1 after
 //! writing its files.
 
-use crate::compare_stats::{Difference, Estimate, se_anees, se_rmse_bound};
 use anyhow::Result;
 use clap::Args;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
 use entrynav::sim::{FilterReport, McOptions, TradeReport, run_trade};
+use entrynav_studies::statistics::{Difference, Estimate, se_anees, se_rmse_bound};
 use serde_json::{Value, json};
 
 /// The ANEES/dof range a consistent filter stays in on a check (the acceptance band).
@@ -26,7 +26,7 @@ pub const ANEES_BAND: [f64; 2] = [0.7, 1.5];
 pub struct CheckArgs {
     /// Monte Carlo runs of the check of the optimum against the input design (each design; 10
     /// to 100000).
-    #[arg(long, default_value_t = 200, allow_hyphen_values = true, value_parser = crate::exit::parse_runs)]
+    #[arg(long, default_value_t = 200, allow_hyphen_values = true, value_parser = crate::args::check_runs)]
     pub check_runs: usize,
     /// Filter flown in the check (any the scenario supports).
     #[arg(long, default_value = "ekf")]

@@ -87,7 +87,7 @@ pub struct CommonArgs {
     #[arg(long)]
     pub polish_iterations: Option<usize>,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = crate::exit::parse_threads)]
+    #[arg(long, value_parser = crate::args::threads)]
     pub threads: Option<usize>,
     /// Write the result as JSON to this file.
     #[arg(long)]
@@ -298,7 +298,7 @@ pub struct SelectArgs {
     #[arg(long, default_value_t = 8, requires = "exact")]
     batch: usize,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = crate::exit::parse_threads)]
+    #[arg(long, value_parser = crate::args::threads)]
     threads: Option<usize>,
     #[arg(long, help = crate::QUIET_HELP)]
     quiet: bool,
@@ -346,7 +346,7 @@ fn write_text(path: &Path, text: &str) -> Result<()> {
         std::fs::create_dir_all(parent)
             .with_context(|| format!("cannot create {}", parent.display()))?;
     }
-    Ok(crate::atomic_file::write(path, text)?)
+    Ok(entrynav_studies::output::atomic_file::write(path, text)?)
 }
 
 fn write_json(path: &Path, v: &Value) -> Result<()> {

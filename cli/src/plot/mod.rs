@@ -33,7 +33,7 @@ pub fn line_plot(
         size: (960, 540),
     };
     if let Some(svg) = line_chart(&frame, curves)? {
-        crate::atomic_file::write(path, svg)?;
+        entrynav_studies::output::atomic_file::write(path, svg)?;
     }
     Ok(())
 }

@@ -15,7 +15,7 @@ use std::path::Path;
 pub fn write(path: &Path, make: impl FnOnce() -> Result<String>) -> Result<f64> {
     let clock = std::time::Instant::now();
     let html = make()?;
-    crate::atomic_file::write(path, html)?;
+    entrynav_studies::output::atomic_file::write(path, html)?;
     Ok(clock.elapsed().as_secs_f64())
 }
 
@@ -24,7 +24,7 @@ pub fn write_trade(
     path: &Path,
     report: &entrynav::sim::TradeReport,
     names: &crate::plot::labels::WeightNames,
-    provenance: &crate::provenance::Provenance,
+    provenance: &entrynav_studies::provenance::Provenance,
     wall_s: f64,
     extra: &crate::plots::ExtraCurves,
     delivery: Option<&entrynav::sim::delivery::DeliveryReport>,

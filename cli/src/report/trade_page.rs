@@ -6,8 +6,8 @@
 use super::html::{self, Cell, escape, figures, note, section};
 use super::summary;
 use crate::plots::{Figure, Kind};
-use crate::provenance::{Provenance, Timing};
 use entrynav::sim::TradeReport;
+use entrynav_studies::provenance::{Provenance, Timing};
 
 /// What a trade report shows besides the statistics.
 pub struct TradePage<'a> {

@@ -1,21 +1,25 @@
-//! Outputs that are whole or absent. Every file the CLI writes (JSON, CSV, reports, plots,
-//! written scenarios and networks, FMUs) goes to a temporary file in the target's own folder
-//! (`.{name}.{pid}-{n}.tmp`), is flushed and synced to disk, and only then renamed over the
-//! target. A rename within one file system is atomic (POSIX `rename(2)`), so:
+//! Outputs that are whole or absent. Every file a study's front end writes (JSON, CSV, reports,
+//! plots, written scenarios and networks, FMUs) goes to a temporary file in the target's own
+//! folder (`.{name}.XXXXXX.tmp`, created exclusively by the `tempfile` crate), is flushed and
+//! synced to disk, and only then renamed over the target (`tempfile`'s `persist`). A rename
+//! within one file system is atomic (POSIX `rename(2)`), so:
 //!
 //! * a SIGKILL, a power loss, a second Ctrl-C or a full disk during the write leaves the previous
-//!   file (or no file) in place, never a truncated one; the error names the path (exit code 1);
+//!   file (or no file) in place, never a truncated one; the error names the path;
 //! * two processes writing one path each rename a whole file of their own: the last one stays,
 //!   never one summary followed by the other's tail;
 //! * a temporary file that is not committed (an error, a panic) is removed when dropped; one left
 //!   by a killed process keeps its `.tmp` name beside the target and is never mistaken for it.
+//!
+//! `tempfile` replaces the hand-written exclusive creation, naming and clean-up this file had; it
+//! is a well-kept crate already in the build (criterion, proptest). What stays ours: the sync of
+//! the data and of the folder, and an error that names the file the user asked for.
 
-use std::fs::File;
 use std::io::{BufWriter, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
+use tempfile::NamedTempFile;
 
-/// A write to an output file failed (exit code 1): the target, what was being done, the cause.
+/// A write to an output file failed: the target, what was being done, the cause.
 #[derive(Debug, thiserror::Error)]
 #[error("{action} {}: {source}", path.display())]
 pub struct OutputError {
@@ -27,23 +31,11 @@ pub struct OutputError {
     pub source: std::io::Error,
 }
 
-/// Numbers temporary files within this process (several outputs may be open at once).
-static NEXT_TEMP: AtomicU64 = AtomicU64::new(0);
-
 /// A file being written: bytes go to a temporary file beside `path`; [`AtomicFile::commit`]
 /// renames it into place, dropping it uncommitted removes it.
 pub struct AtomicFile {
     path: PathBuf,
-    temp: PathBuf,
-    out: Option<BufWriter<File>>,
-}
-
-fn temp_path(path: &Path) -> PathBuf {
-    let name = path
-        .file_name()
-        .map_or_else(|| "output".into(), |n| n.to_string_lossy().into_owned());
-    let n = NEXT_TEMP.fetch_add(1, Ordering::Relaxed);
-    path.with_file_name(format!(".{name}.{}-{n}.tmp", std::process::id()))
+    out: Option<BufWriter<NamedTempFile>>,
 }
 
 impl AtomicFile {
@@ -54,19 +46,22 @@ impl AtomicFile {
             action,
             source,
         };
-        if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
-            std::fs::create_dir_all(parent).map_err(|e| fail("cannot create the folder of", e))?;
-        }
-        let temp = temp_path(path);
-        let file = std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&temp)
+        let parent = path
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        std::fs::create_dir_all(parent).map_err(|e| fail("cannot create the folder of", e))?;
+        let name = path
+            .file_name()
+            .map_or_else(|| "output".into(), |n| n.to_string_lossy().into_owned());
+        let temp = tempfile::Builder::new()
+            .prefix(&format!(".{name}."))
+            .suffix(".tmp")
+            .tempfile_in(parent)
             .map_err(|e| fail("cannot create", e))?;
         Ok(AtomicFile {
             path: path.to_path_buf(),
-            temp,
-            out: Some(BufWriter::new(file)),
+            out: Some(BufWriter::new(temp)),
         })
     }
 
@@ -82,29 +77,23 @@ impl AtomicFile {
     /// file is removed.
     pub fn commit(mut self) -> Result<(), OutputError> {
         let out = self.out.take().expect("an AtomicFile is committed once");
-        let done = self.finish(out);
-        if done.is_err() {
-            let _ = std::fs::remove_file(&self.temp);
-        }
-        done
-    }
-
-    fn finish(&self, out: BufWriter<File>) -> Result<(), OutputError> {
-        let file = out
+        let temp = out
             .into_inner()
             .map_err(|e| self.fail("writing", e.into_error()))?;
-        file.sync_all().map_err(|e| self.fail("writing", e))?;
-        drop(file);
-        std::fs::rename(&self.temp, &self.path).map_err(|e| self.fail("cannot replace", e))?;
+        temp.as_file()
+            .sync_all()
+            .map_err(|e| self.fail("writing", e))?;
+        temp.persist(&self.path)
+            .map_err(|e| self.fail("cannot replace", e.error))?;
         // The rename itself is durable once the folder is synced (best effort: not every file
         // system lets a folder be opened for sync).
         if let Some(dir) = self.path.parent().filter(|p| !p.as_os_str().is_empty()) {
-            let _ = File::open(dir).and_then(|d| d.sync_all());
+            let _ = std::fs::File::open(dir).and_then(|d| d.sync_all());
         }
         Ok(())
     }
 
-    fn writer(&mut self) -> &mut BufWriter<File> {
+    fn writer(&mut self) -> &mut BufWriter<NamedTempFile> {
         self.out
             .as_mut()
             .expect("an AtomicFile is written before commit")
@@ -124,14 +113,6 @@ impl Write for AtomicFile {
 impl Seek for AtomicFile {
     fn seek(&mut self, pos: SeekFrom) -> std::io::Result<u64> {
         self.writer().seek(pos)
-    }
-}
-
-impl Drop for AtomicFile {
-    fn drop(&mut self) {
-        if self.out.take().is_some() {
-            let _ = std::fs::remove_file(&self.temp);
-        }
     }
 }
 

@@ -32,12 +32,13 @@ pub struct Provenance {
 }
 
 impl Provenance {
-    /// The provenance of this process for a study with these overrides.
-    pub fn new(overrides: &[String]) -> Provenance {
+    /// The provenance of a study run by `command_line` (program name first) with these
+    /// overrides.
+    pub fn new(command_line: Vec<String>, overrides: &[String]) -> Provenance {
         Provenance {
             version: env!("CARGO_PKG_VERSION"),
             git_commit: option_env!("ENTRYNAV_GIT_COMMIT"),
-            command_line: std::env::args().collect(),
+            command_line,
             overrides: overrides.to_vec(),
             scenario_fingerprint: None,
             atmosphere: None,
@@ -98,11 +99,11 @@ pub struct Summary<'a> {
     /// timings included), from which `trade --resume FILE` continues.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub resume: Option<&'a entrynav::sim::ShardResult>,
-    /// Only beside `resume`: its checksum (`trade_files::resume_checksum`), checked by `--resume`.
+    /// Only beside `resume`: its checksum (`trade::resume::resume_checksum`), checked by `--resume`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub resume_checksum: Option<String>,
     /// Only with `trade --method both`: LinCov of each filter beside the Monte Carlo
-    /// (`trade_lincov::Comparison`).
+    /// (`trade::lincov_comparison::Comparison`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lincov: Option<&'a serde_json::Value>,
     /// Only for a scenario with `[guidance]`: delivery at deployment with each filter in the

@@ -1,6 +1,6 @@
-//! The statistics of `entrynav trade compare`: Monte Carlo standard errors of what a trade
-//! summary holds (RMSE over N runs, ANEES, bad-run fractions) and the confidence interval of a
-//! difference B − A.
+//! The statistics of Monte Carlo figures (`trade compare`, `trade --method both`, the check of a
+//! design): standard errors of what a trade summary holds (RMSE over N runs, ANEES, bad-run
+//! fractions) and the confidence interval of a difference B − A.
 //!
 //! A trade summary keeps no per-run errors, only each RMSE, the mean final error per state and
 //! the number of runs N, so the standard errors come from large-sample formulas under Gaussian

@@ -6,7 +6,7 @@ Usage: scripts/compare_outputs.py OLD_DIR NEW_DIR [--only PREFIX ...]
 Equal means bit for bit, outside what measures the machine rather than the result:
 - JSON: the keys `timing`, `provenance`, `wall_s`, `elapsed_s`, `search_s`, `seconds` and keys ending
   in `_wall_s` are dropped at any depth; every other value (floats included) must be equal.
-- Text (standard output and error, HTML, Markdown, TOML comments): wall times (`12.34 s`, `(5.1 s wall)`,
+- Text (standard output and error, HTML, Markdown, TOML comments): the snapshot folder's path, wall times (`12.34 s`, `(5.1 s wall)`,
   `in 0.123 s`, `µs per filter step`) and the tool version line are masked before comparing.
 - Everything else (CSV, SVG, XML, TOML): byte for byte.
 A file present on one side only is a difference. Exit code 0 when all equal, 1 otherwise.
@@ -17,10 +17,16 @@ import os
 import re
 import sys
 
-DROP_KEYS = {"timing", "provenance", "wall_s", "elapsed_s", "search_s", "seconds", "generated_by"}
+DROP_KEYS = {"timing", "provenance", "wall_s", "elapsed_s", "search_s", "seconds", "generated_by",
+             "solve_time_s", "filter_ns", "us_per_step"}
+# Table columns (CSV, Markdown, HTML) that hold CPU time, matched on their header.
+TIMING_HEADER = re.compile(r"µs|us_per_step|wall|solve_time")
+# Files that are a plot of CPU time.
+TIMING_FILES = re.compile(r"us_per_step")
 TIME_PATTERNS = [
     (re.compile(r"\d+(\.\d+)?(e-?\d+)? ?(µs|us|ms|s)\b( wall| in all| per \w+)?"), "<time>"),
     (re.compile(r"\d+(\.\d+)?x faster"), "<speed-up>"),
+    (re.compile(r"\(\d+×\)"), "(<speed-up>)"),
     (re.compile(r"(entrynav|version) \d+\.\d+\.\d+[^\s\"<]*"), "<version>"),
 ]
 TEXT_SUFFIXES = (".stdout", ".stderr", ".html", ".md", ".txt")
@@ -34,10 +40,62 @@ def strip(v):
     return v
 
 
+def mask_columns(rows, split, join):
+    """Blank the cells under a timing header in a table given as lines."""
+    out, hide = [], set()
+    for line in rows:
+        cells = split(line)
+        if cells is None:
+            hide = set()
+            out.append(line)
+            continue
+        if any(TIMING_HEADER.search(c) for c in cells):
+            hide = {i for i, c in enumerate(cells) if TIMING_HEADER.search(c)}
+        elif hide:
+            cells = ["<timing>" if i in hide else c for i, c in enumerate(cells)]
+            line = join(cells)
+        out.append(line)
+    return out
+
+
+def md_cells(line):
+    return line.split("|") if line.startswith("|") else None
+
+
+def html_cells(line):
+    return re.findall(r"<t[hd][^>]*>(.*?)</t[hd]>", line) if line.startswith("<tr>") else None
+
+
 def mask(text):
+    # A figure of CPU time inside a page.
+    text = re.sub(r"<svg(?:(?!</svg>).)*µs(?:(?!</svg>).)*</svg>", "<timing-figure>", text, flags=re.S)
     for pat, rep in TIME_PATTERNS:
         text = pat.sub(rep, text)
-    return text
+    lines = text.splitlines()
+    # A JSON block shown in a page: the numbers of its timing entries.
+    inside = False
+    for i, line in enumerate(lines):
+        if re.search(r"us_per_step|wall_s|command_line", line):
+            inside = line.rstrip().endswith(("{", "["))
+            lines[i] = re.sub(r"[-\d.e]+", "<n>", line)
+        elif inside:
+            if line.strip() in ("}", "},", "]", "],"):
+                inside = False
+            else:
+                lines[i] = re.sub(r": .*", ": <timing>", line)
+    lines = mask_columns(lines, md_cells, "|".join)
+    lines = mask_columns(lines, html_cells, lambda c: "<tr>" + "".join(f"<td>{x}</td>" for x in c) + "</tr>")
+    return "\n".join(lines)
+
+
+def mask_csv(text):
+    import csv
+    import io
+    rows = list(csv.reader(io.StringIO(text)))
+    if not rows:
+        return text
+    hide = {i for i, c in enumerate(rows[0]) if TIMING_HEADER.search(c)}
+    return "\n".join(",".join("<timing>" if i in hide else c for i, c in enumerate(r)) for r in rows)
 
 
 def first_difference(a, b, path="$"):
@@ -64,20 +122,26 @@ def first_difference(a, b, path="$"):
     return None
 
 
-def compare_file(old, new):
+def compare_file(old, new, roots=("", "")):
     if old.endswith(".json"):
         try:
             a, b = json.load(open(old)), json.load(open(new))
         except ValueError:
             pass
         else:
+            # Paths inside the snapshot folders (`trade compare` names its inputs).
+            a = json.loads(json.dumps(a).replace(roots[0], "<snapshot>"))
+            b = json.loads(json.dumps(b).replace(roots[1], "<snapshot>"))
             return first_difference(strip(a), strip(b))
     ta, tb = open(old, "rb").read(), open(new, "rb").read()
-    if ta == tb:
+    if ta == tb or TIMING_FILES.search(os.path.basename(old)):
+        return None
+    if old.endswith(".csv") and mask_csv(ta.decode()) == mask_csv(tb.decode()):
         return None
     if old.endswith(TEXT_SUFFIXES) or old.endswith(".toml"):
-        la = mask(ta.decode("utf-8", "replace")).splitlines()
-        lb = mask(tb.decode("utf-8", "replace")).splitlines()
+        # The snapshot folders themselves appear in `wrote PATH` lines and file names.
+        la = mask(ta.decode("utf-8", "replace").replace(roots[0], "<snapshot>")).splitlines()
+        lb = mask(tb.decode("utf-8", "replace").replace(roots[1], "<snapshot>")).splitlines()
         if la == lb:
             return None
         for i, (x, y) in enumerate(zip(la, lb)):
@@ -111,7 +175,7 @@ def main(argv):
             print(f"DIFF {n}: only in {'new' if n in fb else 'old'}")
             bad += 1
             continue
-        d = compare_file(os.path.join(old, n), os.path.join(new, n))
+        d = compare_file(os.path.join(old, n), os.path.join(new, n), (os.path.abspath(old), os.path.abspath(new)))
         if d:
             print(f"DIFF {n}: {d}")
             bad += 1

@@ -108,9 +108,10 @@ enum Command {
     /// Linear covariance analysis (LinCov) of a filter along the scenario's nominal trajectory:
     /// the true RMSE a Monte Carlo of the same filter would measure (model mismatch included),
     /// the filter's own σ and the predicted NEES, in one pass (Maybeck vol. 1 ch. 6; Geller
-    /// 2006). Supports the EKF (its iterated update linearised at the nominal, consider states
-    /// included); other filters get an error saying why. `--compare-mc RUNS` runs the Monte
-    /// Carlo beside it and prints both wall times.
+    /// 2006). Analyses the EKF (its iterated update linearised at the nominal, consider states
+    /// included), the UKF as its EKF equivalent, and the fusion filters CI and DCIFAIF; other
+    /// filters get an error saying why. `--compare-mc RUNS` runs the Monte Carlo beside it and
+    /// prints both wall times.
     Lincov(lincov::LinCovArgs),
     /// Train the USKF-NN density network offline (seed 001 Algorithm 1) and write its file.
     TrainDensity(train::TrainArgs),

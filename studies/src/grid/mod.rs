@@ -1,5 +1,5 @@
 //! `trade --grid FILE.toml`: scenarios × variations × filters in one study. The grid file
-//! ([`file`]), its cells ([`expand`]), running them ([`run`]) into rows ([`row`]) and the
+//! ([`mod@file`]), its cells ([`expand`]), running them ([`run`]) into rows ([`row`]) and the
 //! documents of the results ([`documents`]: Markdown, CSV, JSON).
 
 pub mod documents;

@@ -187,7 +187,7 @@ impl LinCovComparison {
     }
 
     /// LinCov's RMSE curves per metric (every state, `pos_m`, `vel_mps`), each named
-    /// "<filter> LinCov", for the RMSE charts beside the Monte Carlo's.
+    /// "`<filter>` LinCov", for the RMSE charts beside the Monte Carlo's.
     pub fn curves(&self) -> BTreeMap<String, Vec<NamedCurve>> {
         let mut out: BTreeMap<String, Vec<NamedCurve>> = BTreeMap::new();
         for a in &self.analysed {

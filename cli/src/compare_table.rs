@@ -1,6 +1,6 @@
 //! The table of `entrynav trade compare`.
 
-use crate::compare::{Comparison, Row, Source};
+use entrynav_studies::compare::types::{Comparison, Row, Source};
 
 fn num(x: f64) -> String {
     if x != 0.0 && (x.abs() < 1e-3 || x.abs() >= 1e5) {

@@ -2,10 +2,10 @@
 //! cell (no line joins cells: they are categories, not a sequence). SVG strings; `grid.rs`
 //! writes them and the grid report embeds them.
 
-use crate::grid::CellRow;
 use crate::plot::Frame;
 use crate::plot::categorical::{Series, category_chart};
 use anyhow::Result;
+use entrynav_studies::grid::row::CellRow;
 
 /// One rendered grid figure.
 pub struct GridFigure {

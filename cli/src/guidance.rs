@@ -150,21 +150,6 @@ fn deliver(args: &DeliverArgs) -> Result<()> {
     Ok(())
 }
 
-/// `trade` on a scenario with `[guidance]`: the delivery Monte Carlo of the study's filters on
-/// the same run seeds (`run_seed(seed, r)`, the trade's truths), on `threads` workers.
-pub(crate) fn delivery_of_study(
-    scenario: &entrynav::scenario::Scenario,
-    filters: &[FilterKind],
-    runs: usize,
-    seed: u64,
-    threads: Option<usize>,
-) -> Result<DeliveryReport> {
-    with_threads(threads, || {
-        run_delivery(scenario, filters, runs, seed, &|_| {})
-            .context("the delivery at deployment of the study's filters in the guidance loop")
-    })
-}
-
 fn opt(v: Option<f64>, digits: usize) -> String {
     v.map_or_else(|| "-".to_string(), |x| format!("{x:.digits$}"))
 }

@@ -1,37 +1,28 @@
 //! `entrynav trade --replay-run K --csv-dir DIR`: run K of a study replayed in full, one CSV per
-//! filter (truth, estimate, σ, error, NEES, per-channel innovation and NIS, weights).
+//! filter (truth, estimate, σ, error, NEES, per-channel innovation and NIS, weights; the rows are
+//! the study layer's, `entrynav_studies::trade::replay`), and a line per filter.
 
-use crate::csv_file::FileWriter;
 use anyhow::{Context, Result};
-use entrynav::estimation::nav::FilterKind;
-use entrynav::scenario::Scenario;
-use entrynav::sim::replay::{Replay, replay_run};
-use entrynav::sim::{channel_names, state_names};
+use entrynav_studies::trade::options::TradeOptions;
+use entrynav_studies::trade::replay::replay_trade_run;
+use entrynav_studies::trade::setup::TradeSetup;
 use std::path::Path;
-use std::sync::Arc;
 
-/// Replay run `run` of (`scenario`, `filters`, `seed`) and write `DIR/<scenario>_run<K>_<filter>.csv`.
+/// Replay run `run` of the study of `setup` and write `DIR/<scenario>_run<K>_<filter>.csv`.
 pub fn write_replay(
-    scenario: &Scenario,
-    filters: &[FilterKind],
-    seed: u64,
+    setup: &TradeSetup,
+    options: &TradeOptions,
     run: usize,
     dir: &Path,
 ) -> Result<()> {
-    let scenario = Arc::new(scenario.clone());
-    let replays = replay_run(&scenario, filters, seed, run)?;
+    let replayed = replay_trade_run(setup, options, run)?;
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let states = state_names(&scenario);
-    let channels = channel_names(&scenario);
-    let weights = weight_names(&scenario);
-    for r in &replays {
+    for r in &replayed.replays {
         let path = dir.join(format!(
             "{}_run{run}_{}.csv",
-            scenario.config.name, r.filter
+            setup.scenario.config.name, r.filter
         ));
-        crate::csv_file::write_with_comment(&path, |w| {
-            write_csv(w, r, &states, &channels, &weights)
-        })?;
+        crate::csv_file::write_with_comment(&path, |w| Ok(replayed.write_csv(w, r)?))?;
         let last = r.epochs.last();
         println!(
             "run {run} {}: {} epochs{}; final NEES {}, position error {} m -> {}",
@@ -50,100 +41,4 @@ pub fn write_replay(
         );
     }
     Ok(())
-}
-
-/// Names of the weight columns: beacons for fusion filters, member biases for banks.
-fn weight_names(scenario: &Scenario) -> Vec<String> {
-    let onboard = &scenario.onboard;
-    let banks = &onboard.tuning.model_bank_density_bias;
-    let mut names: Vec<String> = onboard
-        .radio_beacons()
-        .iter()
-        .map(|&b| format!("weight_{}", onboard.beacon_names[b]))
-        .collect();
-    names.extend(banks.iter().map(|d| format!("prob_delta_{d}")));
-    names
-}
-
-/// The replay's rows; returns the `# failed at …` line that follows them if the filter stopped
-/// on a numerical failure.
-fn write_csv(
-    w: &mut FileWriter,
-    r: &Replay,
-    states: &[String],
-    channels: &[String],
-    weight_names: &[String],
-) -> Result<Option<String>> {
-    let mut header = vec!["t_s".to_string()];
-    for s in states {
-        for q in ["truth", "est", "sigma", "err"] {
-            header.push(format!("{q}_{s}"));
-        }
-    }
-    header.extend(
-        [
-            "nees",
-            "nees_dof",
-            "nees_kinematic",
-            "pos_err_m",
-            "vel_err_mps",
-            "nis",
-        ]
-        .map(String::from),
-    );
-    for c in channels {
-        header.push(format!("innov_{c}"));
-        header.push(format!("nis_{c}"));
-    }
-    let n_weights = r
-        .epochs
-        .iter()
-        .filter_map(|e| e.weights.as_ref().map(Vec::len))
-        .max()
-        .unwrap_or(0);
-    let weight_header = |j: usize| {
-        // Fusion weights first, then bank probabilities: pick the list that matches the count.
-        let fusion = weight_names
-            .iter()
-            .filter(|n| n.starts_with("weight_"))
-            .count();
-        let offset = if n_weights == fusion { 0 } else { fusion };
-        weight_names
-            .get(offset + j)
-            .cloned()
-            .unwrap_or_else(|| format!("weight_{j}"))
-    };
-    header.extend((0..n_weights).map(weight_header));
-    w.write_record(&header)?;
-    let o = |v: Option<f64>| v.map(|x| format!("{x:e}")).unwrap_or_default();
-    for e in &r.epochs {
-        let mut row = vec![format!("{}", e.t)];
-        for i in 0..states.len() {
-            for v in [&e.truth, &e.estimate, &e.sigma, &e.err] {
-                row.push(o(v.get(i).copied().filter(|x| x.is_finite())));
-            }
-        }
-        row.push(o(e.nees.map(|n| n.0)));
-        row.push(e.nees.map(|n| n.1.to_string()).unwrap_or_default());
-        row.push(o(e.nees_kinematic));
-        row.push(o(Some(e.pos_vel_err.0)));
-        row.push(o(Some(e.pos_vel_err.1)));
-        row.push(o(e.nis));
-        for c in 0..channels.len() {
-            let terms: Vec<&(usize, Option<f64>, f64)> =
-                e.channels.iter().filter(|t| t.0 == c).collect();
-            let innov = terms.iter().find_map(|t| t.1);
-            let nis = (!terms.is_empty())
-                .then(|| terms.iter().map(|t| t.2).sum::<f64>() / terms.len() as f64);
-            row.push(o(innov));
-            row.push(o(nis));
-        }
-        for j in 0..n_weights {
-            row.push(o(e.weights.as_ref().and_then(|w| w.get(j).copied())));
-        }
-        w.write_record(&row)?;
-    }
-    Ok(r.failure
-        .as_ref()
-        .map(|(t, why)| format!("# failed at t = {t} s: {why}")))
 }

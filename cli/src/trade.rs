@@ -2,33 +2,28 @@
 //!
 //! One invocation does one of six things, decided once from its arguments ([`Mode`]): compare two
 //! summaries, merge shard files, run a grid, replay one run, run one shard, or run (or resume) a
-//! study. The tables it prints are in `trade_tables.rs`, the files it writes in `trade_files.rs`.
+//! study. The study layer (`entrynav_studies::trade`) does the work; this file loads the
+//! scenario, prints what the study says and writes its files (`trade_files.rs`); the tables are
+//! in `trade_tables.rs`.
 
-use crate::atmosphere_file::{check_profile_covers, report_truth_table, truth_atmosphere};
-use crate::exit::{check_output_dir, is_stdout};
-use crate::interrupt::Interrupted;
+use crate::exit::is_stdout;
 use crate::plot::labels::WeightNames;
 use crate::progress::RunProgress;
-use crate::threads::with_threads;
-pub use crate::trade_args::{TradeAction, TradeArgs};
-use crate::trade_checkpoint::{self, SummaryCheckpoints};
-use crate::trade_files::{
-    Extras, ReadShards, ShardFile, StudyProvenance, check_outputs, read_resume, read_shards,
-    write_csv_dir, write_file, write_summary_with,
-};
-use crate::trade_lincov::{Comparison, Method};
+pub use crate::trade_args::{Method, TradeAction, TradeArgs};
+use crate::trade_checkpoint::SummaryCheckpoints;
+use crate::trade_files::{check_outputs, read_resume_file, write_csv_dir, write_text};
+use crate::trade_lincov::{curves, print_comparison};
 use crate::trade_tables::print_tables;
 use anyhow::{Context, Result};
-use entrynav::estimation::nav::FilterKind;
-use entrynav::scenario::Scenario;
-use entrynav::sim::delivery::DeliveryReport;
-use entrynav::sim::delivery_shard::{DeliveryShard, deliver_runs, merge_delivery_shards};
-use entrynav::sim::shard::fold_partial;
-use entrynav::sim::{
-    Checkpoint, McOptions, NoCheckpoint, Shard, ShardResult, TradeReport, merge_shards, run_shard,
-};
-use entrynav_loader as load;
+use entrynav::sim::{Checkpoint, NoCheckpoint, Shard};
+use entrynav_studies::ScenarioInput;
+use entrynav_studies::progress::Step;
 use entrynav_studies::provenance::Provenance;
+use entrynav_studies::trade::merge::merge_trade_shards;
+use entrynav_studies::trade::options::{TradeMode, TradeOptions};
+use entrynav_studies::trade::setup::{TradeScenario, TradeSetup};
+use entrynav_studies::trade::shard::run_trade_shard;
+use entrynav_studies::trade::study::{TradeOutcome, run_trade_study};
 use std::path::{Path, PathBuf};
 
 /// What one `trade` invocation does, decided once from its arguments (clap has already refused
@@ -100,8 +95,9 @@ impl<'a> Mode<'a> {
 /// Run the command.
 pub fn run(args: &TradeArgs) -> Result<()> {
     let mode = Mode::of(args)?;
+    let options = args.options();
     if args.method != Method::Mc {
-        check_method(args, &mode)?;
+        check_method(args, &options, &mode)?;
     }
     match mode {
         Mode::Compare(c) => crate::compare::run(c),
@@ -111,206 +107,110 @@ pub fn run(args: &TradeArgs) -> Result<()> {
             csv_dir,
             plots,
         } => merge(shards, json, csv_dir, plots),
-        Mode::Grid(grid) => run_grid(args, grid),
+        Mode::Grid(grid) => {
+            let html = args.report.as_deref();
+            crate::grid::run(grid, options.method, &args.out_dir, html, args.quiet)
+        }
         Mode::Replay { run, csv_dir } => {
-            let setup = Setup::load(args)?;
-            crate::replay::write_replay(&setup.scenario, &setup.filters, args.seed, run, csv_dir)
+            let setup = load(args, &options)?;
+            crate::replay::write_replay(&setup, &options, run, csv_dir)
         }
-        Mode::Shard { shard, json } => run_one_shard(args, shard, json),
+        Mode::Shard { shard, json } => run_one_shard(args, &options, shard, json),
         Mode::Study { .. } if args.method == Method::Lincov => {
-            let setup = Setup::load(args)?;
-            crate::trade_lincov::run_lincov(
-                &setup.scenario,
-                &setup.filters,
-                args.json.as_deref(),
-                args.csv_dir.as_deref(),
-            )
+            let setup = load(args, &options)?;
+            let (json, csv_dir) = (args.json.as_deref(), args.csv_dir.as_deref());
+            crate::trade_lincov::run_lincov(&setup, &options, json, csv_dir)
         }
-        Mode::Study { resume } => run_study(args, resume),
+        Mode::Study { resume } => run_study(args, &options, resume),
     }
 }
 
 /// `--method lincov|both` is a study's option: refuse the modes and outputs it has no meaning
 /// for, naming the flag (exit code 2).
-fn check_method(args: &TradeArgs, mode: &Mode<'_>) -> Result<()> {
-    let method = match args.method {
-        Method::Lincov => "lincov",
-        Method::Both => "both",
-        Method::Mc => return Ok(()),
-    };
-    let refuse = |flag: &str, why: &str| -> Result<()> {
-        Err(crate::exit::Usage(format!("--method {method} with {flag}: {why}")).into())
-    };
-    match mode {
-        Mode::Study { resume: Some(_) } => {
-            return refuse(
-                "--resume",
-                "only a Monte Carlo study is resumed; use --method mc",
-            );
-        }
-        Mode::Study { resume: None } => {}
-        Mode::Grid(_) if args.method == Method::Both => {
-            return refuse("--grid", "a grid runs one method: mc or lincov");
-        }
-        Mode::Grid(_) => {}
-        Mode::Shard { .. } => return refuse("--shard", "LinCov is one pass, not sharded"),
-        Mode::Replay { .. } => return refuse("--replay-run", "a replay is one Monte Carlo run"),
+fn check_method(args: &TradeArgs, options: &TradeOptions, mode: &Mode<'_>) -> Result<()> {
+    let mode = match mode {
+        Mode::Study { resume } => TradeMode::Study {
+            resume: resume.is_some(),
+        },
+        Mode::Grid(_) => TradeMode::Grid,
+        Mode::Shard { .. } => TradeMode::Shard,
+        Mode::Replay { .. } => TradeMode::Replay,
         Mode::Compare(_) | Mode::Merge { .. } => {
-            return refuse("trade compare/merge", "they read finished summaries");
+            let why = "they read finished summaries";
+            return Err(options.refuse("trade compare/merge", why).into());
         }
-    }
-    if args.method == Method::Lincov && matches!(mode, Mode::Study { .. }) {
+    };
+    if args.method == Method::Lincov && mode == (TradeMode::Study { resume: false }) {
+        let of_mc = "of the Monte Carlo; use --method both";
         if args.plots.is_some() {
-            return refuse(
-                "--plots",
-                "the plots are of the Monte Carlo; use --method both",
-            );
+            return Err(options
+                .refuse("--plots", &format!("the plots are {of_mc}"))
+                .into());
         }
         if args.report.is_some() {
-            return refuse(
-                "--report",
-                "the report is of the Monte Carlo; use --method both",
-            );
-        }
-        if args.runs.is_some() {
-            return refuse(
-                "--runs",
-                "LinCov flies no runs; use --method both to compare",
-            );
+            return Err(options
+                .refuse("--report", &format!("the report is {of_mc}"))
+                .into());
         }
     }
-    Ok(())
+    Ok(options.check_mode(mode)?)
 }
 
-/// The scenario, filters and run count of a study, loaded once its output paths are checked.
-struct Setup {
-    scenario: Scenario,
-    filters: Vec<FilterKind>,
-    runs: usize,
-}
-
-impl Setup {
-    fn load(args: &TradeArgs) -> Result<Setup> {
-        check_outputs(
-            args.json.as_deref(),
-            args.csv_dir.as_deref(),
-            args.plots.as_deref(),
-        )?;
-        crate::report::check_path(args.report.as_deref())?;
-        let scenario_name = args.scenario.as_deref().context("--scenario is required")?;
-        let (cfg, dir) = load::resolve(scenario_name, load::Base::CurrentDir)?.into_parts();
-        let cfg = load::apply_overrides(cfg, &args.sets)?;
-        crate::exit::warn_implausible(&cfg);
-        let cfg = truth_atmosphere(cfg, &args.atmosphere, args.no_perturbation)?;
-        let scenario = load::build(cfg, &dir)?;
-        report_truth_table(&scenario);
-        if let Some(file) = &args.atmosphere.atmosphere_file {
-            check_profile_covers(&scenario, file)?;
-        }
-        let filters = FilterKind::parse_list(&args.filters, &scenario.onboard)?;
-        let runs = args.runs.unwrap_or(scenario.config.monte_carlo.runs);
-        Ok(Setup {
-            scenario,
-            filters,
-            runs,
-        })
-    }
-
-    /// The Monte Carlo options: the PCRLB unless `--no-pcrlb`; Ctrl-C cancels.
-    fn options(&self, args: &TradeArgs) -> McOptions {
-        McOptions {
-            pcrlb: !args.no_pcrlb,
-            cancel: Some(crate::interrupt::install()),
-            ..McOptions::new(self.runs, args.seed)
-        }
-    }
-
-    fn provenance(&self, args: &TradeArgs) -> Provenance {
-        Provenance::new(std::env::args().collect(), &args.sets)
-            .with_scenario(&self.scenario, args.atmosphere.atmosphere_file.as_deref())
-    }
-}
-
-fn run_grid(args: &TradeArgs, grid: &Path) -> Result<()> {
-    check_output_dir(&args.out_dir, "--out-dir")?;
+/// The study's scenario, filters and runs, once its output paths are checked; the scenario's
+/// warnings and notes are printed as they come.
+fn load(args: &TradeArgs, options: &TradeOptions) -> Result<TradeSetup> {
+    check_outputs(
+        args.json.as_deref(),
+        args.csv_dir.as_deref(),
+        args.plots.as_deref(),
+    )?;
     crate::report::check_path(args.report.as_deref())?;
-    crate::grid::run(
-        grid,
-        &args.out_dir,
-        args.quiet,
-        args.report.as_deref(),
-        args.method == Method::Lincov,
-    )
+    let scenario_name = args.scenario.as_deref().context("--scenario is required")?;
+    let input = ScenarioInput::resolve(scenario_name, &args.sets)?;
+    crate::exit::warn_implausible(&input.config);
+    let input = input.with_truth_atmosphere(&args.truth_atmosphere(), args.no_perturbation)?;
+    let built = TradeScenario::build(&input)?;
+    print_warnings(&built.warnings);
+    for n in &built.notes {
+        eprintln!("note: {n}");
+    }
+    Ok(TradeSetup::new(built, options)?)
+}
+
+fn print_warnings(warnings: &[String]) {
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
+}
+
+fn command_line() -> Vec<String> {
+    std::env::args().collect()
 }
 
 /// Run shard `shard` of the study and write its block sums to `path`; an interrupted shard is
 /// not written (a shard must be complete to merge).
-fn run_one_shard(args: &TradeArgs, shard: Shard, path: &Path) -> Result<()> {
-    let setup = Setup::load(args)?;
-    let blocks = setup
-        .runs
-        .div_ceil(entrynav::sim::shard::ACCUMULATION_BLOCK);
-    if shard.blocks(setup.runs).is_empty() {
-        eprintln!(
-            "note: shard {}/{} of this {}-run study holds no runs: a shard holds whole accumulation \
-             blocks of {} runs (so that merged shards equal the single-process study bit for bit) \
-             and the study has {blocks}; use at most {blocks} shard(s)",
-            shard.index,
-            shard.count,
-            setup.runs,
-            entrynav::sim::shard::ACCUMULATION_BLOCK
-        );
+fn run_one_shard(
+    args: &TradeArgs,
+    options: &TradeOptions,
+    shard: Shard,
+    path: &Path,
+) -> Result<()> {
+    let setup = load(args, options)?;
+    let cancel = Some(crate::interrupt::install());
+    let file = run_trade_shard(&setup, options, shard, cancel)?;
+    for n in &file.notes {
+        eprintln!("note: {n}");
     }
-    let opts = setup.options(args);
-    let clock = std::time::Instant::now();
-    let result = with_threads(args.threads, || {
-        Ok(run_shard(
-            &setup.scenario,
-            &setup.filters,
-            &opts,
-            shard,
-            &|_| {},
-        )?)
-    })?;
-    if !result.complete {
-        return Err(Interrupted(format!(
-            "shard {}/{} not written (a shard must be complete to merge)",
-            shard.index, shard.count
-        ))
-        .into());
+    if let Some(e) = file.interruption() {
+        return Err(e.into());
     }
-    // A scenario with `[guidance]`: the delivery runs of this shard's blocks, merged by run
-    // index in `trade merge`. A failure here never costs the shard's sums: it is a warning.
-    let delivery = setup
-        .scenario
-        .config
-        .guidance
-        .is_some()
-        .then(|| {
-            let blocks = shard.blocks(setup.runs);
-            let block = entrynav::sim::shard::ACCUMULATION_BLOCK;
-            let runs = (blocks.start * block).min(setup.runs)..(blocks.end * block).min(setup.runs);
-            with_threads(args.threads, || {
-                deliver_runs(&setup.scenario, &setup.filters, setup.runs, args.seed, runs)
-                    .context("the delivery at deployment of the shard's runs")
-            })
-        })
-        .and_then(|d| {
-            d.map_err(|e| eprintln!("warning: no delivery in this shard: {e:#}"))
-                .ok()
-        });
-    let file = ShardFile {
-        shard: &result,
-        provenance: StudyProvenance::of(&setup.provenance(args)),
-        wall_s: clock.elapsed().as_secs_f64(),
-        delivery: delivery.as_ref(),
-    };
-    write_file(path, |w| Ok(serde_json::to_writer(&mut *w, &file)?))?;
+    print_warnings(&file.warnings);
+    write_text(path, &file.to_json()?)?;
     eprintln!(
         "wrote shard {}/{} ({} blocks) of {} runs to {}",
         shard.index,
         shard.count,
-        result.blocks.len(),
+        file.result.blocks.len(),
         setup.runs,
         path.display()
     );
@@ -318,117 +218,42 @@ fn run_one_shard(args: &TradeArgs, shard: Shard, path: &Path) -> Result<()> {
 }
 
 /// Run the study (or continue the interrupted one in `resume`), print its tables and write its
-/// outputs; an interrupted study writes its partial results and ends in [`Interrupted`].
-fn run_study(args: &TradeArgs, resume: Option<&Path>) -> Result<()> {
-    let every = checkpoint_interval(args)?;
-    let setup = Setup::load(args)?;
-    let previous = resume.map(read_resume).transpose()?;
-    let opts = setup.options(args);
-    let clock = std::time::Instant::now();
+/// outputs; an interrupted study writes its partial results and ends interrupted.
+fn run_study(args: &TradeArgs, options: &TradeOptions, resume: Option<&Path>) -> Result<()> {
+    let to_file = args.json.as_deref().is_some_and(|p| !is_stdout(p));
+    let every = options.checkpoint_interval(to_file)?;
+    let setup = load(args, options)?;
+    let previous = resume.map(read_resume_file).transpose()?;
+    let provenance = setup.provenance(command_line());
     let mut checkpoints: Box<dyn Checkpoint + Send> = match (every, args.json.as_deref()) {
-        (Some(s), Some(path)) => Box::new(SummaryCheckpoints::new(path, s, setup.provenance(args))),
+        (Some(s), Some(path)) => Box::new(SummaryCheckpoints::new(path, s, provenance.clone())),
         _ => Box::new(NoCheckpoint),
     };
-    let (report, partial) = fly(args, &setup, &opts, previous, checkpoints.as_mut())?;
-    let elapsed = clock.elapsed().as_secs_f64();
+    let progress = RunProgress::new(setup.runs, args.quiet, setup.label(options));
+    let step = |s: Step<'_>| progress.set(s.done as usize);
+    let cancel = Some(crate::interrupt::install());
+    let outcome = run_trade_study(
+        &setup,
+        options,
+        previous,
+        checkpoints.as_mut(),
+        cancel,
+        &step,
+    )?;
+    progress.finish();
+    let report = &outcome.report;
     if !report.complete {
         eprintln!(
             "interrupted: {} of {} runs completed; writing the partial results",
             report.runs_completed, report.runs
         );
     }
-    let lincov = (args.method == Method::Both && report.complete)
-        .then(|| Comparison::of(&setup.scenario, &setup.filters, &report))
-        .transpose()?;
-    // A scenario with `[guidance]`: the same runs flown with each filter in the guidance loop.
-    // A failure here never costs the Monte Carlo's results: it is a warning.
-    let delivery = (report.complete && setup.scenario.config.guidance.is_some())
-        .then(|| {
-            crate::guidance::delivery_of_study(
-                &setup.scenario,
-                &setup.filters,
-                setup.runs,
-                args.seed,
-                args.threads,
-            )
-        })
-        .and_then(|d| {
-            d.map_err(|e| eprintln!("warning: no delivery table: {e:#}"))
-                .ok()
-        });
-    write_results(
-        args,
-        &setup,
-        &report,
-        partial.as_ref(),
-        elapsed,
-        lincov.as_ref(),
-        delivery.as_ref(),
-    )?;
-    if !report.complete {
-        return Err(Interrupted(format!(
-            "{} of {} runs completed (complete: false in the summary)",
-            report.runs_completed, report.runs
-        ))
-        .into());
+    print_warnings(&outcome.warnings);
+    write_results(args, &setup, &outcome, &provenance)?;
+    match outcome.interruption() {
+        Some(e) => Err(e.into()),
+        None => Ok(()),
     }
-    Ok(())
-}
-
-/// The checkpoint interval of a study (s), `None` for none: `--checkpoint-every` (0: none),
-/// by default [`trade_checkpoint::DEFAULT_EVERY_S`] when the summary goes to a file.
-fn checkpoint_interval(args: &TradeArgs) -> Result<Option<f64>> {
-    let to_file = args.json.as_deref().is_some_and(|p| !is_stdout(p));
-    match args.checkpoint_every {
-        Some(s) => {
-            trade_checkpoint::check_every(s)?;
-            if !to_file && s > 0.0 {
-                return Err(crate::exit::Usage(format!(
-                    "--checkpoint-every {s} needs --json FILE (the checkpoint is the partial \
-                     summary written there)"
-                ))
-                .into());
-            }
-            Ok((s > 0.0).then_some(s))
-        }
-        None => Ok(to_file.then_some(trade_checkpoint::DEFAULT_EVERY_S)),
-    }
-}
-
-/// Fly the study's runs on `--threads` workers, showing progress and writing checkpoints. A
-/// cancelled study's report folds the finished runs and comes with their block sums, which its
-/// summary keeps for `--resume`.
-fn fly(
-    args: &TradeArgs,
-    setup: &Setup,
-    opts: &McOptions,
-    previous: Option<ShardResult>,
-    checkpoints: &mut (dyn Checkpoint + Send),
-) -> Result<(TradeReport, Option<ShardResult>)> {
-    let progress = RunProgress::new(
-        setup.runs,
-        args.quiet,
-        format!("{} × {}", setup.scenario.config.name, args.filters),
-    );
-    let step = |done: usize| progress.set(done);
-    let (scenario, filters) = (&setup.scenario, &setup.filters);
-    let study = with_threads(args.threads, || {
-        Ok(entrynav::sim::run_study(
-            scenario,
-            filters,
-            opts,
-            previous,
-            &step,
-            checkpoints,
-        )?)
-    })?;
-    let folded = if study.complete {
-        (merge_shards(vec![study])?, None)
-    } else {
-        (fold_partial(study.clone())?, Some(study))
-    };
-    progress.finish();
-    Ok(folded)
 }
 
 /// Write every output asked for, then print the tables (unless the JSON goes to standard
@@ -437,28 +262,19 @@ fn fly(
 /// the others.
 fn write_results(
     args: &TradeArgs,
-    setup: &Setup,
-    report: &TradeReport,
-    resume: Option<&ShardResult>,
-    elapsed: f64,
-    lincov: Option<&Comparison>,
-    delivery: Option<&DeliveryReport>,
+    setup: &TradeSetup,
+    outcome: &TradeOutcome,
+    provenance: &Provenance,
 ) -> Result<()> {
+    let (report, delivery) = (&outcome.report, outcome.delivery.as_ref());
     // With `--json -` the JSON is standard output: no tables, notes to stderr.
     let to_stdout = args.json.as_deref().is_some_and(is_stdout);
     let mut outputs = Outputs::default();
     if let Some(path) = &args.json {
-        let done = write_summary_with(
-            path,
-            &setup.provenance(args),
-            report,
-            resume,
-            elapsed,
-            Extras {
-                lincov: lincov.map(Comparison::json),
-                delivery,
-            },
-        );
+        let done = outcome
+            .to_json(provenance)
+            .map_err(Into::into)
+            .and_then(|text| write_text(path, &text));
         let note = (!to_stdout).then(|| format!("wrote {}", path.display()));
         outputs.record(done.map(|()| note));
     }
@@ -467,28 +283,21 @@ fn write_results(
         outputs.record(done.map(|()| Some(format!("wrote CSV series to {}", dir.display()))));
     }
     let names = WeightNames::of_scenario(&setup.scenario);
-    let extra = lincov.map(Comparison::curves).unwrap_or_default();
+    let extra = outcome.lincov.as_ref().map(curves).unwrap_or_default();
     if let Some(dir) = &args.plots {
         let done = crate::plots::trade_plots(dir, report, &names, &extra, delivery);
         outputs.record(done.map(|()| Some(format!("wrote plots to {}", dir.display()))));
     }
     if let Some(path) = &args.report {
-        let provenance = setup.provenance(args);
-        let done = crate::report::write_trade(
-            path,
-            report,
-            &names,
-            &provenance,
-            elapsed,
-            &extra,
-            delivery,
-        );
+        let elapsed = outcome.wall_s;
+        let done =
+            crate::report::write_trade(path, report, &names, provenance, elapsed, &extra, delivery);
         outputs.record(done.map(|s| Some(format!("wrote report {} in {s:.3} s", path.display()))));
     }
     if !to_stdout {
-        print_tables(report, &format!("{elapsed:.2} s wall"));
-        if let Some(c) = lincov {
-            c.print(report);
+        print_tables(report, &format!("{:.2} s wall", outcome.wall_s));
+        if let Some(c) = &outcome.lincov {
+            print_comparison(c, report);
         }
         if let Some(d) = delivery {
             println!();
@@ -537,9 +346,7 @@ impl Outputs {
 }
 
 /// `trade merge`: combine the shard files into the study's report, write the outputs asked for
-/// (first, so a closed standard output never costs one), then print the tables. The merged
-/// summary keeps the shards' `--set` overrides and atmosphere source; shards that differ in them
-/// are refused.
+/// (first, so a closed standard output never costs one), then print the tables.
 fn merge(
     shards: &[PathBuf],
     json: Option<&Path>,
@@ -547,75 +354,45 @@ fn merge(
     plots: Option<&Path>,
 ) -> Result<()> {
     check_outputs(json, csv_dir, plots)?;
-    let ReadShards {
-        parts,
-        provenance: study,
-        wall_s,
-        deliveries,
-    } = read_shards(shards)?;
-    let n_shards = parts.len();
-    let delivery = merged_delivery(deliveries)?;
-    let fingerprint = parts
-        .first()
-        .map(|p| p.scenario_fingerprint.clone())
-        .unwrap_or_default();
-    let report = merge_shards(parts)?;
+    let texts = shards
+        .iter()
+        .map(|p| {
+            let text = entrynav_loader::read_text(p)
+                .with_context(|| format!("cannot read shard {}", p.display()))?;
+            Ok((p.display().to_string(), text))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let merged = merge_trade_shards(&texts)?;
+    let (report, delivery) = (&merged.report, merged.delivery.as_ref());
     let to_stdout = json.is_some_and(is_stdout);
     let mut outputs = Outputs::default();
     if let Some(path) = json {
-        let provenance = Provenance {
-            scenario_fingerprint: Some(fingerprint),
-            overrides: study.overrides,
-            atmosphere: study.atmosphere,
-            ..Provenance::new(std::env::args().collect(), &[])
-        };
-        let extras = Extras {
-            delivery: delivery.as_ref(),
-            ..Extras::default()
-        };
-        let done = write_summary_with(path, &provenance, &report, None, wall_s, extras);
+        let provenance = merged.provenance(command_line());
+        let done = merged
+            .to_json(&provenance)
+            .map_err(Into::into)
+            .and_then(|text| write_text(path, &text));
         let note = (!to_stdout).then(|| format!("wrote {}", path.display()));
         outputs.record(done.map(|()| note));
     }
     if let Some(dir) = csv_dir {
-        let done = write_csv_dir(dir, &report);
+        let done = write_csv_dir(dir, report);
         outputs.record(done.map(|()| Some(format!("wrote CSV series to {}", dir.display()))));
     }
     let names = WeightNames::of_channels(&report.channels);
     if let Some(dir) = plots {
-        let done =
-            crate::plots::trade_plots(dir, &report, &names, &Default::default(), delivery.as_ref());
+        let done = crate::plots::trade_plots(dir, report, &names, &Default::default(), delivery);
         outputs.record(done.map(|()| Some(format!("wrote plots to {}", dir.display()))));
     }
     if !to_stdout {
-        print_tables(
-            &report,
-            &format!("{wall_s:.2} s wall summed over the {n_shards} shards"),
+        let wall = format!(
+            "{:.2} s wall summed over the {} shards",
+            merged.wall_s, merged.shards
         );
-        if let Some(d) = &delivery {
+        print_tables(report, &wall);
+        if let Some(d) = delivery {
             crate::guidance::print_table(d);
         }
     }
     outputs.finish(to_stdout)
-}
-
-/// The delivery of merged shards: every shard's runs in run order (`None` when no shard has
-/// deliveries). Refuses a merge where some shards have deliveries and others not (one flown
-/// without `[guidance]`, or by an older entrynav), or whose deliveries do not fit together.
-fn merged_delivery(deliveries: Vec<Option<DeliveryShard>>) -> Result<Option<DeliveryReport>> {
-    let with = deliveries.iter().filter(|d| d.is_some()).count();
-    if with == 0 {
-        return Ok(None);
-    }
-    if with < deliveries.len() {
-        return Err(crate::exit::Usage(format!(
-            "{with} of {} shards carry a delivery table and the others do not; run the others \
-             again with this entrynav",
-            deliveries.len()
-        ))
-        .into());
-    }
-    let merged = merge_delivery_shards(deliveries.into_iter().flatten().collect())
-        .map_err(|e| crate::exit::Usage(format!("trade merge: {e}")))?;
-    Ok(Some(merged))
 }

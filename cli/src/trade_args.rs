@@ -1,6 +1,9 @@
-//! The arguments of `entrynav trade` and its subcommands `merge` and `compare`.
+//! The arguments of `entrynav trade` and its subcommands `merge` and `compare`, and the study
+//! options they give.
 
-use clap::Args;
+use clap::{Args, ValueEnum};
+use entrynav_studies::scenario::TruthAtmosphere;
+use entrynav_studies::trade::options::{self as trade_options, TradeOptions};
 use std::path::PathBuf;
 
 /// Arguments of `entrynav trade`.
@@ -24,7 +27,7 @@ pub struct TradeArgs {
     #[arg(long, allow_hyphen_values = true, value_parser = crate::args::runs)]
     pub runs: Option<usize>,
     /// Master seed; the same seed gives the same statistics on any thread count.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true, value_parser = crate::args::seed)]
     pub seed: u64,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = crate::args::threads)]
@@ -77,7 +80,7 @@ pub struct TradeArgs {
     /// every S seconds (default 60; 0: never), atomically, so a study killed outright (SIGKILL,
     /// power loss) loses at most S seconds of runs: `--resume FILE` continues it. Needs --json
     /// FILE.
-    #[arg(long, value_name = "S", allow_negative_numbers = true, conflicts_with_all = ["shard", "grid", "replay_run"])]
+    #[arg(long, value_name = "S", allow_negative_numbers = true, value_parser = checkpoint_every, conflicts_with_all = ["shard", "grid", "replay_run"])]
     pub checkpoint_every: Option<f64>,
     /// Skip the posterior Cramér–Rao lower bound (on by default: the `pcrlb` block of the
     /// summary, each filter's RMSE/PCRLB efficiency, the dashed PCRLB curve in the RMSE plots;
@@ -88,8 +91,61 @@ pub struct TradeArgs {
     /// filter along the nominal trajectory, one pass; ekf, and ukf as its EKF equivalent), or both (the Monte Carlo with
     /// LinCov / MC for every headline figure and a warning where they differ beyond the Monte
     /// Carlo's 95 % interval).
-    #[arg(long, value_enum, default_value_t = crate::trade_lincov::Method::Mc)]
-    pub method: crate::trade_lincov::Method,
+    #[arg(long, value_enum, default_value_t = Method::Mc)]
+    pub method: Method,
+}
+
+/// How `trade` computes its statistics.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Default)]
+pub enum Method {
+    /// Monte Carlo of `--runs` dispersed runs.
+    #[default]
+    Mc,
+    /// LinCov of each filter along the nominal trajectory (one pass, no runs).
+    Lincov,
+    /// Both, with LinCov / Monte Carlo for every headline figure.
+    Both,
+}
+
+/// `--checkpoint-every S`: 0 (off) or within the study's bounds.
+fn checkpoint_every(text: &str) -> Result<f64, String> {
+    let s: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("checkpoint_every = '{text}' is not a number"))?;
+    trade_options::check_checkpoint_every(s).map_err(|e| e.to_string())
+}
+
+impl TradeArgs {
+    /// The study's options.
+    pub fn options(&self) -> TradeOptions {
+        TradeOptions {
+            filters: self.filters.clone(),
+            runs: self.runs,
+            seed: self.seed,
+            threads: self.threads,
+            pcrlb: !self.no_pcrlb,
+            method: match self.method {
+                Method::Mc => trade_options::Method::Mc,
+                Method::Lincov => trade_options::Method::Lincov,
+                Method::Both => trade_options::Method::Both,
+            },
+            checkpoint_every: self.checkpoint_every,
+        }
+    }
+
+    /// The truth atmosphere file and how to read it.
+    pub fn truth_atmosphere(&self) -> TruthAtmosphere {
+        let a = &self.atmosphere;
+        TruthAtmosphere {
+            file: a.atmosphere_file.clone(),
+            height_column: a.atmosphere_height_column.clone(),
+            density_column: a.atmosphere_density_column.clone(),
+            datum: a.atmosphere_datum,
+            profile: a.atmosphere_profile,
+            perturb_profiles: a.perturb_profiles,
+        }
+    }
 }
 
 /// `entrynav trade merge`, `entrynav trade compare`.

@@ -3,33 +3,15 @@
 //! `--json` path before the first run and then every `--checkpoint-every` seconds, so a study
 //! killed outright (SIGKILL, power loss, an OOM kill) loses at most that much work and
 //! `trade --resume FILE` continues it. The file a study starts from therefore never looks
-//! current: an old `complete: true` summary at the path is replaced before the first run.
+//! current: an old `complete: true` summary at the path is replaced before the first run. The
+//! interval's bounds and default are the study's (`entrynav_studies::trade::options`).
 
-use crate::trade_files::write_summary;
-use entrynav::sim::shard::fold_partial;
+use crate::trade_files::write_text;
 use entrynav::sim::{Checkpoint, ShardResult};
 use entrynav_studies::provenance::Provenance;
+use entrynav_studies::trade::study::partial_summary;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
-
-/// The default interval (s): a study over a minute long is checkpointed; writing a summary
-/// takes milliseconds, so the cost is negligible.
-pub const DEFAULT_EVERY_S: f64 = 60.0;
-
-/// The interval's allowed range (s), besides 0 (off).
-pub const EVERY_RANGE_S: (f64, f64) = (0.1, 86_400.0);
-
-/// Check `--checkpoint-every`: 0 (off) or within [`EVERY_RANGE_S`].
-pub fn check_every(seconds: f64) -> Result<(), crate::exit::Usage> {
-    let (lo, hi) = EVERY_RANGE_S;
-    if seconds == 0.0 || (lo..=hi).contains(&seconds) {
-        Ok(())
-    } else {
-        Err(crate::exit::Usage(format!(
-            "--checkpoint-every {seconds}: must be 0 (no checkpoints) or between {lo} and {hi} s"
-        )))
-    }
-}
 
 /// Writes a study's partial summaries to its `--json` file.
 pub struct SummaryCheckpoints {
@@ -58,16 +40,10 @@ impl SummaryCheckpoints {
     }
 
     fn write(&self, partial: &ShardResult) -> anyhow::Result<usize> {
-        let report = fold_partial(partial.clone())?;
         let elapsed = self.started.elapsed().as_secs_f64();
-        write_summary(
-            &self.path,
-            &self.provenance,
-            &report,
-            Some(partial),
-            elapsed,
-        )?;
-        Ok(report.runs_completed)
+        let (text, runs) = partial_summary(&self.provenance, partial, elapsed)?;
+        write_text(&self.path, &text)?;
+        Ok(runs)
     }
 }
 

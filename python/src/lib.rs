@@ -13,12 +13,14 @@
 
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{BUILTIN_NAMES, Scenario, ScenarioConfig};
-use entrynav::sim::delivery_shard::deliver_runs;
-use entrynav::sim::shard::ACCUMULATION_BLOCK;
 use entrynav::sim::{
-    McOptions, Shard, TradeError, TradeReport, run_shard, run_trade, simulate_truth_with_peaks,
+    McOptions, Shard, TradeError, TradeReport, run_trade, simulate_truth_with_peaks,
 };
 use entrynav_loader as load;
+use entrynav_studies::trade::options::TradeOptions;
+use entrynav_studies::trade::setup::{TradeScenario, TradeSetup};
+use entrynav_studies::trade::shard::run_trade_shard;
+use entrynav_studies::{ErrorKind, ScenarioInput, StudyError};
 use pyo3::exceptions::{PyFileNotFoundError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use rand::SeedableRng;
@@ -308,10 +310,21 @@ fn trade(
     }
 }
 
+/// A study's error as a Python exception: `FileNotFoundError` for a scenario file that does not
+/// exist, `ValueError` for what a study refuses, `RuntimeError` for a failure during the work.
+fn study_err(e: StudyError) -> PyErr {
+    match e {
+        StudyError::Scenario(e) => load_err(e),
+        e if e.kind() == ErrorKind::Refused => PyValueError::new_err(e.to_string()),
+        e => PyRuntimeError::new_err(e.to_string()),
+    }
+}
+
 /// Run shard `index` of `count` of the study (the CLI's `trade --shard I/N`) and return the
-/// shard file's JSON, as `entrynav trade --shard I/N --json FILE` writes it (so `entrynav trade
-/// merge` combines shards from either): the block sums, the study's `provenance` (`overrides`
-/// as given, the truth atmosphere source) and `wall_s`. The GIL is released while it runs.
+/// shard file's JSON, as `entrynav trade --shard I/N --json FILE` writes it (the same study
+/// function, `entrynav_studies::trade::shard::run_trade_shard`, so `entrynav trade merge`
+/// combines shards from either): the block sums, the study's `provenance` (`overrides` as given,
+/// the truth atmosphere source) and `wall_s`. The GIL is released while it runs.
 #[pyfunction]
 #[pyo3(signature = (toml, dir, filters, runs, seed, index, count, overrides, threads=None))]
 #[allow(clippy::too_many_arguments)]
@@ -327,70 +340,26 @@ fn trade_shard(
     overrides: Vec<String>,
     threads: Option<usize>,
 ) -> PyResult<String> {
-    let (scenario, kinds) = setup(toml, dir, filters)?;
-    if !(1..=10_000_000).contains(&runs) {
-        return Err(PyValueError::new_err(format!(
-            "runs = {runs} is out of range: must be >= 1 and <= 10000000"
-        )));
-    }
-    let shard = Shard::parse(&format!("{index}/{count}")).map_err(trade_err)?;
-    let opts = McOptions {
-        pcrlb: true,
-        ..McOptions::new(runs, seed)
+    let mut input = ScenarioInput::from_toml(toml, Path::new(dir), &[]).map_err(study_err)?;
+    // The overrides are already applied to `toml`: they are recorded, not applied again.
+    input.overrides = overrides;
+    let options = TradeOptions {
+        filters: filters.to_string(),
+        runs: Some(runs),
+        seed,
+        threads,
+        ..TradeOptions::default()
     };
-    let clock = std::time::Instant::now();
-    let result = py.detach(|| {
-        // A scenario with `[guidance]`: the delivery runs of this shard's blocks, as the CLI's
-        // shard file carries them (merged by run index in `trade merge`).
-        let job = || {
-            let sums = run_shard(&scenario, &kinds, &opts, shard, &|_| {})?;
-            let delivery = match scenario.config.guidance {
-                Some(_) => {
-                    let (blocks, block) = (shard.blocks(runs), ACCUMULATION_BLOCK);
-                    let span = (blocks.start * block).min(runs)..(blocks.end * block).min(runs);
-                    Some(deliver_runs(&scenario, &kinds, runs, seed, span))
-                }
-                None => None,
-            };
-            Ok::<_, TradeError>((sums, delivery))
-        };
-        match threads {
-            Some(n) => rayon::ThreadPoolBuilder::new()
-                .num_threads(n.max(1))
-                .build()
-                .map_err(|e| TradeError::Options(format!("threads = {n}: {e}")))
-                .and_then(|pool| pool.install(job)),
-            None => job(),
-        }
-    });
-    let (result, delivery) = result.map_err(trade_err)?;
-    let delivery = delivery
-        .transpose()
-        .map_err(|e| PyRuntimeError::new_err(format!("delivery at deployment: {e}")))?;
-    let truth = &scenario.config.truth;
-    let mut doc =
-        serde_json::to_value(&result).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-    if let Some(map) = doc.as_object_mut() {
-        map.insert(
-            "provenance".into(),
-            serde_json::json!({
-                "overrides": overrides,
-                "atmosphere": {
-                    "file": null,
-                    "truth": serde_json::to_value(&truth.atmosphere).unwrap_or(serde_json::Value::Null),
-                    "perturbation": truth.perturbation.is_some(),
-                },
-            }),
-        );
-        map.insert("wall_s".into(), clock.elapsed().as_secs_f64().into());
-        if let Some(d) = &delivery {
-            map.insert(
-                "delivery".into(),
-                serde_json::to_value(d).map_err(|e| PyRuntimeError::new_err(e.to_string()))?,
-            );
-        }
+    options.validate().map_err(study_err)?;
+    let built = TradeScenario::build(&input).map_err(study_err)?;
+    let setup = TradeSetup::new(built, &options).map_err(study_err)?;
+    let shard = Shard::parse(&format!("{index}/{count}")).map_err(trade_err)?;
+    let file = py.detach(|| run_trade_shard(&setup, &options, shard, None).map_err(study_err))?;
+    // A delivery that cannot be flown is an error here (the CLI warns and writes the sums).
+    if let Some(w) = file.warnings.first() {
+        return Err(PyRuntimeError::new_err(w.clone()));
     }
-    Ok(doc.to_string())
+    file.to_json().map_err(study_err)
 }
 
 /// One truth run with its measurement record, as `entrynav simulate --out FILE` writes it: JSON

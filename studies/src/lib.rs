@@ -15,7 +15,9 @@
 //! [`provenance`], [`scenario`], [`statistics`] (sampling intervals of Monte Carlo figures), then
 //! the studies.
 
+pub mod compare;
 pub mod error;
+pub mod grid;
 pub mod lincov;
 pub mod options;
 pub mod output;
@@ -24,6 +26,7 @@ pub mod provenance;
 pub mod scenario;
 pub mod statistics;
 pub mod threads;
+pub mod trade;
 
 pub use error::{ErrorKind, StudyError, StudyResult};
 pub use scenario::ScenarioInput;

@@ -3,9 +3,9 @@
 
 use super::html::{self, Cell, escape, figures, note, num, section, table};
 use super::summary;
-use crate::grid::CellRow;
 use crate::grid_plots::GridFigure;
-use entrynav::sim::TradeReport;
+use entrynav_studies::grid::row::CellRow;
+use entrynav_studies::grid::run::CellReport;
 
 /// A grid report's content.
 pub struct GridPage<'a> {
@@ -19,8 +19,8 @@ pub struct GridPage<'a> {
     pub filters: &'a [String],
     /// One row per cell and filter.
     pub rows: &'a [CellRow],
-    /// Finished cells: (cell label, scenario fingerprint, report).
-    pub reports: &'a [(String, String, TradeReport)],
+    /// Finished cells: label, scenario fingerprint, report.
+    pub reports: &'a [CellReport],
     /// Cells in the grid.
     pub cells_total: usize,
     /// The figures (`grid_plots::grid_figures`).
@@ -78,14 +78,14 @@ impl GridPage<'_> {
 
     fn consistency(&self) -> String {
         let mut s = String::new();
-        for (cell, fingerprint, report) in self.reports {
+        for c in self.reports {
             s += &format!(
                 "<h3>{} ({}, fingerprint {})</h3>\n",
-                escape(cell),
-                escape(&report.scenario),
-                escape(fingerprint)
+                escape(&c.cell),
+                escape(&c.report.scenario),
+                escape(&c.scenario_fingerprint)
             );
-            s += &summary::consistency_table(report);
+            s += &summary::consistency_table(&c.report);
         }
         s
     }

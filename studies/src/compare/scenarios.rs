@@ -50,7 +50,7 @@ fn walk(path: &str, a: Option<&Value>, b: Option<&Value>, out: &mut Vec<String>)
     }
 }
 
-/// The differences between scenarios `a` and `b`, in path order; past [`MAX_LISTED`] the rest is
+/// The differences between scenarios `a` and `b`, in path order; past `MAX_LISTED` (60) the rest is
 /// summarised in a last line.
 pub fn differences(a: &Value, b: &Value) -> Vec<String> {
     let mut out = Vec::new();

@@ -7,11 +7,9 @@
 //!
 //! Var(√M_b − √Mₐ) ≈ [Var b / (4 M_b) + Var a / (4 Mₐ) − 2 Cov(a, b) / (4 √(Mₐ M_b))] / K.
 
-use crate::exit::Usage;
-use anyhow::{Context, Result};
-use entrynav_studies::statistics::{Difference, Estimate};
+use crate::error::{StudyError, StudyResult};
+use crate::statistics::{Difference, Estimate};
 use std::collections::BTreeMap;
-use std::path::Path;
 
 /// Final errors of one filter: per column (state, `pos_m`, `vel_mps`), run → error.
 type Columns = BTreeMap<String, BTreeMap<u64, f64>>;
@@ -22,19 +20,11 @@ pub struct FinalErrors {
 }
 
 impl FinalErrors {
-    /// Read `path`, a `{scenario}_final_errors.csv` written by `trade --csv-dir`. Failed runs
+    /// Parse the text of a `{scenario}_final_errors.csv` written by `trade --csv-dir`; what is
+    /// wrong (and where) is refused without naming the file (the caller adds it). Failed runs
     /// (numerical stops) are left out, as in the summary's final RMSE.
-    pub fn read(path: &Path) -> Result<FinalErrors> {
-        let text = entrynav_loader::read_text(path)
-            .with_context(|| format!("--final-errors {}: cannot read", path.display()))?;
-        Self::parse(&text, &|m| {
-            Usage(format!("--final-errors {}: {m}", path.display()))
-        })
-    }
-
-    /// Parse the text of a final-errors CSV; `usage` turns what is wrong (and where) into the
-    /// error.
-    fn parse(text: &str, usage: &dyn Fn(String) -> Usage) -> Result<FinalErrors> {
+    pub fn parse(text: &str) -> StudyResult<FinalErrors> {
+        let usage = |m: String| StudyError::Refused(m);
         let mut records = csv::ReaderBuilder::new()
             .has_headers(false)
             .flexible(true)
@@ -44,8 +34,7 @@ impl FinalErrors {
         if header.len() < 4 || header.iter().take(3).ne(["run", "filter", "status"]) {
             return Err(usage(
                 "not a final-errors CSV (header run,filter,status,…) from `trade --csv-dir`".into(),
-            )
-            .into());
+            ));
         }
         let names: Vec<String> = header
             .iter()
@@ -62,7 +51,7 @@ impl FinalErrors {
             let bad = || usage(format!("line {line}: malformed row"));
             let cells = record.map_err(|_| bad())?;
             if cells.len() != header.len() {
-                return Err(bad().into());
+                return Err(bad());
             }
             let run: u64 = cells[0].parse().map_err(|_| bad())?;
             if &cells[2] == "failed" {
@@ -164,8 +153,8 @@ fn paired(state: &str, pairs: &[(f64, f64)]) -> Option<Paired> {
 mod tests {
     use super::*;
 
-    fn parse(text: &str) -> Result<FinalErrors> {
-        FinalErrors::parse(text, &|m| Usage(m))
+    fn parse(text: &str) -> StudyResult<FinalErrors> {
+        FinalErrors::parse(text)
     }
 
     #[test]

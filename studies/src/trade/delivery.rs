@@ -1,0 +1,100 @@
+//! Delivery at deployment beside a trade of a scenario with `[guidance]`: the same runs flown
+//! with each filter in the guidance loop (`entrynav::sim::delivery`), for the whole study, for
+//! one shard's runs, and merged from shards.
+//!
+//! [`delivery_of_study`] is a copy of the command line's `guidance::delivery_of_study` until the
+//! guidance study moves here; the trade calls it in one place ([`study_delivery`]).
+
+use crate::error::{StudyError, StudyResult};
+use crate::threads::with_threads;
+use entrynav::estimation::nav::FilterKind;
+use entrynav::scenario::Scenario;
+use entrynav::sim::Shard;
+use entrynav::sim::delivery::{DeliveryReport, run_delivery};
+use entrynav::sim::delivery_shard::{DeliveryShard, deliver_runs, merge_delivery_shards};
+use entrynav::sim::shard::ACCUMULATION_BLOCK;
+
+/// `e` and its causes, `: `-separated (as `anyhow` prints an error with `{:#}`).
+pub fn chain(e: &dyn std::error::Error) -> String {
+    let mut text = e.to_string();
+    let mut cause = e.source();
+    while let Some(c) = cause {
+        text.push_str(": ");
+        text.push_str(&c.to_string());
+        cause = c.source();
+    }
+    text
+}
+
+/// The delivery Monte Carlo of the study's filters on the same run seeds (`run_seed(seed, r)`,
+/// the trade's truths), on `threads` workers.
+pub fn delivery_of_study(
+    scenario: &Scenario,
+    filters: &[FilterKind],
+    runs: usize,
+    seed: u64,
+    threads: Option<usize>,
+) -> StudyResult<DeliveryReport> {
+    with_threads(threads, || {
+        run_delivery(scenario, filters, runs, seed, &|_| {}).map_err(|e| {
+            StudyError::Failed(format!(
+                "the delivery at deployment of the study's filters in the guidance loop: {}",
+                chain(&e)
+            ))
+        })
+    })
+}
+
+/// The trade's delivery table (the one call of [`delivery_of_study`]).
+pub fn study_delivery(
+    scenario: &Scenario,
+    filters: &[FilterKind],
+    runs: usize,
+    seed: u64,
+    threads: Option<usize>,
+) -> StudyResult<DeliveryReport> {
+    delivery_of_study(scenario, filters, runs, seed, threads)
+}
+
+/// The delivery runs of `shard`'s blocks, merged by run index when the shards are merged.
+pub fn shard_delivery(
+    scenario: &Scenario,
+    filters: &[FilterKind],
+    (runs, seed): (usize, u64),
+    shard: Shard,
+    threads: Option<usize>,
+) -> StudyResult<DeliveryShard> {
+    let blocks = shard.blocks(runs);
+    let block = ACCUMULATION_BLOCK;
+    let span = (blocks.start * block).min(runs)..(blocks.end * block).min(runs);
+    with_threads(threads, || {
+        deliver_runs(scenario, filters, runs, seed, span).map_err(|e| {
+            StudyError::Failed(format!(
+                "the delivery at deployment of the shard's runs: {}",
+                chain(&e)
+            ))
+        })
+    })
+}
+
+/// The delivery of merged shards: every shard's runs in run order (`None` when no shard has
+/// deliveries). Refuses a merge where some shards have deliveries and others not (one flown
+/// without `[guidance]`, or by an older entrynav), or whose deliveries do not fit together.
+pub fn merged_delivery(
+    deliveries: Vec<Option<DeliveryShard>>,
+) -> StudyResult<Option<DeliveryReport>> {
+    let with = deliveries.iter().filter(|d| d.is_some()).count();
+    if with == 0 {
+        return Ok(None);
+    }
+    if with < deliveries.len() {
+        return Err(StudyError::Refused(format!(
+            "{with} of {} shards carry a delivery table and the others do not; run the others \
+             again with this entrynav",
+            deliveries.len()
+        )));
+    }
+    let merged = merge_delivery_shards(deliveries.into_iter().flatten().collect())
+        .map_err(|e| StudyError::Refused(format!("trade merge: {e}")))?;
+    Ok(Some(merged))
+}

@@ -5,6 +5,12 @@
 use clap::Args;
 use entrynav_studies::options;
 
+/// What `--quiet` means in every command that has it: standard output is the same with or
+/// without it; standard error loses the progress and keeps warnings, notes and errors.
+pub const QUIET_HELP: &str = "Print no progress (bars, per-run, per-epoch and per-cell logs); results \
+(tables, `wrote FILE` lines) still print on standard output, unchanged, and warnings, notes and \
+errors on standard error";
+
 /// `--scenario NAME|FILE` and its `--set PATH=VALUE` overrides.
 #[derive(Args, Clone, Debug)]
 pub struct ScenarioArgs {
@@ -17,16 +23,26 @@ pub struct ScenarioArgs {
     pub sets: Vec<String>,
 }
 
-/// A whole number as typed (a negative or huge one included), or a message naming `option`.
-fn whole(option: &str, text: &str) -> Result<i128, String> {
-    text.trim()
-        .parse::<i128>()
-        .map_err(|_| format!("{option} = '{text}' is not a whole number"))
+/// A whole number as typed (a negative or huge one included), or the message of the bound it
+/// would be checked against (`check` with an out-of-range value), so a non-number gets the same
+/// range as any other bad value.
+fn whole<T>(
+    option: &str,
+    text: &str,
+    check: impl Fn(i128) -> Result<T, options::OptionError>,
+) -> Result<i128, String> {
+    text.trim().parse::<i128>().map_err(|_| {
+        let allowed = check(i128::MIN)
+            .err()
+            .map(|e| e.allowed)
+            .unwrap_or_default();
+        format!("{option} = '{text}' is not a whole number: must be {allowed}")
+    })
 }
 
 /// `--threads N`: 1 to `MAX_THREADS`.
 pub fn threads(text: &str) -> Result<usize, String> {
-    let n = whole("threads", text)?;
+    let n = whole("threads", text, |n| options::threads(Some(n)))?;
     options::threads(Some(n))
         .map(|t| t.unwrap_or(1))
         .map_err(|e| e.to_string())
@@ -34,7 +50,8 @@ pub fn threads(text: &str) -> Result<usize, String> {
 
 /// A seed: 0 to 2^64 - 1.
 pub fn seed(text: &str) -> Result<u64, String> {
-    options::seed("seed", whole("seed", text)?).map_err(|e| e.to_string())
+    let n = whole("seed", text, |n| options::seed("seed", n))?;
+    options::seed("seed", n).map_err(|e| e.to_string())
 }
 
 /// Run-count flags, each naming itself: 1 to `MAX_RUNS`.
@@ -42,8 +59,9 @@ macro_rules! run_count {
     ($($name:ident),*) => {$(
         #[doc = concat!("`--", stringify!($name), "`: a run count, 1 to `MAX_RUNS`.")]
         pub fn $name(text: &str) -> Result<usize, String> {
-            options::runs(stringify!($name), whole(stringify!($name), text)?)
-                .map_err(|e| e.to_string())
+            let check = |n| options::runs(stringify!($name), n);
+            let n = whole(stringify!($name), text, check)?;
+            check(n).map_err(|e| e.to_string())
         }
     )*};
 }

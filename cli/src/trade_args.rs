@@ -47,7 +47,7 @@ pub struct TradeArgs {
     /// provenance. With --grid, the grid's report. Checked before the first run.
     #[arg(long, value_name = "FILE.html")]
     pub report: Option<PathBuf>,
-    #[arg(long, help = crate::QUIET_HELP)]
+    #[arg(long, help = crate::args::QUIET_HELP)]
     pub quiet: bool,
     /// The truth atmosphere file and how to read it.
     #[command(flatten)]
@@ -169,7 +169,7 @@ pub enum TradeAction {
         #[arg(long)]
         plots: Option<PathBuf>,
         /// Accepted as `trade` accepts it (a merge shows no progress to silence).
-        #[arg(long, help = crate::QUIET_HELP)]
+        #[arg(long, help = crate::args::QUIET_HELP)]
         quiet: bool,
     },
 }

@@ -45,7 +45,7 @@ pub struct TrainArgs {
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = crate::args::threads)]
     pub threads: Option<usize>,
-    #[arg(long, help = crate::QUIET_HELP)]
+    #[arg(long, help = crate::args::QUIET_HELP)]
     pub quiet: bool,
     /// Evaluate the density estimates of `--filters` over this many Monte Carlo runs (the runs of
     /// `entrynav trade --seed MC_SEED`): eq. 70 RMSPE with the filter's density model at the true

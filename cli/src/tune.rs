@@ -59,7 +59,7 @@ pub struct TuneArgs {
     /// validation runs (band fraction or position RMSE by more than 10 %).
     #[arg(long)]
     force: bool,
-    #[arg(long, help = crate::QUIET_HELP)]
+    #[arg(long, help = crate::args::QUIET_HELP)]
     quiet: bool,
 }
 

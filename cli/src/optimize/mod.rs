@@ -95,7 +95,7 @@ pub struct CommonArgs {
     /// Write the optimized geometry as a scenario file (accepted by `entrynav trade`).
     #[arg(long)]
     pub write_scenario: Option<PathBuf>,
-    #[arg(long, help = crate::QUIET_HELP)]
+    #[arg(long, help = crate::args::QUIET_HELP)]
     pub quiet: bool,
 }
 
@@ -300,7 +300,7 @@ pub struct SelectArgs {
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = crate::args::threads)]
     threads: Option<usize>,
-    #[arg(long, help = crate::QUIET_HELP)]
+    #[arg(long, help = crate::args::QUIET_HELP)]
     quiet: bool,
     #[command(flatten)]
     check: design_check::CheckArgs,

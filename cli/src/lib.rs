@@ -44,18 +44,13 @@ mod trade_lincov;
 mod trade_tables;
 mod train;
 mod tune;
-mod tune_verdict;
-mod tuned_file;
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use entrynav_loader as load;
 
-/// What `--quiet` means in every command that has it: standard output is the same with or
-/// without it; standard error loses the progress and keeps warnings, notes and errors.
-const QUIET_HELP: &str = "Print no progress (bars, per-run, per-epoch and per-cell logs); results \
-(tables, `wrote FILE` lines) still print on standard output, unchanged, and warnings, notes and \
-errors on standard error";
+// What `--quiet` means (`args::QUIET_HELP`), for the commands that name it `crate::QUIET_HELP`.
+use args::QUIET_HELP;
 
 /// Mars atmospheric-entry navigation: scenarios, truth simulation, navigation filters and
 /// Monte Carlo trade studies, observability and Fisher information.

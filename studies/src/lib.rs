@@ -24,6 +24,7 @@ pub mod provenance;
 pub mod scenario;
 pub mod statistics;
 pub mod threads;
+pub mod tune;
 
 pub use error::{ErrorKind, StudyError, StudyResult};
 pub use scenario::ScenarioInput;

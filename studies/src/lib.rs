@@ -17,6 +17,7 @@
 
 pub mod error;
 pub mod lincov;
+pub mod observe;
 pub mod options;
 pub mod output;
 pub mod progress;

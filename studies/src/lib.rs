@@ -16,6 +16,7 @@
 //! the studies.
 
 pub mod error;
+pub mod guidance;
 pub mod lincov;
 pub mod observe;
 pub mod options;

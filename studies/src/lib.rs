@@ -24,6 +24,7 @@ pub mod output;
 pub mod progress;
 pub mod provenance;
 pub mod scenario;
+pub mod simulate;
 pub mod statistics;
 pub mod threads;
 pub mod tune;

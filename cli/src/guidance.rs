@@ -1,15 +1,16 @@
-//! `entrynav guidance deliver` (and `reference`, in `guidance_reference`): the Monte Carlo of delivery at deployment with navigation filters
-//! in the guidance loop, against perfect navigation and the unguided reference bank on the same
-//! dispersion draws (`entrynav::sim::delivery`).
+//! `entrynav guidance deliver` (and `reference`, in `guidance_reference`): the command over the
+//! delivery study (`entrynav_studies::guidance`), the Monte Carlo of delivery at deployment with
+//! navigation filters in the guidance loop, against perfect navigation and the unguided
+//! reference bank on the same dispersion draws; its table (also printed by `trade`), JSON and
+//! footprint plots.
 
 use crate::exit::{check_output_file, is_stdout};
-use crate::threads::with_threads;
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
-use entrynav::estimation::nav::FilterKind;
-use entrynav::sim::delivery::{DeliveryReport, DeliveryRow, run_delivery};
-use entrynav_loader as load;
-use serde::Serialize;
+use entrynav::sim::delivery::{DeliveryReport, DeliveryRow};
+use entrynav_studies::ScenarioInput;
+use entrynav_studies::guidance::{DeliverOptions, run_deliver};
+use entrynav_studies::progress::silent;
 use std::path::PathBuf;
 
 /// Arguments of `entrynav guidance`.
@@ -54,7 +55,7 @@ pub struct DeliverArgs {
     pub runs: Option<usize>,
     /// Master seed; run r draws its truth from run_seed(seed, r) as `trade` does, and the same
     /// seed gives the same statistics on any thread count.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true, value_parser = crate::args::seed)]
     pub seed: u64,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = crate::args::threads)]
@@ -77,59 +78,26 @@ pub fn run(args: &GuidanceArgs) -> Result<()> {
     }
 }
 
-/// One run's row in the JSON: its delivery or why it failed.
-#[derive(Serialize)]
-struct RunRow<'a> {
-    run: usize,
-    row: &'a str,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    delivery: Option<&'a entrynav::sim::guided_run::Delivery>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    failure: Option<String>,
-}
-
-#[derive(Serialize)]
-struct Output<'a> {
-    delivery: &'a DeliveryReport,
-    runs: Vec<RunRow<'a>>,
-}
-
 fn deliver(args: &DeliverArgs) -> Result<()> {
     if let Some(p) = &args.json {
         check_output_file(p, "--json")?;
     }
-    let (cfg, dir) = load::resolve(&args.scenario, load::Base::CurrentDir)?.into_parts();
-    let cfg = load::apply_overrides(cfg, &args.sets)?;
-    crate::exit::warn_implausible(&cfg);
-    let scenario = load::build(cfg, &dir)?;
-    let filters = FilterKind::parse_list(&args.filters, &scenario.onboard)?;
-    let runs = args.runs.unwrap_or(scenario.config.monte_carlo.runs);
-    let report = with_threads(args.threads, || {
-        Ok(run_delivery(&scenario, &filters, runs, args.seed, &|_| {})?)
-    })?;
+    let input = ScenarioInput::resolve(&args.scenario, &args.sets)?;
+    crate::exit::warn_implausible(&input.config);
+    let scenario = input.build()?;
+    let options = DeliverOptions {
+        filters: args.filters.clone(),
+        runs: args.runs,
+        seed: args.seed,
+        threads: args.threads,
+    };
+    let study = run_deliver(&scenario, &options, &silent)?;
     let to_stdout = args.json.as_deref().is_some_and(is_stdout);
     if !to_stdout {
-        print_table(&report);
+        print_table(&study.report);
     }
     if let Some(path) = &args.json {
-        let names: Vec<&str> = report.rows.iter().map(|r| r.name.as_str()).collect();
-        let out = Output {
-            delivery: &report,
-            runs: report
-                .per_run
-                .iter()
-                .enumerate()
-                .flat_map(|(run, rows)| {
-                    rows.iter().zip(&names).map(move |(r, name)| RunRow {
-                        run,
-                        row: name,
-                        delivery: r.as_ref().ok(),
-                        failure: r.as_ref().err().map(ToString::to_string),
-                    })
-                })
-                .collect(),
-        };
-        let text = serde_json::to_string_pretty(&out)? + "\n";
+        let text = serde_json::to_string_pretty(&study.document())? + "\n";
         if to_stdout {
             print!("{text}");
         } else {
@@ -140,7 +108,7 @@ fn deliver(args: &DeliverArgs) -> Result<()> {
     }
     if let Some(dir) = &args.plots {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-        for fig in crate::delivery_plots::delivery_figures(&report)? {
+        for fig in crate::delivery_plots::delivery_figures(&study.report)? {
             entrynav_studies::output::atomic_file::write(&dir.join(&fig.file), &fig.svg)?;
         }
         if !to_stdout {

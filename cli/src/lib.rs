@@ -19,8 +19,7 @@ mod guidance_reference;
 mod interrupt;
 mod lincov;
 mod observe;
-mod observe_files;
-mod observe_pcrlb;
+mod observe_plot;
 mod optimize;
 mod plot;
 mod plots;
@@ -38,8 +37,6 @@ mod trade_lincov;
 mod trade_tables;
 mod train;
 mod tune;
-mod tune_verdict;
-mod tuned_file;
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};

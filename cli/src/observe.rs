@@ -1,19 +1,18 @@
-//! `entrynav observe`: degree of observability δ(t) along a scenario's trajectory (seed 000 §2.4,
-//! seed 002 §3) and the range Fisher information of its beacons (seed 002 §3.2, eq. 54).
+//! `entrynav observe`: the command over the observability study (`entrynav_studies::observe`):
+//! degree of observability δ(t) along a scenario's trajectory (seed 000 §2.4, seed 002 §3), the
+//! range Fisher information of its beacons (seed 002 §3.2, eq. 54) and the PCRLB, printed, and
+//! written as JSON and an SVG plot.
 
-use crate::observe_files::{plot, to_json};
-use anyhow::{Context, Result, bail};
+use crate::observe_plot::plot;
+use anyhow::{Context, Result};
 use clap::Args;
-use entrynav::observability::fisher::max_det_bound;
-use entrynav::observability::{
-    AnalysisPoint, ChannelSet, DegreeSeries, FimEpoch, Method, Scaling, analysis_points,
-    degree_series, max_det_directions, range_fim_series,
-};
+use entrynav::observability::{DegreeSeries, FimEpoch, Method};
 use entrynav::scenario::Scenario;
-use entrynav_loader as load;
-use serde_json::json;
+use entrynav_studies::ScenarioInput;
+use entrynav_studies::observe::{
+    FimSummary, Observation, ObserveOptions, PcrlbBound, RAW_NOTE, run_observe, scaling_note,
+};
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 /// Arguments of `entrynav observe`.
 #[derive(Args)]
@@ -48,7 +47,7 @@ pub struct ObserveArgs {
     #[arg(long, default_value_t = 100, allow_hyphen_values = true, value_parser = crate::args::runs)]
     pub runs: usize,
     /// With --pcrlb: master seed of the truth runs (the runs a `trade` with this seed flies).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true, value_parser = crate::args::seed)]
     pub seed: u64,
     /// Write the results as JSON to this file.
     #[arg(long)]
@@ -58,75 +57,31 @@ pub struct ObserveArgs {
     pub plot: Option<PathBuf>,
 }
 
-pub(crate) const RAW_NOTE: &str = "raw SI: delta = sigma_min/sigma_max of O with states in m, rad, m/s, kg/m^3 and outputs in their SI units (the papers' convention)";
-
 /// Run the command.
 pub fn run(args: &ObserveArgs) -> Result<()> {
-    let method = args.method;
-    let (cfg, dir) = load::resolve(&args.scenario, load::Base::CurrentDir)?.into_parts();
-    crate::exit::warn_implausible(&cfg);
-    let scenario = load::build(cfg, &dir)?;
-    let points = analysis_points(&scenario, args.step)?;
-    let scaling = Scaling::characteristic(scenario.filter_model());
-
-    let started = Instant::now();
-    let central = degree_series(
-        &scenario,
-        &points,
-        &ChannelSet::centralised(&scenario),
-        method,
-        &scaling,
-    )?;
-    let central_elapsed = started.elapsed().as_secs_f64();
-    let mut subsystems = Vec::new();
-    if args.subsystems {
-        let sets = ChannelSet::subsystems(&scenario);
-        if sets.is_empty() {
-            bail!(
-                "scenario '{}' has no beacon channels: --subsystems needs range or range-rate \
-                 beacons (each subsystem is the IMU plus one beacon)",
-                scenario.config.name
-            );
-        }
-        for set in &sets {
-            let t0 = Instant::now();
-            let s = degree_series(&scenario, &points, set, method, &scaling)?;
-            subsystems.push((s, t0.elapsed().as_secs_f64()));
-        }
-    }
-    let fim = if args.fim {
-        let subset = match args.beacons {
-            Some(n) => Some(first_range_beacons(&scenario, n)?),
-            None => None,
-        };
-        Some(range_fim_series(&scenario, &points, subset.as_deref())?)
-    } else {
-        None
+    let input = ScenarioInput::resolve(&args.scenario, &[])?;
+    crate::exit::warn_implausible(&input.config);
+    let scenario = input.build()?;
+    let options = ObserveOptions {
+        method: args.method,
+        subsystems: args.subsystems,
+        step: args.step,
+        fim: args.fim,
+        beacons: args.beacons,
+        pcrlb: args.pcrlb,
+        runs: args.runs,
+        seed: args.seed,
     };
-
-    print_report(&scenario, &points, &scaling, &central, &subsystems, args);
-    if let Some(f) = &fim {
-        print_fim(f, args.beacons);
+    let study = run_observe(&scenario, &options)?;
+    print_report(&scenario, &study);
+    if let Some(f) = &study.fim {
+        print_fim(f, &study);
     }
-    let pcrlb = if args.pcrlb {
-        Some(crate::observe_pcrlb::run(&scenario, args.runs, args.seed)?)
-    } else {
-        None
-    };
+    if let Some(b) = &study.pcrlb {
+        print_pcrlb(b);
+    }
     if let Some(path) = &args.json {
-        let mut v = to_json(
-            &scenario,
-            &scaling,
-            &central,
-            central_elapsed,
-            &subsystems,
-            fim.as_deref(),
-        );
-        if let Some(b) = &pcrlb {
-            v["pcrlb"] = serde_json::to_value(b)?;
-            v["pcrlb_runs"] = json!(args.runs);
-            v["pcrlb_seed"] = json!(args.seed);
-        }
+        let v = study.to_json(&scenario);
         entrynav_studies::output::atomic_file::write(
             path,
             serde_json::to_string_pretty(&v)? + "\n",
@@ -135,33 +90,17 @@ pub fn run(args: &ObserveArgs) -> Result<()> {
     }
     if let Some(path) = &args.plot {
         create_parent(path)?;
-        let subs: Vec<&DegreeSeries> = subsystems.iter().map(|(s, _)| s).collect();
-        plot(path, &scenario, &central, &subs, fim.as_deref())?;
+        let subs: Vec<&DegreeSeries> = study.subsystems.iter().map(|(s, _)| s).collect();
+        plot(
+            path,
+            &scenario,
+            &study.central.0,
+            &subs,
+            study.fim.as_deref(),
+        )?;
         println!("wrote {}", path.display());
     }
     Ok(())
-}
-
-/// Indices of the first `n` beacons that have a range channel.
-fn first_range_beacons(scenario: &Scenario, n: usize) -> Result<Vec<usize>> {
-    let mut ranged: Vec<usize> = scenario
-        .channels
-        .iter()
-        .filter_map(|c| match c.channel {
-            entrynav::sensors::Channel::Range(b) => Some(b),
-            _ => None,
-        })
-        .collect();
-    ranged.dedup();
-    if n == 0 || n > ranged.len() {
-        bail!(
-            "--beacons {n}: scenario '{}' has {} range beacon(s)",
-            scenario.config.name,
-            ranged.len()
-        );
-    }
-    ranged.truncate(n);
-    Ok(ranged)
 }
 
 fn create_parent(path: &Path) -> Result<()> {
@@ -198,14 +137,8 @@ fn summary_line(s: &DegreeSeries) -> String {
     )
 }
 
-fn print_report(
-    scenario: &Scenario,
-    points: &[AnalysisPoint],
-    scaling: &Scaling,
-    central: &DegreeSeries,
-    subsystems: &[(DegreeSeries, f64)],
-    args: &ObserveArgs,
-) {
+fn print_report(scenario: &Scenario, study: &Observation) {
+    let (points, scaling, central) = (&study.points, &study.scaling, &study.central.0);
     let n = scaling.state.len();
     let last = points.last().map_or(0.0, |p| p.t);
     println!("scenario   {}", scenario.config.name);
@@ -218,7 +151,7 @@ fn print_report(
     println!(
         "points     {} (every {} s, t = 0 .. {last} s)",
         points.len(),
-        args.step
+        study.options.step
     );
     println!("RAW        {RAW_NOTE}");
     println!("SCALED     {}", scaling_note(scaling));
@@ -229,69 +162,37 @@ fn print_report(
         "system", "RAW SI delta: min @t, max @t", "rank", "SCALED delta: min @t, max @t", "rank"
     );
     println!("{}", summary_line(central));
-    for (s, _) in subsystems {
+    for (s, _) in &study.subsystems {
         println!("{}", summary_line(s));
     }
-}
-
-pub(crate) fn scaling_note(scaling: &Scaling) -> String {
-    let sizes: Vec<String> = scaling
-        .state_names
-        .iter()
-        .zip(&scaling.state)
-        .map(|(n, s)| format!("{n} {s:e}"))
-        .collect();
-    format!(
-        "delta of W*O*D: states divided by characteristic sizes [{}], each row divided by its \
-         channel's noise 1-sigma, Lie order k rows times ({} s)^k (dimensionless)",
-        sizes.join(", "),
-        scaling.time_s
-    )
 }
 
 /// The lines that summarise the per-epoch FIM table before it: beacons in view, the extremes of
 /// det F and of the bound trF^-1 (with their times), the time-averaged geometry index I.
 fn fim_summary(fim: &[FimEpoch]) -> Vec<String> {
-    let (Some(first), Some(last)) = (fim.first(), fim.last()) else {
+    let Some(s) = FimSummary::of(fim) else {
         return vec!["summary: no epochs".into()];
-    };
-    let by = |key: fn(&FimEpoch) -> Option<f64>, max: bool| {
-        fim.iter()
-            .filter_map(|e| key(e).filter(|v| v.is_finite()).map(|v| (v, e.t)))
-            .reduce(|a, b| if (b.0 > a.0) == max { b } else { a })
     };
     let fmt =
         |x: Option<(f64, f64)>| x.map_or("-".to_string(), |(v, t)| format!("{v:.4e} at {t:.1} s"));
-    let counts = (
-        fim.iter().map(|e| e.summary.count).min().unwrap_or(0),
-        fim.iter().map(|e| e.summary.count).max().unwrap_or(0),
-    );
-    let singular = fim
-        .iter()
-        .filter(|e| e.summary.trace_inverse.is_none())
-        .count();
-    let mean_i = fim.iter().map(|e| e.geometry_index).sum::<f64>() / fim.len() as f64;
     vec![
         format!(
             "summary over {} epochs ({:.1} .. {:.1} s): beacons in view {}..{}; F singular (position \
-             not determined by the ranges alone) at {singular} epochs",
-            fim.len(),
-            first.t,
-            last.t,
-            counts.0,
-            counts.1
+             not determined by the ranges alone) at {} epochs",
+            s.epochs, s.span_s.0, s.span_s.1, s.in_view.0, s.in_view.1, s.singular
         ),
         format!(
-            "det F min {}, max {}; trF^-1 (bound on tr P) best {}, worst {}; mean I {mean_i:.5}",
-            fmt(by(|e| Some(e.summary.det), false)),
-            fmt(by(|e| Some(e.summary.det), true)),
-            fmt(by(|e| e.summary.trace_inverse, false)),
-            fmt(by(|e| e.summary.trace_inverse, true)),
+            "det F min {}, max {}; trF^-1 (bound on tr P) best {}, worst {}; mean I {:.5}",
+            fmt(s.det.0),
+            fmt(s.det.1),
+            fmt(s.trace_inverse.0),
+            fmt(s.trace_inverse.1),
+            s.mean_index
         ),
     ]
 }
 
-fn print_fim(fim: &[FimEpoch], beacons: Option<usize>) {
+fn print_fim(fim: &[FimEpoch], study: &Observation) {
     println!();
     println!(
         "Range Fisher information of the vehicle position ([P2] eq. 36; unit vectors beacon->vehicle)"
@@ -325,15 +226,55 @@ fn print_fim(fim: &[FimEpoch], beacons: Option<usize>) {
             e.geometry_index
         );
     }
-    let n = beacons.unwrap_or_else(|| fim.iter().map(|e| e.summary.count).max().unwrap_or(0));
-    if n >= 3 {
-        let best = max_det_directions(n, 8, 1);
+    if let Some(best) = &study.free_beacons {
         println!(
-            "best geometry of {n} free beacons ([P2] Table 1): max det(sum n n^T) = {:.6} \
+            "best geometry of {} free beacons ([P2] Table 1): max det(sum n n^T) = {:.6} \
              (projected gradient ascent) vs (N/3)^3 = {:.6}; I = det(sum n n^T) for unit sigma, \
              so I <= (N/3)^3",
-            best.det,
-            max_det_bound(n)
+            best.n, best.det, best.bound
         );
+    }
+}
+
+/// The PCRLB's table.
+fn print_pcrlb(b: &PcrlbBound) {
+    let report = &b.report;
+    println!();
+    if !report.available {
+        println!(
+            "PCRLB: not available ({})",
+            report.reason.as_deref().unwrap_or("unknown reason")
+        );
+        return;
+    }
+    println!(
+        "PCRLB over {} truth runs (seed {}, {:.2} s): the lowest RMSE any unbiased estimator can \
+         reach on this scenario, in the units of `trade`'s RMSE tables",
+        b.runs, b.seed, b.elapsed_s
+    );
+    println!("  prior: {}", report.prior);
+    println!("  {:<14} {:>14} {:>14}", "state", "time-avg", "final");
+    for name in &b.names {
+        let get =
+            |m: &std::collections::BTreeMap<String, Option<f64>>| m.get(name).copied().flatten();
+        println!(
+            "  {:<14} {:>14} {:>14}",
+            name,
+            num(get(&report.time_avg)),
+            num(get(&report.final_))
+        );
+    }
+}
+
+/// Four significant digits: fixed notation between 1e-3 and 1e6, else `1.234e-5`.
+fn num(v: Option<f64>) -> String {
+    match v {
+        None => "-".into(),
+        Some(0.0) => "0".into(),
+        Some(v) if (1e-3..1e6).contains(&v.abs()) => {
+            let decimals = (3 - v.abs().log10().floor() as i32).max(0) as usize;
+            format!("{v:.decimals$}")
+        }
+        Some(v) => format!("{v:.3e}"),
     }
 }

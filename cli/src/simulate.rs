@@ -1,27 +1,23 @@
-//! `entrynav simulate`: one truth run with its measurement record.
+//! `entrynav simulate`: the command over the simulation study (`entrynav_studies::simulate`):
+//! one truth run with its measurement record, printed as a summary and written as CSV.
 
+use crate::args::ScenarioArgs;
 use anyhow::{Context, Result};
 use clap::Args;
 use entrynav::scenario::Scenario;
-use entrynav::sim::{Peaks, TruthRun, simulate_truth_with_peaks};
-use entrynav_loader as load;
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
+use entrynav::sim::{Peaks, TruthRun};
+use entrynav_studies::ScenarioInput;
+use entrynav_studies::simulate::{SimulateOptions, run_simulate};
 use std::io::Write;
 use std::path::PathBuf;
 
 /// Arguments of `entrynav simulate`.
 #[derive(Args)]
 pub struct SimulateArgs {
-    /// Built-in scenario name or path to a scenario TOML file.
-    #[arg(long)]
-    scenario: String,
-    /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable), e.g.
-    /// `--set truth.density_bias=0.095`.
-    #[arg(long = "set", value_name = "PATH=VALUE")]
-    sets: Vec<String>,
+    #[command(flatten)]
+    scenario: ScenarioArgs,
     /// Seed of the measurement noise (and of the dispersions with --dispersed).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true, value_parser = crate::args::seed)]
     seed: u64,
     /// Draw the truth from the scenario's dispersions (initial state, vehicle, density bias,
     /// atmosphere perturbation) instead of using the nominal truth.
@@ -35,90 +31,33 @@ pub struct SimulateArgs {
 
 /// Run the command.
 pub fn run(args: &SimulateArgs) -> Result<()> {
-    let (cfg, dir) = load::resolve(&args.scenario, load::Base::CurrentDir)?.into_parts();
-    let cfg = load::apply_overrides(cfg, &args.sets)?;
-    crate::exit::warn_implausible(&cfg);
-    let scenario = load::build(cfg, &dir)?;
-    let mut rng = ChaCha8Rng::seed_from_u64(args.seed);
-    let draw = if args.dispersed {
-        scenario.draw_truth(&mut rng)
-    } else {
-        entrynav::scenario::TruthDraw {
-            initial: scenario.truth_initial,
-            model: scenario.truth_model.clone(),
-        }
+    let input = ScenarioInput::resolve(&args.scenario.scenario, &args.scenario.sets)?;
+    crate::exit::warn_implausible(&input.config);
+    let scenario = input.build()?;
+    let options = SimulateOptions {
+        seed: args.seed,
+        dispersed: args.dispersed,
     };
-    let (run, peaks) = simulate_truth_with_peaks(&scenario, &draw, &mut rng)?;
+    let sim = run_simulate(&scenario, &options)?;
+    let run = &sim.run;
     if let Some(path) = args.out.as_deref().filter(|p| crate::exit::is_stdout(p)) {
         let mut w = crate::csv_file::writer(std::io::stdout().lock());
-        write_csv(&mut w, &scenario, &run)
+        write_csv(&mut w, &scenario, run)
             .and_then(|()| Ok(w.flush()?))
             .with_context(|| format!("writing {}", path.display()))?;
         return Ok(());
     }
     if let Some(path) = &args.out {
-        crate::csv_file::write(path, |w| Ok(write_csv(w, &scenario, &run)?))?;
+        crate::csv_file::write(path, |w| Ok(write_csv(w, &scenario, run)?))?;
     }
-    print_summary(&scenario, &run, &peaks, args);
+    print_summary(&scenario, run, &sim.peaks, args);
     Ok(())
 }
 
-/// The truth run as a table: the column names and one row per truth sample (t = 0, every
-/// measurement epoch, the final time); a measurement is `None` where the channel was not sampled
-/// or not available, a visibility 0 or 1. What `--out FILE` writes and the Python package's
-/// `simulate` returns.
+/// The truth run as a table (`entrynav_studies::simulate::truth_table`), for the Python package
+/// until it calls the study itself.
 pub fn truth_table(scenario: &Scenario, run: &TruthRun) -> (Vec<String>, Vec<Vec<Option<f64>>>) {
-    let cartesian = scenario.truth_model.kind.is_cartesian();
-    let mut header: Vec<String> = [
-        "t_s",
-        "r_m",
-        "lon_rad",
-        "lat_rad",
-        "v_mps",
-        "fpa_rad",
-        "heading_rad",
-        "altitude_m",
-        "density_kgm3",
-        "dynamic_pressure_pa",
-        "heating_wm2",
-        "aero_accel_mps2",
-    ]
-    .map(String::from)
-    .to_vec();
-    if cartesian {
-        header.extend(["x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps"].map(String::from));
-    }
-    header.extend(scenario.beacon_names.iter().map(|b| format!("visible_{b}")));
-    header.extend(scenario.channels.iter().map(|c| c.name.clone()));
-    let mut epochs = run.epochs.iter().peekable();
-    let mut rows = Vec::with_capacity(run.samples.len());
-    for s in &run.samples {
-        let mut row: Vec<Option<f64>> = vec![Some(s.t)];
-        row.extend(s.spherical.iter().map(|v| Some(*v)));
-        row.extend(
-            [
-                s.altitude,
-                s.density,
-                s.dynamic_pressure,
-                s.heating,
-                s.aero_accel,
-            ]
-            .map(Some),
-        );
-        if cartesian {
-            row.extend(s.state.iter().map(|v| Some(*v)));
-        }
-        row.extend(s.visible.iter().map(|v| Some(f64::from(u8::from(*v)))));
-        match epochs.peek() {
-            Some(e) if (e.t - s.t).abs() < 1e-9 => {
-                row.extend(e.values.iter().copied());
-                epochs.next();
-            }
-            _ => row.extend(std::iter::repeat_n(None, scenario.channels.len())),
-        }
-        rows.push(row);
-    }
-    (header, rows)
+    entrynav_studies::simulate::truth_table(scenario, run)
 }
 
 /// CSV of [`truth_table`].

@@ -1,21 +1,20 @@
-//! `entrynav tune`: the process-noise diagonal (and optionally the assumed measurement noise) that
-//! makes each of a scenario's filters consistent, filter by filter, validated on fresh runs with
-//! the file as written, and written as the input scenario's own text with one
-//! `[filter.tuned.<name>]` table per filter (`crate::tuned_file`).
+//! `entrynav tune`: the command over the tuning study (`entrynav_studies::tune`): the process-noise
+//! diagonal (and optionally the assumed measurement noise) that makes each of a scenario's
+//! filters consistent, filter by filter, validated on fresh runs; prints the summary and writes
+//! the input scenario's own text with one `[filter.tuned.<name>]` table per filter.
 
-use crate::tuned_file::{self, Retune};
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use clap::Args;
-use entrynav::estimation::nav::FilterKind;
-use entrynav::scenario::{FilterRetuneConfig, ScenarioConfig, builtin_toml};
 use entrynav::sim::report::FilterReport;
-use entrynav::sim::tuning::TuningRuns;
-use entrynav_loader as load;
-use entrynav_optimizer::tune::{
-    EntryTuning, TuneObjective, TuneOptions, TuneResult, TuningProblem, objective, tune,
-};
+use entrynav_studies::ScenarioInput;
+use entrynav_studies::progress::Step;
+use entrynav_studies::tune::figures::{band, fmt, objective_zero, per_dof, sig3};
+use entrynav_studies::tune::tuned_file::six_digits;
+use entrynav_studies::tune::verdict::{rmse_avg, rmse_final};
+use entrynav_studies::tune::{TuneStudy, TuneStudyOptions, run_tune};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
+use std::sync::Mutex;
 
 /// Arguments of `entrynav tune`.
 #[derive(Args)]
@@ -38,7 +37,7 @@ pub struct TuneArgs {
     #[arg(long, default_value_t = 24, allow_hyphen_values = true, value_parser = crate::args::runs)]
     runs: usize,
     /// Master seed of the tuning runs (the validation runs use a different one).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true, value_parser = crate::args::seed)]
     seed: u64,
     /// Runs of the fresh validation set.
     #[arg(long, default_value_t = 100, allow_hyphen_values = true, value_parser = crate::args::validation_runs)]
@@ -63,178 +62,95 @@ pub struct TuneArgs {
     quiet: bool,
 }
 
-/// Smallest relative drop of the objective for which a tuning is written: below it the
-/// factors only fit the tuning runs' noise.
-const MIN_GAIN: f64 = 0.10;
-
-/// Seed of the validation runs: a different study than the tuning runs.
-fn validation_seed(seed: u64) -> u64 {
-    seed.wrapping_add(0x5EED_0000_0000_0001)
-}
-
 /// Run the command.
 pub fn run(args: &TuneArgs) -> Result<()> {
-    crate::threads::with_threads(args.threads, || run_tuning(args))
-}
-
-/// One filter's tuning.
-struct Tuned {
-    kind: FilterKind,
-    /// Name, factor, and whether it sits at its search bound.
-    factors: Vec<(String, f64, bool)>,
-    result: TuneResult,
-    search_s: f64,
-    /// What the file holds for it (six significant digits).
-    retune: FilterRetuneConfig,
-    /// Why its tuning is kept as it was (no table written), if it is.
-    kept: Option<String>,
-}
-
-/// The scenario's TOML text as the user wrote it (the built-in's text for a built-in).
-fn source_text(origin: &load::Origin) -> Result<String> {
-    match origin {
-        load::Origin::Builtin(name) => builtin_toml(name)
-            .map(str::to_string)
-            .ok_or_else(|| anyhow::anyhow!("no text for built-in scenario {name}")),
-        load::Origin::File(path) => {
-            load::read_text(path).with_context(|| format!("cannot read {}", path.display()))
-        }
-    }
-}
-
-fn run_tuning(args: &TuneArgs) -> Result<()> {
-    if !(1..=100_000).contains(&args.runs) || !(1..=100_000).contains(&args.validation_runs) {
-        bail!(
-            "--runs {} / --validation-runs {}: each must be between 1 and 100000",
-            args.runs,
-            args.validation_runs
-        );
-    }
+    let options = TuneStudyOptions {
+        filters: args.filter.clone(),
+        runs: args.runs,
+        seed: args.seed,
+        validation_runs: args.validation_runs,
+        nis_only: args.nis_only,
+        tune_noise: args.tune_noise,
+        max_evaluations: args.max_evaluations,
+        threads: args.threads,
+        force: args.force,
+    };
+    options.validate()?;
     if let Some(parent) = args.out.parent().filter(|p| !p.as_os_str().is_empty()) {
         std::fs::create_dir_all(parent)
             .with_context(|| format!("cannot create {}", parent.display()))?;
     }
-    let src = load::resolve(&args.scenario, load::Base::CurrentDir)?;
-    let source = source_text(&src.origin)?;
-    let (cfg, dir) = src.into_parts();
-    let cfg = load::apply_overrides(cfg, &args.sets)?;
-    crate::exit::warn_implausible(&cfg);
-    let scenario = load::build(cfg.clone(), &dir)?;
-    let kinds = FilterKind::parse_list(&args.filter, &scenario.onboard)?;
-    let clock = std::time::Instant::now();
-    let runs = TuningRuns::record(&scenario, args.seed, args.runs)?;
-    let fresh = TuningRuns::record(&scenario, validation_seed(args.seed), args.validation_runs)?;
-    let opts = TuneOptions {
-        objective: if args.nis_only {
-            TuneObjective::NisOnly
-        } else {
-            TuneObjective::NeesAndNis
-        },
-        max_evaluations: args.max_evaluations,
-        ..Default::default()
-    };
-    let mut tuned = Vec::new();
-    for &kind in &kinds {
-        tuned.push(tune_one(args, &opts, &runs, &cfg, kind)?);
-    }
-
-    // What the written file does: the scenario built from its own text, on both run sets.
-    let plain: Vec<Retune<'_>> = tuned
-        .iter()
-        .filter(|t| t.kept.is_none())
-        .map(|t| Retune {
-            name: t.kind.name(),
-            config: &t.retune,
-            comment: &[],
-        })
-        .collect();
-    let text = tuned_file::edit(&source, &args.sets, &plain)?;
-    let written = check_written(&text, &cfg, &tuned)?;
-    let tuned_scenario = load::build(written.clone(), &dir)?;
-    let (old, new) = (&scenario.onboard, &tuned_scenario.onboard);
-    let tuning_before = runs.evaluate(old, &kinds)?;
-    let tuning_after = runs.evaluate(new, &kinds)?;
-    let before = fresh.evaluate(old, &kinds)?;
-    let after = fresh.evaluate(new, &kinds)?;
-    let wall_s = clock.elapsed().as_secs_f64();
-
-    let worse = crate::tune_verdict::worse_figures(&before, &after);
-    let summary = Summary {
-        name: &scenario.config.name,
-        wall_s,
-        tuned: &tuned,
-        tuning: (&tuning_before, &tuning_after),
-        fresh: (&before, &after),
-    };
-    if !worse.is_empty() && !args.force {
-        print_summary(args, &opts, &summary);
-        for w in &worse {
+    let input = ScenarioInput::resolve(&args.scenario, &args.sets)?;
+    crate::exit::warn_implausible(&input.config);
+    let bar = Bars::default();
+    let progress = |step: Step<'_>| bar.show(step, args.quiet);
+    let study = run_tune(&input, &options, &progress);
+    bar.clear();
+    let study = study?;
+    if let Some(refused) = study.refusal(&args.out) {
+        print_summary(&study);
+        for w in &study.worse {
             eprintln!("warning: worse than the input on fresh runs: {w}");
         }
-        return Err(crate::exit::Runtime(format!(
-            "{} not written: the tuning makes a filter worse than the input on the {} fresh \
-             validation runs ({}); --force writes it anyway",
-            args.out.display(),
-            args.validation_runs,
-            worse.join("; ")
-        ))
-        .into());
-    }
-    let comments: Vec<Vec<String>> = tuned
-        .iter()
-        .zip(before.iter().zip(&after))
-        .filter(|(t, _)| t.kept.is_none())
-        .map(|(t, (b, a))| {
-            let mut lines = comment_lines(args, &opts, t, b, a);
-            let name = format!("{}:", t.kind.name());
-            lines.extend(
-                worse
-                    .iter()
-                    .filter(|w| w.starts_with(&name))
-                    .map(|w| format!("NOTE: written with --force although worse: {w}")),
-            );
-            lines
-        })
-        .collect();
-    let with_comments: Vec<Retune<'_>> = tuned
-        .iter()
-        .filter(|t| t.kept.is_none())
-        .zip(&comments)
-        .map(|(t, c)| Retune {
-            name: t.kind.name(),
-            config: &t.retune,
-            comment: c,
-        })
-        .collect();
-    let text = tuned_file::edit(&source, &args.sets, &with_comments)?;
-    if check_written(&text, &cfg, &tuned)? != written {
-        bail!("internal error: the commented tuned file differs from the one validated");
+        return Err(refused.into());
     }
     // The file first: a closed standard output (`| head`) must not cost it.
-    entrynav_studies::output::atomic_file::write(&args.out, text)?;
-    print_summary(args, &opts, &summary);
+    if let Some(text) = &study.text {
+        entrynav_studies::output::atomic_file::write(&args.out, text)?;
+    }
+    print_summary(&study);
     println!("wrote {}", args.out.display());
     Ok(())
 }
 
-/// What `tune` prints.
-struct Summary<'a> {
-    name: &'a str,
-    wall_s: f64,
-    tuned: &'a [Tuned],
-    tuning: (&'a [FilterReport], &'a [FilterReport]),
-    fresh: (&'a [FilterReport], &'a [FilterReport]),
+/// One progress bar per filter tuned, replaced when the next filter starts.
+#[derive(Default)]
+struct Bars(Mutex<Option<(String, ProgressBar)>>);
+
+impl Bars {
+    fn show(&self, step: Step<'_>, quiet: bool) {
+        let Ok(mut slot) = self.0.lock() else { return };
+        if slot.as_ref().is_none_or(|(task, _)| task != step.task) {
+            if let Some((_, old)) = slot.take() {
+                old.finish_and_clear();
+            }
+            let bar = if quiet {
+                ProgressBar::hidden()
+            } else {
+                ProgressBar::new(step.total)
+            };
+            bar.set_style(
+                ProgressStyle::with_template(&format!(
+                    "{{spinner}} tuning {} [{{bar:40}}] {{pos}}/{{len}} evaluations, {{msg}}",
+                    step.task
+                ))
+                .unwrap_or_else(|_| ProgressStyle::default_bar())
+                .progress_chars("=> "),
+            );
+            *slot = Some((step.task.to_string(), bar));
+        }
+        if let Some((_, bar)) = slot.as_ref() {
+            bar.set_position(step.done);
+            if let Some(best) = step.best {
+                bar.set_message(format!("best J {best:.3e}"));
+            }
+        }
+    }
+
+    fn clear(&self) {
+        if let Some((_, bar)) = self.0.lock().ok().and_then(|mut s| s.take()) {
+            bar.finish_and_clear();
+        }
+    }
 }
 
-fn print_summary(args: &TuneArgs, opts: &TuneOptions, s: &Summary<'_>) {
-    let (scenario_name, wall_s, tuned) = (s.name, s.wall_s, s.tuned);
-    let (tuning_before, tuning_after) = s.tuning;
-    let (before, after) = s.fresh;
+fn print_summary(s: &TuneStudy) {
+    let o = &s.options;
     println!(
-        "tuned {} on {} ({} tuning runs, seed {}; {wall_s:.1} s in all): each filter its own Q",
-        args.filter, scenario_name, args.runs, args.seed
+        "tuned {} on {} ({} tuning runs, seed {}; {:.1} s in all): each filter its own Q",
+        o.filters, s.scenario, o.runs, o.seed, s.wall_s
     );
-    for t in tuned {
+    for t in &s.tuned {
         if let Some(why) = &t.kept {
             println!(
                 "  {}: {why}; its tuning is kept and no table is written for it",
@@ -247,141 +163,29 @@ fn print_summary(args: &TuneArgs, opts: &TuneOptions, s: &Summary<'_>) {
             t.kind.name(),
             t.result.evaluations,
             t.search_s,
-            sig3(objective(&t.result.initial, opts.objective)),
+            sig3(t.initial_cost),
             sig3(t.result.cost),
-            objective_zero(args.nis_only)
+            objective_zero(o.nis_only)
         );
-        for (name, f, at_bound) in &t.factors {
-            let bound = if *at_bound {
+        for f in &t.factors {
+            let bound = if f.at_bound {
                 "  (at the search bound)"
             } else {
                 ""
             };
-            println!("    {name:<40} x {}{bound}", tuned_file::six_digits(*f));
+            println!("    {:<40} x {}{bound}", f.name, six_digits(f.factor));
         }
     }
-    print_comparison("tuning runs", tuning_before, tuning_after);
+    print_comparison("tuning runs", &s.tuning.0, &s.tuning.1);
     print_comparison(
         &format!(
             "validation: {} fresh runs (seed {})",
-            args.validation_runs,
-            validation_seed(args.seed)
+            o.validation_runs,
+            s.validation_seed()
         ),
-        before,
-        after,
+        &s.fresh.0,
+        &s.fresh.1,
     );
-}
-
-/// Tune filter `kind` from its current tuning.
-fn tune_one(
-    args: &TuneArgs,
-    opts: &TuneOptions,
-    runs: &TuningRuns,
-    cfg: &ScenarioConfig,
-    kind: FilterKind,
-) -> Result<Tuned> {
-    let clock = std::time::Instant::now();
-    let problem = EntryTuning::new(runs, kind, args.tune_noise)?;
-    let bar = if args.quiet {
-        ProgressBar::hidden()
-    } else {
-        ProgressBar::new(args.max_evaluations as u64)
-    };
-    bar.set_style(
-        ProgressStyle::with_template(&format!(
-            "{{spinner}} tuning {} [{{bar:40}}] {{pos}}/{{len}} evaluations, {{msg}}",
-            kind.name()
-        ))
-        .unwrap_or_else(|_| ProgressStyle::default_bar())
-        .progress_chars("=> "),
-    );
-    let result = tune(&problem, opts, &|done, _, best| {
-        bar.set_position(done as u64);
-        bar.set_message(format!("best J {best:.3e}"));
-    })?;
-    bar.finish_and_clear();
-    let factors = problem
-        .groups()
-        .iter()
-        .zip(&result.theta)
-        .enumerate()
-        .map(|(k, (g, t))| {
-            let (lo, hi) = problem.bounds(k);
-            let at_bound = *t <= lo + 1e-9 || *t >= hi - 1e-9;
-            (g.name().to_string(), 10f64.powf(*t), at_bound)
-        })
-        .collect();
-    let retune = tuned_file::rounded(&problem.retune_config(cfg, &result.theta));
-    let initial_j = objective(&result.initial, opts.objective);
-    let kept = if result.already_consistent {
-        Some(format!(
-            "already consistent on the tuning runs (ANEES/dof {}, ANIS/dof {}, within {} %, no \
-             failure)",
-            fmt(result.initial.anees_per_dof),
-            fmt(result.initial.anis_per_dof),
-            100.0 * opts.consistent_within
-        ))
-    } else if result.cost > (1.0 - MIN_GAIN) * initial_j {
-        Some(format!(
-            "no factor lowered J by {:.0} % ({} evaluations, J {} -> {}): Q does not limit this \
-             filter's consistency (try --tune-noise)",
-            100.0 * MIN_GAIN,
-            result.evaluations,
-            sig3(initial_j),
-            sig3(result.cost)
-        ))
-    } else {
-        None
-    };
-    Ok(Tuned {
-        kind,
-        factors,
-        result,
-        search_s: clock.elapsed().as_secs_f64(),
-        retune,
-        kept,
-    })
-}
-
-/// The configuration `text` holds, checked to be `cfg` with exactly the tunings in `tuned`.
-fn check_written(text: &str, cfg: &ScenarioConfig, tuned: &[Tuned]) -> Result<ScenarioConfig> {
-    let written = ScenarioConfig::from_toml_str(text, "the tuned scenario")?;
-    let mut expected = cfg.clone();
-    for t in tuned.iter().filter(|t| t.kept.is_none()) {
-        expected
-            .filter
-            .tuned
-            .insert(t.kind.name().to_string(), t.retune.clone());
-    }
-    if written != expected {
-        bail!(
-            "internal error: the tuned file does not read back as the tuned scenario (the --set \
-             overrides or the [filter.tuned] tables were not written as applied)"
-        );
-    }
-    Ok(written)
-}
-
-fn sig3(x: f64) -> String {
-    format!("{x:.2e}")
-}
-
-fn objective_zero(nis_only: bool) -> &'static str {
-    if nis_only {
-        "ANIS/dof 1"
-    } else {
-        "ANEES/dof and ANIS/dof both 1"
-    }
-}
-
-fn fmt(v: Option<f64>) -> String {
-    v.map(|x| format!("{x:.4}")).unwrap_or_else(|| "-".into())
-}
-
-fn per_dof(r: &FilterReport) -> Option<f64> {
-    r.consistency
-        .anees
-        .map(|a| a / r.consistency.nees_dof.max(1) as f64)
 }
 
 fn print_comparison(title: &str, before: &[FilterReport], after: &[FilterReport]) {
@@ -400,96 +204,18 @@ fn print_comparison(title: &str, before: &[FilterReport], after: &[FilterReport]
     );
     for (b, a) in before.iter().zip(after) {
         for (label, r) in [("before", b), ("after", a)] {
-            let band = r
-                .consistency
-                .nees_in_bounds_frac
-                .map_or("-".into(), |f| format!("{:.1} %", 100.0 * f));
             println!(
                 "    {:<10} {:>7} {:>10} {:>9} {:>9} {:>15} {:>15} {:>16} {:>11}",
                 r.name,
                 label,
                 fmt(per_dof(r)),
-                band,
+                band(r),
                 fmt(r.consistency.anis_per_dof),
-                fmt(crate::tune_verdict::rmse_avg(r)),
-                fmt(crate::tune_verdict::rmse_final(r)),
+                fmt(rmse_avg(r)),
+                fmt(rmse_final(r)),
                 fmt(r.rmse_time_avg.get("vel_mps").copied().flatten()),
                 format!("{}/{}", r.failed, r.diverged)
             );
         }
     }
-}
-
-/// The comment above a filter's `[filter.tuned.<name>]` table: how it was tuned and what it does.
-fn comment_lines(
-    args: &TuneArgs,
-    opts: &TuneOptions,
-    t: &Tuned,
-    before: &FilterReport,
-    after: &FilterReport,
-) -> Vec<String> {
-    let mut flags = String::new();
-    if args.nis_only {
-        flags.push_str(" --nis-only");
-    }
-    if args.tune_noise {
-        flags.push_str(" --tune-noise");
-    }
-    for s in &args.sets {
-        flags.push_str(&format!(" --set {s}"));
-    }
-    let factors: Vec<String> = t
-        .factors
-        .iter()
-        .map(|(n, f, _)| format!("{n} x {}", tuned_file::six_digits(*f)))
-        .collect();
-    let pct = |r: &FilterReport| {
-        r.consistency
-            .nees_in_bounds_frac
-            .map_or("-".into(), |f| format!("{:.1} %", 100.0 * f))
-    };
-    vec![
-        format!(
-            "{}: its own tuning, by `entrynav tune --scenario {} --filter {}{flags} --runs {} --seed {}`",
-            t.kind.name(),
-            args.scenario,
-            args.filter,
-            args.runs,
-            args.seed
-        ),
-        format!(
-            "Nelder-Mead over log10 factors from the previous tuning, {} evaluations, J {} -> {} with",
-            t.result.evaluations,
-            sig3(objective(&t.result.initial, opts.objective)),
-            sig3(t.result.cost)
-        ),
-        format!(
-            "  J = {}",
-            match opts.objective {
-                TuneObjective::NeesAndNis =>
-                    "ln^2(ANEES/dof) + ln^2(ANIS/dof) + 25 x (failed or diverged fraction)",
-                TuneObjective::NisOnly => "ln^2(ANIS/dof) + 25 x (failed or diverged fraction)",
-            }
-        ),
-        format!("factors: {}", factors.join(", ")),
-        format!(
-            "fresh validation, {} runs (seed {}): ANEES/dof {} -> {}, epochs in the NEES band {} -> {}, \
-             ANIS/dof {} -> {},",
-            args.validation_runs,
-            validation_seed(args.seed),
-            fmt(per_dof(before)),
-            fmt(per_dof(after)),
-            pct(before),
-            pct(after),
-            fmt(before.consistency.anis_per_dof),
-            fmt(after.consistency.anis_per_dof),
-        ),
-        format!(
-            "  position RMSE time-averaged {} -> {} m, final {} -> {} m",
-            fmt(crate::tune_verdict::rmse_avg(before)),
-            fmt(crate::tune_verdict::rmse_avg(after)),
-            fmt(crate::tune_verdict::rmse_final(before)),
-            fmt(crate::tune_verdict::rmse_final(after)),
-        ),
-    ]
 }

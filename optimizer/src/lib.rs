@@ -20,9 +20,7 @@
 //! * [`search`] — the global search shared by all of them: seeded multi-start particle swarm
 //!   followed by a Nelder–Mead polish (argmin, `Vec<f64>` backend), reproducible from a seed,
 //!   with evaluation counts and a progress callback;
-//! * [`output`] — scenario files carrying an optimized geometry (accepted by `entrynav trade`);
-//! * [`tune`] — the process-noise (and assumed measurement-noise) factors that make a navigation
-//!   filter consistent (`entrynav tune`), by Nelder–Mead over a common-random-number Monte Carlo.
+//! * [`output`] — scenario files carrying an optimized geometry (accepted by `entrynav trade`).
 //!
 //! Constraints are never passed to the solvers as NaN or infinity: visibility is handled by a
 //! finite penalty graded by how far (in radians) a beacon is below the horizon, and every cost is
@@ -46,7 +44,6 @@ pub mod output;
 pub mod search;
 pub mod select;
 pub mod trajectory;
-pub mod tune;
 
 pub use ground::{GroundObjective, GroundProblem, GroundSolution, Site};
 pub use lincov_score::{LinCovFigure, LinCovFigures, LinCovScore};

@@ -77,5 +77,17 @@ impl StudyError {
     }
 }
 
+/// `e` and its causes, `: `-separated (as `anyhow` prints an error with `{:#}`).
+pub fn chain(e: &dyn std::error::Error) -> String {
+    let mut text = e.to_string();
+    let mut cause = e.source();
+    while let Some(c) = cause {
+        text.push_str(": ");
+        text.push_str(&c.to_string());
+        cause = c.source();
+    }
+    text
+}
+
 /// A study's result.
 pub type StudyResult<T> = Result<T, StudyError>;

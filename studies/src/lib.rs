@@ -18,15 +18,19 @@
 pub mod compare;
 pub mod error;
 pub mod grid;
+pub mod guidance;
 pub mod lincov;
+pub mod observe;
 pub mod options;
 pub mod output;
 pub mod progress;
 pub mod provenance;
 pub mod scenario;
+pub mod simulate;
 pub mod statistics;
 pub mod threads;
 pub mod trade;
+pub mod tune;
 
 pub use error::{ErrorKind, StudyError, StudyResult};
 pub use scenario::ScenarioInput;

@@ -2,59 +2,17 @@
 //! with each filter in the guidance loop (`entrynav::sim::delivery`), for the whole study, for
 //! one shard's runs, and merged from shards.
 //!
-//! [`delivery_of_study`] is a copy of the command line's `guidance::delivery_of_study` until the
-//! guidance study moves here; the trade calls it in one place ([`study_delivery`]).
+//! The whole study's table is the guidance study's
+//! [`delivery_of_study`](crate::guidance::deliver::delivery_of_study).
 
-use crate::error::{StudyError, StudyResult};
+use crate::error::{StudyError, StudyResult, chain};
 use crate::threads::with_threads;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
 use entrynav::sim::Shard;
-use entrynav::sim::delivery::{DeliveryReport, run_delivery};
+use entrynav::sim::delivery::DeliveryReport;
 use entrynav::sim::delivery_shard::{DeliveryShard, deliver_runs, merge_delivery_shards};
 use entrynav::sim::shard::ACCUMULATION_BLOCK;
-
-/// `e` and its causes, `: `-separated (as `anyhow` prints an error with `{:#}`).
-pub fn chain(e: &dyn std::error::Error) -> String {
-    let mut text = e.to_string();
-    let mut cause = e.source();
-    while let Some(c) = cause {
-        text.push_str(": ");
-        text.push_str(&c.to_string());
-        cause = c.source();
-    }
-    text
-}
-
-/// The delivery Monte Carlo of the study's filters on the same run seeds (`run_seed(seed, r)`,
-/// the trade's truths), on `threads` workers.
-pub fn delivery_of_study(
-    scenario: &Scenario,
-    filters: &[FilterKind],
-    runs: usize,
-    seed: u64,
-    threads: Option<usize>,
-) -> StudyResult<DeliveryReport> {
-    with_threads(threads, || {
-        run_delivery(scenario, filters, runs, seed, &|_| {}).map_err(|e| {
-            StudyError::Failed(format!(
-                "the delivery at deployment of the study's filters in the guidance loop: {}",
-                chain(&e)
-            ))
-        })
-    })
-}
-
-/// The trade's delivery table (the one call of [`delivery_of_study`]).
-pub fn study_delivery(
-    scenario: &Scenario,
-    filters: &[FilterKind],
-    runs: usize,
-    seed: u64,
-    threads: Option<usize>,
-) -> StudyResult<DeliveryReport> {
-    delivery_of_study(scenario, filters, runs, seed, threads)
-}
 
 /// The delivery runs of `shard`'s blocks, merged by run index when the shards are merged.
 pub fn shard_delivery(

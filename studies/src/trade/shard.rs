@@ -3,10 +3,11 @@
 //! `[guidance]`, the delivery runs of those blocks — the shard file that `trade merge` combines
 //! into exactly the single-process result.
 
+use crate::error::chain;
 use crate::error::{StudyError, StudyResult};
 use crate::provenance::Provenance;
 use crate::threads::with_threads;
-use crate::trade::delivery::{chain, shard_delivery};
+use crate::trade::delivery::shard_delivery;
 use crate::trade::options::{TradeMode, TradeOptions};
 use crate::trade::setup::TradeSetup;
 use entrynav::sim::delivery_shard::DeliveryShard;

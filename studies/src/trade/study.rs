@@ -3,12 +3,13 @@
 //! caller's cancel flag is set; LinCov beside it (`method = both`) and the delivery table of a
 //! scenario with `[guidance]`. `method = lincov` is LinCov alone ([`run_trade_lincov`]).
 
+use crate::error::chain;
 use crate::error::{StudyError, StudyResult};
+use crate::guidance::deliver::delivery_of_study;
 use crate::lincov::study::LinCovStudy;
 use crate::progress::{Progress, Step};
 use crate::provenance::{Provenance, Summary, Timing};
 use crate::threads::with_threads;
-use crate::trade::delivery::{chain, study_delivery};
 use crate::trade::lincov_comparison::{LinCovComparison, first_order};
 use crate::trade::options::{Method, TradeMode, TradeOptions};
 use crate::trade::resume::resume_checksum;
@@ -158,7 +159,7 @@ pub fn run_trade_study(
     // A failure here never costs the Monte Carlo's results: it is a warning.
     let mut warnings = Vec::new();
     let delivery = (report.complete && scenario.config.guidance.is_some())
-        .then(|| study_delivery(scenario, filters, setup.runs, options.seed, options.threads))
+        .then(|| delivery_of_study(scenario, filters, setup.runs, options.seed, options.threads))
         .and_then(|d| {
             d.map_err(|e| warnings.push(format!("no delivery table: {}", chain(&e))))
                 .ok()

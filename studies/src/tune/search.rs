@@ -24,18 +24,15 @@
 //! Bar-Shalom, Li & Kirubarajan, *Estimation with Applications to Tracking and Navigation*,
 //! §5.4–5.5, give the consistency tests; tuning Q to pass them is their §5.5 "filter tuning".
 //!
-//! [`TuningProblem`] is what is tuned: the entry filters of a scenario ([`entry`]) or, in the
-//! tests, a linear Kalman filter whose optimal tuning is known.
+//! [`TuningProblem`] is what is tuned: the entry filters of a scenario
+//! ([`EntryTuning`](crate::tune::entry::EntryTuning)) or, in the tests, a linear Kalman filter
+//! whose optimal tuning is known. (Moved here from the geometry crate, `entrynav-optimizer`.)
 
-pub mod entry;
-
-use crate::OptimizerError;
+use crate::error::{StudyError, StudyResult};
 use argmin::core::{CostFunction, Error as ArgminError, Executor};
 use argmin::solver::neldermead::NelderMead;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
-
-pub use entry::{EntryTuning, ParameterGroup};
 
 /// Largest |θ| (log₁₀ of a factor): factors stay within 10⁻⁶ … 10⁶.
 pub const THETA_BOUND: f64 = 6.0;
@@ -74,7 +71,7 @@ pub trait TuningProblem: Sync {
         (-THETA_BOUND, THETA_BOUND)
     }
     /// Consistency of the filter tuned by the factors 10^θ.
-    fn evaluate(&self, theta: &[f64]) -> Result<Measured, OptimizerError>;
+    fn evaluate(&self, theta: &[f64]) -> StudyResult<Measured>;
 }
 
 /// Options of [`tune`].
@@ -147,7 +144,7 @@ struct Cost<'a, P> {
     count: AtomicUsize,
     budget: usize,
     best: Mutex<Option<(f64, Vec<f64>, Measured)>>,
-    error: Mutex<Option<OptimizerError>>,
+    error: Mutex<Option<StudyError>>,
     progress: &'a (dyn Fn(usize, usize, f64) + Sync),
 }
 
@@ -211,11 +208,15 @@ impl<P: TuningProblem> CostFunction for Borrowed<'_, '_, P> {
     }
 }
 
-fn nelder_mead_error(source: ArgminError) -> OptimizerError {
-    OptimizerError::Argmin {
-        what: "Nelder-Mead",
-        source,
-    }
+/// argmin's failure, in the words the geometry crate used ("solver failure: Nelder-Mead: …");
+/// refused (exit code 2), as it was.
+fn nelder_mead_error(source: ArgminError) -> StudyError {
+    StudyError::Refused(format!("solver failure: Nelder-Mead: {source}"))
+}
+
+/// An input the search cannot work with (exit code 2).
+fn invalid_input(message: String) -> StudyError {
+    StudyError::Refused(format!("invalid input: {message}"))
 }
 
 /// Minimise the objective over θ from θ = 0 with Nelder–Mead; `progress(done, budget, best J)`
@@ -224,16 +225,16 @@ pub fn tune(
     problem: &impl TuningProblem,
     opts: &TuneOptions,
     progress: &(dyn Fn(usize, usize, f64) + Sync),
-) -> Result<TuneResult, OptimizerError> {
+) -> StudyResult<TuneResult> {
     let n = problem.dim();
     if n == 0 {
-        return Err(OptimizerError::InvalidInput(
+        return Err(invalid_input(
             "nothing to tune: every process-noise entry is zero and measurement noise is not tuned"
                 .into(),
         ));
     }
     if opts.max_evaluations < n + 2 {
-        return Err(OptimizerError::InvalidInput(format!(
+        return Err(invalid_input(format!(
             "--max-evaluations {} is below the {} a {n}-parameter simplex needs",
             opts.max_evaluations,
             n + 2
@@ -300,7 +301,7 @@ pub fn tune(
         .into_inner()
         .ok()
         .flatten()
-        .ok_or(OptimizerError::NoPoint { what: "tuning" })?;
+        .ok_or_else(|| StudyError::Refused("solver failure: tuning found no point".into()))?;
     Ok(TuneResult {
         theta,
         cost: j,

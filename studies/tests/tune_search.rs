@@ -3,8 +3,8 @@
 //! too small and r 10× too large; the search must find the factors (100, 1/10) and leave the
 //! filter consistent (ANEES/dof and ANIS/dof ≈ 1).
 
-use entrynav_optimizer::OptimizerError;
-use entrynav_optimizer::tune::{Measured, TuneObjective, TuneOptions, TuningProblem, tune};
+use entrynav_studies::StudyResult;
+use entrynav_studies::tune::search::{Measured, TuneObjective, TuneOptions, TuningProblem, tune};
 use nalgebra::{Matrix2, Vector2};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -57,7 +57,7 @@ impl TuningProblem for Linear {
         2
     }
 
-    fn evaluate(&self, theta: &[f64]) -> Result<Measured, OptimizerError> {
+    fn evaluate(&self, theta: &[f64]) -> StudyResult<Measured> {
         // The mistuned filter: q/100 and 10 r, times the factors being tuned.
         let qf = Q_TRUE * self.mistune.0 * 10f64.powf(theta[0]);
         let rf = R_TRUE * self.mistune.1 * 10f64.powf(theta[1]);

@@ -4,9 +4,19 @@
 //! filter (replaced when the file already has one), its provenance in the comment above it and
 //! its numbers at six significant digits.
 
-use anyhow::{Context, Result, anyhow, bail};
+use crate::error::{StudyError, StudyResult};
 use entrynav::scenario::{FilterRetuneConfig, NoiseInflation};
 use toml_edit::{Array, DocumentMut, Item, Table, Value};
+
+/// Why the text could not be edited: refused (exit code 2), as the command always did.
+fn refused(message: impl std::fmt::Display) -> StudyError {
+    StudyError::Refused(message.to_string())
+}
+
+/// `Err(refused(…))` with a formatted message.
+macro_rules! bail {
+    ($($arg:tt)*) => { return Err(refused(format!($($arg)*))) };
+}
 
 /// One filter's tuning to write.
 pub struct Retune<'a> {
@@ -59,25 +69,27 @@ pub fn rounded(config: &FilterRetuneConfig) -> FilterRetuneConfig {
     }
 }
 
-fn number(value: f64) -> Result<Value> {
+fn number(value: f64) -> StudyResult<Value> {
     six_digits(value)
         .parse::<Value>()
-        .map_err(|e| anyhow!("cannot write {value} as TOML: {e}"))
+        .map_err(|e| refused(format!("cannot write {value} as TOML: {e}")))
 }
 
 /// `source` (a scenario's TOML text) with the `sets` (`PATH=VALUE`, as `--set` takes them) and
 /// the `retunes` written in.
-pub fn edit(source: &str, sets: &[String], retunes: &[Retune<'_>]) -> Result<String> {
-    let mut doc: DocumentMut = source
-        .parse()
-        .context("the scenario text is not TOML that can be edited")?;
+pub fn edit(source: &str, sets: &[String], retunes: &[Retune<'_>]) -> StudyResult<String> {
+    let mut doc: DocumentMut = source.parse().map_err(|e| {
+        refused(format!(
+            "the scenario text is not TOML that can be edited: {e}"
+        ))
+    })?;
     for set in sets {
-        apply_set(&mut doc, set).with_context(|| format!("--set {set}"))?;
+        apply_set(&mut doc, set).map_err(|e| refused(format!("--set {set}: {e}")))?;
     }
     let filter = doc
         .get_mut("filter")
         .and_then(Item::as_table_mut)
-        .ok_or_else(|| anyhow!("the scenario has no [filter] table to tune"))?;
+        .ok_or_else(|| refused("the scenario has no [filter] table to tune"))?;
     let tuned = filter.entry("tuned").or_insert_with(|| {
         let mut t = Table::new();
         t.set_implicit(true);
@@ -85,7 +97,7 @@ pub fn edit(source: &str, sets: &[String], retunes: &[Retune<'_>]) -> Result<Str
     });
     let tuned = tuned
         .as_table_mut()
-        .ok_or_else(|| anyhow!("filter.tuned is not a table"))?;
+        .ok_or_else(|| refused("filter.tuned is not a table"))?;
     for r in retunes {
         let mut table = match tuned.remove(r.name) {
             Some(Item::Table(t)) => t,
@@ -132,10 +144,10 @@ pub fn edit(source: &str, sets: &[String], retunes: &[Retune<'_>]) -> Result<Str
 /// Write one `PATH=VALUE` override into the document as `--set` reads it: tables along the path
 /// are created, a numeric key indexes an array (`beacons.0.lat_deg`), a value that is not TOML is
 /// a string; the comment beside a replaced value is kept.
-fn apply_set(doc: &mut DocumentMut, set: &str) -> Result<()> {
+fn apply_set(doc: &mut DocumentMut, set: &str) -> StudyResult<()> {
     let (path, value) = set
         .split_once('=')
-        .ok_or_else(|| anyhow!("expected PATH=VALUE"))?;
+        .ok_or_else(|| refused("expected PATH=VALUE"))?;
     let value: Value = value
         .trim()
         .parse()
@@ -147,11 +159,11 @@ fn apply_set(doc: &mut DocumentMut, set: &str) -> Result<()> {
     set_in_table(doc.as_table_mut(), &keys, value)
 }
 
-fn index(k: &str, n: usize) -> Result<usize> {
+fn index(k: &str, n: usize) -> StudyResult<usize> {
     k.parse::<usize>()
         .ok()
         .filter(|&i| i < n)
-        .ok_or_else(|| anyhow!("'{k}' is not an index of an array of {n} entries"))
+        .ok_or_else(|| refused(format!("'{k}' is not an index of an array of {n} entries")))
 }
 
 fn replace_keeping_decor(old: &mut Value, new: Value) {
@@ -160,8 +172,8 @@ fn replace_keeping_decor(old: &mut Value, new: Value) {
     *old.decor_mut() = decor;
 }
 
-fn set_in_table(t: &mut dyn toml_edit::TableLike, keys: &[&str], value: Value) -> Result<()> {
-    let (k, rest) = keys.split_first().ok_or_else(|| anyhow!("empty path"))?;
+fn set_in_table(t: &mut dyn toml_edit::TableLike, keys: &[&str], value: Value) -> StudyResult<()> {
+    let (k, rest) = keys.split_first().ok_or_else(|| refused("empty path"))?;
     if rest.is_empty() {
         match t.get_mut(k) {
             Some(Item::Value(old)) => replace_keeping_decor(old, value),
@@ -177,7 +189,9 @@ fn set_in_table(t: &mut dyn toml_edit::TableLike, keys: &[&str], value: Value) -
     match t.get_mut(k) {
         Some(Item::ArrayOfTables(a)) => {
             let i = index(rest[0], a.len())?;
-            let inner = a.get_mut(i).ok_or_else(|| anyhow!("no entry {i}"))?;
+            let inner = a
+                .get_mut(i)
+                .ok_or_else(|| refused(format!("no entry {i}")))?;
             if rest.len() == 1 {
                 bail!("'{k}.{i}' is a table: set one of its fields");
             }
@@ -187,18 +201,20 @@ fn set_in_table(t: &mut dyn toml_edit::TableLike, keys: &[&str], value: Value) -
         Some(item) => {
             let inner = item
                 .as_table_like_mut()
-                .ok_or_else(|| anyhow!("'{k}' is not a table"))?;
+                .ok_or_else(|| refused(format!("'{k}' is not a table")))?;
             set_in_table(inner, rest, value)
         }
         None => bail!("cannot create '{k}'"),
     }
 }
 
-fn set_in_value(v: &mut Value, keys: &[&str], value: Value) -> Result<()> {
+fn set_in_value(v: &mut Value, keys: &[&str], value: Value) -> StudyResult<()> {
     match v {
         Value::Array(arr) => {
             let i = index(keys[0], arr.len())?;
-            let el = arr.get_mut(i).ok_or_else(|| anyhow!("no entry {i}"))?;
+            let el = arr
+                .get_mut(i)
+                .ok_or_else(|| refused(format!("no entry {i}")))?;
             if keys.len() == 1 {
                 replace_keeping_decor(el, value);
                 Ok(())

@@ -12,8 +12,8 @@
 //! `[filter.tuned.<name>]` if the scenario has one, else the shared `[filter]` values), and the
 //! result is written as that filter's own tuning: tuning the UKF never changes the EKF.
 
-use super::{Measured, THETA_BOUND, TuningProblem};
-use crate::OptimizerError;
+use crate::error::{StudyError, StudyResult};
+use crate::tune::search::{Measured, THETA_BOUND, TuningProblem};
 use entrynav::estimation::Onboard;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::config::MAX_NOISE_INFLATION;
@@ -69,11 +69,7 @@ fn same_kind(a: Channel, b: Channel) -> bool {
 
 impl<'a> EntryTuning<'a> {
     /// Tune `kind` over `runs`; with `tune_noise`, the assumed measurement noise too.
-    pub fn new(
-        runs: &'a TuningRuns,
-        kind: FilterKind,
-        tune_noise: bool,
-    ) -> Result<Self, OptimizerError> {
+    pub fn new(runs: &'a TuningRuns, kind: FilterKind, tune_noise: bool) -> StudyResult<Self> {
         let sc = runs.scenario();
         let base = sc.onboard.for_filter(kind);
         let onboard = &base;
@@ -183,12 +179,15 @@ impl<'a> EntryTuning<'a> {
 
     /// The report of the filter tuned by θ over `runs` (the tuning runs or fresh ones of the
     /// same scenario).
-    pub fn report(&self, theta: &[f64], runs: &TuningRuns) -> Result<FilterReport, OptimizerError> {
+    pub fn report(&self, theta: &[f64], runs: &TuningRuns) -> StudyResult<FilterReport> {
         let (q, noise) = self.tuning(theta);
         let onboard = Arc::new(self.base.with_tuning(&q, &noise));
         let mut reports = runs.evaluate(&onboard, &[self.kind])?;
         reports.pop().ok_or_else(|| {
-            OptimizerError::InvalidInput(format!("no report for filter {}", self.kind.name()))
+            StudyError::Refused(format!(
+                "invalid input: no report for filter {}",
+                self.kind.name()
+            ))
         })
     }
 
@@ -278,7 +277,7 @@ impl TuningProblem for EntryTuning<'_> {
             .unwrap_or((-THETA_BOUND, THETA_BOUND))
     }
 
-    fn evaluate(&self, theta: &[f64]) -> Result<Measured, OptimizerError> {
+    fn evaluate(&self, theta: &[f64]) -> StudyResult<Measured> {
         Ok(measured(&[self.report(theta, self.runs)?]))
     }
 }

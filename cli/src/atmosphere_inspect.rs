@@ -3,11 +3,12 @@
 use crate::atmosphere_file::{
     AtmosphereFileArgs, nominal_altitudes, report_truth_table, truth_atmosphere,
 };
-use crate::plot::{Curve, line_plot};
+use crate::figures::write_line_plot as line_plot;
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
 use entrynav::atmosphere::{Atmosphere, Datum};
 use entrynav_loader as load;
+use entrynav_render::chart::Curve;
 use std::path::PathBuf;
 
 /// `entrynav atmosphere`.

@@ -75,53 +75,15 @@ pub fn warn_implausible(cfg: &entrynav::scenario::ScenarioConfig) {
     }
 }
 
-/// Whether `path` is `-` (standard output).
-pub fn is_stdout(path: &Path) -> bool {
-    path.as_os_str() == "-"
-}
+pub use entrynav_studies::output::is_stdout;
 
-/// Refuse, before any run, an output file that cannot be written: create its directory and open
-/// it for appending (which leaves an existing file's content alone); a file this check created is
-/// removed again. `-` (standard output) is always fine.
+/// Refuse, before any run, an output file that cannot be written (the study layer's check, which
+/// Python shares).
 pub fn check_output_file(path: &Path, flag: &str) -> anyhow::Result<()> {
-    if is_stdout(path) {
-        return Ok(());
-    }
-    let fail = |e: std::io::Error| {
-        Usage(format!(
-            "{flag} {}: cannot write there: {e}",
-            path.display()
-        ))
-    };
-    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent).map_err(fail)?;
-    }
-    let existed = path.exists();
-    if path.is_dir() {
-        return Err(Usage(format!(
-            "{flag} {}: is a directory, not a file",
-            path.display()
-        ))
-        .into());
-    }
-    std::fs::OpenOptions::new()
-        .append(true)
-        .create(true)
-        .open(path)
-        .map_err(fail)?;
-    if !existed {
-        let _ = std::fs::remove_file(path);
-    }
-    Ok(())
+    Ok(entrynav_studies::output::check_output_file(path, flag)?)
 }
 
 /// Refuse, before any run, an output directory that cannot be created or written into.
 pub fn check_output_dir(dir: &Path, flag: &str) -> anyhow::Result<()> {
-    let fail =
-        |e: std::io::Error| Usage(format!("{flag} {}: cannot write there: {e}", dir.display()));
-    std::fs::create_dir_all(dir).map_err(fail)?;
-    let probe = dir.join(format!(".entrynav-write-check-{}", std::process::id()));
-    std::fs::File::create(&probe).map_err(fail)?;
-    let _ = std::fs::remove_file(&probe);
-    Ok(())
+    Ok(entrynav_studies::output::check_output_dir(dir, flag)?)
 }

@@ -76,12 +76,12 @@ fn write_outputs(
     crate::csv_file::write(&out.join(format!("{}.csv", grid.name)), |w| {
         Ok(write_csv(w, rows)?)
     })?;
-    let figures = crate::grid_plots::grid_figures(&grid.name, &grid.filters, rows)?;
+    let figures = entrynav_render::grid_figures::grid_figures(&grid.name, &grid.filters, rows)?;
     for fig in &figures {
         write(&out.join(&fig.file), &fig.svg)?;
     }
     if let Some(path) = html {
-        let page = crate::report::grid_page::GridPage {
+        let page = entrynav_render::report::grid_page::GridPage {
             name: &grid.name,
             runs: grid.runs,
             seed: grid.seed,

@@ -108,7 +108,7 @@ fn deliver(args: &DeliverArgs) -> Result<()> {
     }
     if let Some(dir) = &args.plots {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-        for fig in crate::delivery_plots::delivery_figures(&study.report)? {
+        for fig in entrynav_render::delivery_figures::delivery_figures(&study.report)? {
             entrynav_studies::output::atomic_file::write(&dir.join(&fig.file), &fig.svg)?;
         }
         if !to_stdout {

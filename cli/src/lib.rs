@@ -9,20 +9,16 @@ mod atmosphere_inspect;
 mod compare;
 mod compare_table;
 mod csv_file;
-mod delivery_plots;
 mod exit;
+mod figures;
 mod fmu;
 mod grid;
-mod grid_plots;
 mod guidance;
 mod guidance_reference;
 mod interrupt;
 mod lincov;
 mod observe;
-mod observe_plot;
 mod optimize;
-mod plot;
-mod plots;
 mod progress;
 mod replay;
 mod report;
@@ -153,7 +149,7 @@ pub fn write_trade_report(
     overrides: &[String],
 ) -> Result<f64> {
     report::check_path(Some(path))?;
-    let names = plot::labels::WeightNames::of_scenario(scenario);
+    let names = entrynav_render::chart::labels::WeightNames::of_scenario(scenario);
     let provenance =
         entrynav_studies::provenance::Provenance::new(std::env::args().collect(), overrides)
             .with_scenario(scenario, None);

@@ -3,11 +3,11 @@
 //! range Fisher information of its beacons (seed 002 §3.2, eq. 54) and the PCRLB, printed, and
 //! written as JSON and an SVG plot.
 
-use crate::observe_plot::plot;
 use anyhow::{Context, Result};
 use clap::Args;
 use entrynav::observability::{DegreeSeries, FimEpoch, Method};
 use entrynav::scenario::Scenario;
+use entrynav_render::observe_figure::observe_figure;
 use entrynav_studies::ScenarioInput;
 use entrynav_studies::observe::{
     FimSummary, Observation, ObserveOptions, PcrlbBound, RAW_NOTE, run_observe, scaling_note,
@@ -91,13 +91,9 @@ pub fn run(args: &ObserveArgs) -> Result<()> {
     if let Some(path) = &args.plot {
         create_parent(path)?;
         let subs: Vec<&DegreeSeries> = study.subsystems.iter().map(|(s, _)| s).collect();
-        plot(
-            path,
-            &scenario,
-            &study.central.0,
-            &subs,
-            study.fim.as_deref(),
-        )?;
+        let svg = observe_figure(&scenario, &study.central.0, &subs, study.fim.as_deref())
+            .with_context(|| format!("plot {}", path.display()))?;
+        entrynav_studies::output::atomic_file::write(path, svg)?;
         println!("wrote {}", path.display());
     }
     Ok(())

@@ -7,7 +7,6 @@
 //! in `trade_tables.rs`.
 
 use crate::exit::is_stdout;
-use crate::plot::labels::WeightNames;
 use crate::progress::RunProgress;
 pub use crate::trade_args::{Method, TradeAction, TradeArgs};
 use crate::trade_checkpoint::SummaryCheckpoints;
@@ -16,6 +15,7 @@ use crate::trade_lincov::{curves, print_comparison};
 use crate::trade_tables::print_tables;
 use anyhow::{Context, Result};
 use entrynav::sim::{Checkpoint, NoCheckpoint, Shard};
+use entrynav_render::chart::labels::WeightNames;
 use entrynav_studies::ScenarioInput;
 use entrynav_studies::progress::Step;
 use entrynav_studies::provenance::Provenance;
@@ -285,7 +285,7 @@ fn write_results(
     let names = WeightNames::of_scenario(&setup.scenario);
     let extra = outcome.lincov.as_ref().map(curves).unwrap_or_default();
     if let Some(dir) = &args.plots {
-        let done = crate::plots::trade_plots(dir, report, &names, &extra, delivery);
+        let done = crate::figures::trade_plots(dir, report, &names, &extra, delivery);
         outputs.record(done.map(|()| Some(format!("wrote plots to {}", dir.display()))));
     }
     if let Some(path) = &args.report {
@@ -381,7 +381,7 @@ fn merge(
     }
     let names = WeightNames::of_channels(&report.channels);
     if let Some(dir) = plots {
-        let done = crate::plots::trade_plots(dir, report, &names, &Default::default(), delivery);
+        let done = crate::figures::trade_plots(dir, report, &names, &Default::default(), delivery);
         outputs.record(done.map(|()| Some(format!("wrote plots to {}", dir.display()))));
     }
     if !to_stdout {

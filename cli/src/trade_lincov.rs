@@ -56,13 +56,13 @@ pub fn run_lincov(
 }
 
 /// LinCov's RMSE curves, dashed, for the RMSE charts of `--plots` and `--report`.
-pub fn curves(c: &LinCovComparison) -> crate::plots::ExtraCurves {
+pub fn curves(c: &LinCovComparison) -> entrynav_render::trade_figures::ExtraCurves {
     c.curves()
         .into_iter()
         .map(|(metric, curves)| {
             let curves = curves
                 .into_iter()
-                .map(|(name, points)| crate::plot::Curve {
+                .map(|(name, points)| entrynav_render::chart::Curve {
                     name,
                     points,
                     dashed: true,

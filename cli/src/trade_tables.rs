@@ -55,7 +55,7 @@ pub fn print_tables(report: &TradeReport, wall: &str) {
     println!();
     println!(
         "recommendation: {}",
-        crate::report::summary::recommendation(report)
+        entrynav_render::report::summary::recommendation(report)
     );
 }
 

@@ -448,20 +448,20 @@ fn plot_ground(
     let pts = |d: &DegreeSeries| -> Vec<(f64, f64)> {
         d.times().into_iter().zip(d.deltas(false)).collect()
     };
-    let mut curves = vec![crate::plot::Curve {
+    let mut curves = vec![entrynav_render::chart::Curve {
         name: format!("optimum (min {:.3e})", answer.delta.min(false)),
         points: pts(&answer.delta.raw),
         dashed: false,
     }];
     if let Some((_, d)) = &answer.reference {
-        curves.push(crate::plot::Curve {
+        curves.push(entrynav_render::chart::Curve {
             name: format!("scenario's sites (min {:.3e})", d.min(false)),
             points: pts(&d.raw),
             dashed: true,
         });
     }
     write_text(path, "")?;
-    crate::plot::line_plot(
+    crate::figures::write_line_plot(
         path,
         &format!(
             "{}: raw SI δ = σmin/σmax ({}) along the entry",

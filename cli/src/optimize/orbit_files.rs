@@ -80,7 +80,7 @@ pub(super) fn plot_orbiters(
     let problem = &answer.problem;
     let ev = &answer.sol.evaluation;
     let t = &problem.trajectory().times;
-    let curve = |name: String, integrand: &[f64], dashed: bool| crate::plot::Curve {
+    let curve = |name: String, integrand: &[f64], dashed: bool| entrynav_render::chart::Curve {
         name,
         points: t.iter().copied().zip(integrand.iter().copied()).collect(),
         dashed,
@@ -98,7 +98,7 @@ pub(super) fn plot_orbiters(
         ));
     }
     write_text(path, "")?;
-    crate::plot::line_plot(
+    crate::figures::write_line_plot(
         path,
         &format!(
             "{}: {} integrand along the entry",

@@ -3,7 +3,7 @@
 
 use super::html::{self, Cell, escape, figures, note, num, section, table};
 use super::summary;
-use crate::grid_plots::GridFigure;
+use crate::grid_figures::GridFigure;
 use entrynav_studies::grid::row::CellRow;
 use entrynav_studies::grid::run::CellReport;
 

@@ -256,7 +256,7 @@ pub fn state_table(report: &TradeReport, f: &FilterReport) -> String {
         .states
         .iter()
         .map(|s| {
-            let (q, u) = crate::plot::labels::quantity(s);
+            let (q, u) = crate::chart::labels::quantity(s);
             vec![
                 Cell::text(format!("{q} ({u})")),
                 Cell::num(num(get(&f.rmse_time_avg, s))),

@@ -2,12 +2,11 @@
 //! thin wrapper that writes them to `--plots DIR`. The HTML report (`report/`) embeds the same
 //! strings.
 
-use crate::plot::labels::{WeightNames, axis, quantity};
-use crate::plot::scatter::{Cloud, ellipse, scatter_chart};
-use crate::plot::{Curve, Frame, line_chart};
-use anyhow::{Context, Result};
+use crate::chart::labels::{WeightNames, axis, quantity};
+use crate::chart::scatter::{Cloud, ellipse, scatter_chart};
+use crate::chart::{Curve, Frame, line_chart};
+use crate::error::Result;
 use entrynav::sim::{FilterReport, TradeReport};
-use std::path::Path;
 
 /// What a figure shows (the report groups figures by it).
 #[derive(Debug, Clone, PartialEq)]
@@ -360,23 +359,17 @@ fn dispersion_figures(report: &TradeReport, out: &mut Out) -> Result<()> {
     Ok(())
 }
 
-/// Write every figure of `report` into `dir`, and the delivery footprints of `delivery` (a
-/// scenario with `[guidance]`).
+/// Every figure of `report`, and the delivery footprints of `delivery` (a scenario with
+/// `[guidance]`): what `trade --plots DIR` writes, one file per figure.
 pub fn trade_plots(
-    dir: &Path,
     report: &TradeReport,
     names: &WeightNames,
     extra: &ExtraCurves,
     delivery: Option<&entrynav::sim::delivery::DeliveryReport>,
-) -> Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+) -> Result<Vec<Figure>> {
     let mut figs = trade_figures_with(report, names, extra)?;
     if let Some(d) = delivery {
-        figs.extend(crate::delivery_plots::delivery_figures(d)?);
+        figs.extend(crate::delivery_figures::delivery_figures(d)?);
     }
-    for fig in figs {
-        let path = dir.join(&fig.file);
-        entrynav_studies::output::atomic_file::write(&path, &fig.svg)?;
-    }
-    Ok(())
+    Ok(figs)
 }

@@ -1,26 +1,23 @@
-//! The SVG plot `entrynav observe --plot` draws from the study's result: δ(t) raw and scaled on a
+//! The SVG figure of an observability analysis (`entrynav observe --plot`), from the study's result: δ(t) raw and scaled on a
 //! log axis, and the geometry index I(t) with `--fim`.
 
-use anyhow::Result;
+use crate::error::{RenderError, Result};
 use entrynav::observability::{DegreeSeries, FimEpoch};
 use entrynav::scenario::Scenario;
-use std::path::Path;
 
-/// Draw the plot and write it to `path`.
-pub(crate) fn plot(
-    path: &Path,
+/// The plot as SVG text.
+pub fn observe_figure(
     scenario: &Scenario,
     central: &DegreeSeries,
     subsystems: &[&DegreeSeries],
     fim: Option<&[FimEpoch]>,
-) -> Result<()> {
+) -> Result<String> {
     let mut svg = String::new();
-    draw(&mut svg, scenario, central, subsystems, fim)
-        .map_err(|e| anyhow::anyhow!("plot {}: {e}", path.display()))?;
-    Ok(entrynav_studies::output::atomic_file::write(path, svg)?)
+    draw(&mut svg, scenario, central, subsystems, fim)?;
+    Ok(svg)
 }
 
-/// The plot of [`plot`] drawn into `svg`.
+/// The plot of [`observe_figure`] drawn into `svg`.
 fn draw(
     svg: &mut String,
     scenario: &Scenario,
@@ -29,7 +26,7 @@ fn draw(
     fim: Option<&[FimEpoch]>,
 ) -> Result<()> {
     use plotters::prelude::*;
-    let err = |e: &dyn std::fmt::Display| anyhow::anyhow!("{e}");
+    let err = |e: &dyn std::fmt::Display| RenderError::Draw(e.to_string());
     let panels = if fim.is_some() { 3 } else { 2 };
     let root = SVGBackend::with_string(svg, (1000, 380 * panels)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(&e))?;
@@ -121,7 +118,7 @@ fn index_panel(
     t_end: f64,
 ) -> Result<()> {
     use plotters::prelude::*;
-    let err = |e: &dyn std::fmt::Display| anyhow::anyhow!("{e}");
+    let err = |e: &dyn std::fmt::Display| RenderError::Draw(e.to_string());
     let top = f.iter().map(|e| e.geometry_index).fold(0.0_f64, f64::max);
     let mut chart = ChartBuilder::on(area)
         .caption(

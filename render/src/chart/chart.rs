@@ -4,7 +4,7 @@
 use super::axis::Axis;
 use super::legend::{self, Entry, Mark};
 use super::ticks::{self, Ticks};
-use anyhow::Result;
+use crate::error::{RenderError, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -36,9 +36,9 @@ pub struct Frame<'a> {
 /// Margin around the chart (px).
 pub const MARGIN: u32 = 10;
 
-/// A plotters error as an `anyhow` error.
-pub fn plot_err(e: impl std::fmt::Display) -> anyhow::Error {
-    anyhow::anyhow!("plot: {e}")
+/// A plotters error as a [`RenderError`].
+pub fn plot_err(e: impl std::fmt::Display) -> RenderError {
+    RenderError::Plot(e.to_string())
 }
 
 /// Render `draw` on a white SVG canvas of `size` and return the SVG text.

@@ -2,9 +2,9 @@
 //! cell (no line joins cells: they are categories, not a sequence). SVG strings; `grid.rs`
 //! writes them and the grid report embeds them.
 
-use crate::plot::Frame;
-use crate::plot::categorical::{Series, category_chart};
-use anyhow::Result;
+use crate::chart::Frame;
+use crate::chart::categorical::{Series, category_chart};
+use crate::error::Result;
 use entrynav_studies::grid::row::CellRow;
 
 /// One rendered grid figure.

@@ -5,7 +5,7 @@
 
 use super::html::{self, Cell, escape, figures, note, section};
 use super::summary;
-use crate::plots::{Figure, Kind};
+use crate::trade_figures::{Figure, Kind};
 use entrynav::sim::TradeReport;
 use entrynav_studies::provenance::{Provenance, Timing};
 
@@ -238,7 +238,7 @@ impl TradePage<'_> {
             body += &section(
                 "delivery",
                 "Delivery at deployment (guidance in the loop)",
-                &crate::delivery_plots::delivery_section(d, self.figures),
+                &crate::delivery_figures::delivery_section(d, self.figures),
             );
         }
         body += &section("provenance", "Provenance", &self.provenance());

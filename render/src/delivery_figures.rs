@@ -2,11 +2,11 @@
 //! relative to the target, per row, with the row's 99 % ellipse — as SVG figures for `--plots`
 //! and as the report's "Delivery at deployment" section.
 
-use crate::plot::Frame;
-use crate::plot::scatter::{Cloud, ellipse, scatter_chart};
-use crate::plots::{Figure, Kind};
+use crate::chart::Frame;
+use crate::chart::scatter::{Cloud, ellipse, scatter_chart};
+use crate::error::Result;
 use crate::report::html::{Cell, figures, note, table};
-use anyhow::Result;
+use crate::trade_figures::{Figure, Kind};
 use entrynav::sim::delivery::{DeliveryReport, DeliveryRow};
 
 /// Most runs drawn per row (the ellipse and the statistics are over every run).

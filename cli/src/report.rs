@@ -1,13 +1,10 @@
-//! Self-contained HTML reports (`trade --report FILE.html`, and the grid report): one page,
-//! inline SVG figures and CSS, no scripts and nothing loaded from the network; every text from
-//! the study is escaped.
-
-pub mod grid_page;
-pub mod html;
-pub mod summary;
-pub mod trade_page;
+//! Writing the HTML reports the render crate draws (`trade --report FILE.html`, the grid's), and
+//! refusing a report path before any run.
 
 use anyhow::Result;
+use entrynav_render::chart::labels::WeightNames;
+use entrynav_render::trade_figures::ExtraCurves;
+use entrynav_studies::provenance::Provenance;
 use std::path::Path;
 
 /// Write `html` to `path` (creating its directory) and return the seconds spent on `make`
@@ -23,25 +20,17 @@ pub fn write(path: &Path, make: impl FnOnce() -> Result<String>) -> Result<f64> 
 pub fn write_trade(
     path: &Path,
     report: &entrynav::sim::TradeReport,
-    names: &crate::plot::labels::WeightNames,
-    provenance: &entrynav_studies::provenance::Provenance,
+    names: &WeightNames,
+    provenance: &Provenance,
     wall_s: f64,
-    extra: &crate::plots::ExtraCurves,
+    extra: &ExtraCurves,
     delivery: Option<&entrynav::sim::delivery::DeliveryReport>,
 ) -> Result<f64> {
     write(path, || {
-        let mut figures = crate::plots::trade_figures_with(report, names, extra)?;
-        if let Some(d) = delivery {
-            figures.extend(crate::delivery_plots::delivery_figures(d)?);
-        }
-        Ok(trade_page::TradePage {
-            report,
-            figures: &figures,
-            provenance,
-            wall_s,
-            delivery,
-        }
-        .html())
+        let page = entrynav_render::report::trade_report(
+            report, names, provenance, wall_s, extra, delivery,
+        )?;
+        Ok(page)
     })
 }
 

@@ -176,7 +176,7 @@ mod tests {
 
     #[test]
     fn wide_figures_take_a_row_so_their_labels_are_not_shrunk() {
-        use crate::plot::{Curve, Frame, line_chart};
+        use crate::chart::{Curve, Frame, line_chart};
         let chart = |size| {
             let frame = Frame {
                 title: "mean NEES over runs",
@@ -192,8 +192,11 @@ mod tests {
             };
             line_chart(&frame, &[curve]).unwrap().unwrap()
         };
-        let (wide, small) = (chart(crate::plots::WIDE), chart(crate::plots::SMALL));
-        assert_eq!(svg_width(&wide), Some(crate::plots::WIDE.0));
+        let (wide, small) = (
+            chart(crate::trade_figures::WIDE),
+            chart(crate::trade_figures::SMALL),
+        );
+        assert_eq!(svg_width(&wide), Some(crate::trade_figures::WIDE.0));
         let html = figures([wide.as_str(), small.as_str()]);
         assert_eq!(html.matches("<div class=\"fig wide\">").count(), 1);
         assert_eq!(html.matches("<div class=\"fig\">").count(), 1);

@@ -8,7 +8,7 @@ use super::chart::{
 };
 use super::legend::{self, Entry, Mark};
 use super::ticks::{self, Ticks};
-use anyhow::Result;
+use crate::error::Result;
 use plotters::prelude::*;
 
 /// One series over the categories: `values[i]` belongs to category `i` (`None`: no value).

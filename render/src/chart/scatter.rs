@@ -5,7 +5,7 @@ use super::axis::Axis;
 use super::chart::{Frame, bounds, caption_size, draw_mesh, plot_err, render, split_legend};
 use super::legend::{self, Entry, Mark};
 use super::ticks;
-use anyhow::Result;
+use crate::error::Result;
 use plotters::prelude::*;
 
 /// One series: points and an outline drawn dashed in the same colour.

@@ -165,7 +165,7 @@ fn small_trade() -> (TradeReport, WeightNames) {
 #[test]
 fn every_trade_figure_is_readable_and_weights_name_the_beacons() {
     let (report, names) = small_trade();
-    let figs = crate::plots::trade_figures(&report, &names).unwrap();
+    let figs = crate::trade_figures::trade_figures(&report, &names).unwrap();
     assert!(
         figs.len() > 2 * report.states.len(),
         "{} figures",

@@ -1,6 +1,6 @@
 //! SVG figures rendered to strings (plotters' SVG backend: no fonts or system libraries):
 //! line charts, categorical charts, scatter plots with ellipses; ticks, labels and legends
-//! chosen for a reader. Writing a file is the caller's thin wrapper.
+//! chosen for a reader. Writing a file is the front end's.
 
 pub mod axis;
 pub mod categorical;
@@ -16,15 +16,15 @@ pub mod ticks;
 
 pub use chart::{Curve, Frame, line_chart};
 
-/// Write a line chart of `curves` to `path` (nothing when no curve has a drawable point).
+/// A line chart of `curves` in the standard 960 × 540 frame (`None` when no curve has a
+/// drawable point).
 pub fn line_plot(
-    path: &std::path::Path,
     title: &str,
     x_label: &str,
     y_label: &str,
     log_y: bool,
     curves: &[Curve],
-) -> anyhow::Result<()> {
+) -> crate::error::Result<Option<String>> {
     let frame = Frame {
         title,
         x_label,
@@ -32,8 +32,5 @@ pub fn line_plot(
         log_y,
         size: (960, 540),
     };
-    if let Some(svg) = line_chart(&frame, curves)? {
-        entrynav_studies::output::atomic_file::write(path, svg)?;
-    }
-    Ok(())
+    line_chart(&frame, curves)
 }

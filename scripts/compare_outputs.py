@@ -72,17 +72,17 @@ def mask(text):
     for pat, rep in TIME_PATTERNS:
         text = pat.sub(rep, text)
     lines = text.splitlines()
-    # A JSON block shown in a page: the numbers of its timing entries.
+    # A JSON block shown in a page: its timing entries and the command line (the binary's path).
     inside = False
     for i, line in enumerate(lines):
-        if re.search(r"us_per_step|wall_s|command_line", line):
+        if re.search(r"us_per_step|wall_s|command_line|git_commit", line):
             inside = line.rstrip().endswith(("{", "["))
             lines[i] = re.sub(r"[-\d.e]+", "<n>", line)
         elif inside:
             if line.strip() in ("}", "},", "]", "],"):
                 inside = False
             else:
-                lines[i] = re.sub(r": .*", ": <timing>", line)
+                lines[i] = "<machine-dependent>"
     lines = mask_columns(lines, md_cells, "|".join)
     lines = mask_columns(lines, html_cells, lambda c: "<tr>" + "".join(f"<td>{x}</td>" for x in c) + "</tr>")
     return "\n".join(lines)

@@ -78,6 +78,8 @@ def mask(text):
         if re.search(r"us_per_step|wall_s|command_line|git_commit", line):
             inside = line.rstrip().endswith(("{", "["))
             lines[i] = re.sub(r"[-\d.e]+", "<n>", line)
+            if "git_commit" in line:
+                lines[i] = "<commit>"
         elif inside:
             if line.strip() in ("}", "},", "]", "],"):
                 inside = False

@@ -5,6 +5,12 @@
 use clap::Args;
 use entrynav_studies::options;
 
+/// What `--quiet` means in every command that has it: standard output is the same with or
+/// without it; standard error loses the progress and keeps warnings, notes and errors.
+pub const QUIET_HELP: &str = "Print no progress (bars, per-run, per-epoch and per-cell logs); results \
+(tables, `wrote FILE` lines) still print on standard output, unchanged, and warnings, notes and \
+errors on standard error";
+
 /// `--scenario NAME|FILE` and its `--set PATH=VALUE` overrides.
 #[derive(Args, Clone, Debug)]
 pub struct ScenarioArgs {

@@ -15,6 +15,7 @@
 //! [`provenance`], [`scenario`], [`statistics`] (sampling intervals of Monte Carlo figures), then
 //! the studies.
 
+pub mod design;
 pub mod error;
 pub mod lincov;
 pub mod options;

@@ -65,59 +65,59 @@ macro_rules! choice {
 choice! {
     /// `objective` of the orbiter design (names of [`OrbiterObjective::name`] and the bounds').
     OrbiterObjectiveName {
-        DetN3 = "det-n3": "The integral of det(N3) (eq. 57), three orbiters.",
-        Logdet = "logdet": "The integral of ln det of the FIM.",
-        Pcrlb = "pcrlb": "The final position PCRLB of Monte Carlo run 0 (minimised; polished from the geometric optimum).",
-        PcrlbAvg = "pcrlb-avg": "The time-averaged nominal position bound (minimised, full global search).",
-        PcrlbFinal = "pcrlb-final": "The final nominal position bound (minimised, full global search).",
-        Nav = "nav": "Both nominal position bounds relative to the scenario's own orbiters, 1/2 (avg/avg_in + final/final_in), minimised.",
-        LincovAvg = "lincov-avg": "The filter's time-averaged position RMSE predicted by LinCov (the pcrlb-avg optimum polished on it).",
-        LincovFinal = "lincov-final": "The filter's final position RMSE predicted by LinCov (the pcrlb-final optimum polished).",
-        LincovNav = "lincov-nav": "1/2 (lincov-avg/input's + lincov-final/input's) (the nav optimum polished on it).",
+        DetN3 = "det-n3": "The integral of det(N3) (eq. 57), three orbiters",
+        Logdet = "logdet": "The integral of ln det of the FIM",
+        Pcrlb = "pcrlb": "The final position PCRLB of Monte Carlo run 0 (minimised; polished from the geometric optimum)",
+        PcrlbAvg = "pcrlb-avg": "The time-averaged nominal position bound (minimised, full global search)",
+        PcrlbFinal = "pcrlb-final": "The final nominal position bound (minimised, full global search)",
+        Nav = "nav": "Both nominal position bounds relative to the scenario's own orbiters, 1/2 (avg/avg_in + final/final_in), minimised",
+        LincovAvg = "lincov-avg": "The filter's time-averaged position RMSE predicted by LinCov (the pcrlb-avg optimum polished on it)",
+        LincovFinal = "lincov-final": "The filter's final position RMSE predicted by LinCov (the pcrlb-final optimum polished)",
+        LincovNav = "lincov-nav": "1/2 (lincov-avg/input's + lincov-final/input's) (the nav optimum polished on it)",
     }
 }
 
 choice! {
     /// `objective` of the ground-site design (names of [`GroundObjective::name`]).
     GroundObjectiveName {
-        MinDelta = "min-delta": "min over time of delta (eq. 49).",
-        Logdet = "logdet": "The integral of ln det FIM.",
-        MinEig = "min-eig": "min over time of lambda_min(FIM).",
-        PcrlbAvg = "pcrlb-avg": "The time-averaged position PCRLB along the nominal trajectory (minimised).",
-        PcrlbFinal = "pcrlb-final" | "pcrlb": "The final position PCRLB along the nominal trajectory (minimised; alias `pcrlb`).",
-        Nav = "nav": "Both position bounds relative to the input design's, 1/2 (avg/avg_in + final/final_in), minimised (the default: it serves navigation over the whole entry and at its end).",
-        LincovAvg = "lincov-avg": "The filter's time-averaged position RMSE predicted by LinCov (the pcrlb-avg optimum polished on it).",
-        LincovFinal = "lincov-final": "The filter's final position RMSE predicted by LinCov (the pcrlb-final optimum polished).",
-        LincovNav = "lincov-nav": "1/2 (lincov-avg/input's + lincov-final/input's) (the nav optimum polished on it).",
+        MinDelta = "min-delta": "min over time of delta (eq. 49)",
+        Logdet = "logdet": "The integral of ln det FIM",
+        MinEig = "min-eig": "min over time of lambda_min(FIM)",
+        PcrlbAvg = "pcrlb-avg": "The time-averaged position PCRLB along the nominal trajectory (minimised)",
+        PcrlbFinal = "pcrlb-final" | "pcrlb": "The final position PCRLB along the nominal trajectory (minimised; alias `pcrlb`)",
+        Nav = "nav": "Both position bounds relative to the input design's, 1/2 (avg/avg_in + final/final_in), minimised (the default: it serves navigation over the whole entry and at its end)",
+        LincovAvg = "lincov-avg": "The filter's time-averaged position RMSE predicted by LinCov (the pcrlb-avg optimum polished on it)",
+        LincovFinal = "lincov-final": "The filter's final position RMSE predicted by LinCov (the pcrlb-final optimum polished)",
+        LincovNav = "lincov-nav": "1/2 (lincov-avg/input's + lincov-final/input's) (the nav optimum polished on it)",
     }
 }
 
 choice! {
     /// `method` of the observability degree δ (names of [`Method::name`]).
     DeltaMethod {
-        Lie = "lie": "Exact Lie derivatives.",
-        Quadratic = "quadratic": "Quadratic approximation of the Lie derivatives.",
-        Linear = "linear": "Linearised system.",
+        Lie = "lie": "Exact Lie derivatives",
+        Quadratic = "quadratic": "Quadratic approximation of the Lie derivatives",
+        Linear = "linear": "Linearised system",
     }
 }
 
 choice! {
     /// `criterion` of the certified site selection (names of [`SelectionCriterion::name`]).
     Criterion {
-        Logdet = "logdet": "D-optimal: ln det.",
-        MinEig = "min-eig": "E-optimal: lambda_min.",
+        Logdet = "logdet": "D-optimal: ln det",
+        MinEig = "min-eig": "E-optimal: lambda_min",
     }
 }
 
 choice! {
     /// `objective` of the site selection on the nominal bound (without it, `criterion`).
     SelectObjectiveName {
-        Nav = "nav": "Both nominal position bounds relative to the input design.",
-        PcrlbAvg = "pcrlb-avg": "The time-averaged nominal position bound.",
-        PcrlbFinal = "pcrlb-final": "The final nominal position bound.",
-        LincovNav = "lincov-nav": "nav's selection, then exchanges on the filter's LinCov (both figures relative to the input's).",
-        LincovAvg = "lincov-avg": "pcrlb-avg's selection, then exchanges on the filter's time-averaged LinCov RMSE.",
-        LincovFinal = "lincov-final": "pcrlb-final's selection, then exchanges on the filter's final LinCov RMSE.",
+        Nav = "nav": "Both nominal position bounds relative to the input design",
+        PcrlbAvg = "pcrlb-avg": "The time-averaged nominal position bound",
+        PcrlbFinal = "pcrlb-final": "The final nominal position bound",
+        LincovNav = "lincov-nav": "nav's selection, then exchanges on the filter's LinCov (both figures relative to the input's)",
+        LincovAvg = "lincov-avg": "pcrlb-avg's selection, then exchanges on the filter's time-averaged LinCov RMSE",
+        LincovFinal = "lincov-final": "pcrlb-final's selection, then exchanges on the filter's final LinCov RMSE",
     }
 }
 

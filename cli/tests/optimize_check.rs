@@ -222,3 +222,55 @@ fn select_on_the_nominal_bound_navigates_better_than_the_hand_placed_sites() {
     ]);
     assert_eq!(code, 2, "{err}");
 }
+
+#[test]
+fn counts_out_of_range_are_refused_before_any_work_naming_the_option() {
+    let g = ["optimize", "ground", "--scenario", "ground-beacons-3"];
+    let s = [
+        "optimize",
+        "select",
+        "--scenario",
+        "ground-beacons-3",
+        "--k",
+        "3",
+    ];
+    let o = ["optimize", "orbiters", "--scenario", "orbiters-3"];
+    let cases: [(&[&str], &[&str], &str); 6] = [
+        (
+            &g,
+            &["--beacons", "10000000000000"],
+            "beacons = 10000000000000 is out of range",
+        ),
+        (
+            &g,
+            &["--particles", "10000000000000"],
+            "particles = 10000000000000",
+        ),
+        (
+            &s,
+            &["--grid-deg", "1e-9"],
+            "grid_deg = 1e-9 is out of range",
+        ),
+        (
+            &s,
+            &["--exact", "--time-limit", "1e300"],
+            "time_limit = 1e300",
+        ),
+        (
+            &s,
+            &["--exact", "--batch", "10000000000000"],
+            "batch = 10000000000000",
+        ),
+        (
+            &o,
+            &["--iterations", "10000000000000"],
+            "iterations = 10000000000000",
+        ),
+    ];
+    for (problem, extra, message) in cases {
+        let args: Vec<&str> = problem.iter().chain(extra).copied().collect();
+        let (code, _, err) = entrynav(&args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(message), "{args:?}: {err}");
+    }
+}

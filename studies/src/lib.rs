@@ -16,6 +16,7 @@
 //! the studies.
 
 pub mod compare;
+pub mod design;
 pub mod error;
 pub mod grid;
 pub mod guidance;

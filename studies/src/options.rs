@@ -81,11 +81,21 @@ pub fn real(option: &str, value: f64, lo: f64, hi: f64) -> Result<f64, OptionErr
     if !(value.is_finite() && value >= lo && value <= hi) {
         return Err(OptionError::new(
             option,
-            value,
-            format!("a number from {lo} to {hi}"),
+            number(value),
+            format!("a number from {} to {}", number(lo), number(hi)),
         ));
     }
     Ok(value)
+}
+
+/// A real number as a person reads it: plain from 1e-4 up to 1e15, else in scientific notation
+/// (`1e300`, not three hundred digits).
+pub fn number(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-4..1e15).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
 }
 
 /// Check an already-typed count (a Rust caller's options struct) against `lo..=hi`.
@@ -127,5 +137,9 @@ mod tests {
         assert_eq!(seed("seed", u64::MAX as i128), Ok(u64::MAX));
         assert!(real("step", f64::NAN, 0.1, 10.0).is_err());
         assert_eq!(real("step", 1.0, 0.1, 10.0), Ok(1.0));
+        assert_eq!(
+            real("time_limit", 1e300, 0.0, 1e6).unwrap_err().to_string(),
+            "time_limit = 1e300 is out of range: must be a number from 0 to 1000000"
+        );
     }
 }

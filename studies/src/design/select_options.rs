@@ -30,14 +30,6 @@ pub const MAX_GAP: f64 = 1e6;
 /// and more than 1024 (the most worker threads) gain nothing.
 pub const MAX_BATCH: usize = 1024;
 
-/// [`real`], the value shown in Rust's shortest form (`1e300`, not its 301 digits).
-fn number(option: &str, value: f64, lo: f64, hi: f64) -> Result<f64, OptionError> {
-    real(option, value, lo, hi).map_err(|e| OptionError {
-        value: format!("{value:?}"),
-        ..e
-    })
-}
-
 /// The options of a site selection.
 #[derive(Debug, Clone, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -129,7 +121,7 @@ impl SelectOptions {
     /// Refuse an option outside its range or a combination that cannot run, naming it.
     pub fn validate(&self) -> StudyResult<()> {
         check_count("k", self.k, 1, MAX_BEACONS)?;
-        number("grid_deg", self.grid_deg, MIN_GRID_DEG, MAX_GRID_DEG)?;
+        real("grid_deg", self.grid_deg, MIN_GRID_DEG, MAX_GRID_DEG)?;
         check_count(
             "brute_force_limit",
             self.brute_force_limit,
@@ -137,9 +129,9 @@ impl SelectOptions {
             MAX_BRUTE_FORCE,
         )?;
         if let Some(t) = self.time_limit {
-            number("time_limit", t, 0.0, MAX_TIME_LIMIT_S)?;
+            real("time_limit", t, 0.0, MAX_TIME_LIMIT_S)?;
         }
-        number("gap", self.gap, 0.0, MAX_GAP)?;
+        real("gap", self.gap, 0.0, MAX_GAP)?;
         check_count("batch", self.batch, 1, MAX_BATCH)?;
         check_threads(self.threads)?;
         validate_check(self.check_runs, self.no_check)?;

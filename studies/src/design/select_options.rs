@@ -5,7 +5,7 @@ use crate::design::check::{CheckSettings, validate_check};
 use crate::design::choices::{Choice, Criterion, SelectObjectiveName};
 use crate::design::ground_options::MAX_BEACONS;
 use crate::error::{StudyError, StudyResult};
-use crate::options::{OptionError, check_count, check_threads, real};
+use crate::options::{check_count, check_threads, real};
 use std::path::PathBuf;
 
 /// Finest candidate grid \[deg\]: the grid is scanned over the whole visible cap, and at 0.05 deg

@@ -57,20 +57,7 @@ pub fn run_lincov(
 
 /// LinCov's RMSE curves, dashed, for the RMSE charts of `--plots` and `--report`.
 pub fn curves(c: &LinCovComparison) -> entrynav_render::trade_figures::ExtraCurves {
-    c.curves()
-        .into_iter()
-        .map(|(metric, curves)| {
-            let curves = curves
-                .into_iter()
-                .map(|(name, points)| entrynav_render::chart::Curve {
-                    name,
-                    points,
-                    dashed: true,
-                })
-                .collect();
-            (metric, curves)
-        })
-        .collect()
+    entrynav_render::trade_figures::lincov_curves(c)
 }
 
 /// Print LinCov / Monte Carlo per filter, flagging figures outside the Monte Carlo's interval.

@@ -250,23 +250,13 @@ class TradeResult:
     def report(self, path: Union[str, Path]) -> Path:
         """Write the self-contained HTML report (`entrynav trade --report PATH`): recommendation,
         verdicts, RMSE against the PCRLB, errors and ±3σ, NEES/NIS, dispersion. Returns the path."""
-        if self._native is None:
-            raise ValueError("this result has no native trade to report on")
-        _entrynav.write_report(self._native, str(path))
+        self._native.write_report(str(path))
         return Path(path)
 
     def to_json(self, path: Union[str, Path]) -> None:
-        """Write the summary as the CLI writes `--json` (with a `provenance` saying where it came
-        from; no `timing`)."""
-        doc = {
-            "provenance": {
-                "tool": f"entrynav {__version__} (Python package)",
-                "scenario": self.scenario.name,
-                "filters": self.filters,
-            },
-            **self.summary,
-        }
-        Path(path).write_text(json.dumps(doc, indent=2) + "\n")
+        """Write the summary as the CLI writes `--json` (with its `provenance`, which names the
+        Python call, and `timing`), whole or not at all."""
+        self._native.write_json(str(path))
 
     def __repr__(self) -> str:
         state = "complete" if self.complete else f"interrupted after {self.summary['runs_completed']} runs"
@@ -305,10 +295,13 @@ def trade(
     threads: Optional[int] = None,
     pcrlb: bool = True,
     progress: Any = None,
+    method: str = "mc",
 ) -> TradeResult:
     """A Monte Carlo trade of `filters` on `scenario` (a Scenario or a built-in name): `runs`
     (default the scenario's `monte_carlo.runs`), master `seed`, on `threads` workers (default all
-    cores; the result does not depend on it), with the PCRLB unless `pcrlb=False`.
+    cores; the result does not depend on it), with the PCRLB unless `pcrlb=False`; `method="both"`
+    adds LinCov of each filter beside the Monte Carlo (the summary's `lincov` block). Every value is
+    checked by the study layer before any run, with the command line's message.
 
     `progress`: a callable `(done, total)`, or True / "tqdm" for a tqdm bar.
     """
@@ -317,20 +310,10 @@ def trade(
     names = [filters] if isinstance(filters, str) else list(filters)
     if not names:
         raise ValueError("filters is empty: name at least one filter (ekf, ukf, ci, dcifaif, ...)")
-    if runs is not None and (isinstance(runs, bool) or int(runs) != runs):
-        raise ValueError(f"runs = {runs!r}: must be a whole number")
-    if runs is not None and not 1 <= runs <= 10_000_000:
-        raise ValueError(f"runs = {runs} is out of range: must be >= 1 and <= 10000000")
-    if seed < 0:
-        raise ValueError(f"seed = {seed} is out of range: must be >= 0")
-    summary, details, _complete, interrupted, native = _entrynav.trade(
+    summary, details, interrupted, native = _entrynav.trade(
         scenario.to_toml(),
         scenario.folder,
-        ",".join(names),
-        runs,
-        seed,
-        threads,
-        pcrlb,
+        _options(filters=",".join(names), runs=runs, seed=seed, threads=threads, pcrlb=pcrlb, method=method),
         _progress_callback(progress),
     )
     result = TradeResult(json.loads(summary), json.loads(details), scenario, names, native)
@@ -362,7 +345,8 @@ def trade_shard(
         scenario = Scenario.builtin(scenario) if scenario in builtin_scenarios() else Scenario.from_file(scenario)
     names = [filters] if isinstance(filters, str) else list(filters)
     return _entrynav.trade_shard(
-        scenario.to_toml(), scenario.folder, ",".join(names), runs, seed, index, count, list(overrides), threads
+        scenario.to_toml(), scenario.folder, index, count, list(overrides),
+        _options(filters=",".join(names), runs=runs, seed=seed, threads=threads),
     )
 
 
@@ -377,63 +361,29 @@ def simulate(scenario: Union[Scenario, str], seed: int = 1, dispersed: bool = Fa
 
     if isinstance(scenario, str):
         scenario = Scenario.builtin(scenario)
-    if seed < 0:
-        raise ValueError(f"seed = {seed} is out of range: must be >= 0")
-    doc = json.loads(_entrynav.simulate(scenario.to_toml(), scenario.folder, seed, dispersed))
+    doc = json.loads(_entrynav.simulate(scenario.to_toml(), scenario.folder, _options(seed=seed, dispersed=dispersed)))
     df = pd.DataFrame(doc["rows"], columns=doc["columns"], dtype=float)
     df.attrs["stop"] = doc["stop"]
     df.attrs["peaks"] = doc["peaks"]
     return df
 
 
+def _options(**options: Any) -> Dict[str, Any]:
+    """Keyword arguments for a study, without those left at None (the study's default)."""
+    return {k: v for k, v in options.items() if v is not None}
+
+
+def _scenario(scenario: Union[Scenario, str]) -> Scenario:
+    if isinstance(scenario, Scenario):
+        return scenario
+    return Scenario.builtin(scenario) if scenario in builtin_scenarios() else Scenario.from_file(scenario)
+
+
 # ---------------------------------------------------------------------------------------------
-# The design commands, run in this process by the CLI's library (their tables print on standard
-# output as the CLI's do; the files they write are read back here).
-
-
-def _raise_for(code: int, message: str, what: str) -> None:
-    if code == 0:
-        return
-    if code == 2:
-        raise ValueError(message.strip() or f"{what}: bad arguments")
-    if code == 130:
-        raise KeyboardInterrupt(message.strip())
-    raise RuntimeError(message.strip() or f"{what} failed (exit code {code})")
-
-
-class _ScenarioFile:
-    """The scenario as a file the CLI can read: a built-in by name when unchanged, else its TOML in
-    a hidden temporary file next to the files it may name (its folder), removed afterwards."""
-
-    def __init__(self, scenario: Union[Scenario, str]):
-        self.scenario = Scenario.builtin(scenario) if isinstance(scenario, str) and scenario in builtin_scenarios() \
-            else (Scenario.from_file(scenario) if isinstance(scenario, str) else scenario)
-        self.path: Optional[Path] = None
-
-    def __enter__(self) -> str:
-        name = self.scenario.name
-        if name in builtin_scenarios() and Scenario.builtin(name) == self.scenario:
-            return name
-        import tempfile
-
-        folder = Path(self.scenario.folder)
-        try:
-            fd, path = tempfile.mkstemp(prefix=".entrynav-", suffix=".toml", dir=folder)
-        except OSError:
-            fd, path = tempfile.mkstemp(prefix="entrynav-", suffix=".toml")
-        with os.fdopen(fd, "w") as f:
-            f.write(self.scenario.to_toml())
-        self.path = Path(path)
-        return path
-
-    def __exit__(self, *exc: Any) -> None:
-        if self.path is not None:
-            self.path.unlink(missing_ok=True)
-
-
-def _cli(args: List[str], what: str) -> None:
-    code, message = _entrynav.run_cli([str(a) for a in args])
-    _raise_for(code, message, what)
+# The design studies: the study layer's functions the `entrynav` command calls, with their
+# options as keyword arguments (the command line's flags with `_` for `-`), checked by the study
+# layer with the command line's messages: ValueError for a value out of range, TypeError for an
+# unknown keyword or a value of the wrong type.
 
 
 def tune(
@@ -452,34 +402,21 @@ def tune(
     noise) tuned to consistency, validated on fresh runs; returns the tuned Scenario (one
     `[filter.tuned.<name>]` table per filter). A tuning that makes a filter worse on the fresh
     runs is refused with RuntimeError naming the filter and figure, unless `force`."""
-    import tempfile
-
+    sc = _scenario(scenario)
     names = [filters] if isinstance(filters, str) else list(filters)
-    files = _ScenarioFile(scenario)
-    with files as sc, tempfile.TemporaryDirectory() as tmp:
-        out = Path(tmp) / "tuned.toml"
-        args = ["tune", "--scenario", sc, "--filter", ",".join(names), "--out", out, "--runs", runs, "--seed", seed,
-                "--validation-runs", validation_runs, "--max-evaluations", max_evaluations, "--quiet"]
-        args += ["--tune-noise"] * tune_noise + ["--nis-only"] * nis_only + ["--force"] * force
-        if threads is not None:
-            args += ["--threads", threads]
-        _cli(args, "tune")
-        return Scenario(out.read_text(), files.scenario.folder)
+    text = _entrynav.tune(sc.to_toml(), sc.folder, _options(
+        filters=",".join(names), runs=runs, seed=seed, validation_runs=validation_runs, tune_noise=tune_noise,
+        nis_only=nis_only, max_evaluations=max_evaluations, threads=threads, force=force))
+    return Scenario(text, sc.folder)
 
 
 def observe(scenario: Union[Scenario, str], method: str = "lie", step: float = 1.0, fim: bool = False,
-            extra_args: Sequence[str] = ()) -> Dict[str, Any]:
+            **options: Any) -> Dict[str, Any]:
     """`entrynav observe --json`: the degree of observability δ(t) along the trajectory (and with
-    `fim` the beacons' Fisher information) as the JSON dict the CLI writes."""
-    import tempfile
-
-    with _ScenarioFile(scenario) as sc, tempfile.TemporaryDirectory() as tmp:
-        out = Path(tmp) / "observe.json"
-        args = ["observe", "--scenario", sc, "--method", method, "--step", step, "--json", out, *extra_args]
-        if fim:
-            args.append("--fim")
-        _cli(args, "observe")
-        return json.loads(out.read_text())
+    `fim` the beacons' Fisher information) as the JSON dict the CLI writes. Further options as
+    keywords: `subsystems`, `beacons`, `pcrlb`, `runs`, `seed`."""
+    sc = _scenario(scenario)
+    return json.loads(_entrynav.observe(sc.to_toml(), sc.folder, _options(method=method, step=step, fim=fim, **options)))
 
 
 def deliver(
@@ -495,18 +432,11 @@ def deliver(
     CLI's JSON: `{"delivery": {..., "rows": [{name, deployed, failures, rms_miss_m, ellipse_99,
     rms_nav_position_error_m, ...}]}, "runs": [...]}` (docs/guidance.md). A scenario without
     `[guidance]` raises ValueError."""
-    import tempfile
-
+    sc = _scenario(scenario)
     names = [filters] if isinstance(filters, str) else list(filters)
-    files = _ScenarioFile(scenario)
-    with files as sc, tempfile.TemporaryDirectory() as tmp:
-        js = Path(tmp) / "delivery.json"
-        args = ["guidance", "deliver", "--scenario", sc, "--filters", ",".join(names), "--runs", runs, "--seed", seed,
-                "--json", js]
-        if threads is not None:
-            args += ["--threads", threads]
-        _cli(args, "guidance deliver")
-        return json.loads(js.read_text())
+    text = _entrynav.deliver(sc.to_toml(), sc.folder, _options(filters=",".join(names), runs=runs, seed=seed,
+                                                               threads=threads))
+    return json.loads(text)
 
 
 class DesignResult:
@@ -521,36 +451,38 @@ class DesignResult:
         return f"DesignResult({self.scenario.name!r})"
 
 
-def _optimize(kind: str, scenario: Union[Scenario, str], args: List[Any]) -> DesignResult:
-    import tempfile
+def _design(native: Callable[..., Any], scenario: Union[Scenario, str], options: Dict[str, Any]) -> DesignResult:
+    sc = _scenario(scenario)
+    summary, toml, refusal = native(sc.to_toml(), sc.folder, _options(**options))
+    result = DesignResult(json.loads(summary), Scenario(toml, sc.folder))
+    if refusal is not None:
+        err = RuntimeError(refusal)
+        err.result = result  # type: ignore[attr-defined]
+        raise err
+    return result
 
-    files = _ScenarioFile(scenario)
-    with files as sc, tempfile.TemporaryDirectory() as tmp:
-        js, toml = Path(tmp) / "design.json", Path(tmp) / "design.toml"
-        _cli(["optimize", kind, "--scenario", sc, *args, "--json", js, "--write-scenario", toml], f"optimize {kind}")
-        return DesignResult(json.loads(js.read_text()), Scenario(toml.read_text(), files.scenario.folder))
 
-
-def optimize_ground(scenario: Union[Scenario, str], beacons: Optional[int] = None,
-                    extra_args: Sequence[str] = ()) -> DesignResult:
+def optimize_ground(scenario: Union[Scenario, str], beacons: Optional[int] = None, **options: Any) -> DesignResult:
     """`entrynav optimize ground`: surface beacon sites (defaults: the navigation objective, the
-    separation constraint, the check against the input design). A worse optimum raises
-    RuntimeError (the CLI's exit 1); pass `extra_args=["--objective", "min-delta"]` etc. as on the
-    command line."""
-    args: List[Any] = [] if beacons is None else ["--beacons", beacons]
-    return _optimize("ground", scenario, [*args, *extra_args])
+    separation constraint, the check against the input design). Options as keywords, named as
+    the CLI's flags (`objective="min-delta"`, `min_separation_deg=2.0`, `starts=4`, `check_runs=100`,
+    `no_check=True`, ...). A design worse than the input raises RuntimeError (the CLI's exit 1)
+    whose `result` attribute holds the design."""
+    return _design(_entrynav.optimize_ground, scenario, dict(beacons=beacons, **options))
 
 
 def optimize_select(scenario: Union[Scenario, str], k: int, grid_deg: float = 0.5, exact: bool = False,
-                    extra_args: Sequence[str] = ()) -> DesignResult:
-    """`entrynav optimize select`: k sites of a candidate grid, certified with `exact`."""
-    args: List[Any] = ["--k", k, "--grid-deg", grid_deg, *(["--exact"] if exact else []), *extra_args]
-    return _optimize("select", scenario, args)
+                    **options: Any) -> DesignResult:
+    """`entrynav optimize select`: k sites of a candidate grid, certified with `exact`; further
+    options as keywords (`min_separation_deg`, `criterion`, `region=[lat_min, lat_max, lon_min,
+    lon_max]`, `time_limit`, ...)."""
+    return _design(_entrynav.optimize_select, scenario, dict(k=k, grid_deg=grid_deg, exact=exact, **options))
 
 
-def optimize_orbiters(scenario: Union[Scenario, str], extra_args: Sequence[str] = ()) -> DesignResult:
-    """`entrynav optimize orbiters`: orbital elements (Ω, i, f) of the relay orbiters."""
-    return _optimize("orbiters", scenario, list(extra_args))
+def optimize_orbiters(scenario: Union[Scenario, str], **options: Any) -> DesignResult:
+    """`entrynav optimize orbiters`: orbital elements (Ω, i, f) of the relay orbiters; options as
+    keywords (`orbiters`, `altitude_km`, `objective`, ...)."""
+    return _design(_entrynav.optimize_orbiters, scenario, options)
 
 
 def fmu_pack(out: Union[str, Path], scenario: Optional[Union[Scenario, str]] = None, filter: Optional[str] = None,

@@ -373,3 +373,24 @@ pub fn trade_plots(
     }
     Ok(figs)
 }
+
+/// LinCov's RMSE curves of `trade --method both`, dashed and named "<filter> LinCov", per metric
+/// (every state, `pos_m`, `vel_mps`), for the RMSE charts.
+pub fn lincov_curves(
+    c: &entrynav_studies::trade::lincov_comparison::LinCovComparison,
+) -> ExtraCurves {
+    c.curves()
+        .into_iter()
+        .map(|(metric, curves)| {
+            let curves = curves
+                .into_iter()
+                .map(|(name, points)| Curve {
+                    name,
+                    points,
+                    dashed: true,
+                })
+                .collect();
+            (metric, curves)
+        })
+        .collect()
+}

@@ -1,6 +1,6 @@
 //! Our FMI 2.0 host: unpacks one of our `.fmu` files, loads its shared library with libloading
 //! and calls the fmi2 functions through a safe [`Slave`] wrapper. `entrynav fmu check` compares
-//! it with the in-process [`Instance`](mars_entry_nav::instance::Instance) bit for bit;
+//! it with the in-process [`Instance`](entrynav_fmu::instance::Instance) bit for bit;
 //! `entrynav fmu fuzz` drives random call sequences through it.
 //!
 //! It is a crate of its own so that the FMU library (`entrynav-fmu`, the cdylib shipped in every
@@ -23,8 +23,8 @@ pub use api3::{Api3, Inst3, Log3, Logger3, Message3, State3, host_logger3};
 pub use slave::{OutputGroups, Slave, file_uri, in_process_get_all, output_groups};
 pub use unpack::{Unpacked, unpack};
 
-use mars_entry_nav::binding::BindingError;
-use mars_entry_nav::instance::{InstantiateError, Status};
+use entrynav_fmu::binding::BindingError;
+use entrynav_fmu::instance::{InstantiateError, Status};
 use std::ffi::NulError;
 use thiserror::Error;
 

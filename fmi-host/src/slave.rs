@@ -3,8 +3,8 @@
 
 use crate::api::{Api, Callbacks, Comp, host_logger};
 use crate::{HostError, Result, Unpacked};
-use mars_entry_nav::instance::{Fmi2, Instance};
-use mars_entry_nav::vars::{Causality, Type, Value, Var};
+use entrynav_fmu::instance::{Instance, Operation};
+use entrynav_fmu::vars::{Causality, Type, Value, Var};
 use std::ffi::{CString, c_int, c_void};
 use std::path::Path;
 use std::sync::Mutex;
@@ -146,7 +146,7 @@ pub fn in_process_get_all(inst: &mut Instance, g: &OutputGroups) -> Result<Vec<u
         (Type::Boolean, &g.bool),
     ] {
         let vals = inst.get(t, vrs).map_err(|status| HostError::InProcess {
-            call: Fmi2::getter(t).name(),
+            call: Operation::getter(t).name(),
             status,
         })?;
         out.extend(vals.into_iter().map(|v| match v {

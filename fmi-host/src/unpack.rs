@@ -5,11 +5,11 @@ use crate::api::Api;
 use crate::slave::file_uri;
 use crate::{HostError, Result};
 use entrynav::scenario::BUILTIN_NAMES;
-use mars_entry_nav::binding::{Binding, read_library};
-use mars_entry_nav::instance::resolve_spec;
-use mars_entry_nav::vars::{Model, ModelSpec};
-use mars_entry_nav::xml::description_of;
-use mars_entry_nav::xml3::description3_of;
+use entrynav_fmu::binding::{Binding, read_library};
+use entrynav_fmu::instance::resolve_spec;
+use entrynav_fmu::vars::{Model, ModelSpec};
+use entrynav_fmu::xml::description_of;
+use entrynav_fmu::xml3::description3_of;
 use quick_xml::events::Event;
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -179,7 +179,7 @@ pub fn unpack(file: &Path) -> Result<Unpacked> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mars_entry_nav::xml::model_description;
+    use entrynav_fmu::xml::model_description;
 
     #[test]
     fn the_model_identifier_is_the_cosimulation_elements_attribute() {

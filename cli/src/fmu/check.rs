@@ -98,19 +98,19 @@ pub(super) fn scenario_timing(sc: &entrynav::scenario::Scenario) -> (f64, f64) {
 fn scenario_param(a: &CheckArgs, m: Model) -> String {
     a.scenario.clone().unwrap_or_else(|| {
         match m {
-            Model::Guidance | Model::Guided => mars_entry_nav::vars::GUIDED_SCENARIO_FILE,
-            _ => mars_entry_nav::vars::DEFAULT_SCENARIO,
+            Model::Guidance | Model::Guided => entrynav_fmu::vars::GUIDED_SCENARIO_FILE,
+            _ => entrynav_fmu::vars::DEFAULT_SCENARIO,
         }
         .to_string()
     })
 }
 
 /// The filter a check runs: `--filter`, else the FMU's default.
-fn filter_of(a: &CheckArgs, spec: &mars_entry_nav::ModelSpec) -> String {
+fn filter_of(a: &CheckArgs, spec: &entrynav_fmu::ModelSpec) -> String {
     a.filter.clone().unwrap_or_else(|| {
         super::fuzz::model::start_params(spec)
             .map(|(_, f)| f)
-            .unwrap_or(mars_entry_nav::vars::DEFAULT_FILTER)
+            .unwrap_or(entrynav_fmu::vars::DEFAULT_FILTER)
             .to_string()
     })
 }

@@ -16,8 +16,8 @@ use super::run::run_in_process;
 use super::table::{Table, csv, fmt_value};
 use super::*;
 use entrynav_fmi_host::unpack;
-use mars_entry_nav::ModelSpec;
-use mars_entry_nav::vars::{DEFAULT_SCENARIO, DEFAULT_SEED};
+use entrynav_fmu::ModelSpec;
+use entrynav_fmu::vars::{DEFAULT_SCENARIO, DEFAULT_SEED};
 
 /// Arguments of `entrynav fmu cross-check`.
 #[derive(Args)]
@@ -148,7 +148,7 @@ fn input_table(spec: &ModelSpec, resources: &Path, stop: f64, step: f64) -> Resu
     let n = (stop / step).round() as usize;
     let guided = match spec.model() {
         Model::Guidance => super::guided::guided_rows(
-            &load_scenario(mars_entry_nav::vars::GUIDED_SCENARIO_FILE, resources)?,
+            &load_scenario(entrynav_fmu::vars::GUIDED_SCENARIO_FILE, resources)?,
             DEFAULT_SEED as u64,
             step,
             n,

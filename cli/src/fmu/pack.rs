@@ -7,9 +7,9 @@
 
 use super::*;
 use entrynav::estimation::nav::FilterKind;
-use mars_entry_nav::ModelSpec;
-use mars_entry_nav::binding::{Binding, patch};
-use mars_entry_nav::{description_of, description3_of};
+use entrynav_fmu::ModelSpec;
+use entrynav_fmu::binding::{Binding, patch};
+use entrynav_fmu::{description_of, description3_of};
 use std::cell::RefCell;
 use std::process::Command;
 
@@ -20,7 +20,7 @@ pub(super) struct PackArgs {
     #[arg(long, default_value = "target/fmu")]
     out: PathBuf,
     /// The FMU shared library (build it with `cargo build --release -p entrynav-fmu`). Default:
-    /// $ENTRYNAV_FMU_LIB, else libmars_entry_nav.so next to this executable, in ../lib, or in
+    /// $ENTRYNAV_FMU_LIB, else libentrynav_fmu.so next to this executable, in ../lib, or in
     /// the target folder it was built in.
     #[arg(long, visible_alias = "library")]
     lib: Option<PathBuf>,
@@ -100,7 +100,7 @@ fn specific(name: &str, filter: Option<&str>) -> Result<(ModelSpec, Resources)> 
     )?);
     let file = format!(
         "{}.toml",
-        mars_entry_nav::vars::specific_identifier(&src.config.name)
+        entrynav_fmu::vars::specific_identifier(&src.config.name)
     );
     let text = match builtin {
         true => builtin_toml(name.trim()).map(str::to_string),
@@ -115,7 +115,7 @@ fn specific(name: &str, filter: Option<&str>) -> Result<(ModelSpec, Resources)> 
                 .filter(|k| k.misfit(&scenario.onboard).is_none())
                 .collect();
             fits.iter()
-                .find(|k| k.name() == mars_entry_nav::vars::DEFAULT_FILTER)
+                .find(|k| k.name() == entrynav_fmu::vars::DEFAULT_FILTER)
                 .or(fits.first())
                 .copied()
                 .context("no filter fits this scenario")?

@@ -6,7 +6,7 @@
 use super::table::{Table, csv, parse_value};
 use super::*;
 use entrynav_fmi_host::{file_uri, unpack};
-use mars_entry_nav::ModelSpec;
+use entrynav_fmu::ModelSpec;
 
 /// Run `spec` in process from 0 to `stop` in steps of `step` with the parameter and start values
 /// `sets` and the input `table`; returns the time and the values of `record` at every
@@ -88,7 +88,7 @@ pub(super) fn run_reference(a: &RunArgs) -> Result<()> {
             let m = Model::from_identifier(&a.model)
                 .with_context(|| format!("unknown model '{}'", a.model))?;
             (
-                Arc::new(mars_entry_nav::ModelSpec::generic(m)),
+                Arc::new(entrynav_fmu::ModelSpec::generic(m)),
                 a.resources.clone(),
             )
         }

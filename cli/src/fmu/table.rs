@@ -136,7 +136,7 @@ pub(super) fn csv(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mars_entry_nav::vars::variables;
+    use entrynav_fmu::vars::variables;
 
     fn var(name: &str) -> Var {
         variables(Model::Combined)

@@ -43,7 +43,7 @@ pub(super) unsafe fn set_debug_logging(
     n: usize,
     categories: *const *const c_char,
 ) -> Fmi2Status {
-    const F: Fmi2 = Fmi2::SetDebugLogging;
+    const F: Operation = Operation::SetDebugLogging;
     status(c, name, |inner| {
         // SAFETY: the master passes `n` category strings (n is bounded first).
         let Some(cats) = (unsafe { slice(categories, n, MAX_CATEGORIES) }) else {
@@ -203,7 +203,7 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
     stop_time_defined: Fmi2Boolean,
     stop_time: f64,
 ) -> Fmi2Status {
-    status(c, Fmi2::SetupExperiment, |i| {
+    status(c, Operation::SetupExperiment, |i| {
         i.inst
             .setup_experiment(start_time, (stop_time_defined != 0).then_some(stop_time))
     })
@@ -215,7 +215,7 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2EnterInitializationMode(c: Fmi2Component) -> Fmi2Status {
-    status(c, Fmi2::EnterInitializationMode, |i| {
+    status(c, Operation::EnterInitializationMode, |i| {
         i.inst.enter_initialization_mode()
     })
 }
@@ -226,7 +226,7 @@ pub unsafe extern "C" fn fmi2EnterInitializationMode(c: Fmi2Component) -> Fmi2St
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2ExitInitializationMode(c: Fmi2Component) -> Fmi2Status {
-    status(c, Fmi2::ExitInitializationMode, |i| {
+    status(c, Operation::ExitInitializationMode, |i| {
         i.inst.exit_initialization_mode()
     })
 }
@@ -237,7 +237,7 @@ pub unsafe extern "C" fn fmi2ExitInitializationMode(c: Fmi2Component) -> Fmi2Sta
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2Terminate(c: Fmi2Component) -> Fmi2Status {
-    status(c, Fmi2::Terminate, |i| i.inst.terminate())
+    status(c, Operation::Terminate, |i| i.inst.terminate())
 }
 
 /// `fmi2Reset`.
@@ -246,5 +246,5 @@ pub unsafe extern "C" fn fmi2Terminate(c: Fmi2Component) -> Fmi2Status {
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2Reset(c: Fmi2Component) -> Fmi2Status {
-    status(c, Fmi2::Reset, |i| i.inst.reset())
+    status(c, Operation::Reset, |i| i.inst.reset())
 }

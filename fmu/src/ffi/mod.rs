@@ -14,7 +14,7 @@
 
 #![allow(non_snake_case)]
 
-use crate::instance::{Fmi2, Instance, LogSink, Status};
+use crate::instance::{Instance, LogSink, Operation, Status};
 use crate::state::Snapshot;
 use crate::vars::{Type, Value};
 use std::collections::HashMap;
@@ -208,7 +208,7 @@ unsafe fn text<'a>(p: *const c_char, max: usize) -> Result<&'a str, TextError> {
     std::str::from_utf8(bytes).map_err(|_| TextError::NotUtf8)
 }
 
-fn null_arg(inner: &Inner, func: Fmi2, what: &str) -> Status {
+fn null_arg(inner: &Inner, func: Operation, what: &str) -> Status {
     inner.inst.error(&format!(
         "{func}: {what} is a null pointer, or its length is over the limit ({} elements)",
         crate::limits::MAX_VALUE_REFS

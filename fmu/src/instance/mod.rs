@@ -1,7 +1,7 @@
 //! A safe FMU instance: the FMI 2.0 co-simulation state machine, variable access and the engine.
 //!
 //! Every method checks the calling sequence first against the table of allowed states, one entry
-//! per fmi2 function ([`Fmi2::allowed`]); an illegal call is answered with [`Status::Error`] and
+//! per fmi2 function ([`Operation::allowed`]); an illegal call is answered with [`Status::Error`] and
 //! the message "Illegal call sequence", and leaves the instance as it was. A *refused* call changes nothing either: a bad argument (unknown value
 //! reference, a wrong type, NaN/Inf reals, a step at the wrong communication point or past the
 //! stop time) or a request over a bound of [`crate::limits`]. A call that *starts and fails* —
@@ -21,7 +21,7 @@ mod snapshot;
 mod spec;
 mod values;
 
-pub use allowed::{Fmi2, Phases};
+pub use allowed::{Operation, Phases};
 pub use engine::{Engine, InstanceError};
 pub use fmi3::{Ref3, Type3};
 pub use guidance::{GuidanceEngine, GuidanceInputs, GuidanceReport, GuidanceStepError};
@@ -260,15 +260,15 @@ impl Instance {
         self.error(msg)
     }
 
-    /// Whether `f` may be called in the current phase ([`Fmi2::allowed`]); if not, the error is
+    /// Whether `f` may be called in the current phase ([`Operation::allowed`]); if not, the error is
     /// logged ("Illegal call sequence") and returned.
-    pub fn check(&self, f: Fmi2) -> Result<(), Status> {
+    pub fn check(&self, f: Operation) -> Result<(), Status> {
         self.check_as(f, f)
     }
 
     /// [`Instance::check`] of `f`'s table entry on behalf of the function `name` (an FMI 3.0
     /// function whose allowed states are those of `f`), which the message names.
-    pub fn check_as(&self, f: Fmi2, name: impl std::fmt::Display) -> Result<(), Status> {
+    pub fn check_as(&self, f: Operation, name: impl std::fmt::Display) -> Result<(), Status> {
         let allowed = f.allowed();
         if allowed.contains(self.phase) {
             return Ok(());

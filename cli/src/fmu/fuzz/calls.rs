@@ -3,7 +3,7 @@
 use super::model::{Expect, Sim, status_query};
 use super::ops::{State, same_or_close};
 use super::*;
-use mars_entry_nav::limits::{
+use entrynav_fmu::limits::{
     MAX_CATEGORIES, MAX_SNAPSHOTS, MAX_STATE_BYTES, MAX_STRING_BYTES, MAX_STRING_REFS,
     MAX_VALUE_REFS,
 };
@@ -151,7 +151,7 @@ impl Fuzzer<'_> {
             4 => vec!["logAll".repeat(MAX_STRING_BYTES)],
             _ => vec!["logAll".into(); MAX_CATEGORIES + 1],
         };
-        let known = mars_entry_nav::xml::LOG_CATEGORIES.map(|c| c.0);
+        let known = entrynav_fmu::xml::LOG_CATEGORIES.map(|c| c.0);
         let valid =
             names.len() <= MAX_CATEGORIES && names.iter().all(|n| known.contains(&n.as_str()));
         if names.len() > MAX_CATEGORIES || names.iter().any(|n| n.len() > MAX_STRING_BYTES) {
@@ -218,7 +218,7 @@ impl Fuzzer<'_> {
         let other = Model::ALL
             .into_iter()
             .find(|m| m.identifier() != u.spec.identifier())
-            .map(mars_entry_nav::guid_of)
+            .map(entrynav_fmu::guid_of)
             .unwrap_or_default();
         let (name, guid, ok) = match self.rng.random_range(0..4) {
             0 => (

@@ -140,8 +140,8 @@ pub(super) fn fuzz(a: &FuzzArgs) -> Result<()> {
         uri: file_uri(&u.dir.join("resources")),
         rng: ChaCha8Rng::seed_from_u64(a.seed),
         sc: Scenarios::new(u.spec.specific())?,
-        big_vr: vec![0; mars_entry_nav::limits::MAX_VALUE_REFS + 1],
-        big_out: vec![0.0; mars_entry_nav::limits::MAX_VALUE_REFS + 1],
+        big_vr: vec![0; entrynav_fmu::limits::MAX_VALUE_REFS + 1],
+        big_out: vec![0.0; entrynav_fmu::limits::MAX_VALUE_REFS + 1],
         stats: Stats::default(),
         u: &u,
     };

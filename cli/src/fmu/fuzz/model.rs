@@ -4,8 +4,8 @@
 use super::super::*;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use mars_entry_nav::ModelSpec;
-use mars_entry_nav::vars::{
+use entrynav_fmu::ModelSpec;
+use entrynav_fmu::vars::{
     DEFAULT_FILTER, DEFAULT_SCENARIO, DEFAULT_SEED, GUIDED_FILTER, GUIDED_SCENARIO_FILE,
 };
 use std::collections::HashMap;
@@ -69,7 +69,7 @@ pub(in crate::fmu) struct Scenarios {
 impl Scenarios {
     /// The built-in scenarios, and the embedded one of a specific FMU.
     pub(in crate::fmu) fn new(
-        specific: Option<&mars_entry_nav::vars::Specific>,
+        specific: Option<&entrynav_fmu::vars::Specific>,
     ) -> Result<Scenarios> {
         let mut all = Vec::new();
         for name in BUILTIN_NAMES {
@@ -82,7 +82,7 @@ impl Scenarios {
         // The guided scenario file every generic FMU ships (the default of the guided models).
         all.push((
             GUIDED_SCENARIO_FILE.to_string(),
-            Arc::new(mars_entry_nav::vars::guided_scenario()?),
+            Arc::new(entrynav_fmu::vars::guided_scenario()?),
         ));
         let (mut timing, mut fits, mut guided) = (HashMap::new(), HashMap::new(), Vec::new());
         for (name, s) in all {

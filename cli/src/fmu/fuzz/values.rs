@@ -3,7 +3,7 @@
 
 use super::model::{Expect, Sim};
 use super::*;
-use mars_entry_nav::limits::MAX_STRING_BYTES;
+use entrynav_fmu::limits::MAX_STRING_BYTES;
 use std::ffi::{CString, c_int};
 
 /// Real input values.

@@ -4,7 +4,7 @@
 
 use super::model::{Expect, Sim};
 use super::*;
-use mars_entry_nav::limits::{MAX_CATEGORIES, MAX_STRING_BYTES, MAX_STRING_REFS, MAX_VALUE_REFS};
+use entrynav_fmu::limits::{MAX_CATEGORIES, MAX_STRING_BYTES, MAX_STRING_REFS, MAX_VALUE_REFS};
 use std::ffi::{c_char, c_int};
 
 impl Fuzzer<'_> {
@@ -30,7 +30,7 @@ impl Fuzzer<'_> {
                 );
             }
         };
-        let known = mars_entry_nav::xml::LOG_CATEGORIES.map(|c| c.0);
+        let known = entrynav_fmu::xml::LOG_CATEGORIES.map(|c| c.0);
         let valid =
             names.len() <= MAX_CATEGORIES && names.iter().all(|n| known.contains(&n.as_str()));
         if names.len() > MAX_CATEGORIES || names.iter().any(|n| n.len() > MAX_STRING_BYTES) {
@@ -222,7 +222,7 @@ impl Fuzzer<'_> {
             let Some(v) = self
                 .v3
                 .iter()
-                .find(|v| matches!(v.what, super::model::What::Scalar(i) if self.vars[i].causality != Causality::Output && v.ty == mars_entry_nav::instance::Type3::Float64))
+                .find(|v| matches!(v.what, super::model::What::Scalar(i) if self.vars[i].causality != Causality::Output && v.ty == entrynav_fmu::instance::Type3::Float64))
                 .copied()
             else {
                 return Ok(());

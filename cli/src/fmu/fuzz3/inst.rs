@@ -5,7 +5,7 @@
 use super::model::{Expect, Sim};
 use super::*;
 use entrynav_fmi_host::{Inst3, Log3, host_logger3};
-use mars_entry_nav::limits::{MAX_GUID_BYTES, MAX_STRING_BYTES};
+use entrynav_fmu::limits::{MAX_GUID_BYTES, MAX_STRING_BYTES};
 use std::ffi::{CStr, c_void};
 
 /// The arguments of an instantiation (null where `None`).
@@ -115,7 +115,7 @@ impl Fuzzer<'_> {
         let other = Model::ALL
             .into_iter()
             .find(|m| m.identifier() != u.spec.identifier())
-            .map(mars_entry_nav::guid_of)
+            .map(entrynav_fmu::guid_of)
             .unwrap_or_default();
         let (ok_name, blank, long_name) = (
             c"ok".to_owned(),

@@ -25,8 +25,8 @@ mod values;
 
 use super::*;
 use entrynav_fmi_host::{Api3, Message3, State3, Unpacked};
+use entrynav_fmu::vars::fmi3::state_slots;
 use inst::Inst;
-use mars_entry_nav::vars::fmi3::state_slots;
 use model::{Expect, Scenarios, Sim, V3};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -306,8 +306,8 @@ pub(super) fn fuzz3(u: &Unpacked, calls: usize, max_sequence: usize, seed: u64) 
         resources: CString::new(resources.to_string_lossy().as_bytes())?,
         rng: ChaCha8Rng::seed_from_u64(seed),
         sc: Scenarios::new(u.spec.specific())?,
-        big_vr: vec![0; mars_entry_nav::limits::MAX_VALUE_REFS + 1],
-        big_out: vec![0.0; mars_entry_nav::limits::MAX_VALUE_REFS + 1],
+        big_vr: vec![0; entrynav_fmu::limits::MAX_VALUE_REFS + 1],
+        big_out: vec![0.0; entrynav_fmu::limits::MAX_VALUE_REFS + 1],
         names: Api3::FUNCTIONS.iter().chain(&FMI3_TYPES).copied().collect(),
         stats: Stats::default(),
     };

@@ -3,10 +3,10 @@
 //! implements it, the variables as FMI 3.0 types them ([`V3`]), and what every call must answer.
 
 use super::super::*;
-use mars_entry_nav::instance::Type3;
-use mars_entry_nav::limits::MAX_PREDICTION_SUBSTEPS;
-use mars_entry_nav::vars::fmi3::{Extra, extras, state_slots};
-use mars_entry_nav::vars::{DEFAULT_FILTER, DEFAULT_SCENARIO, DEFAULT_SEED, ModelSpec};
+use entrynav_fmu::instance::Type3;
+use entrynav_fmu::limits::MAX_PREDICTION_SUBSTEPS;
+use entrynav_fmu::vars::fmi3::{Extra, extras, state_slots};
+use entrynav_fmu::vars::{DEFAULT_FILTER, DEFAULT_SCENARIO, DEFAULT_SEED, ModelSpec};
 
 /// The states of the FMI 3.0 co-simulation state machine this FMU has.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

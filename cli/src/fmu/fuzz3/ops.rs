@@ -6,7 +6,7 @@
 
 use super::model::{Expect, Sim, St, V3, What, same_time};
 use super::*;
-use mars_entry_nav::instance::Type3;
+use entrynav_fmu::instance::Type3;
 
 /// Step sizes: ordinary, tiny (down to the smallest denormal), huge (up to f64::MAX; an accepted
 /// one runs the scenario to its end, which is most of the fuzzer's time on the combined model, so

@@ -6,8 +6,8 @@
 
 use super::model::{Expect, Sim, V3};
 use super::*;
-use mars_entry_nav::instance::Type3;
-use mars_entry_nav::limits::MAX_STRING_BYTES;
+use entrynav_fmu::instance::Type3;
+use entrynav_fmu::limits::MAX_STRING_BYTES;
 
 /// Real values.
 const REALS: [f64; 9] = [
@@ -186,7 +186,7 @@ impl Fuzzer<'_> {
                 }
                 // The guided FMU's Monte Carlo run index.
                 let valid = if is(Key::Run) {
-                    (0..=mars_entry_nav::limits::MAX_RUN).contains(&x)
+                    (0..=entrynav_fmu::limits::MAX_RUN).contains(&x)
                 } else {
                     !is_seed || x >= 0
                 };

@@ -3,7 +3,7 @@
 
 use super::model::{Expect, Sim, St};
 use super::*;
-use mars_entry_nav::limits::{MAX_SNAPSHOTS, MAX_STATE_BYTES};
+use entrynav_fmu::limits::{MAX_SNAPSHOTS, MAX_STATE_BYTES};
 
 impl Fuzzer<'_> {
     /// fmi3GetFMUState into a new state, over a held one, or into a foreign pointer (refused).

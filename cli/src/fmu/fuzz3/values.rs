@@ -5,8 +5,8 @@
 
 use super::model::{Expect, Sim, St, V3, What, same_time};
 use super::*;
-use mars_entry_nav::instance::Type3;
-use mars_entry_nav::vars::fmi3::Extra;
+use entrynav_fmu::instance::Type3;
+use entrynav_fmu::vars::fmi3::Extra;
 use std::ffi::c_char;
 
 /// The types this FMU has, the scalar ones more often.

@@ -131,10 +131,10 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
     stop_time: f64,
 ) -> Fmi3Status {
     status(c, "fmi3EnterInitializationMode", |i| {
-        if let Err(s) = i
-            .inst
-            .check_as(Fmi2::EnterInitializationMode, "fmi3EnterInitializationMode")
-        {
+        if let Err(s) = i.inst.check_as(
+            Operation::EnterInitializationMode,
+            "fmi3EnterInitializationMode",
+        ) {
             return s;
         }
         let stop = (stop_time_defined != 0).then_some(stop_time);

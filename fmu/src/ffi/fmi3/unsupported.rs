@@ -144,7 +144,11 @@ fn no_variables(
     nvr: usize,
 ) -> Fmi3Status {
     status(c, func, |i| {
-        let op = if get { Fmi2::GetReal } else { Fmi2::SetReal };
+        let op = if get {
+            Operation::GetReal
+        } else {
+            Operation::SetReal
+        };
         if let Err(s) = i.inst.check_as(op, func) {
             return s;
         }

@@ -9,7 +9,7 @@ use crate::instance::Type3;
 use crate::limits::{MAX_STRING_BYTES, MAX_STRING_REFS, MAX_VALUE_REFS};
 
 /// The instance operation whose allowed states a getter or setter of `ty` has.
-fn op(ty: Type3, get: bool) -> Fmi2 {
+fn op(ty: Type3, get: bool) -> Operation {
     let t = match ty {
         Type3::Float64 => Type::Real,
         Type3::Int32 | Type3::Int64 | Type3::UInt64 => Type::Integer,
@@ -17,9 +17,9 @@ fn op(ty: Type3, get: bool) -> Fmi2 {
         Type3::String => Type::String,
     };
     if get {
-        Fmi2::getter(t)
+        Operation::getter(t)
     } else {
-        Fmi2::setter(t)
+        Operation::setter(t)
     }
 }
 

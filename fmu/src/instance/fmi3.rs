@@ -2,7 +2,9 @@
 //! FMI 3.0 type rules of its scalar variables (an Enumeration is read and written as `Int64`,
 //! never as `Int32`).
 
-use super::{Instance, Operation, Status};
+use super::allowed::Operation;
+use super::machine::Instance;
+use super::status::Status;
 use crate::vars::fmi3::{Extra, Var3, extras, state_slots};
 use crate::vars::{Causality, Key, Type, Value};
 

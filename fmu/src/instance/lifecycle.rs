@@ -2,7 +2,9 @@
 //! against its entry of the allowed-state table, [`super::allowed`]), fmi2DoStep and the status
 //! queries.
 
-use super::{Instance, Operation, Status};
+use super::allowed::Operation;
+use super::machine::Instance;
+use super::status::Status;
 use crate::limits::MAX_CATEGORIES;
 use crate::state::{Phase, StepRecord};
 use crate::xml::LOG_CATEGORIES;
@@ -242,7 +244,7 @@ impl Instance {
     pub fn last_successful_time(&self) -> f64 {
         self.engine
             .as_ref()
-            .map(super::Engine::time)
+            .map(super::engine::Engine::time)
             .unwrap_or(self.start_time)
     }
 

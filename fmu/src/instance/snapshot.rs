@@ -1,7 +1,9 @@
 //! FMU states of an instance: a snapshot is a replay log, restored by rebuilding the engine and
 //! replaying the steps (see [`crate::state`]).
 
-use super::{Instance, Operation, Status};
+use super::allowed::Operation;
+use super::machine::Instance;
+use super::status::Status;
 use crate::limits::MAX_STATE_BYTES;
 use crate::state::{Phase::*, Snapshot};
 use crate::vars::Value;
@@ -88,7 +90,7 @@ impl Instance {
                 }
                 let checked = self
                     .check_step_work(st.t, st.h)
-                    .map_err(super::InstanceError::from)
+                    .map_err(super::engine::InstanceError::from)
                     .and_then(|()| self.step_engine(st.t, st.h));
                 if let Err(e) = checked {
                     self.phase = Error;

@@ -1,8 +1,10 @@
 //! Variable access of an instance: fmi2Get* and fmi2Set* by value reference, and the parameter and
 //! input values the engine reads.
 
+use super::allowed::Operation;
+use super::machine::Instance;
 use super::outputs::validate;
-use super::{Instance, Operation, Status};
+use super::status::Status;
 use crate::state::Phase;
 use crate::vars::{Causality, Key, Type, Value};
 

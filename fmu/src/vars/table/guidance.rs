@@ -1,27 +1,28 @@
-//! The variables of `MarsEntryGuidance` (see [`super::table`]) and the guided scenario file every
+//! The variables of `MarsEntryGuidance` (see [`super`]) and the guided scenario file every
 //! generic FMU ships in `resources/`.
 //!
 //! Inputs carry the names of the outputs they connect to, so a system connects them 1:1: the
 //! navigation FMUs' `est_x_1..6`, `est_sigma_1..6`, `nav_time`, `nav_status_code`, and the truth
 //! FMU's accelerometer triad `meas_accel_{x,y,z}` with its `_valid` flags (the sensed drag).
 
-use super::table::Builder;
-use super::*;
-
-/// The scenario file (in every generic FMU's `resources/`, as every built-in is) that the
-/// guidance FMU's `scenario` parameter names by default: the built-in `msl-guided` (`msl-airdata`
-/// with Apollo final-phase guidance on the 60° reference, deployment at 450 m/s).
-pub const GUIDED_SCENARIO_FILE: &str = "msl-guided.toml";
-
-/// The default filter of the guided FMU `MarsEntryNavGuided` (one that fits its default
-/// scenario, which has no radio beacons).
-pub const GUIDED_FILTER: &str = "ekf";
+use super::builder::{Builder, SPH};
+use super::params::allow_external_files;
+use crate::vars::defaults::GUIDED_SCENARIO_FILE;
+use crate::vars::slot::{Key, Slot};
+use crate::vars::var::{Causality, Type, Value};
+use entrynav::scenario::{Scenario, ScenarioConfig};
 
 /// The text of [`GUIDED_SCENARIO_FILE`]: the built-in `msl-guided`.
 pub fn guided_scenario_toml() -> String {
     entrynav::scenario::builtin_toml("msl-guided")
         .unwrap_or_default()
         .to_string()
+}
+
+/// The scenario of [`GUIDED_SCENARIO_FILE`] (it refers to no other file).
+pub fn guided_scenario() -> Result<Scenario, entrynav::scenario::ScenarioError> {
+    let cfg = ScenarioConfig::from_toml_str(&guided_scenario_toml(), GUIDED_SCENARIO_FILE)?;
+    Scenario::build(cfg, &entrynav::files::no_files)
 }
 
 /// The `scenario` parameter of the guidance FMU and of the guided FMU `MarsEntryNavGuided`: a
@@ -43,17 +44,16 @@ pub(super) fn guided_scenario_param(b: &mut Builder) {
 
 /// The guidance FMU's variables after its `scenario` parameter.
 pub(super) fn guidance_vars(b: &mut Builder) {
+    allow_external_files(b);
+    guidance_inputs(b);
+    guidance_outputs(b);
+}
+
+/// The guidance FMU's inputs: the navigation estimate and the accelerometer triad, named as the
+/// outputs they connect to.
+fn guidance_inputs(b: &mut Builder) {
     use Causality::*;
     use Type::*;
-    b.add(
-        "allow_external_files",
-        Boolean,
-        Parameter,
-        None,
-        Some(Value::Boolean(false)),
-        "Let scenario name a file outside the FMU's resources folder (an absolute path or one with ..); off by default, so a parameter cannot make the FMU read host files",
-        Key::AllowExternalFiles,
-    );
     b.add(
         "nav_time",
         Real,
@@ -72,7 +72,7 @@ pub(super) fn guidance_vars(b: &mut Builder) {
         "Navigation filter status, 0 initial, 1 running, 2 failed (connect nav_status_code); guidance refuses to fly a failed filter's estimate",
         Key::NavStatusCode,
     );
-    for (i, (n, _, _)) in super::table::SPH.iter().enumerate() {
+    for (i, (n, _, _)) in SPH.iter().enumerate() {
         b.add(
             format!("est_x_{}", i + 1),
             Real,
@@ -130,6 +130,11 @@ pub(super) fn guidance_vars(b: &mut Builder) {
             Key::MeasValid(s),
         );
     }
+}
+
+/// The guidance FMU's outputs: the bank command through the actuator and the guidance state.
+fn guidance_outputs(b: &mut Builder) {
+    use Type::*;
     b.out(
         "bank_command",
         Real,
@@ -199,89 +204,5 @@ pub(super) fn guidance_vars(b: &mut Builder) {
         None,
         "The trigger was reached on the navigation estimate (after having been positive): guidance stops cycling and the actuator holds the last command",
         Key::Deployed,
-    );
-}
-
-/// What `MarsEntryNavGuided` adds to the combined model's outputs: its guidance and how the
-/// guided flight ended. The bank it flew over the last step is the truth output
-/// `truth_bank_angle`.
-pub(super) fn guided_outputs(b: &mut Builder) {
-    use Type::*;
-    b.out(
-        "guidance_command",
-        Real,
-        Some("rad"),
-        "Command of the latest guidance cycle, computed from the filter's estimate, before the rate and acceleration limits (the reference bank before the first cycle)",
-        Key::GuidanceCommand,
-    );
-    b.out(
-        "bank_rate",
-        Real,
-        Some("rad/s"),
-        "Bank rate of the actuator at this communication point",
-        Key::GuidanceBankRate,
-    );
-    b.out(
-        "guidance_cycles",
-        Integer,
-        None,
-        "Guidance cycles run",
-        Key::GuidanceCycles,
-    );
-    b.out(
-        "sensed_drag",
-        Real,
-        Some("m/s2"),
-        "Sensed drag of the last valid accelerometer triad, rotated to the wind frame, that the next guidance cycle is given (0 before the first)",
-        Key::SensedDrag,
-    );
-    b.out(
-        "guided_status",
-        Integer,
-        None,
-        "The guided flight: 0 flying, 1 deployed (the trigger was reached on the truth; the delivery outputs are set), 2 ended without deployment (the truth stopped before the trigger, the filter or guidance failed: the log says which); after 1 or 2 the outputs hold and a step only advances time",
-        Key::GuidedStatus,
-    );
-    b.out(
-        "deployed",
-        Boolean,
-        None,
-        "The deployment trigger was reached on the truth (guided_status = 1)",
-        Key::Deployed,
-    );
-    b.out(
-        "deploy_time",
-        Real,
-        Some("s"),
-        "Deployment time, interpolated between the truth steps around the trigger (0 before deployment)",
-        Key::DeployTime,
-    );
-    b.out(
-        "deploy_altitude",
-        Real,
-        Some("m"),
-        "Deployment altitude (0 before deployment)",
-        Key::DeployAltitude,
-    );
-    b.out(
-        "miss_distance",
-        Real,
-        Some("m"),
-        "Surface distance from the deployment point to the guidance target (0 before deployment)",
-        Key::MissDistance,
-    );
-    b.out(
-        "miss_downrange",
-        Real,
-        Some("m"),
-        "Along-track part of the miss, positive when the vehicle overflew the target (0 before deployment)",
-        Key::MissDownrange,
-    );
-    b.out(
-        "miss_crossrange",
-        Real,
-        Some("m"),
-        "Cross-track part of the miss, positive when the target lies to the right (0 before deployment)",
-        Key::MissCrossrange,
     );
 }

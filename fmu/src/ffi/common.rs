@@ -1,9 +1,18 @@
 //! The fmi2 functions common to every FMI 2.0 interface: version, logging, instantiation,
 //! experiment set-up, initialisation, termination and reset.
 
-use super::*;
+use super::args::{TextError, slice, text};
+use super::inner::Inner;
+use super::logger::{CLogger, LogFn, c_text};
+use super::registry::status;
+use super::types::{CallbackFunctions, Fmi2Boolean, Fmi2Component, Fmi2Status};
+use super::{binding, panic_hook, registry};
 use crate::instance::resolve_spec;
+use crate::instance::{Instance, LogSink, Operation, Status};
 use crate::limits::{MAX_CATEGORIES, MAX_GUID_BYTES, MAX_LOCATION_BYTES, MAX_STRING_BYTES};
+use std::collections::HashMap;
+use std::ffi::{c_char, c_int};
+use std::sync::Arc;
 
 /// `fmi2GetTypesPlatform`.
 #[unsafe(no_mangle)]

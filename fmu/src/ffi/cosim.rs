@@ -1,7 +1,12 @@
 //! Co-simulation: fmi2DoStep, fmi2CancelStep and the status queries; and the capabilities this
 //! FMU does not have (directional derivatives, input derivatives), answered with fmi2Error.
 
-use super::*;
+use super::args::null_arg;
+use super::inner::Inner;
+use super::registry::status;
+use super::types::{Fmi2Boolean, Fmi2Component, Fmi2Status};
+use crate::instance::{Operation, Status};
+use std::ffi::{c_char, c_int};
 
 use crate::instance::{StatusAnswer, StatusType};
 

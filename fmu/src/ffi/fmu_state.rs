@@ -1,7 +1,12 @@
 //! FMU states: get, set, free, serialise and deserialise (snapshots owned by the instance).
 
-use super::*;
+use super::args::{null_arg, slice, slice_mut};
+use super::inner::Inner;
+use super::registry::status;
+use super::types::{Fmi2Component, Fmi2State, Fmi2Status};
+use crate::instance::{Operation, Status};
 use crate::limits::{MAX_SNAPSHOTS, MAX_STATE_BYTES};
+use crate::state::Snapshot;
 
 /// A snapshot pointer owned by this instance (null, foreign and freed pointers are rejected).
 fn known(inner: &Inner, p: Fmi2State) -> bool {

@@ -1,7 +1,14 @@
 //! fmi2Get* and fmi2Set*: variable values across the C ABI.
 
-use super::*;
+use super::args::{TextError, null_arg, slice, slice_mut, text};
+use super::inner::Inner;
+use super::logger::c_text;
+use super::registry::status;
+use super::types::{Fmi2Boolean, Fmi2Component, Fmi2Status};
+use crate::instance::{Operation, Status};
 use crate::limits::{MAX_STRING_BYTES, MAX_STRING_REFS, MAX_VALUE_REFS};
+use crate::vars::{Type, Value};
+use std::ffi::{CString, c_char, c_int};
 
 fn get_values<T>(
     inner: &mut Inner,

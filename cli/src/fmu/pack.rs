@@ -3,15 +3,19 @@
 //! generic FMUs; with `--scenario S` the combined model specific to S, which embeds the scenario
 //! (and the files it refers to) in `resources/` and names its state outputs after its states.
 
-#![allow(non_snake_case)]
-
-use super::*;
+use anyhow::{Context, Result, ensure};
+use clap::Args;
 use entrynav::estimation::nav::FilterKind;
+use entrynav::scenario::{BUILTIN_NAMES, builtin_toml};
 use entrynav_fmu::ModelSpec;
 use entrynav_fmu::binding::{Binding, patch};
+use entrynav_fmu::vars::Model;
 use entrynav_fmu::{description_of, description3_of};
 use std::cell::RefCell;
+use std::io::Write;
+use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::Arc;
 
 /// Arguments of `entrynav fmu pack`.
 #[derive(Args)]
@@ -227,7 +231,7 @@ pub(super) fn pack(a: &PackArgs) -> Result<()> {
         let path = write_fmu(&a.out, spec, &so, resources, a.fmi)?;
         // The packed FMU must unpack to the model it was packed for (binding, description and,
         // for a specific FMU, the embedded scenario).
-        let u = entrynav_fmi_host::unpack(&path)
+        let u = entrynav_fmu_archive::open(&path)
             .with_context(|| format!("the packed {} does not check", path.display()))?;
         ensure!(
             u.spec.guid() == spec.guid(),

@@ -17,9 +17,11 @@
 //! level with names `<component>.<variable>`, so a user sets a study in one file. The truth and the
 //! filter must share seed and dispersion (the filter's start is drawn from the truth's seed).
 
-use super::*;
-use entrynav_fmu::vars::{MAX_BEACONS, Var, variables};
+use anyhow::{Context, Result, bail};
+use entrynav_fmu::vars::{Causality, MAX_BEACONS, Model, Type, Value, Var, variables};
 use std::fmt::Write as _;
+use std::io::Write;
+use std::path::{Path, PathBuf};
 
 const SSD_NS: &str = r#"xmlns:ssc="http://ssp-standard.org/SSP1/SystemStructureCommon" xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription""#;
 const SSV_NS: &str = r#"xmlns:ssv="http://ssp-standard.org/SSP1/SystemStructureParameterValues""#;

@@ -1,36 +1,41 @@
-//! The FMI 3.0 fuzzer's FMU-state calls: get, set, free, serialise and deserialise, with null,
-//! foreign, corrupted, truncated and over-long states (see [`super::ops`]).
+//! The fuzzer's FMU-state calls: get, set, free, serialise and deserialise, with null, foreign,
+//! corrupted, truncated and over-long states, and every state that deserialises serialised again
+//! to the same bytes.
 
+use super::fuzzer::{Fuzzer, Saved};
 use super::model::{Expect, Sim, St};
-use super::*;
+use super::version::Version;
+use anyhow::{Result, ensure};
+use entrynav_fmi_host::{FmiInstance, FmuState};
 use entrynav_fmu::limits::{MAX_SNAPSHOTS, MAX_STATE_BYTES};
+use rand::RngExt;
 
-impl Fuzzer<'_> {
-    /// fmi3GetFMUState into a new state, over a held one, or into a foreign pointer (refused).
+impl<V: Version> Fuzzer<V> {
+    /// GetFMUState into a new state, over a held one, or into a foreign pointer (refused).
     pub(super) fn get_state(
         &mut self,
-        s: &Inst,
+        s: &V::Instance,
         sim: &mut Sim,
-        saved: &mut Vec<(State3, Sim)>,
+        saved: &mut Saved,
     ) -> Result<()> {
         let mut local = 0u64;
         let (mut p, e, what) = match self.rng.random_range(0..10) {
-            0..=2 if !saved.is_empty() => (saved[0].0, Expect::Ok, "fmi3GetFMUState (overwrite)"),
+            0..=2 if !saved.is_empty() => (saved[0].0, Expect::Ok, "GetFMUState (overwrite)"),
             3 => (
-                &mut local as *mut u64 as State3,
+                &mut local as *mut u64 as FmuState,
                 Expect::Refused,
-                "fmi3GetFMUState (foreign *FMUState)",
+                "GetFMUState (foreign *FMUState)",
             ),
             _ => (
                 std::ptr::null_mut(),
                 Expect::ok_if(saved.len() < MAX_SNAPSHOTS),
-                "fmi3GetFMUState",
+                "GetFMUState",
             ),
         };
         let before = p;
         // SAFETY: our instance; *p is null, a state it handed out, or a foreign pointer that must
         // be refused unread.
-        let r = unsafe { (self.api.fmi3GetFMUState)(s.c, &mut p) };
+        let r = unsafe { s.get_fmu_state(&mut p) };
         self.expect(s, what, sim, e, r)?;
         if r != 0 {
             ensure!(p == before, "{what} answered {r} and changed *FMUState");
@@ -44,51 +49,45 @@ impl Fuzzer<'_> {
         Ok(())
     }
 
-    /// fmi3SetFMUState of a held state (the model goes back to it) or of a foreign pointer.
+    /// SetFMUState of a held state (the model goes back to it) or of a foreign pointer.
     pub(super) fn set_state(
         &mut self,
-        s: &Inst,
+        s: &V::Instance,
         sim: &mut Sim,
-        saved: &mut [(State3, Sim)],
+        saved: &mut [(FmuState, Sim)],
     ) -> Result<()> {
         if saved.is_empty() || self.rng.random_bool(0.1) {
             let mut local = 0u64;
             let p = if self.rng.random_bool(0.5) {
                 std::ptr::null_mut()
             } else {
-                &mut local as *mut u64 as State3
+                &mut local as *mut u64 as FmuState
             };
             // SAFETY: a null or foreign pointer must be refused unread.
-            let r = unsafe { (self.api.fmi3SetFMUState)(s.c, p) };
-            return self.expect(
-                s,
-                "fmi3SetFMUState (null or foreign)",
-                sim,
-                Expect::Refused,
-                r,
-            );
+            let r = unsafe { s.set_fmu_state(p) };
+            return self.expect(s, "SetFMUState (null or foreign)", sim, Expect::Refused, r);
         }
         let i = self.rng.random_range(0..saved.len());
         // SAFETY: our instance and a state it handed out.
-        let r = unsafe { (self.api.fmi3SetFMUState)(s.c, saved[i].0) };
-        self.expect(s, "fmi3SetFMUState", sim, Expect::Ok, r)?;
+        let r = unsafe { s.set_fmu_state(saved[i].0) };
+        self.expect(s, "SetFMUState", sim, Expect::Ok, r)?;
         *sim = saved[i].1.clone();
         sim.engine = matches!(sim.st, St::Step | St::Terminated) || sim.stepped;
         Ok(())
     }
 
-    /// fmi3FreeFMUState of a held state (the pointer is set to NULL), of a NULL state (a no-op)
+    /// FreeFMUState of a held state (the pointer is set to NULL), of a NULL state (a no-op)
     /// or of a foreign one (refused).
     pub(super) fn free_state(
         &mut self,
-        s: &Inst,
+        s: &V::Instance,
         sim: &mut Sim,
-        saved: &mut Vec<(State3, Sim)>,
+        saved: &mut Saved,
     ) -> Result<()> {
         let mut local = 0u64;
         let (mut p, e, held) = match self.rng.random_range(0..6) {
             0 => (std::ptr::null_mut(), Expect::Ok, false),
-            1 => (&mut local as *mut u64 as State3, Expect::Refused, false),
+            1 => (&mut local as *mut u64 as FmuState, Expect::Refused, false),
             _ if !saved.is_empty() => {
                 let i = self.rng.random_range(0..saved.len());
                 (saved.swap_remove(i).0, Expect::Ok, true)
@@ -97,11 +96,11 @@ impl Fuzzer<'_> {
         };
         let foreign = p;
         // SAFETY: our instance; a state it handed out, null, or a foreign pointer refused unread.
-        let r = unsafe { (self.api.fmi3FreeFMUState)(s.c, &mut p) };
-        self.expect(s, "fmi3FreeFMUState", sim, e, r)?;
+        let r = unsafe { s.free_fmu_state(&mut p) };
+        self.expect(s, "FreeFMUState", sim, e, r)?;
         ensure!(
             if held { p.is_null() } else { p == foreign },
-            "fmi3FreeFMUState answered {r} and left *FMUState {p:?}"
+            "FreeFMUState answered {r} and left *FMUState {p:?}"
         );
         Ok(())
     }
@@ -111,11 +110,10 @@ impl Fuzzer<'_> {
     /// a size over the bound.
     pub(super) fn serialize(
         &mut self,
-        s: &Inst,
+        s: &V::Instance,
         sim: &mut Sim,
-        saved: &mut Vec<(State3, Sim)>,
+        saved: &mut Saved,
     ) -> Result<()> {
-        let api = self.api;
         if saved.is_empty() {
             self.get_state(s, sim, saved)?;
         }
@@ -124,21 +122,21 @@ impl Fuzzer<'_> {
         };
         let mut size = usize::MAX;
         // SAFETY: our instance and state.
-        let r = unsafe { (api.fmi3SerializedFMUStateSize)(s.c, p, &mut size) };
-        self.expect(s, "fmi3SerializedFMUStateSize", sim, Expect::Ok, r)?;
+        let r = unsafe { s.serialized_fmu_state_size(p, &mut size) };
+        self.expect(s, "SerializedFMUStateSize", sim, Expect::Ok, r)?;
         ensure!(
             size > 0 && size <= MAX_STATE_BYTES,
             "a serialised state of {size} bytes"
         );
         let mut buf = vec![0u8; size];
         // SAFETY: a buffer of `size` bytes.
-        let r = unsafe { (api.fmi3SerializeFMUState)(s.c, p, buf.as_mut_ptr(), size) };
-        self.expect(s, "fmi3SerializeFMUState", sim, Expect::Ok, r)?;
+        let r = unsafe { s.serialize_fmu_state(p, buf.as_mut_ptr(), size) };
+        self.expect(s, "SerializeFMUState", sim, Expect::Ok, r)?;
         // SAFETY: a buffer one byte shorter than the state: refused before it is written.
-        let r = unsafe { (api.fmi3SerializeFMUState)(s.c, p, buf.as_mut_ptr(), size - 1) };
+        let r = unsafe { s.serialize_fmu_state(p, buf.as_mut_ptr(), size - 1) };
         self.expect(
             s,
-            "fmi3SerializeFMUState (short buffer)",
+            "SerializeFMUState (short buffer)",
             sim,
             Expect::Refused,
             r,
@@ -160,15 +158,12 @@ impl Fuzzer<'_> {
             }
             _ => (bad.len(), Expect::ok_if(room), "intact"),
         };
-        let mut q: State3 = std::ptr::null_mut();
+        let mut q: FmuState = std::ptr::null_mut();
         // SAFETY: `len` readable bytes, except the over-the-bound claim, which is never read.
-        let r = unsafe { (api.fmi3DeserializeFMUState)(s.c, bad.as_ptr(), len, &mut q) };
-        self.expect(s, &format!("fmi3DeserializeFMUState ({what})"), sim, e, r)?;
+        let r = unsafe { s.deserialize_fmu_state(bad.as_ptr(), len, &mut q) };
+        self.expect(s, &format!("DeserializeFMUState ({what})"), sim, e, r)?;
         if r != 0 {
-            ensure!(
-                q.is_null(),
-                "a refused fmi3DeserializeFMUState wrote a state"
-            );
+            ensure!(q.is_null(), "a refused DeserializeFMUState wrote a state");
             return Ok(());
         }
         saved.push((q, ps));
@@ -176,19 +171,19 @@ impl Fuzzer<'_> {
         let mut again = vec![0u8; size + 1];
         let mut size2 = 0usize;
         // SAFETY: our instance and state.
-        let r = unsafe { (api.fmi3SerializedFMUStateSize)(s.c, q, &mut size2) };
+        let r = unsafe { s.serialized_fmu_state_size(q, &mut size2) };
         self.expect(
             s,
-            "fmi3SerializedFMUStateSize of a deserialised state",
+            "SerializedFMUStateSize of a deserialised state",
             sim,
             Expect::Ok,
             r,
         )?;
         // SAFETY: a buffer one byte longer than the state.
-        let r = unsafe { (api.fmi3SerializeFMUState)(s.c, q, again.as_mut_ptr(), size + 1) };
+        let r = unsafe { s.serialize_fmu_state(q, again.as_mut_ptr(), size + 1) };
         self.expect(
             s,
-            "fmi3SerializeFMUState of a deserialised state",
+            "SerializeFMUState of a deserialised state",
             sim,
             Expect::Ok,
             r,

@@ -1,12 +1,47 @@
-//! `entrynav fmu run`: the in-process reference run of a model (no FFI), writing its outputs as
+//! `entrynav-dev fmu run`: the in-process reference run of a model (no FFI), writing its outputs as
 //! CSV ([`super::table`]). The cross-check artifacts are made with the same runner.
 
-#![allow(non_snake_case)]
-
 use super::table::{Table, csv, parse_value};
-use super::*;
+use crate::output;
+use anyhow::{Context, Result, ensure};
+use clap::Args;
 use entrynav_fmi_host::{file_uri, unpack};
 use entrynav_fmu::ModelSpec;
+use entrynav_fmu::instance::{Instance, Status};
+use entrynav_fmu::vars::{Causality, Model, Value, Var};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// Arguments of `entrynav-dev fmu run`.
+#[derive(Args)]
+pub(super) struct RunArgs {
+    /// Model identifier: MarsEntryNav, MarsEntryNavFilter or MarsEntryTruth.
+    #[arg(long, default_value = "MarsEntryNav")]
+    model: String,
+    /// Run the model of this packed .fmu instead (its table, embedded scenario and resources;
+    /// in process, its library is not called).
+    #[arg(long, conflicts_with = "resources")]
+    fmu: Option<PathBuf>,
+    /// Parameter or input start value NAME=VALUE (repeatable).
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    sets: Vec<String>,
+    /// Input table (CSV with a `time` column and one column per input; the row at or before each
+    /// communication point applies, as fmpy applies discrete inputs).
+    #[arg(long)]
+    input: Option<PathBuf>,
+    /// Stop time [s].
+    #[arg(long)]
+    stop: f64,
+    /// Communication step [s].
+    #[arg(long)]
+    step: f64,
+    /// Folder scenario files are read from (the FMU's resources).
+    #[arg(long)]
+    resources: Option<PathBuf>,
+    /// Output CSV.
+    #[arg(long)]
+    out: PathBuf,
+}
 
 /// Run `spec` in process from 0 to `stop` in steps of `step` with the parameter and start values
 /// `sets` and the input `table`; returns the time and the values of `record` at every
@@ -87,10 +122,7 @@ pub(super) fn run_reference(a: &RunArgs) -> Result<()> {
         None => {
             let m = Model::from_identifier(&a.model)
                 .with_context(|| format!("unknown model '{}'", a.model))?;
-            (
-                Arc::new(entrynav_fmu::ModelSpec::generic(m)),
-                a.resources.clone(),
-            )
+            (Arc::new(ModelSpec::generic(m)), a.resources.clone())
         }
     };
     let vars = spec.vars();
@@ -130,6 +162,6 @@ pub(super) fn run_reference(a: &RunArgs) -> Result<()> {
         &outputs,
     )?;
     let names: Vec<&str> = outputs.iter().map(|v| v.name.as_str()).collect();
-    crate::atomic_file::write(&a.out, csv(&names, &rows, false)?)?;
+    output::write(&a.out, csv(&names, &rows, false)?)?;
     Ok(())
 }

@@ -1,17 +1,20 @@
-//! Inputs of the guidance FMU (`MarsEntryGuidance`) for `fmu check` and `fmu cross-check`: what
+//! Inputs of the guidance FMU (`MarsEntryGuidance`) for `entrynav-dev fmu check` and `fmu cross-check`: what
 //! the in-process guided loop (`entrynav::sim::guided_run`, the EKF in the loop, Monte Carlo run
 //! 0 of the seed) gave its guidance at each communication point. With a communication step equal
 //! to the guidance period, the FMU's bank then equals the loop's bank at every communication point
 //! bit for bit (`fmu/tests/guidance.rs` checks every truth step).
 
-use super::*;
+use anyhow::{Context, Result, ensure};
 use entrynav::estimation::nav::FilterKind;
+use entrynav::scenario::Scenario;
 use entrynav::sim::guided_run::{GuidedStep, fly_with_filter_recorded};
+use entrynav_fmu::vars::{Key, Slot, Value};
+use std::sync::Arc;
 
 /// The recorded loop on `scenario` with `seed`, sampled at `t = k·h` for `k = 0..=n` (`h` a
 /// multiple of the truth step; after the loop's end at deployment the last inputs are held).
 pub(super) fn guided_rows(
-    scenario: &Arc<entrynav::scenario::Scenario>,
+    scenario: &Arc<Scenario>,
     seed: u64,
     h: f64,
     n: usize,

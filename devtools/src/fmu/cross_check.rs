@@ -1,4 +1,4 @@
-//! `entrynav fmu cross-check`: the FMI Cross-Check files of packed FMUs, as the cross-check rules
+//! `entrynav-dev fmu cross-check`: the FMI Cross-Check files of packed FMUs, as the cross-check rules
 //! (version 4.1) lay them out: `fmus/2.0/cs/linux64/entrynav/<version>/<Model>/` (FMI 3.0 FMUs:
 //! `fmus/3.0/cs/x86_64-linux/…`) with
 //! `<Model>.fmu`, `<Model>_ref.csv` (at most 10 important outputs, from StartTime to StopTime),
@@ -9,17 +9,23 @@
 //! parameters and the input table; `tests/python` simulates each FMU with fmpy on the same files
 //! and compares (and runs fmpy's own cross-check validator on the folder).
 
-#![allow(non_snake_case)]
-
-use super::check::{check_available, check_bank, check_inputs, load_scenario};
+use super::check::inputs::{check_available, check_bank, check_inputs, load_scenario};
+use super::guided::guided_rows;
 use super::run::run_in_process;
 use super::table::{Table, csv, fmt_value};
-use super::*;
+use crate::output;
+use anyhow::{Context, Result, ensure};
+use clap::Args;
+use entrynav::sim::engine::TruthSensors;
 use entrynav_fmi_host::unpack;
 use entrynav_fmu::ModelSpec;
-use entrynav_fmu::vars::{DEFAULT_SCENARIO, DEFAULT_SEED};
+use entrynav_fmu::vars::{
+    Causality, DEFAULT_SCENARIO, DEFAULT_SEED, GUIDED_SCENARIO_FILE, Model, Value, Var,
+};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
-/// Arguments of `entrynav fmu cross-check`.
+/// Arguments of `entrynav-dev fmu cross-check`.
 #[derive(Args)]
 pub(super) struct CrossCheckArgs {
     /// Packed .fmu files.
@@ -127,7 +133,7 @@ fn reference_outputs(spec: &ModelSpec) -> Vec<String> {
 
 /// The input table of a cross-check run: the `fmu check` inputs at every communication point.
 /// For the guidance FMU, row t holds what the in-process guided loop (EKF, run 0 of the default
-/// seed) gave its guidance at t ([`super::guided`]). For the filter FMU, row t holds the measurements of a truth run with the FMU's default seed
+/// seed) gave its guidance at t (`super::guided`). For the filter FMU, row t holds the measurements of a truth run with the FMU's default seed
 /// that flew the combined FMU's inputs (bank, beacon availability) over the step ending at t, and
 /// the bank of that step: the filter fed from it reproduces the combined FMU one step late.
 fn input_table(spec: &ModelSpec, resources: &Path, stop: f64, step: f64) -> Result<Table> {
@@ -147,8 +153,8 @@ fn input_table(spec: &ModelSpec, resources: &Path, stop: f64, step: f64) -> Resu
     };
     let n = (stop / step).round() as usize;
     let guided = match spec.model() {
-        Model::Guidance => super::guided::guided_rows(
-            &load_scenario(entrynav_fmu::vars::GUIDED_SCENARIO_FILE, resources)?,
+        Model::Guidance => guided_rows(
+            &load_scenario(GUIDED_SCENARIO_FILE, resources)?,
             DEFAULT_SEED as u64,
             step,
             n,
@@ -179,7 +185,7 @@ fn write_limited(path: &Path, text: &str) -> Result<()> {
         path.display(),
         text.len()
     );
-    Ok(crate::atomic_file::write(path, text)?)
+    Ok(output::write(path, text)?)
 }
 
 pub(super) fn cross_check(a: &CrossCheckArgs) -> Result<()> {
@@ -233,15 +239,15 @@ pub(super) fn cross_check(a: &CrossCheckArgs) -> Result<()> {
             &dir.join(format!("{id}_in.csv")),
             &csv(&in_names, &table.rows, true)?,
         )?;
-        crate::atomic_file::write(
+        output::write(
             &dir.join(format!("{id}_ref.opt")),
             format!(
                 "StartTime, {start:?}\nStopTime, {stop:?}\nStepSize, {step:?}\nRelTol, 1e-06\n"
             ),
         )?;
         let bytes = std::fs::read(fmu).with_context(|| format!("cannot read {}", fmu.display()))?;
-        crate::atomic_file::write(&dir.join(format!("{id}.fmu")), bytes)?;
-        crate::atomic_file::write(
+        output::write(&dir.join(format!("{id}.fmu")), bytes)?;
+        output::write(
             &dir.join("README.md"),
             format!(
                 "# {id}\n\n{}\n\nExported by entrynav {} (`entrynav fmu pack`), FMI {version} co-simulation, {platform}.\n\n\

@@ -1,14 +1,15 @@
-//! The FMI 3.0 fuzzer's model of an instance: the co-simulation state machine without event mode
-//! (*Instantiated*, *Initialization Mode*, *Step Mode*, *Terminated*, the error state) as the FMU
-//! implements it, the variables as FMI 3.0 types them ([`V3`]), and what every call must answer.
+//! The fuzzer's model of an instance, the same for both FMI versions: the co-simulation state
+//! machine this FMU has (*Instantiated*, *Initialization Mode*, *Step Mode* — FMI 2.0's
+//! *stepComplete* —, *Terminated*, the error state; no event mode), the parameters and inputs it
+//! was given, and what every call must answer.
 
-use super::super::*;
+use super::scenarios::Scenarios;
+use super::variables::{Variable, What};
 use entrynav_fmu::instance::Type3;
 use entrynav_fmu::limits::MAX_PREDICTION_SUBSTEPS;
-use entrynav_fmu::vars::fmi3::{Extra, extras, state_slots};
-use entrynav_fmu::vars::{DEFAULT_FILTER, DEFAULT_SCENARIO, DEFAULT_SEED, ModelSpec};
+use entrynav_fmu::vars::{Causality, DEFAULT_FILTER, DEFAULT_SCENARIO, DEFAULT_SEED, Model, Var};
 
-/// The states of the FMI 3.0 co-simulation state machine this FMU has.
+/// The states of the co-simulation state machine.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum St {
     Instantiated,
@@ -19,12 +20,12 @@ pub(super) enum St {
 }
 
 impl St {
-    /// Where fmi3Get{VariableType} is allowed.
+    /// Where the getters are allowed.
     pub(super) fn readable(self) -> bool {
         matches!(self, St::Init | St::Step | St::Terminated | St::Error)
     }
 
-    /// Where fmi3Set{VariableType} is allowed.
+    /// Where the setters are allowed.
     pub(super) fn writable(self) -> bool {
         matches!(self, St::Instantiated | St::Init | St::Step)
     }
@@ -33,93 +34,36 @@ impl St {
 /// What a call must answer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Expect {
-    /// fmi3OK.
+    /// OK.
     Ok,
-    /// fmi3OK or fmi3Warning.
+    /// OK or Warning.
     OkOrWarning,
-    /// fmi3Error, and the instance is unchanged (an illegal call or a refused request).
+    /// Discard (an FMI 2.0 status query this FMU cannot answer).
+    Discard,
+    /// Error, and the instance is unchanged (an illegal call or a refused request).
     Refused,
-    /// fmi3Error, and the instance is in the error state afterwards (a call that failed).
+    /// Error, and the instance is in the error state afterwards (a call that failed).
     Fails,
 }
 
 impl Expect {
+    /// Whether the status `status` is this answer.
     pub(super) fn accepts(self, status: i32) -> bool {
         match self {
             Expect::Ok => status == 0,
             Expect::OkOrWarning => status == 0 || status == 1,
+            Expect::Discard => status == 2,
             Expect::Refused | Expect::Fails => status == 3,
         }
     }
 
+    /// OK if `ok`, else refused.
     pub(super) fn ok_if(ok: bool) -> Expect {
         if ok { Expect::Ok } else { Expect::Refused }
     }
 }
 
-/// What an FMI 3.0 variable is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum What {
-    /// A scalar of the shared table (its index = value reference).
-    Scalar(usize),
-    /// `time`, the independent variable.
-    Time,
-    /// `n_state_slots`, the structural parameter.
-    Slots,
-    /// `est_x`, `est_sigma` or `est_covariance`.
-    Array(Extra),
-}
-
-/// A variable of the FMI 3.0 description.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct V3 {
-    pub(super) vr: u32,
-    pub(super) ty: Type3,
-    pub(super) what: What,
-    /// The number of values it holds.
-    pub(super) len: usize,
-}
-
-/// Every variable of `spec` as the FMI 3.0 description has it: the scalars with their FMI 2.0
-/// value references (an Enumeration as Int64), then `time`, `n_state_slots` and the arrays.
-pub(super) fn variables(spec: &ModelSpec) -> Vec<V3> {
-    let slots = state_slots(spec);
-    let mut out: Vec<V3> = spec
-        .vars()
-        .iter()
-        .enumerate()
-        .map(|(i, v)| V3 {
-            vr: v.vr,
-            ty: match v.ty {
-                Type::Real => Type3::Float64,
-                Type::Integer if v.declared.is_some() => Type3::Int64,
-                Type::Integer => Type3::Int32,
-                Type::Boolean => Type3::Boolean,
-                Type::String => Type3::String,
-            },
-            what: What::Scalar(i),
-            len: 1,
-        })
-        .collect();
-    for x in extras(spec) {
-        let (ty, what) = match x.extra {
-            Extra::Time => (Type3::Float64, What::Time),
-            Extra::Slots => (Type3::UInt64, What::Slots),
-            e => (Type3::Float64, What::Array(e)),
-        };
-        out.push(V3 {
-            vr: x.vr,
-            ty,
-            what,
-            len: x.len(slots),
-        });
-    }
-    out
-}
-
-pub(super) use super::super::fuzz::model::Scenarios;
-
-/// The model of one instance (everything fmi3GetFMUState saves).
+/// The model of one instance (everything an FMU state saves).
 #[derive(Debug, Clone)]
 pub(super) struct Sim {
     pub(super) st: St,
@@ -138,6 +82,7 @@ pub(super) struct Sim {
 }
 
 impl Sim {
+    /// A fresh instance with the scenario and filter `specific` (else the generic defaults).
     pub(super) fn new(specific: Option<(&str, &str)>) -> Sim {
         let (scenario, filter) = specific.unwrap_or((DEFAULT_SCENARIO, DEFAULT_FILTER));
         Sim {
@@ -155,7 +100,7 @@ impl Sim {
     }
 
     /// Whether the parameters give an engine: a built-in scenario and (for a model with a
-    /// filter) a filter that fits it.
+    /// filter) a filter that fits it; for the guided model, a scenario it can fly.
     pub(super) fn params_ok(&self, sc: &Scenarios, model: Model) -> bool {
         let Some(fits) = sc.fits.get(self.scenario.trim()) else {
             return false;
@@ -164,8 +109,9 @@ impl Sim {
             && (model != Model::Guided || sc.guided.iter().any(|g| g == self.scenario.trim()))
     }
 
-    /// What fmi3EnterInitializationMode(start, stop if defined) answers.
-    pub(super) fn enter_init(&self, start: f64, stop: Option<f64>) -> Expect {
+    /// What setting up the experiment with `start` and `stop` (if defined) answers: FMI 2.0's
+    /// fmi2SetupExperiment, FMI 3.0's fmi3EnterInitializationMode.
+    pub(super) fn setup(&self, start: f64, stop: Option<f64>) -> Expect {
         Expect::ok_if(
             self.st == St::Instantiated
                 && start == 0.0
@@ -175,7 +121,7 @@ impl Sim {
 
     /// Whether a read of `vars` (already checked to resolve) needs the engine: an output scalar
     /// or an array.
-    pub(super) fn needs_engine(vars: &[V3], table: &[Var]) -> bool {
+    pub(super) fn needs_engine(vars: &[Variable], table: &[Var]) -> bool {
         vars.iter().any(|v| match v.what {
             What::Scalar(i) => table[i].causality == Causality::Output,
             What::Array(_) => true,
@@ -183,29 +129,35 @@ impl Sim {
         })
     }
 
-    /// What an fmi3Get of `vars` answers once the arguments are valid (`None` entries: unknown
-    /// references).
+    /// What a getter of type `ty` of `vars` answers once the arguments are valid (`None`
+    /// entries: unknown references).
     pub(super) fn get(
         &self,
         sc: &Scenarios,
         model: Model,
         ty: Type3,
-        vars: &[Option<V3>],
+        vars: &[Option<Variable>],
         table: &[Var],
     ) -> Expect {
         if !self.st.readable() || vars.iter().any(|v| v.is_none_or(|v| v.ty != ty)) {
             return Expect::Refused;
         }
-        let vars: Vec<V3> = vars.iter().flatten().copied().collect();
+        let vars: Vec<Variable> = vars.iter().flatten().copied().collect();
         if Self::needs_engine(&vars, table) && !self.engine && !self.params_ok(sc, model) {
             return Expect::Refused;
         }
         Expect::Ok
     }
 
-    /// Whether an fmi3Set of `v` (of type `ty`) to a value may succeed (`valid`: the value passes
-    /// the FMU's checks for this variable).
-    pub(super) fn set_one(&self, v: Option<V3>, ty: Type3, valid: bool, table: &[Var]) -> bool {
+    /// Whether a setter of type `ty` of `v` may succeed (`valid`: the value passes the FMU's
+    /// checks for this variable).
+    pub(super) fn set_one(
+        &self,
+        v: Option<Variable>,
+        ty: Type3,
+        valid: bool,
+        table: &[Var],
+    ) -> bool {
         let Some(v) = v else {
             return false;
         };
@@ -226,7 +178,7 @@ impl Sim {
         }
     }
 
-    /// What fmi3DoStep(t, h) answers, given the filter FMU's last processed epoch `nav`
+    /// What a step from `t` of `h` answers, given the filter FMU's last processed epoch `nav`
     /// (time, failed) read just before.
     pub(super) fn do_step(
         &self,

@@ -1,8 +1,9 @@
-//! The CSV tables of `entrynav fmu run` and `cross-check`: an input table read from CSV (a `time`
+//! The CSV tables of `entrynav-dev fmu run` and `cross-check`: an input table read from CSV (a `time`
 //! column and one column per input), and time series written as CSV, both through the `csv`
 //! crate.
 
-use super::*;
+use anyhow::{Context, Result, bail, ensure};
+use entrynav_fmu::vars::{Type, Value, Var};
 
 /// The value of variable `v` written as `text` (surrounding quotes and spaces ignored).
 pub(super) fn parse_value(v: &Var, text: &str) -> Result<Value> {
@@ -136,7 +137,7 @@ pub(super) fn csv(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use entrynav_fmu::vars::variables;
+    use entrynav_fmu::vars::{Model, variables};
 
     fn var(name: &str) -> Var {
         variables(Model::Combined)

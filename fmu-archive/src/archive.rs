@@ -92,7 +92,7 @@ fn read_description(file: &Path, zip: &mut ZipArchive<File>) -> Result<(String, 
 /// Extract `zip` (the archive `file` of model `id`) into a fresh temporary folder.
 fn extract(file: &Path, id: &str, zip: &mut ZipArchive<File>) -> Result<Extracted> {
     let dir = std::env::temp_dir().join(format!(
-        "entrynav fmu check {} {id} {}",
+        "entrynav fmu archive {} {id} {}",
         std::process::id(),
         file.file_stem()
             .map(|s| s.to_string_lossy().into_owned())

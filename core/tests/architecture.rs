@@ -235,7 +235,9 @@ fn workspace_crates_depend_downward_only() {
     // The developer tools are never shipped: nothing depends on them.
     for (dir, _) in workspace_packages() {
         if dependencies(&ws.join(&dir).join("Cargo.toml")).contains(&"entrynav-devtools".into()) {
-            bad.push(format!("{dir}/Cargo.toml depends on the developer crate entrynav-devtools"));
+            bad.push(format!(
+                "{dir}/Cargo.toml depends on the developer crate entrynav-devtools"
+            ));
         }
     }
     // The shipped command and Python package carry no FMI host and no library loader, not even
@@ -244,7 +246,9 @@ fn workspace_crates_depend_downward_only() {
         let needs = normal_closure(package);
         for host in ["entrynav-fmi-host", "libloading"] {
             if needs.contains(host) {
-                bad.push(format!("{package} depends on {host} (through its dependencies)"));
+                bad.push(format!(
+                    "{package} depends on {host} (through its dependencies)"
+                ));
             }
         }
     }
@@ -289,13 +293,16 @@ fn normal_closure(package: &str) -> std::collections::BTreeSet<String> {
     let mut locked: std::collections::BTreeMap<String, Vec<String>> = Default::default();
     for p in lock["package"].as_array().expect("packages") {
         let deps = p.get("dependencies").and_then(|d| d.as_array());
-        locked.entry(p["name"].as_str().unwrap().to_string()).or_default().extend(
-            deps.into_iter()
-                .flatten()
-                .filter_map(|d| d.as_str())
-                // "name" or "name version" when several versions are locked.
-                .map(|d| d.split(' ').next().unwrap_or(d).to_string()),
-        );
+        locked
+            .entry(p["name"].as_str().unwrap().to_string())
+            .or_default()
+            .extend(
+                deps.into_iter()
+                    .flatten()
+                    .filter_map(|d| d.as_str())
+                    // "name" or "name version" when several versions are locked.
+                    .map(|d| d.split(' ').next().unwrap_or(d).to_string()),
+            );
     }
     let mut seen = std::collections::BTreeSet::new();
     let mut todo = vec![package.to_string()];
@@ -317,7 +324,10 @@ fn normal_closure(package: &str) -> std::collections::BTreeSet<String> {
 fn the_dependency_closure_sees_a_crate_two_steps_away() {
     // The developer crate reaches libloading only through the FMI host.
     let dev = normal_closure("entrynav-devtools");
-    assert!(dev.contains("entrynav-fmi-host") && dev.contains("libloading"), "{dev:?}");
+    assert!(
+        dev.contains("entrynav-fmi-host") && dev.contains("libloading"),
+        "{dev:?}"
+    );
     assert!(!normal_closure("entrynav-fmu").contains("libloading"));
 }
 

@@ -1,5 +1,5 @@
 //! The fmi2 functions of a loaded FMU library ([`Api`]), and the callbacks the host passes to
-//! `fmi2Instantiate` ([`Callbacks`], its logger [`host_logger`] appending to a [`Log`]).
+//! `fmi2Instantiate` ([`Callbacks`], whose logger appends to a [`Log`]).
 //!
 //! The logger is declared without the C varargs (stable Rust cannot define variadic functions);
 //! on x86-64 System V a variadic call to it is ABI-compatible, and our FMUs never pass format
@@ -34,12 +34,12 @@ pub struct Callbacks {
     pub env: *mut c_void,
 }
 
-/// What [`host_logger`] expects as its environment: the instance's message buffer.
+/// What the host's logger expects as its environment: the instance's message buffer.
 pub type Log = Mutex<Vec<Message>>;
 
 /// The host's `fmi2CallbackLogger`: appends the message (`%%` read as `%`) to the [`Log`] the
 /// environment points to (nothing when the environment or the message is null).
-pub extern "C" fn host_logger(
+pub(crate) extern "C" fn host_logger(
     env: *mut c_void,
     _name: *const c_char,
     status: c_int,

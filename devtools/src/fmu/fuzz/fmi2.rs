@@ -84,8 +84,9 @@ impl Fuzzer<Fmi2> {
         let stop =
             [300.0, 1e9, 10.0, 1e-9, f64::INFINITY, f64::NAN, -5.0][self.rng.random_range(0..7)];
         // SAFETY: our instance.
-        let r =
-            unsafe { (self.v.api.fmi2SetupExperiment)(s.c, 0, 0.0, start, defined as c_int, stop) };
+        let r = unsafe {
+            (self.version.api.fmi2SetupExperiment)(s.c, 0, 0.0, start, defined as c_int, stop)
+        };
         let e = sim.setup(start, defined.then_some(stop));
         self.expect(s, "fmi2SetupExperiment", sim, e, r)?;
         if e == Expect::Ok {
@@ -97,7 +98,7 @@ impl Fuzzer<Fmi2> {
     /// fmi2EnterInitializationMode (with or without the experiment set up before).
     fn enter_initialization(&mut self, s: &Slave, sim: &mut Sim) -> Result<()> {
         // SAFETY: our instance.
-        let r = unsafe { (self.v.api.fmi2EnterInitializationMode)(s.c) };
+        let r = unsafe { (self.version.api.fmi2EnterInitializationMode)(s.c) };
         let legal = sim.st == St::Instantiated;
         self.expect(
             s,
@@ -114,7 +115,7 @@ impl Fuzzer<Fmi2> {
 
     /// A status query (a random function and kind); fmi2LastSuccessfulTime is the model's time.
     fn status(&mut self, s: &Slave, sim: &mut Sim) -> Result<()> {
-        let api = Arc::clone(&self.v.api);
+        let api = Arc::clone(&self.version.api);
         let function = self.rng.random_range(0..5usize);
         let kind = [-1, 0, 1, 2, 3, 4, 99][self.rng.random_range(0..7)];
         let e = status_query(sim.st, function, kind);
@@ -148,9 +149,11 @@ impl Fuzzer<Fmi2> {
         // SAFETY: our instance; one element per array.
         let (r, what) = unsafe {
             match cancel {
-                true => ((self.v.api.fmi2CancelStep)(s.c), "fmi2CancelStep"),
+                true => ((self.version.api.fmi2CancelStep)(s.c), "fmi2CancelStep"),
                 false => (
-                    (self.v.api.fmi2GetDirectionalDerivative)(s.c, &vr, 1, &vr, 1, &d, &mut x),
+                    (self.version.api.fmi2GetDirectionalDerivative)(
+                        s.c, &vr, 1, &vr, 1, &d, &mut x,
+                    ),
                     "fmi2GetDirectionalDerivative",
                 ),
             }
@@ -173,11 +176,15 @@ impl Fuzzer<Fmi2> {
                 !self.bound && self.spec.specific().is_none(),
             ),
             1 => ("x".to_string(), "{".repeat(300), false),
-            2 => ("n".repeat(MAX_STRING_BYTES + 1), self.v.guid.clone(), false),
-            _ => ("ok".to_string(), self.v.guid.clone(), true),
+            2 => (
+                "n".repeat(MAX_STRING_BYTES + 1),
+                self.version.guid.clone(),
+                false,
+            ),
+            _ => ("ok".to_string(), self.version.guid.clone(), true),
         };
         self.stats.calls += 1;
-        match Slave::new(&self.v.api, &name, &guid, &self.v.uri) {
+        match Slave::new(&self.version.api, &name, &guid, &self.version.uri) {
             Ok(_slave) => ensure!(ok, "fmi2Instantiate accepted {name:.20} / {guid:.60}"),
             Err(HostError::Instantiate(msgs)) => {
                 ensure!(!ok, "fmi2Instantiate refused {guid}: {msgs:?}");
@@ -219,7 +226,13 @@ impl Version for Fmi2 {
     }
 
     fn instantiate(f: &mut Fuzzer<Self>, name: &str, logging_on: bool) -> Result<Slave> {
-        let s = Slave::instantiate(&f.v.api, name, &f.v.guid, &f.v.uri, logging_on)?;
+        let s = Slave::instantiate(
+            &f.version.api,
+            name,
+            &f.version.guid,
+            &f.version.uri,
+            logging_on,
+        )?;
         let msgs = s.take_messages();
         f.messages("fmi2Instantiate", &msgs)?;
         Ok(s)

@@ -25,7 +25,7 @@ pub(super) type Saved = Vec<(FmuState, Sim)>;
 /// The FMU under test through the version `V`.
 pub(super) struct Fuzzer<V: Version> {
     /// The version: its functions and what an instantiation passes.
-    pub(super) v: V,
+    pub(super) version: V,
     pub(super) spec: Arc<ModelSpec>,
     pub(super) model: Model,
     /// The library is bound to its model (a packed FMU; `false`: a development library).
@@ -47,9 +47,14 @@ pub(super) struct Fuzzer<V: Version> {
 }
 
 impl<V: Version> Fuzzer<V> {
-    /// The fuzzer of `spec` through `v` (`bound`: the library is bound to its model), from
+    /// The fuzzer of `spec` through `version` (`bound`: the library is bound to its model), from
     /// `seed`.
-    pub(super) fn new(v: V, spec: Arc<ModelSpec>, bound: bool, seed: u64) -> Result<Fuzzer<V>> {
+    pub(super) fn new(
+        version: V,
+        spec: Arc<ModelSpec>,
+        bound: bool,
+        seed: u64,
+    ) -> Result<Fuzzer<V>> {
         let variables = V::variables(&spec);
         ensure!(
             variables
@@ -59,7 +64,7 @@ impl<V: Version> Fuzzer<V> {
             "the value references are not 0, 1, 2, …"
         );
         Ok(Fuzzer {
-            v,
+            version,
             model: spec.model(),
             bound,
             vars: spec.vars().to_vec(),
@@ -208,7 +213,7 @@ impl<V: Version> Fuzzer<V> {
 
     /// A null instance is refused by every function (and freed without harm).
     pub(super) fn null_instance(&mut self) -> Result<()> {
-        let mut s = self.v.null_instance();
+        let mut s = self.version.null_instance();
         let (vr, mut x, mut p) = (0u32, 0.0, std::ptr::null_mut());
         s.free();
         let step = s.do_step(0.0, 1.0, false, false);

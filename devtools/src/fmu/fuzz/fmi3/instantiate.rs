@@ -42,8 +42,8 @@ impl Fuzzer<Fmi3> {
             other: CString::new(other)?,
             long_token: CString::new("{".repeat(MAX_GUID_BYTES + 1))?,
             nowhere: c"/nonexistent/resources".to_owned(),
-            token: self.v.token.clone(),
-            res: self.v.resources.clone(),
+            token: self.version.token.clone(),
+            res: self.version.resources.clone(),
         })
     }
 
@@ -118,7 +118,7 @@ impl Fuzzer<Fmi3> {
         if matches!(which, 3 | 4) {
             self.stats.over_bound += 1;
         }
-        let s = Slave3::new(&self.v.api, &a);
+        let s = Slave3::new(&self.version.api, &a);
         self.stats.calls += 1;
         let msgs = s.take_messages();
         let what = format!("fmi3InstantiateCoSimulation variant {which}");
@@ -155,7 +155,7 @@ impl Fuzzer<Fmi3> {
 
     /// fmi3InstantiateModelExchange and fmi3InstantiateScheduledExecution: NULL, with a reason.
     fn other_interfaces(&mut self) -> Result<()> {
-        let api = std::sync::Arc::clone(&self.v.api);
+        let api = std::sync::Arc::clone(&self.version.api);
         let log: Box<Log3> = Box::default();
         let env = &*log as *const Log3 as *mut c_void;
         let name = c"x";
@@ -165,8 +165,8 @@ impl Fuzzer<Fmi3> {
             if me {
                 (api.fmi3InstantiateModelExchange)(
                     name.as_ptr(),
-                    self.v.token.as_ptr(),
-                    self.v.resources.as_ptr(),
+                    self.version.token.as_ptr(),
+                    self.version.resources.as_ptr(),
                     0,
                     1,
                     env,
@@ -175,8 +175,8 @@ impl Fuzzer<Fmi3> {
             } else {
                 (api.fmi3InstantiateScheduledExecution)(
                     name.as_ptr(),
-                    self.v.token.as_ptr(),
-                    self.v.resources.as_ptr(),
+                    self.version.token.as_ptr(),
+                    self.version.resources.as_ptr(),
                     0,
                     1,
                     env,

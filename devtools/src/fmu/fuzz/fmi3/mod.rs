@@ -123,9 +123,13 @@ impl Version for Fmi3 {
         let name = CString::new(name)?;
         let args = Instantiate3 {
             logging_on,
-            ..Instantiate3::new(Some(&name), Some(&f.v.token), Some(&f.v.resources))
+            ..Instantiate3::new(
+                Some(&name),
+                Some(&f.version.token),
+                Some(&f.version.resources),
+            )
         };
-        let s = Slave3::new(&f.v.api, &args);
+        let s = Slave3::new(&f.version.api, &args);
         let msgs = s.take_messages();
         ensure!(
             !s.c.is_null(),

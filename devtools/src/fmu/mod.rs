@@ -31,8 +31,9 @@ enum FmuAction {
     /// tiny intervals and every size-like argument included: no crash, every illegal call answered
     /// with fmi2Error (fmi3Error), every refused request leaves the instance as it was.
     Fuzz(fuzz::FuzzArgs),
-    /// Write the FMI Cross-Check files (<Model>_ref.csv, _ref.opt, _in.csv, README.md and the
-    /// .fmu) of packed FMUs, laid out as fmus/2.0/cs/linux64/entrynav/<version>/<Model>/.
+    #[command(
+        about = "Write the FMI Cross-Check files (<Model>_ref.csv, _ref.opt, _in.csv, README.md and the .fmu) of packed FMUs, laid out as fmus/2.0/cs/linux64/entrynav/<version>/<Model>/"
+    )]
     CrossCheck(cross_check::CrossCheckArgs),
 }
 

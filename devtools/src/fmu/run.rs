@@ -29,11 +29,9 @@ pub(super) struct RunArgs {
     /// communication point applies, as fmpy applies discrete inputs).
     #[arg(long)]
     input: Option<PathBuf>,
-    /// Stop time [s].
-    #[arg(long)]
+    #[arg(long, help = "Stop time [s]")]
     stop: f64,
-    /// Communication step [s].
-    #[arg(long)]
+    #[arg(long, help = "Communication step [s]")]
     step: f64,
     /// Folder scenario files are read from (the FMU's resources).
     #[arg(long)]

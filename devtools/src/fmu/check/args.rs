@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 /// Arguments of `entrynav-dev fmu check`.
 #[derive(Args)]
-pub(in crate::fmu) struct CheckArgs {
+pub(crate) struct CheckArgs {
     /// The .fmu file.
     pub(super) file: PathBuf,
     /// Scenario parameter (built-in name or a file in the FMU's resources). Default:
@@ -24,8 +24,10 @@ pub(in crate::fmu) struct CheckArgs {
     /// Nominal truth instead of a dispersed one.
     #[arg(long)]
     pub(super) nominal: bool,
-    /// Communication step [s] (default: the fastest sensor period of the scenario).
-    #[arg(long)]
+    #[arg(
+        long,
+        help = "Communication step [s] (default: the fastest sensor period of the scenario)"
+    )]
     pub(super) step: Option<f64>,
     /// Also time doStep through the host against the in-process engine.
     #[arg(long)]

@@ -12,7 +12,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 /// The bank-angle command of `fmu check` at time `t` \[rad\].
-pub(in crate::fmu) fn check_bank(t: f64) -> f64 {
+pub(crate) fn check_bank(t: f64) -> f64 {
     if t < 100.0 {
         0.0
     } else if t < 200.0 {
@@ -23,7 +23,7 @@ pub(in crate::fmu) fn check_bank(t: f64) -> f64 {
 }
 
 /// Beacon availability of the check runs: beacon 2 (slot 1) out from 120 s to 180 s.
-pub(in crate::fmu) fn check_available(t: f64) -> [bool; MAX_BEACONS] {
+pub(crate) fn check_available(t: f64) -> [bool; MAX_BEACONS] {
     std::array::from_fn(|b| !(b == 1 && (120.0..180.0).contains(&t)))
 }
 
@@ -40,7 +40,7 @@ fn bank_input(model: Model, t: f64, h: f64) -> f64 {
 /// The inputs of a check run's row at `t` (communication step `h`); the filter FMU's
 /// measurements are the last epoch of `truth`, the guidance FMU's inputs the recorded `guided`
 /// step.
-pub(in crate::fmu) fn check_inputs(
+pub(crate) fn check_inputs(
     model: Model,
     vars: &[Var],
     t: f64,
@@ -97,7 +97,7 @@ pub(super) fn scenario_timing(sc: &Scenario) -> (f64, f64) {
 }
 
 /// The scenario an FMU instance with `scenario = name` loads from the resources folder `res`.
-pub(in crate::fmu) fn load_scenario(name: &str, res: &Path) -> Result<Arc<Scenario>> {
+pub(crate) fn load_scenario(name: &str, res: &Path) -> Result<Arc<Scenario>> {
     Ok(Arc::new(entrynav_loader::load(
         name,
         &[],

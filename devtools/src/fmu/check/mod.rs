@@ -1,5 +1,5 @@
 //! `entrynav-dev fmu check`: run a `.fmu` through our host and the same model in process,
-//! compare every output bit for bit, and with `--bench` time doStep both ways ([`bench`]).
+//! compare every output bit for bit, and with `--bench` time doStep both ways (`bench`).
 //! The steps: what the run flies ([`Plan`]), both instances started with the same parameters,
 //! then every communication step compared.
 

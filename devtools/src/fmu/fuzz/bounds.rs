@@ -2,10 +2,9 @@
 //! many or null categories; counts and sizes past their bounds (refused unread) and exactly at
 //! them (accepted); null arrays with and without a count.
 
-use super::fuzzer::Fuzzer;
+use super::fuzzer::{Fuzzer, Version};
 use super::model::{Expect, Sim};
 use super::variables::What;
-use super::version::Version;
 use anyhow::Result;
 use entrynav_fmi_host::FmiInstance;
 use entrynav_fmu::instance::Type3;

@@ -4,11 +4,10 @@
 //! `fmi2CancelStep` and `fmi2GetDirectionalDerivative` (refused: no asynchronous steps, no
 //! derivatives), and instantiations with another model's GUID or over-long arguments.
 
-use super::fuzzer::{Fuzzer, Saved};
+use super::fuzzer::{Fuzzer, Saved, Version};
 use super::model::{Expect, Sim, St, same_time};
-use super::values::Vals;
+use super::vals::Vals;
 use super::variables::{Variable, fmi2_variables};
-use super::version::Version;
 use anyhow::{Result, ensure};
 use entrynav_fmi_host::{Api, FmiInstance, HostError, Slave};
 use entrynav_fmu::guid_of;

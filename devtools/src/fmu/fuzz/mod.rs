@@ -1,6 +1,6 @@
 //! `entrynav-dev fmu fuzz`: random FMI call sequences through our host against a model of what
 //! the FMU must answer. One fuzzer serves both FMI versions: it is generic over [`Version`]
-//! (FMI 2.0 in [`fmi2`], FMI 3.0 in [`fmi3`]), whose instances implement the host's shared
+//! (in `fuzzer`; FMI 2.0 in [`fmi2`], FMI 3.0 in [`fmi3`]), whose instances implement the host's shared
 //! interface (`entrynav_fmi_host::FmiInstance`), and the model ([`model`]: the state machine, the
 //! parameters and inputs given, the expected answers) is the same for both.
 //!
@@ -15,6 +15,7 @@
 //! arrays, the arrays against the scalars, the flags of fmi3DoStep and every function of a
 //! capability the FMU lacks. CI runs 100,000 calls per FMU; `--calls 5000000` is the long mode.
 
+mod answers;
 mod bounds;
 mod fmi2;
 mod fmi3;
@@ -22,12 +23,13 @@ mod fuzzer;
 mod model;
 mod ops;
 mod scenarios;
+mod sequence;
 mod setters;
 mod state;
 mod stats;
+mod vals;
 mod values;
 mod variables;
-mod version;
 
 #[cfg(test)]
 mod tests;
@@ -38,12 +40,11 @@ use entrynav_fmi_host::{Api3, file_uri, unpack};
 use entrynav_fmu::vars::Model;
 use fmi2::Fmi2;
 use fmi3::Fmi3;
-use fuzzer::Fuzzer;
+use fuzzer::{Fuzzer, Version};
 use rand::RngExt;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
-use version::Version;
 
 /// Arguments of `entrynav-dev fmu fuzz`.
 #[derive(Args)]

@@ -4,10 +4,9 @@
 //! [`super::state`], logging and bounds in [`super::bounds`], and the calls only one version has
 //! in its own module.
 
-use super::fuzzer::{Fuzzer, Saved};
+use super::fuzzer::{Fuzzer, Saved, Version};
 use super::model::{Expect, Sim, St, same_time};
-use super::values::Vals;
-use super::version::Version;
+use super::vals::Vals;
 use anyhow::{Result, ensure};
 use entrynav_fmi_host::FmiInstance;
 use entrynav_fmu::vars::{Key, Model};

@@ -3,10 +3,9 @@
 //! Enumerations, which FMI 3.0 writes as Int64) and the string parameters (valid, invalid,
 //! over-long, null and non-UTF-8 values).
 
-use super::fuzzer::Fuzzer;
+use super::fuzzer::{Fuzzer, Version};
 use super::model::{Expect, Sim};
 use super::variables::{Variable, What};
-use super::version::Version;
 use anyhow::Result;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::BUILTIN_NAMES;

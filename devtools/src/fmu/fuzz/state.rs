@@ -2,9 +2,8 @@
 //! corrupted, truncated and over-long states, and every state that deserialises serialised again
 //! to the same bytes.
 
-use super::fuzzer::{Fuzzer, Saved};
+use super::fuzzer::{Fuzzer, Saved, Version};
 use super::model::{Expect, Sim, St};
-use super::version::Version;
 use anyhow::{Result, ensure};
 use entrynav_fmi_host::{FmiInstance, FmuState};
 use entrynav_fmu::limits::{MAX_SNAPSHOTS, MAX_STATE_BYTES};

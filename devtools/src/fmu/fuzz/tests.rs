@@ -4,9 +4,8 @@
 
 use super::fmi2::Fmi2;
 use super::fmi3::Fmi3;
-use super::fuzzer::Fuzzer;
+use super::fuzzer::{Fuzzer, Version};
 use super::run;
-use super::version::Version;
 use entrynav_fmi_host::{Api, Api3, file_uri};
 use entrynav_fmu::vars::{Model, ModelSpec};
 use std::ffi::c_void;
@@ -51,9 +50,9 @@ fn failure<V: Version>(mut f: Fuzzer<V>, calls: usize) -> String {
 #[test]
 fn both_versions_pass_on_the_linked_fmu() {
     for model in [Model::Truth, Model::Filter] {
-        let report = run(&mut fmi2(model, Api::linked()), 3000, 40).unwrap();
+        let report = run(&mut fmi2(model, Api::linked()), 20_000, 40).unwrap();
         assert!(report.contains("no crash"), "{report}");
-        let report = run(&mut fmi3(model, Api3::linked()), 3000, 40).unwrap();
+        let report = run(&mut fmi3(model, Api3::linked()), 20_000, 40).unwrap();
         assert!(report.contains("(FMI 3.0)"), "{report}");
     }
 }

@@ -3,38 +3,16 @@
 //! values checked (finite reals, Booleans 0 or 1, valid strings, `time`, `n_state_slots`, the
 //! seed, an Enumeration one of its items).
 
-use super::fuzzer::Fuzzer;
+use super::fuzzer::{Fuzzer, Version};
 use super::model::{Expect, Sim, St, same_time};
+use super::vals::Vals;
 use super::variables::{Variable, What};
-use super::version::Version;
 use anyhow::{Context, Result, ensure};
 use entrynav_fmi_host::FmiInstance;
 use entrynav_fmu::instance::Type3;
 use entrynav_fmu::vars::Key;
 use rand::RngExt;
-use std::ffi::{CStr, c_char};
-
-/// The values a getter wrote.
-pub(super) enum Vals {
-    F64(Vec<f64>),
-    I32(Vec<i32>),
-    I64(Vec<i64>),
-    U64(Vec<u64>),
-    /// Booleans as integers (the version's C Boolean widened: a byte or an `int`).
-    Bool(Vec<i64>),
-    Str(Vec<*const c_char>),
-}
-
-impl Vals {
-    /// Value `k` of an integer read (Int32 or Int64).
-    pub(super) fn integer(&self, k: usize) -> Option<i64> {
-        match self {
-            Vals::I32(x) => x.get(k).map(|&x| x as i64),
-            Vals::I64(x) => x.get(k).copied(),
-            _ => None,
-        }
-    }
-}
+use std::ffi::CStr;
 
 impl<V: Version> Fuzzer<V> {
     /// A getter of type `ty`: `nvr` references at `vrs`, into a buffer of `room` values (null if

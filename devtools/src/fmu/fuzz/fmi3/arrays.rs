@@ -4,7 +4,7 @@
 
 use super::super::fuzzer::Fuzzer;
 use super::super::model::{Expect, Sim, St};
-use super::super::values::Vals;
+use super::super::vals::Vals;
 use super::super::variables::{Variable, What};
 use super::Fmi3;
 use anyhow::{Context, Result, ensure};

@@ -10,11 +10,11 @@ mod arrays;
 mod instantiate;
 mod unsupported;
 
-use super::fuzzer::{Fuzzer, Saved};
+use super::fuzzer::{Fuzzer, Saved, Version};
 use super::model::{Expect, Sim, St};
-use super::values::Vals;
+use super::vals::Vals;
 use super::variables::{Variable, fmi3_variables};
-use super::version::Version;
+
 use anyhow::{Result, ensure};
 use entrynav_fmi_host::{Api3, FmiInstance, Instantiate3, Slave3};
 use entrynav_fmu::instance::Type3;

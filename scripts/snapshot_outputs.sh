@@ -16,7 +16,7 @@ set -uo pipefail
 out="${1:?usage: snapshot_outputs.sh OUT_DIR [ENTRYNAV] [FMU_LIB]}"
 bin="${2:-target/release/entrynav}"
 bin="$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")"
-lib="${3:-$(dirname "$bin")/libmars_entry_nav.so}"
+lib="${3:-$(dirname "$bin")/libentrynav_fmu.so}"
 [ -x "$bin" ] || { echo "snapshot: $bin is not an executable" >&2; exit 2; }
 mkdir -p "$out" && [ -d "$out" ] || { echo "snapshot: cannot make the folder $out" >&2; exit 2; }
 out="$(cd "$out" && pwd)" || exit 2

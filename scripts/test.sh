@@ -14,7 +14,7 @@ echo "== cargo clippy (all targets, warnings are errors)"
 cargo clippy --workspace --all-targets --release -- -D warnings
 
 echo "== rustdoc of the library crates (broken links are errors)"
-RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -p entrynav -p entrynav-loader -p entrynav-fmu -p entrynav-fmi-host -p entrynav-optimizer
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -p entrynav -p entrynav-loader -p entrynav-fmu -p entrynav-fmu-archive -p entrynav-fmi-host -p entrynav-devtools -p entrynav-optimizer
 
 echo "== cargo test"
 # Release profile: the Monte Carlo and property tests are numerical and run much faster optimised.
@@ -52,15 +52,20 @@ ENTRYNAV="$PWD/target/release/entrynav" ENTRYNAV_FMU="$PWD/target/fmu/MarsEntryN
 echo "== docs/tutorial.md: every command runs as documented"
 bash scripts/tutorial_check.sh
 
-echo "== FMU: our host against the in-process library (bitwise), doStep benchmark"
+echo "== FMU: the shipped entrynav carries no FMI host: its fmu command only packs"
+if target/release/entrynav fmu --help | grep -Eiq 'check|fuzz|cross-check|\brun\b'; then
+  echo "entrynav fmu --help lists a test tool of entrynav-dev" >&2
+  exit 1
+fi
+echo "== FMU (entrynav-dev, the developer tools): our host against the in-process library (bitwise), doStep benchmark"
 for fmu in target/fmu/MarsEntryNav.fmu target/fmu/MarsEntryNavFilter.fmu target/fmu/MarsEntryTruth.fmu target/fmu/MarsEntryGuidance.fmu target/fmu/MarsEntryNavGuided.fmu; do
-  target/release/entrynav fmu check "$fmu"
+  target/release/entrynav-dev fmu check "$fmu"
 done
-target/release/entrynav fmu check target/fmu/MarsEntryNav.fmu --bench
-echo "== FMU: the FMI 3.0 fuzzer, 100,000 calls per FMI 3.0 FMU (exit 1 on any call the model does not predict)"
+target/release/entrynav-dev fmu check target/fmu/MarsEntryNav.fmu --bench
+echo "== FMU: the fuzzer through the fmi3 functions, 100,000 calls per FMI 3.0 FMU (exit 2 on any call the model does not predict; FMI 2.0: tests/python)"
 for fmu in target/fmu/MarsEntryNav-fmi3.fmu target/fmu/MarsEntryNavFilter-fmi3.fmu target/fmu/MarsEntryTruth-fmi3.fmu target/fmu/MarsEntryNavGuided-fmi3.fmu; do
-  target/release/entrynav fmu fuzz "$fmu" --calls 100000
+  target/release/entrynav-dev fmu fuzz "$fmu" --calls 100000
 done
 
-echo "== FMU: pytest (symbols, fmpy validate/simulate/FMU2Slave/FMU3Slave, fmutool, libcosimpy, fmusim, OMSimulator, host fuzz, guidance FMU, guided FMU and guided SSP)"
+echo "== FMU: pytest (symbols, fmpy validate/simulate/FMU2Slave/FMU3Slave, fmutool, libcosimpy, fmusim, OMSimulator, entrynav-dev check and FMI 2.0 fuzz, guidance FMU, guided FMU and guided SSP)"
 .venv/bin/pytest -q -s -p no:cacheprovider tests/python

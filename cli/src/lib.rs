@@ -96,7 +96,7 @@ enum Command {
     Lincov(lincov::LinCovArgs),
     /// Train the USKF-NN density network offline (seed 001 Algorithm 1) and write its file.
     TrainDensity(train::TrainArgs),
-    /// FMI 2.0 co-simulation FMUs: pack, check, fuzz.
+    /// Pack the FMI 2.0 and FMI 3.0 co-simulation FMUs (and SSP systems of them).
     Fmu(fmu::FmuArgs),
     /// Optimize beacon and orbiter geometry (seed 002 Sec. 4): orbiters, ground sites, certified
     /// site selection.

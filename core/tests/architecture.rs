@@ -3,7 +3,9 @@
 //! * **layers import downward only** — every `crate::module` path in a core module names a module
 //!   of a lower layer (the table below is ARCHITECTURE.md's layer table);
 //! * **workspace crates depend downward only** — core ← loader ← optimizer, fmu ← cli, and the
-//!   shipped FMU library carries no FMI host (`libloading`, `zip`);
+//!   shipped FMU library carries no FMI host (`libloading`, `zip`); neither do the `entrynav`
+//!   command and the Python package, even through other crates (the FMI host is the developer
+//!   crate's, and nothing depends on that);
 //! * **no `include_str!`/`include_bytes!` reaches outside its crate** (`cargo package` would
 //!   break);
 //! * **no file-level import cycle** in any workspace crate (a file that imports one that imports
@@ -191,14 +193,28 @@ fn workspace_crates_depend_downward_only() {
         ("loader", &["entrynav"]),
         ("optimizer", &["entrynav", "entrynav-loader"]),
         ("fmu", &["entrynav", "entrynav-loader"]),
+        ("fmu-archive", &["entrynav", "entrynav-fmu"]),
+        ("fmi-host", &["entrynav-fmu", "entrynav-fmu-archive"]),
+        (
+            "devtools",
+            &[
+                "entrynav",
+                "entrynav-loader",
+                "entrynav-fmu",
+                "entrynav-fmi-host",
+            ],
+        ),
     ];
     let workspace_crates = [
         "entrynav",
         "entrynav-loader",
         "entrynav-optimizer",
         "entrynav-fmu",
+        "entrynav-fmu-archive",
         "entrynav-cli",
         "entrynav-fmi-host",
+        "entrynav-devtools",
+        "entrynav-python",
     ];
     let mut bad = Vec::new();
     for (dir, ok) in allowed {
@@ -216,7 +232,103 @@ fn workspace_crates_depend_downward_only() {
             ));
         }
     }
+    // The developer tools are never shipped: nothing depends on them.
+    for (dir, _) in workspace_packages() {
+        if dependencies(&ws.join(&dir).join("Cargo.toml")).contains(&"entrynav-devtools".into()) {
+            bad.push(format!(
+                "{dir}/Cargo.toml depends on the developer crate entrynav-devtools"
+            ));
+        }
+    }
+    // The shipped command and Python package carry no FMI host and no library loader, not even
+    // through another crate (the FMU test tools that need one are entrynav-dev's).
+    for package in ["entrynav-cli", "entrynav-python"] {
+        let needs = normal_closure(package);
+        for host in ["entrynav-fmi-host", "libloading"] {
+            if needs.contains(host) {
+                bad.push(format!(
+                    "{package} depends on {host} (through its dependencies)"
+                ));
+            }
+        }
+    }
     assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
+
+/// The workspace's packages: (crate folder, package name).
+fn workspace_packages() -> Vec<(String, String)> {
+    let ws = workspace();
+    let mut out = Vec::new();
+    for entry in std::fs::read_dir(&ws).expect("workspace") {
+        let dir = entry.expect("entry").path();
+        let Ok(text) = std::fs::read_to_string(dir.join("Cargo.toml")) else {
+            continue;
+        };
+        let doc: toml::Table = toml::from_str(&text).expect("valid manifest");
+        if let Some(name) = doc
+            .get("package")
+            .and_then(|p| p.get("name"))
+            .and_then(|n| n.as_str())
+        {
+            let folder = dir.file_name().unwrap().to_string_lossy().to_string();
+            out.push((folder, name.to_string()));
+        }
+    }
+    out.sort();
+    out
+}
+
+/// Every package `package` needs to build, transitively: a workspace crate's `[dependencies]`
+/// from its manifest (its dev-dependencies are not part of it), any other package's from
+/// `Cargo.lock` (which lists only what a registry package builds with).
+fn normal_closure(package: &str) -> std::collections::BTreeSet<String> {
+    let ws = workspace();
+    let folders: std::collections::BTreeMap<String, String> = workspace_packages()
+        .into_iter()
+        .map(|(dir, name)| (name, dir))
+        .collect();
+    let lock: toml::Table =
+        toml::from_str(&std::fs::read_to_string(ws.join("Cargo.lock")).expect("Cargo.lock"))
+            .expect("valid Cargo.lock");
+    let mut locked: std::collections::BTreeMap<String, Vec<String>> = Default::default();
+    for p in lock["package"].as_array().expect("packages") {
+        let deps = p.get("dependencies").and_then(|d| d.as_array());
+        locked
+            .entry(p["name"].as_str().unwrap().to_string())
+            .or_default()
+            .extend(
+                deps.into_iter()
+                    .flatten()
+                    .filter_map(|d| d.as_str())
+                    // "name" or "name version" when several versions are locked.
+                    .map(|d| d.split(' ').next().unwrap_or(d).to_string()),
+            );
+    }
+    let mut seen = std::collections::BTreeSet::new();
+    let mut todo = vec![package.to_string()];
+    while let Some(p) = todo.pop() {
+        let deps = match folders.get(&p) {
+            Some(dir) => dependencies(&ws.join(dir).join("Cargo.toml")),
+            None => locked.get(&p).cloned().unwrap_or_default(),
+        };
+        for d in deps {
+            if seen.insert(d.clone()) {
+                todo.push(d);
+            }
+        }
+    }
+    seen
+}
+
+#[test]
+fn the_dependency_closure_sees_a_crate_two_steps_away() {
+    // The developer crate reaches libloading only through the FMI host.
+    let dev = normal_closure("entrynav-devtools");
+    assert!(
+        dev.contains("entrynav-fmi-host") && dev.contains("libloading"),
+        "{dev:?}"
+    );
+    assert!(!normal_closure("entrynav-fmu").contains("libloading"));
 }
 
 /// The crate folder (nearest ancestor with a Cargo.toml) of `file`.

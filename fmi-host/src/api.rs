@@ -1,5 +1,5 @@
 //! The fmi2 functions of a loaded FMU library ([`Api`]), and the callbacks the host passes to
-//! `fmi2Instantiate`.
+//! `fmi2Instantiate` ([`Callbacks`], whose logger appends to a [`Log`]).
 //!
 //! The logger is declared without the C varargs (stable Rust cannot define variadic functions);
 //! on x86-64 System V a variadic call to it is ABI-compatible, and our FMUs never pass format
@@ -7,7 +7,8 @@
 
 #![allow(non_snake_case)]
 
-use crate::{HostError, Result};
+use crate::error::{HostError, Result};
+use crate::instance::Message;
 use std::ffi::{CStr, c_char, c_int, c_void};
 use std::path::Path;
 use std::sync::Mutex;
@@ -33,26 +34,40 @@ pub struct Callbacks {
     pub env: *mut c_void,
 }
 
+/// What the host's logger expects as its environment: the instance's message buffer.
+pub type Log = Mutex<Vec<Message>>;
+
+/// The host's `fmi2CallbackLogger`: appends the message (`%%` read as `%`) to the [`Log`] the
+/// environment points to (nothing when the environment or the message is null).
 pub(crate) extern "C" fn host_logger(
     env: *mut c_void,
     _name: *const c_char,
     status: c_int,
-    _category: *const c_char,
+    category: *const c_char,
     msg: *const c_char,
 ) {
     if env.is_null() || msg.is_null() {
         return;
     }
-    // SAFETY: env is the `Mutex<Vec<..>>` the host passed in Callbacks and keeps alive while the
-    // instance exists; msg is a C string from the FMU.
-    let (log, text) = unsafe {
+    // SAFETY: env is the `Log` the host passed in Callbacks and keeps alive while the instance
+    // exists; category and msg are null or C strings from the FMU.
+    let (log, category, text) = unsafe {
         (
-            &*(env as *const Mutex<Vec<(i32, String)>>),
+            &*(env as *const Log),
+            if category.is_null() {
+                String::new()
+            } else {
+                CStr::from_ptr(category).to_string_lossy().into_owned()
+            },
             CStr::from_ptr(msg).to_string_lossy().replace("%%", "%"),
         )
     };
     if let Ok(mut l) = log.lock() {
-        l.push((status, text));
+        l.push(Message {
+            status,
+            category,
+            text,
+        });
     }
 }
 
@@ -61,12 +76,14 @@ macro_rules! api {
         /// The 34 fmi2 functions of a loaded FMU library.
         #[allow(dead_code, missing_docs)]
         pub struct Api {
-            _lib: libloading::Library,
+            /// The loaded library (`None`: the functions linked into this program).
+            _lib: Option<libloading::Library>,
             $(pub $name: $ty,)*
         }
 
         impl Api {
-            pub(crate) fn load(path: &Path) -> Result<Api> {
+            /// Load the library at `path` and every fmi2 function of it.
+            pub fn load(path: &Path) -> Result<Api> {
                 // SAFETY: loading the FMU library runs no initialisers with preconditions.
                 let lib = unsafe { libloading::Library::new(path) }.map_err(|source| HostError::Load {
                     path: path.display().to_string(),
@@ -81,8 +98,25 @@ macro_rules! api {
                             source,
                         })?;
                 )*
-                Ok(Api { _lib: lib, $($name,)* })
+                Ok(Api { _lib: Some(lib), $($name,)* })
             }
+
+            /// The fmi2 functions of the `entrynav-fmu` crate linked into this program, taken
+            /// with the FMI 2.0 signatures as [`Api::load`] takes them from a library: the host
+            /// drives the FMU code in process, with no packed FMU (tests of the host's tools).
+            pub fn linked() -> Api {
+                $(
+                    // SAFETY: entrynav-fmu exports this function with the FMI 2.0 signature
+                    // `$ty` (its own Rust types are the same C types), as a loaded library does.
+                    let $name: $ty = unsafe {
+                        std::mem::transmute::<*const (), $ty>(entrynav_fmu::ffi::$name as *const ())
+                    };
+                )*
+                Api { _lib: None, $($name,)* }
+            }
+
+            /// The names of the functions, in the order they are loaded.
+            pub const FUNCTIONS: &'static [&'static str] = &[$(stringify!($name),)*];
         }
     };
 }

@@ -11,7 +11,8 @@
 
 #![allow(non_snake_case)]
 
-use crate::{HostError, Result};
+use crate::error::{HostError, Result};
+use crate::instance::Message;
 use std::ffi::{CStr, c_char, c_int, c_void};
 use std::path::Path;
 use std::sync::Mutex;
@@ -29,10 +30,8 @@ pub type ClockUpdate3 = extern "C" fn(*mut c_void);
 /// `fmi3LockPreemptionCallback` and `fmi3UnlockPreemptionCallback`.
 pub type Preemption3 = extern "C" fn();
 
-/// One message an instance logged: (fmi3Status, category, message).
-pub type Message3 = (i32, String, String);
 /// What [`host_logger3`] expects as its instance environment: the instance's message buffer.
-pub type Log3 = Mutex<Vec<Message3>>;
+pub type Log3 = Mutex<Vec<Message>>;
 
 /// The host's `fmi3LogMessageCallback`: appends (status, category, message) to the [`Log3`] the
 /// instance environment points to (nothing when the environment or the message is null).
@@ -57,7 +56,11 @@ pub extern "C" fn host_logger3(
     // instance exists.
     let log = unsafe { &*(env as *const Log3) };
     if let Ok(mut l) = log.lock() {
-        l.push((status, text(category), text(message)));
+        l.push(Message {
+            status,
+            category: text(category),
+            text: text(message),
+        });
     }
 }
 
@@ -66,7 +69,8 @@ macro_rules! api3 {
         /// The 75 fmi3 functions of a loaded FMU library.
         #[allow(dead_code, missing_docs)]
         pub struct Api3 {
-            _lib: libloading::Library,
+            /// The loaded library (`None`: the functions linked into this program).
+            _lib: Option<libloading::Library>,
             $(pub $name: $ty,)*
         }
 
@@ -87,7 +91,21 @@ macro_rules! api3 {
                             source,
                         })?;
                 )*
-                Ok(Api3 { _lib: lib, $($name,)* })
+                Ok(Api3 { _lib: Some(lib), $($name,)* })
+            }
+
+            /// The fmi3 functions of the `entrynav-fmu` crate linked into this program, taken
+            /// with the FMI 3.0 signatures as [`Api3::load`] takes them from a library: the host
+            /// drives the FMU code in process, with no packed FMU (tests of the host's tools).
+            pub fn linked() -> Api3 {
+                $(
+                    // SAFETY: entrynav-fmu exports this function with the FMI 3.0 signature
+                    // `$ty` (its own Rust types are the same C types), as a loaded library does.
+                    let $name: $ty = unsafe {
+                        std::mem::transmute::<*const (), $ty>(entrynav_fmu::ffi::$name as *const ())
+                    };
+                )*
+                Api3 { _lib: None, $($name,)* }
             }
 
             /// The names of the functions, in the order they are loaded.

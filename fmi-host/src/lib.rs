@@ -1,127 +1,37 @@
-//! Our FMI 2.0 host: unpacks one of our `.fmu` files, loads its shared library with libloading
-//! and calls the fmi2 functions through a safe [`Slave`] wrapper. `entrynav fmu check` compares
-//! it with the in-process [`Instance`](mars_entry_nav::instance::Instance) bit for bit;
-//! `entrynav fmu fuzz` drives random call sequences through it.
+//! Our FMI host, a developer tool: opens one of our `.fmu` files, loads its shared library with
+//! libloading and drives an instance through the FMI 2.0 functions ([`Slave`]) or the FMI 3.0
+//! functions ([`Slave3`]), both behind one interface ([`FmiInstance`]: initialisation, steps,
+//! values by value reference, FMU states, termination, reset, the log). `entrynav-dev fmu check`
+//! compares a slave with the in-process [`Instance`](entrynav_fmu::instance::Instance) bit for
+//! bit; `entrynav-dev fmu fuzz` drives random call sequences through either interface.
 //!
-//! It is a crate of its own so that the FMU library (`entrynav-fmu`, the cdylib shipped in every
-//! `.fmu`) carries only the FMU: the host's libloading and zip stay in the `entrynav` command.
+//! It is a crate of its own so that neither the FMU library (`entrynav-fmu`, the cdylib shipped
+//! in every `.fmu`) nor the `entrynav` command carries a library loader: libloading lives here
+//! and only the developer crate (`entrynav-devtools`) depends on it. Opening and checking an
+//! archive without loading it is `entrynav-fmu-archive`'s, which `entrynav fmu pack` uses too.
 //!
 //! Modules: [`api`] (the fmi2 functions of a loaded library and the logger the host passes),
-//! [`api3`] (the fmi3 functions of a loaded library and the FMI 3.0 log callback the host passes),
-//! [`unpack`](mod@unpack) (opening an archive, reading its model description, loading its library) and
-//! `slave` (one instance through the host, and reading all outputs of it or of an in-process
-//! instance the same way).
+//! [`api3`] (the fmi3 functions and the FMI 3.0 log callback), `instance` (the shared
+//! interface), `slave` and `slave3` (one instance of each version), `outputs` (reading all
+//! outputs of a slave or of an in-process instance the same way), `unpack` (an archive with its
+//! library loaded) and `error`.
 #![warn(missing_docs)]
 
 pub mod api;
 pub mod api3;
+mod error;
+mod instance;
+mod outputs;
 mod slave;
-pub mod unpack;
+mod slave3;
+mod unpack;
 
-pub use api::{Api, Callbacks, Comp, HostLogger};
-pub use api3::{Api3, Inst3, Log3, Logger3, Message3, State3, host_logger3};
-pub use slave::{OutputGroups, Slave, file_uri, in_process_get_all, output_groups};
+pub use api::{Api, Callbacks, Comp, HostLogger, Log};
+pub use api3::{Api3, Inst3, Log3, Logger3, State3, host_logger3};
+pub use entrynav_fmu_archive::{Archive, ArchiveError, file_uri};
+pub use error::HostError;
+pub use instance::{FmiInstance, FmuState, Message, StepAnswer};
+pub use outputs::{OutputGroups, in_process_get_all, output_groups};
+pub use slave::Slave;
+pub use slave3::{Instantiate3, Slave3};
 pub use unpack::{Unpacked, unpack};
-
-use mars_entry_nav::binding::BindingError;
-use mars_entry_nav::instance::{InstantiateError, Status};
-use std::ffi::NulError;
-use thiserror::Error;
-
-/// Why the host could not unpack, load or drive an FMU.
-#[derive(Debug, Error)]
-pub enum HostError {
-    /// A file could not be opened, read or extracted.
-    #[error("{what} {path}: {source}")]
-    Io {
-        /// What was being done.
-        what: &'static str,
-        /// The file or folder.
-        path: String,
-        /// The operating system's error.
-        source: std::io::Error,
-    },
-    /// Not a zip archive, an entry missing from it, or an archive that cannot be extracted.
-    #[error("{path}: {what}: {source}")]
-    Archive {
-        /// The `.fmu` file.
-        path: String,
-        /// What was being done.
-        what: &'static str,
-        /// The zip reader's error.
-        source: zip::result::ZipError,
-    },
-    /// The model description is not well-formed XML.
-    #[error("{path}: modelDescription.xml: {source}")]
-    Xml {
-        /// The `.fmu` file.
-        path: String,
-        /// The XML reader's error.
-        source: quick_xml::Error,
-    },
-    /// The model description names no usable model identifier (one of letters, digits and `_`).
-    #[error("{path}: no usable modelIdentifier in modelDescription.xml")]
-    ModelIdentifier {
-        /// The `.fmu` file.
-        path: String,
-    },
-    /// The archive's model description is not what this build generates.
-    #[error(
-        "modelDescription.xml is not what this build's variable table generates for {0} (stale FMU or drifted table)"
-    )]
-    StaleModelDescription(String),
-    /// The library's binding cannot be read.
-    #[error(transparent)]
-    Binding(#[from] BindingError),
-    /// The model the library is bound to cannot be rebuilt from the archive.
-    #[error(transparent)]
-    Model(#[from] InstantiateError),
-    /// A file the FMU must contain is missing.
-    #[error("the FMU has no {0}")]
-    MissingFile(String),
-    /// The shared library cannot be loaded.
-    #[error("cannot load {path}: {source}")]
-    Load {
-        /// The library.
-        path: String,
-        /// The loader's error.
-        source: libloading::Error,
-    },
-    /// The shared library lacks an fmi2 function.
-    #[error("cannot load {path}: no symbol {symbol}: {source}")]
-    Symbol {
-        /// The library.
-        path: String,
-        /// The function.
-        symbol: &'static str,
-        /// The loader's error.
-        source: libloading::Error,
-    },
-    /// A string with an interior NUL byte.
-    #[error(transparent)]
-    Nul(#[from] NulError),
-    /// `fmi2Instantiate` returned null.
-    #[error("fmi2Instantiate failed: {0:?}")]
-    Instantiate(Vec<(i32, String)>),
-    /// An fmi2 call returned a status other than OK.
-    #[error("{call} returned {status:?}: {messages:?}")]
-    Call {
-        /// The call.
-        call: &'static str,
-        /// The statuses returned.
-        status: Vec<i32>,
-        /// The instance's log.
-        messages: Vec<(i32, String)>,
-    },
-    /// The in-process instance refused a call.
-    #[error("in-process {call} failed: {status:?}")]
-    InProcess {
-        /// The call.
-        call: &'static str,
-        /// Its status.
-        status: Status,
-    },
-}
-
-/// The host's results.
-pub(crate) type Result<T> = std::result::Result<T, HostError>;

@@ -1,36 +1,47 @@
-//! One instance of a loaded FMU through the host ([`Slave`]), and reading all outputs of a slave or
-//! of an in-process instance the same way.
+//! [`Slave`]: one FMI 2.0 co-simulation instance of a loaded FMU, with its message buffer; the
+//! [`FmiInstance`] calls, and setting one variable of the table.
 
-use crate::api::{Api, Callbacks, Comp, host_logger};
-use crate::{HostError, Result, Unpacked};
-use mars_entry_nav::instance::{Fmi2, Instance};
-use mars_entry_nav::vars::{Causality, Type, Value, Var};
-use std::ffi::{CString, c_int, c_void};
-use std::path::Path;
-use std::sync::Mutex;
+use crate::api::{Api, Callbacks, Comp, Log, host_logger};
+use crate::error::{HostError, Result};
+use crate::instance::{FmiInstance, FmuState, Message, StepAnswer};
+use entrynav_fmu::vars::{Value, Var};
+use std::ffi::{CString, c_char, c_int, c_void};
+use std::sync::Arc;
 
-/// One instance through the host.
-pub struct Slave<'a> {
+/// One FMI 2.0 instance through the host.
+pub struct Slave {
     /// The library's functions.
-    pub api: &'a Api,
-    /// The instance.
+    pub api: Arc<Api>,
+    /// The instance (null for [`Slave::null`]).
     pub c: Comp,
-    /// Messages the instance logged: (status, text).
-    pub log: Box<Mutex<Vec<(i32, String)>>>,
+    /// Messages the instance logged.
+    pub log: Box<Log>,
     _callbacks: Box<Callbacks>,
+    freed: bool,
 }
 
-impl<'a> Slave<'a> {
-    /// Instantiate `u`'s model as co-simulation slave `name` with `guid` and the resource URI
-    /// `resources`, logging on.
-    pub fn new(u: &'a Unpacked, name: &str, guid: &str, resources: &str) -> Result<Slave<'a>> {
-        let log: Box<Mutex<Vec<(i32, String)>>> = Box::new(Mutex::new(Vec::new()));
+impl Slave {
+    /// Instantiate co-simulation slave `name` of the library's model with `guid` and the resource
+    /// URI `resources`, logging off (errors and warnings are logged all the same).
+    pub fn new(api: &Arc<Api>, name: &str, guid: &str, resources: &str) -> Result<Slave> {
+        Slave::instantiate(api, name, guid, resources, false)
+    }
+
+    /// [`Slave::new`] with debug logging on or off.
+    pub fn instantiate(
+        api: &Arc<Api>,
+        name: &str,
+        guid: &str,
+        resources: &str,
+        logging_on: bool,
+    ) -> Result<Slave> {
+        let log: Box<Log> = Box::new(Log::new(Vec::new()));
         let callbacks = Box::new(Callbacks {
             logger: Some(host_logger),
             allocate: None,
             free: None,
             step_finished: None,
-            env: &*log as *const _ as *mut c_void,
+            env: &*log as *const Log as *mut c_void,
         });
         let (n, g, r) = (
             CString::new(name)?,
@@ -39,13 +50,22 @@ impl<'a> Slave<'a> {
         );
         // SAFETY: valid C strings and callbacks that outlive the instance.
         let c = unsafe {
-            (u.api.fmi2Instantiate)(n.as_ptr(), 1, g.as_ptr(), r.as_ptr(), &*callbacks, 0, 0)
+            (api.fmi2Instantiate)(
+                n.as_ptr(),
+                1,
+                g.as_ptr(),
+                r.as_ptr(),
+                &*callbacks,
+                0,
+                logging_on as c_int,
+            )
         };
         let s = Slave {
-            api: &u.api,
+            api: Arc::clone(api),
             c,
             log,
             _callbacks: callbacks,
+            freed: false,
         };
         if c.is_null() {
             return Err(HostError::Instantiate(s.messages()));
@@ -53,8 +73,25 @@ impl<'a> Slave<'a> {
         Ok(s)
     }
 
+    /// A slave whose instance is null: every call must be refused (and freeing it is harmless).
+    pub fn null(api: &Arc<Api>) -> Slave {
+        Slave {
+            api: Arc::clone(api),
+            c: std::ptr::null_mut(),
+            log: Box::default(),
+            _callbacks: Box::new(Callbacks {
+                logger: None,
+                allocate: None,
+                free: None,
+                step_finished: None,
+                env: std::ptr::null_mut(),
+            }),
+            freed: false,
+        }
+    }
+
     /// The messages logged so far.
-    pub fn messages(&self) -> Vec<(i32, String)> {
+    pub fn messages(&self) -> Vec<Message> {
         self.log.lock().map(|l| l.clone()).unwrap_or_default()
     }
 
@@ -76,99 +113,225 @@ impl<'a> Slave<'a> {
             }
         }
     }
-
-    /// All values of `vars` (one call per type), as f64 bit patterns / integers.
-    pub fn get_all(&self, groups: &OutputGroups) -> Result<Vec<u64>> {
-        let mut out = Vec::new();
-        let mut r = vec![0.0; groups.real.len()];
-        let mut i = vec![0; groups.int.len()];
-        let mut b = vec![0; groups.bool.len()];
-        // SAFETY: buffers sized to the reference lists.
-        let st = unsafe {
-            [
-                (self.api.fmi2GetReal)(self.c, groups.real.as_ptr(), r.len(), r.as_mut_ptr()),
-                (self.api.fmi2GetInteger)(self.c, groups.int.as_ptr(), i.len(), i.as_mut_ptr()),
-                (self.api.fmi2GetBoolean)(self.c, groups.bool.as_ptr(), b.len(), b.as_mut_ptr()),
-            ]
-        };
-        if st != [0, 0, 0] {
-            return Err(HostError::Call {
-                call: "fmi2Get*",
-                status: st.to_vec(),
-                messages: self.messages(),
-            });
-        }
-        out.extend(r.iter().map(|x| x.to_bits()));
-        out.extend(i.iter().map(|x| *x as u64));
-        out.extend(b.iter().map(|x| (*x != 0) as u64));
-        Ok(out)
-    }
 }
 
-impl Drop for Slave<'_> {
+impl Drop for Slave {
     fn drop(&mut self) {
-        // SAFETY: our instance (or null).
-        unsafe { (self.api.fmi2FreeInstance)(self.c) };
+        self.free();
     }
 }
 
-/// The output value references of a model, by type.
-pub struct OutputGroups {
-    /// Real outputs.
-    pub real: Vec<u32>,
-    /// Integer outputs.
-    pub int: Vec<u32>,
-    /// Boolean outputs.
-    pub bool: Vec<u32>,
-}
+impl FmiInstance for Slave {
+    const PREFIX: &'static str = "fmi2";
+    type Boolean = c_int;
 
-/// The output references of `vars`, grouped by type.
-pub fn output_groups(vars: &[Var]) -> OutputGroups {
-    let pick = |t: Type| {
-        vars.iter()
-            .filter(|v| v.causality == Causality::Output && v.ty == t)
-            .map(|v| v.vr)
-            .collect()
-    };
-    OutputGroups {
-        real: pick(Type::Real),
-        int: pick(Type::Integer),
-        bool: pick(Type::Boolean),
+    fn handle(&self) -> *mut c_void {
+        self.c
     }
-}
 
-/// [`Slave::get_all`] on an in-process instance.
-pub fn in_process_get_all(inst: &mut Instance, g: &OutputGroups) -> Result<Vec<u64>> {
-    let mut out = Vec::new();
-    for (t, vrs) in [
-        (Type::Real, &g.real),
-        (Type::Integer, &g.int),
-        (Type::Boolean, &g.bool),
-    ] {
-        let vals = inst.get(t, vrs).map_err(|status| HostError::InProcess {
-            call: Fmi2::getter(t).name(),
-            status,
-        })?;
-        out.extend(vals.into_iter().map(|v| match v {
-            Value::Real(x) => x.to_bits(),
-            Value::Integer(x) => x as u64,
-            Value::Boolean(x) => x as u64,
-            Value::String(_) => 0,
-        }));
+    fn take_messages(&self) -> Vec<Message> {
+        self.log
+            .lock()
+            .map(|mut l| std::mem::take(&mut *l))
+            .unwrap_or_default()
     }
-    Ok(out)
-}
 
-/// The `file://` URI of a folder, percent-encoded.
-pub fn file_uri(dir: &Path) -> String {
-    let mut s = String::from("file://");
-    for b in dir.to_string_lossy().bytes() {
-        match b {
-            b'A'..=b'Z' | b'a'..=b'z' | b'0'..=b'9' | b'/' | b'-' | b'_' | b'.' | b'~' => {
-                s.push(b as char)
-            }
-            _ => s.push_str(&format!("%{b:02X}")),
+    fn free(&mut self) {
+        if !self.freed {
+            // SAFETY: our instance (or null).
+            unsafe { (self.api.fmi2FreeInstance)(self.c) };
+            self.freed = true;
         }
     }
-    s
+
+    fn enter_initialization_mode(
+        &self,
+        tolerance: Option<f64>,
+        start: f64,
+        stop: Option<f64>,
+    ) -> i32 {
+        let a = &self.api;
+        // SAFETY: our instance.
+        unsafe {
+            let r = (a.fmi2SetupExperiment)(
+                self.c,
+                tolerance.is_some() as c_int,
+                tolerance.unwrap_or(0.0),
+                start,
+                stop.is_some() as c_int,
+                stop.unwrap_or(0.0),
+            );
+            match r {
+                0 => (a.fmi2EnterInitializationMode)(self.c),
+                _ => r,
+            }
+        }
+    }
+
+    fn exit_initialization_mode(&self) -> i32 {
+        // SAFETY: our instance.
+        unsafe { (self.api.fmi2ExitInitializationMode)(self.c) }
+    }
+
+    fn do_step(&self, t: f64, h: f64, no_set_fmu_state_prior: bool, _flags: bool) -> StepAnswer {
+        // SAFETY: our instance.
+        let status =
+            unsafe { (self.api.fmi2DoStep)(self.c, t, h, no_set_fmu_state_prior as c_int) };
+        StepAnswer {
+            status,
+            flags: None,
+            last_successful_time: None,
+        }
+    }
+
+    fn terminate(&self) -> i32 {
+        // SAFETY: our instance.
+        unsafe { (self.api.fmi2Terminate)(self.c) }
+    }
+
+    fn reset(&self) -> i32 {
+        // SAFETY: our instance.
+        unsafe { (self.api.fmi2Reset)(self.c) }
+    }
+
+    unsafe fn set_debug_logging(
+        &self,
+        on: c_int,
+        n: usize,
+        categories: *const *const c_char,
+    ) -> i32 {
+        // SAFETY: the caller's contract.
+        unsafe { (self.api.fmi2SetDebugLogging)(self.c, on, n, categories) }
+    }
+
+    unsafe fn get_float64(
+        &self,
+        vrs: *const u32,
+        nvr: usize,
+        values: *mut f64,
+        n_values: usize,
+    ) -> i32 {
+        debug_assert_eq!(nvr, n_values, "FMI 2.0 has one value per reference");
+        // SAFETY: the caller's contract.
+        unsafe { (self.api.fmi2GetReal)(self.c, vrs, nvr, values) }
+    }
+
+    unsafe fn set_float64(
+        &self,
+        vrs: *const u32,
+        nvr: usize,
+        values: *const f64,
+        n_values: usize,
+    ) -> i32 {
+        debug_assert_eq!(nvr, n_values, "FMI 2.0 has one value per reference");
+        // SAFETY: the caller's contract.
+        unsafe { (self.api.fmi2SetReal)(self.c, vrs, nvr, values) }
+    }
+
+    unsafe fn get_int32(
+        &self,
+        vrs: *const u32,
+        nvr: usize,
+        values: *mut i32,
+        n_values: usize,
+    ) -> i32 {
+        debug_assert_eq!(nvr, n_values, "FMI 2.0 has one value per reference");
+        // SAFETY: the caller's contract.
+        unsafe { (self.api.fmi2GetInteger)(self.c, vrs, nvr, values) }
+    }
+
+    unsafe fn set_int32(
+        &self,
+        vrs: *const u32,
+        nvr: usize,
+        values: *const i32,
+        n_values: usize,
+    ) -> i32 {
+        debug_assert_eq!(nvr, n_values, "FMI 2.0 has one value per reference");
+        // SAFETY: the caller's contract.
+        unsafe { (self.api.fmi2SetInteger)(self.c, vrs, nvr, values) }
+    }
+
+    unsafe fn get_boolean(
+        &self,
+        vrs: *const u32,
+        nvr: usize,
+        values: *mut c_int,
+        n_values: usize,
+    ) -> i32 {
+        debug_assert_eq!(nvr, n_values, "FMI 2.0 has one value per reference");
+        // SAFETY: the caller's contract.
+        unsafe { (self.api.fmi2GetBoolean)(self.c, vrs, nvr, values) }
+    }
+
+    unsafe fn set_boolean(
+        &self,
+        vrs: *const u32,
+        nvr: usize,
+        values: *const c_int,
+        n_values: usize,
+    ) -> i32 {
+        debug_assert_eq!(nvr, n_values, "FMI 2.0 has one value per reference");
+        // SAFETY: the caller's contract.
+        unsafe { (self.api.fmi2SetBoolean)(self.c, vrs, nvr, values) }
+    }
+
+    unsafe fn get_string(
+        &self,
+        vrs: *const u32,
+        nvr: usize,
+        values: *mut *const c_char,
+        n_values: usize,
+    ) -> i32 {
+        debug_assert_eq!(nvr, n_values, "FMI 2.0 has one value per reference");
+        // SAFETY: the caller's contract.
+        unsafe { (self.api.fmi2GetString)(self.c, vrs, nvr, values) }
+    }
+
+    unsafe fn set_string(
+        &self,
+        vrs: *const u32,
+        nvr: usize,
+        values: *const *const c_char,
+        n_values: usize,
+    ) -> i32 {
+        debug_assert_eq!(nvr, n_values, "FMI 2.0 has one value per reference");
+        // SAFETY: the caller's contract.
+        unsafe { (self.api.fmi2SetString)(self.c, vrs, nvr, values) }
+    }
+
+    unsafe fn get_fmu_state(&self, state: *mut FmuState) -> i32 {
+        // SAFETY: the caller's contract.
+        unsafe { (self.api.fmi2GetFMUstate)(self.c, state) }
+    }
+
+    unsafe fn set_fmu_state(&self, state: FmuState) -> i32 {
+        // SAFETY: the caller's contract.
+        unsafe { (self.api.fmi2SetFMUstate)(self.c, state) }
+    }
+
+    unsafe fn free_fmu_state(&self, state: *mut FmuState) -> i32 {
+        // SAFETY: the caller's contract.
+        unsafe { (self.api.fmi2FreeFMUstate)(self.c, state) }
+    }
+
+    unsafe fn serialized_fmu_state_size(&self, state: FmuState, size: *mut usize) -> i32 {
+        // SAFETY: the caller's contract.
+        unsafe { (self.api.fmi2SerializedFMUstateSize)(self.c, state, size) }
+    }
+
+    unsafe fn serialize_fmu_state(&self, state: FmuState, bytes: *mut u8, size: usize) -> i32 {
+        // SAFETY: the caller's contract.
+        unsafe { (self.api.fmi2SerializeFMUstate)(self.c, state, bytes, size) }
+    }
+
+    unsafe fn deserialize_fmu_state(
+        &self,
+        bytes: *const u8,
+        size: usize,
+        state: *mut FmuState,
+    ) -> i32 {
+        // SAFETY: the caller's contract.
+        unsafe { (self.api.fmi2DeSerializeFMUstate)(self.c, bytes, size, state) }
+    }
 }

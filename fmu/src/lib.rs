@@ -17,8 +17,8 @@
 //! machine over `entrynav::sim::engine`, and its allowed-state table), [`xml3`] (the FMI 3.0
 //! description of the same table plus [`vars::fmi3`]), and [`ffi`] (the 34 exported `fmi2*` and
 //! 75 `fmi3*` functions and the registry of live instances, the only unsafe code). The
-//! other side of the C ABI, our own FMI importer used by `entrynav fmu check` and `fuzz`, is the
-//! `entrynav-fmi-host` crate, so this library carries only the FMU.
+//! other side of the C ABI, our own FMI importer used by the developer tools (`entrynav-dev fmu
+//! check` and `fuzz`), is the `entrynav-fmi-host` crate, so this library carries only the FMU.
 #![warn(missing_docs)]
 
 pub mod binding;

@@ -1,6 +1,6 @@
 //! `modelDescription.xml` from the variable table (quick-xml).
 
-use crate::vars::{Causality, ENUM_TYPES, Model, ModelSpec, TABLE_DATE, UNITS, Var};
+use crate::vars::{Causality, ENUM_TYPES, EnumType, Model, ModelSpec, TABLE_DATE, UNITS, Var};
 use quick_xml::Writer;
 use quick_xml::events::{BytesDecl, Event};
 use std::io;
@@ -67,45 +67,9 @@ fn write(spec: &ModelSpec) -> io::Result<String> {
         .with_attribute(("variableNamingConvention", "flat"))
         .with_attribute(("numberOfEventIndicators", "0"))
         .write_inner_content(|w| {
-            w.create_element("CoSimulation")
-                .with_attribute(("modelIdentifier", spec.identifier()))
-                .with_attribute(("needsExecutionTool", "false"))
-                .with_attribute(("canHandleVariableCommunicationStepSize", "true"))
-                .with_attribute(("canInterpolateInputs", "false"))
-                .with_attribute(("maxOutputDerivativeOrder", "0"))
-                .with_attribute(("canRunAsynchronuously", "false"))
-                .with_attribute(("canBeInstantiatedOnlyOncePerProcess", "false"))
-                .with_attribute(("canNotUseMemoryManagementFunctions", "true"))
-                .with_attribute(("canGetAndSetFMUstate", "true"))
-                .with_attribute(("canSerializeFMUstate", "true"))
-                .with_attribute(("providesDirectionalDerivative", "false"))
-                .write_empty()?;
+            write_cosimulation(w, spec)?;
             write_units(w)?;
-            // The schema needs at least one type in TypeDefinitions (the guidance FMU has none).
-            if !used_enums.is_empty() {
-                w.create_element("TypeDefinitions")
-                    .write_inner_content(|w| {
-                        for e in &used_enums {
-                            w.create_element("SimpleType")
-                                .with_attribute(("name", e.name))
-                                .with_attribute(("description", e.description))
-                                .write_inner_content(|w| {
-                                    w.create_element("Enumeration").write_inner_content(|w| {
-                                        for (k, (name, d)) in e.items.iter().enumerate() {
-                                            w.create_element("Item")
-                                                .with_attribute(("name", *name))
-                                                .with_attribute(("value", k.to_string().as_str()))
-                                                .with_attribute(("description", *d))
-                                                .write_empty()?;
-                                        }
-                                        Ok(())
-                                    })?;
-                                    Ok(())
-                                })?;
-                        }
-                        Ok(())
-                    })?;
-            }
+            write_type_definitions(w, &used_enums)?;
             write_log_categories(w)?;
             let (start, stop, step) = spec.default_experiment();
             w.create_element("DefaultExperiment")
@@ -120,44 +84,97 @@ fn write(spec: &ModelSpec) -> io::Result<String> {
                     }
                     Ok(())
                 })?;
-            // ScalarVariable indices (1-based) of the outputs and of the parameters.
-            let indices = |c: Causality| -> Vec<usize> {
-                vars.iter()
-                    .enumerate()
-                    .filter(|(_, v)| v.causality == c)
-                    .map(|(i, _)| i + 1)
-                    .collect()
-            };
-            let outputs = indices(Causality::Output);
-            let parameters = indices(Causality::Parameter)
-                .iter()
-                .map(usize::to_string)
-                .collect::<Vec<_>>()
-                .join(" ");
-            // No input feeds through: an output at a communication point depends on the inputs
-            // held during the steps before it, never on the current ones (dependencies="").
-            // In Initialization Mode the outputs are computed from the parameters only.
-            w.create_element("ModelStructure")
-                .write_inner_content(|w| {
-                    for (list, deps) in [("Outputs", ""), ("InitialUnknowns", parameters.as_str())]
-                    {
-                        w.create_element(list).write_inner_content(|w| {
-                            for i in &outputs {
-                                w.create_element("Unknown")
-                                    .with_attribute(("index", i.to_string().as_str()))
-                                    .with_attribute(("dependencies", deps))
-                                    .write_empty()?;
-                            }
-                            Ok(())
-                        })?;
-                    }
-                    Ok(())
-                })?;
+            write_model_structure(w, vars)?;
             Ok(())
         })?;
     let mut text = String::from_utf8(w.into_inner()).map_err(io::Error::other)?;
     text.push('\n');
     Ok(text)
+}
+
+/// The `CoSimulation` element: the capabilities of the FMI 2.0 co-simulation interface.
+fn write_cosimulation(w: &mut Writer<Vec<u8>>, spec: &ModelSpec) -> io::Result<()> {
+    w.create_element("CoSimulation")
+        .with_attribute(("modelIdentifier", spec.identifier()))
+        .with_attribute(("needsExecutionTool", "false"))
+        .with_attribute(("canHandleVariableCommunicationStepSize", "true"))
+        .with_attribute(("canInterpolateInputs", "false"))
+        .with_attribute(("maxOutputDerivativeOrder", "0"))
+        .with_attribute(("canRunAsynchronuously", "false"))
+        .with_attribute(("canBeInstantiatedOnlyOncePerProcess", "false"))
+        .with_attribute(("canNotUseMemoryManagementFunctions", "true"))
+        .with_attribute(("canGetAndSetFMUstate", "true"))
+        .with_attribute(("canSerializeFMUstate", "true"))
+        .with_attribute(("providesDirectionalDerivative", "false"))
+        .write_empty()?;
+    Ok(())
+}
+
+/// `TypeDefinitions` of the Enumerations `used` (none at all when there are none: the schema
+/// needs at least one type in the element).
+fn write_type_definitions(w: &mut Writer<Vec<u8>>, used: &[&&EnumType]) -> io::Result<()> {
+    if !used.is_empty() {
+        w.create_element("TypeDefinitions")
+            .write_inner_content(|w| {
+                for e in used {
+                    w.create_element("SimpleType")
+                        .with_attribute(("name", e.name))
+                        .with_attribute(("description", e.description))
+                        .write_inner_content(|w| {
+                            w.create_element("Enumeration").write_inner_content(|w| {
+                                for (k, (name, d)) in e.items.iter().enumerate() {
+                                    w.create_element("Item")
+                                        .with_attribute(("name", *name))
+                                        .with_attribute(("value", k.to_string().as_str()))
+                                        .with_attribute(("description", *d))
+                                        .write_empty()?;
+                                }
+                                Ok(())
+                            })?;
+                            Ok(())
+                        })?;
+                }
+                Ok(())
+            })?;
+    }
+    Ok(())
+}
+
+/// `ModelStructure`: every output, none of which feeds through from an input.
+fn write_model_structure(w: &mut Writer<Vec<u8>>, vars: &[Var]) -> io::Result<()> {
+    // ScalarVariable indices (1-based) of the outputs and of the parameters.
+    let indices = |c: Causality| -> Vec<usize> {
+        vars.iter()
+            .enumerate()
+            .filter(|(_, v)| v.causality == c)
+            .map(|(i, _)| i + 1)
+            .collect()
+    };
+    let outputs = indices(Causality::Output);
+    let parameters = indices(Causality::Parameter)
+        .iter()
+        .map(usize::to_string)
+        .collect::<Vec<_>>()
+        .join(" ");
+    // No input feeds through: an output at a communication point depends on the inputs
+    // held during the steps before it, never on the current ones (dependencies="").
+    // In Initialization Mode the outputs are computed from the parameters only.
+    w.create_element("ModelStructure")
+        .write_inner_content(|w| {
+            for (list, deps) in [("Outputs", ""), ("InitialUnknowns", parameters.as_str())] {
+                w.create_element(list).write_inner_content(|w| {
+                    for i in &outputs {
+                        w.create_element("Unknown")
+                            .with_attribute(("index", i.to_string().as_str()))
+                            .with_attribute(("dependencies", deps))
+                            .write_empty()?;
+                    }
+                    Ok(())
+                })?;
+            }
+            Ok(())
+        })?;
+    Ok(())
 }
 
 /// `UnitDefinitions` (the same in FMI 2.0 and 3.0).

@@ -8,8 +8,8 @@
 //! to the structural parameter; `ModelStructure` by value reference; the instantiation token is
 //! the model's GUID (the FMU's library accepts the same token through either interface).
 
-use crate::vars::fmi3::{Extra, extras, state_slots};
-use crate::vars::{Causality, ENUM_TYPES, ModelSpec, TABLE_DATE, Type, Var};
+use crate::vars::fmi3::{Extra, Var3, extras, state_slots};
+use crate::vars::{Causality, ENUM_TYPES, EnumType, ModelSpec, TABLE_DATE, Type, Var};
 use crate::xml::{fmt_f64, write_log_categories, write_units};
 use quick_xml::Writer;
 use quick_xml::events::{BytesDecl, Event};
@@ -47,46 +47,9 @@ fn write(spec: &ModelSpec) -> io::Result<String> {
         .with_attribute(("generationDateAndTime", TABLE_DATE))
         .with_attribute(("variableNamingConvention", "flat"))
         .write_inner_content(|w| {
-            w.create_element("CoSimulation")
-                .with_attribute(("modelIdentifier", spec.identifier()))
-                .with_attribute(("needsExecutionTool", "false"))
-                .with_attribute(("canBeInstantiatedOnlyOncePerProcess", "false"))
-                .with_attribute(("canGetAndSetFMUState", "true"))
-                .with_attribute(("canSerializeFMUState", "true"))
-                .with_attribute(("providesDirectionalDerivatives", "false"))
-                .with_attribute(("providesAdjointDerivatives", "false"))
-                .with_attribute(("providesPerElementDependencies", "false"))
-                .with_attribute(("canHandleVariableCommunicationStepSize", "true"))
-                .with_attribute(("maxOutputDerivativeOrder", "0"))
-                .with_attribute(("providesIntermediateUpdate", "false"))
-                .with_attribute(("mightReturnEarlyFromDoStep", "false"))
-                .with_attribute(("canReturnEarlyAfterIntermediateUpdate", "false"))
-                .with_attribute(("hasEventMode", "false"))
-                .with_attribute(("providesEvaluateDiscreteStates", "false"))
-                .write_empty()?;
+            write_cosimulation(w, spec)?;
             write_units(w)?;
-            // The schema needs at least one type in TypeDefinitions (the guidance FMU has none).
-            if !used_enums.is_empty() {
-                w.create_element("TypeDefinitions")
-                    .write_inner_content(|w| {
-                        for e in &used_enums {
-                            w.create_element("EnumerationType")
-                                .with_attribute(("name", e.name))
-                                .with_attribute(("description", e.description))
-                                .write_inner_content(|w| {
-                                    for (k, (name, d)) in e.items.iter().enumerate() {
-                                        w.create_element("Item")
-                                            .with_attribute(("name", *name))
-                                            .with_attribute(("value", k.to_string().as_str()))
-                                            .with_attribute(("description", *d))
-                                            .write_empty()?;
-                                    }
-                                    Ok(())
-                                })?;
-                        }
-                        Ok(())
-                    })?;
-            }
+            write_type_definitions(w, &used_enums)?;
             write_log_categories(w)?;
             let (start, stop, step) = spec.default_experiment();
             w.create_element("DefaultExperiment")
@@ -101,78 +64,145 @@ fn write(spec: &ModelSpec) -> io::Result<String> {
                         write_var(w, v)?;
                     }
                     for v in &x {
-                        let vr = v.vr.to_string();
-                        let (element, causality, variability) = match v.extra {
-                            Extra::Time => ("Float64", "independent", "continuous"),
-                            Extra::Slots => ("UInt64", "structuralParameter", "fixed"),
-                            _ => ("Float64", "output", "discrete"),
-                        };
-                        let mut e = w
-                            .create_element(element)
-                            .with_attribute(("name", v.name))
-                            .with_attribute(("valueReference", vr.as_str()))
-                            .with_attribute(("description", v.description))
-                            .with_attribute(("causality", causality))
-                            .with_attribute(("variability", variability));
-                        if v.extra == Extra::Time {
-                            e = e.with_attribute(("unit", "s"));
-                        }
-                        let start = slots.to_string();
-                        if v.extra == Extra::Slots {
-                            e = e.with_attribute(("start", start.as_str()));
-                        }
-                        match (v.is_array(), slots_vr) {
-                            (true, Some(d)) => {
-                                let d = d.to_string();
-                                let dims = if v.extra == Extra::Covariance { 2 } else { 1 };
-                                e.write_inner_content(|w| {
-                                    for _ in 0..dims {
-                                        w.create_element("Dimension")
-                                            .with_attribute(("valueReference", d.as_str()))
-                                            .write_empty()?;
-                                    }
-                                    Ok(())
-                                })?;
-                            }
-                            _ => {
-                                e.write_empty()?;
-                            }
-                        }
+                        write_extra(w, v, slots, slots_vr)?;
                     }
                     Ok(())
                 })?;
-            // Value references of the outputs and of the parameters. No input feeds through
-            // (dependencies=""); in Initialization Mode the outputs follow from the parameters.
-            let mut outputs: Vec<u32> = vars
-                .iter()
-                .filter(|v| v.causality == Causality::Output)
-                .map(|v| v.vr)
-                .collect();
-            outputs.extend(x.iter().filter(|v| v.is_array()).map(|v| v.vr));
-            let parameters = vars
-                .iter()
-                .filter(|v| v.causality == Causality::Parameter)
-                .map(|v| v.vr.to_string())
-                .collect::<Vec<_>>()
-                .join(" ");
-            w.create_element("ModelStructure")
-                .write_inner_content(|w| {
-                    for (element, deps) in [("Output", ""), ("InitialUnknown", parameters.as_str())]
-                    {
-                        for vr in &outputs {
-                            w.create_element(element)
-                                .with_attribute(("valueReference", vr.to_string().as_str()))
-                                .with_attribute(("dependencies", deps))
-                                .write_empty()?;
-                        }
-                    }
-                    Ok(())
-                })?;
+            write_model_structure(w, vars, &x)?;
             Ok(())
         })?;
     let mut text = String::from_utf8(w.into_inner()).map_err(io::Error::other)?;
     text.push('\n');
     Ok(text)
+}
+
+/// The `CoSimulation` element: the capabilities of the FMI 3.0 co-simulation interface.
+fn write_cosimulation(w: &mut Writer<Vec<u8>>, spec: &ModelSpec) -> io::Result<()> {
+    w.create_element("CoSimulation")
+        .with_attribute(("modelIdentifier", spec.identifier()))
+        .with_attribute(("needsExecutionTool", "false"))
+        .with_attribute(("canBeInstantiatedOnlyOncePerProcess", "false"))
+        .with_attribute(("canGetAndSetFMUState", "true"))
+        .with_attribute(("canSerializeFMUState", "true"))
+        .with_attribute(("providesDirectionalDerivatives", "false"))
+        .with_attribute(("providesAdjointDerivatives", "false"))
+        .with_attribute(("providesPerElementDependencies", "false"))
+        .with_attribute(("canHandleVariableCommunicationStepSize", "true"))
+        .with_attribute(("maxOutputDerivativeOrder", "0"))
+        .with_attribute(("providesIntermediateUpdate", "false"))
+        .with_attribute(("mightReturnEarlyFromDoStep", "false"))
+        .with_attribute(("canReturnEarlyAfterIntermediateUpdate", "false"))
+        .with_attribute(("hasEventMode", "false"))
+        .with_attribute(("providesEvaluateDiscreteStates", "false"))
+        .write_empty()?;
+    Ok(())
+}
+
+/// `TypeDefinitions` of the Enumerations `used` (none at all when there are none: the schema
+/// needs at least one type in the element).
+fn write_type_definitions(w: &mut Writer<Vec<u8>>, used: &[&&EnumType]) -> io::Result<()> {
+    if !used.is_empty() {
+        w.create_element("TypeDefinitions")
+            .write_inner_content(|w| {
+                for e in used {
+                    w.create_element("EnumerationType")
+                        .with_attribute(("name", e.name))
+                        .with_attribute(("description", e.description))
+                        .write_inner_content(|w| {
+                            for (k, (name, d)) in e.items.iter().enumerate() {
+                                w.create_element("Item")
+                                    .with_attribute(("name", *name))
+                                    .with_attribute(("value", k.to_string().as_str()))
+                                    .with_attribute(("description", *d))
+                                    .write_empty()?;
+                            }
+                            Ok(())
+                        })?;
+                }
+                Ok(())
+            })?;
+    }
+    Ok(())
+}
+
+/// One FMI 3.0-only variable: `time`, the structural parameter (its start the model's `slots`),
+/// or an array whose dimensions refer to the structural parameter (value reference `slots_vr`).
+fn write_extra(
+    w: &mut Writer<Vec<u8>>,
+    v: &Var3,
+    slots: usize,
+    slots_vr: Option<u32>,
+) -> io::Result<()> {
+    let vr = v.vr.to_string();
+    let (element, causality, variability) = match v.extra {
+        Extra::Time => ("Float64", "independent", "continuous"),
+        Extra::Slots => ("UInt64", "structuralParameter", "fixed"),
+        _ => ("Float64", "output", "discrete"),
+    };
+    let mut e = w
+        .create_element(element)
+        .with_attribute(("name", v.name))
+        .with_attribute(("valueReference", vr.as_str()))
+        .with_attribute(("description", v.description))
+        .with_attribute(("causality", causality))
+        .with_attribute(("variability", variability));
+    if v.extra == Extra::Time {
+        e = e.with_attribute(("unit", "s"));
+    }
+    let start = slots.to_string();
+    if v.extra == Extra::Slots {
+        e = e.with_attribute(("start", start.as_str()));
+    }
+    match (v.is_array(), slots_vr) {
+        (true, Some(d)) => {
+            let d = d.to_string();
+            let dims = if v.extra == Extra::Covariance { 2 } else { 1 };
+            e.write_inner_content(|w| {
+                for _ in 0..dims {
+                    w.create_element("Dimension")
+                        .with_attribute(("valueReference", d.as_str()))
+                        .write_empty()?;
+                }
+                Ok(())
+            })?;
+        }
+        _ => {
+            e.write_empty()?;
+        }
+    }
+    Ok(())
+}
+
+/// `ModelStructure` by value reference: every output and array, none of which feeds through from
+/// an input.
+fn write_model_structure(w: &mut Writer<Vec<u8>>, vars: &[Var], x: &[Var3]) -> io::Result<()> {
+    // Value references of the outputs and of the parameters. No input feeds through
+    // (dependencies=""); in Initialization Mode the outputs follow from the parameters.
+    let mut outputs: Vec<u32> = vars
+        .iter()
+        .filter(|v| v.causality == Causality::Output)
+        .map(|v| v.vr)
+        .collect();
+    outputs.extend(x.iter().filter(|v| v.is_array()).map(|v| v.vr));
+    let parameters = vars
+        .iter()
+        .filter(|v| v.causality == Causality::Parameter)
+        .map(|v| v.vr.to_string())
+        .collect::<Vec<_>>()
+        .join(" ");
+    w.create_element("ModelStructure")
+        .write_inner_content(|w| {
+            for (element, deps) in [("Output", ""), ("InitialUnknown", parameters.as_str())] {
+                for vr in &outputs {
+                    w.create_element(element)
+                        .with_attribute(("valueReference", vr.to_string().as_str()))
+                        .with_attribute(("dependencies", deps))
+                        .write_empty()?;
+                }
+            }
+            Ok(())
+        })?;
+    Ok(())
 }
 
 /// The FMI 3.0 element of a scalar of the shared table.

@@ -5,12 +5,12 @@
 mod common;
 
 use common::{Inst, callbacks};
-use mars_entry_nav::ffi::*;
-use mars_entry_nav::limits::{
+use entrynav_fmu::ffi::*;
+use entrynav_fmu::limits::{
     MAX_CATEGORIES, MAX_SNAPSHOTS, MAX_STATE_BYTES, MAX_STRING_BYTES, MAX_STRING_REFS,
     MAX_VALUE_REFS,
 };
-use mars_entry_nav::vars::{Key, Model};
+use entrynav_fmu::vars::{Key, Model};
 use std::ffi::{CString, c_char, c_int, c_void};
 use std::sync::Mutex;
 
@@ -147,7 +147,7 @@ fn a_call_on_a_busy_instance_is_refused_with_a_logged_reason() {
     cb.component_environment = &*log as *const Log as *mut c_void;
     let (name, guid) = (
         CString::new("busy").unwrap(),
-        CString::new(mars_entry_nav::guid_of(Model::Truth)).unwrap(),
+        CString::new(entrynav_fmu::guid_of(Model::Truth)).unwrap(),
     );
     // SAFETY: valid arguments; logging on so that the initialisation logs an event.
     let c =
@@ -238,7 +238,7 @@ fn every_size_like_argument_is_bounded_before_it_is_used() {
         }
         let log = Mutex::new(Vec::new());
         let cb = callbacks(&log);
-        let guid = CString::new(mars_entry_nav::guid_of(Model::Combined)).unwrap();
+        let guid = CString::new(entrynav_fmu::guid_of(Model::Combined)).unwrap();
         assert!(
             fmi2Instantiate(long.as_ptr(), 1, guid.as_ptr(), std::ptr::null(), &cb, 0, 0).is_null()
         );

@@ -2,9 +2,9 @@
 //! (proptest) in which every illegal call must be answered with fmi2Error and nothing may panic
 //! through the boundary.
 
-use mars_entry_nav::ffi::*;
-use mars_entry_nav::vars::{Causality, Key, Model, Type, variables};
-use mars_entry_nav::{guid_of, model_description};
+use entrynav_fmu::ffi::*;
+use entrynav_fmu::vars::{Causality, Key, Model, Type, variables};
+use entrynav_fmu::{guid_of, model_description};
 use proptest::prelude::*;
 use std::ffi::{CStr, CString, c_char, c_int, c_void};
 use std::sync::Mutex;
@@ -382,7 +382,7 @@ fn filter_fmu_bank_input_reaches_the_filter_and_is_restored() {
     use entrynav::scenario::{Scenario, ScenarioConfig};
     use entrynav::sensors::MeasurementEpoch;
     use entrynav::sim::engine::{Navigator, TruthSensors};
-    use mars_entry_nav::vars::Slot;
+    use entrynav_fmu::vars::Slot;
     use std::sync::Arc;
 
     let (name, filter, seed) = ("msl-pressure", "ekf", 3u64);

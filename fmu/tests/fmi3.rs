@@ -3,10 +3,10 @@
 //! (Enumerations through Int64, nValues), the state machine and its messages in FMI 3.0 terms,
 //! the refused capabilities, and FMU states.
 
-use mars_entry_nav::ffi::*;
-use mars_entry_nav::guid_of;
-use mars_entry_nav::vars::fmi3::extras;
-use mars_entry_nav::vars::{Key, Model, ModelSpec, variables};
+use entrynav_fmu::ffi::*;
+use entrynav_fmu::guid_of;
+use entrynav_fmu::vars::fmi3::extras;
+use entrynav_fmu::vars::{Key, Model, ModelSpec, variables};
 use std::ffi::{CStr, CString, c_char, c_int, c_void};
 use std::sync::Mutex;
 
@@ -115,7 +115,7 @@ fn an_fmi3_run_equals_the_fmi2_run_bit_for_bit_and_the_arrays_hold_the_scalars()
     let vars = variables(model);
     let reals: Vec<u32> = vars
         .iter()
-        .filter(|v| v.ty == mars_entry_nav::vars::Type::Real)
+        .filter(|v| v.ty == entrynav_fmu::vars::Type::Real)
         .map(|v| v.vr)
         .collect();
     let v2 = common::Inst::new(model);

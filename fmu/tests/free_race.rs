@@ -6,9 +6,9 @@
 mod common;
 
 use common::callbacks;
-use mars_entry_nav::ffi::*;
-use mars_entry_nav::guid_of;
-use mars_entry_nav::vars::{Key, Model, variables};
+use entrynav_fmu::ffi::*;
+use entrynav_fmu::guid_of;
+use entrynav_fmu::vars::{Key, Model, variables};
 use std::ffi::{CString, c_char, c_int, c_void};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};

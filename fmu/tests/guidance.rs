@@ -7,8 +7,8 @@ mod common;
 use common::Inst;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::sim::guided_run::{GuidedStep, fly_with_filter_recorded};
-use mars_entry_nav::vars::guided_scenario_toml;
-use mars_entry_nav::vars::{GUIDED_SCENARIO_FILE, Key, Model, Slot, guided_scenario};
+use entrynav_fmu::vars::guided_scenario_toml;
+use entrynav_fmu::vars::{GUIDED_SCENARIO_FILE, Key, Model, Slot, guided_scenario};
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -242,7 +242,7 @@ fn the_bank_does_not_depend_on_the_communication_grid() {
 
 #[test]
 fn an_fmu_state_taken_mid_flight_replays_the_rest_bit_for_bit() {
-    use mars_entry_nav::ffi::{fmi2FreeFMUstate, fmi2GetFMUstate, fmi2SetFMUstate};
+    use entrynav_fmu::ffi::{fmi2FreeFMUstate, fmi2GetFMUstate, fmi2SetFMUstate};
     let (steps, dt) = core_run(28);
     let i = guidance("state");
     assert_eq!(i.init(), [0, 0, 0]);
@@ -272,7 +272,7 @@ fn an_fmu_state_taken_mid_flight_replays_the_rest_bit_for_bit() {
 
 mod random {
     use super::*;
-    use mars_entry_nav::vars::{Causality, Type, variables};
+    use entrynav_fmu::vars::{Causality, Type, variables};
     use proptest::prelude::*;
 
     /// A value in the flight envelope, at its edges, beyond them, or not finite.

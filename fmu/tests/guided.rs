@@ -7,9 +7,7 @@ mod common;
 use common::Inst;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::sim::guided_run::{Delivery, GuidedStep, fly_with_filter_recorded};
-use mars_entry_nav::vars::{
-    GUIDED_SCENARIO_FILE, Key, Model, guided_scenario, guided_scenario_toml,
-};
+use entrynav_fmu::vars::{GUIDED_SCENARIO_FILE, Key, Model, guided_scenario, guided_scenario_toml};
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -163,7 +161,7 @@ fn refuses_a_scenario_without_guidance_and_a_run_out_of_range() {
 
 #[test]
 fn an_fmu_state_taken_mid_flight_delivers_the_same_vehicle_again() {
-    use mars_entry_nav::ffi::{fmi2FreeFMUstate, fmi2GetFMUstate, fmi2SetFMUstate};
+    use entrynav_fmu::ffi::{fmi2FreeFMUstate, fmi2GetFMUstate, fmi2SetFMUstate};
     let (d, _, _) = core_run(5, 2);
     let i = guided("state");
     assert_eq!(i.set_int(Key::Seed, 5), 0);

@@ -2,8 +2,8 @@
 //! (FMI 3.0) are exactly what the variable table generates.
 //! Regenerate them with `ENTRYNAV_BLESS=1 cargo test -p entrynav-fmu --test model_description`.
 
-use mars_entry_nav::xml::{committed_file_name, model_description};
-use mars_entry_nav::{Model, ModelSpec, description3_of, guid_of};
+use entrynav_fmu::xml::{committed_file_name, model_description};
+use entrynav_fmu::{Model, ModelSpec, description3_of, guid_of};
 use std::path::PathBuf;
 
 #[test]

@@ -11,8 +11,8 @@ mod common;
 use common::Inst;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{BUILTIN_NAMES, Scenario, ScenarioConfig};
-use mars_entry_nav::ffi::*;
-use mars_entry_nav::vars::{Causality, Key, Model, Type, Var, variables};
+use entrynav_fmu::ffi::*;
+use entrynav_fmu::vars::{Causality, Key, Model, Type, Var, variables};
 use std::ffi::c_int;
 
 fn scenario(name: &str) -> Scenario {

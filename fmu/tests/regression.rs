@@ -10,7 +10,7 @@ mod common;
 use common::Inst;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{BUILTIN_NAMES, Scenario, ScenarioConfig};
-use mars_entry_nav::vars::{Key, Model};
+use entrynav_fmu::vars::{Key, Model};
 
 /// The first built-in scenario `kind` fits.
 fn scenario_for(kind: FilterKind) -> &'static str {

@@ -489,7 +489,7 @@ def fmu_pack(out: Union[str, Path], scenario: Optional[Union[Scenario, str]] = N
              fmi: int = 2, library: Optional[Union[str, Path]] = None) -> List[Path]:
     """`entrynav fmu pack`: the FMUs into `out` (FMI 2.0, or 3.0 with `fmi=3`); with `scenario`
     the combined FMU specific to it. `library` is the FMU shared library
-    (target/release/libmars_entry_nav.so; default $ENTRYNAV_FMU_LIB). Returns the .fmu paths."""
+    (target/release/libentrynav_fmu.so; default $ENTRYNAV_FMU_LIB). Returns the .fmu paths."""
     import time
 
     out = Path(out)
@@ -497,7 +497,7 @@ def fmu_pack(out: Union[str, Path], scenario: Optional[Union[Scenario, str]] = N
     args: List[Any] = ["fmu", "pack", "--out", out, "--fmi", fmi]
     lib = library or os.environ.get("ENTRYNAV_FMU_LIB")
     if lib is None:
-        raise ValueError("fmu_pack needs library= (target/release/libmars_entry_nav.so) or $ENTRYNAV_FMU_LIB")
+        raise ValueError("fmu_pack needs library= (target/release/libentrynav_fmu.so) or $ENTRYNAV_FMU_LIB")
     args += ["--lib", lib]
     if scenario is not None:
         with _ScenarioFile(scenario) as sc:

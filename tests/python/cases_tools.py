@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fmu_helpers import COMBINED, ENTRYNAV, FILTER, TRUTH, bank_profile, beacon2, variables
+from fmu_helpers import COMBINED, ENTRYNAV_DEV, FILTER, TRUTH, bank_profile, beacon2, variables
 
 def case_fmpy_simulate():
     from fmpy import simulate_fmu
@@ -38,7 +38,7 @@ def case_fmpy_simulate():
         )
         wall = time.perf_counter() - t0
         ref_csv = tmp / "ref.csv"
-        cmd = [str(ENTRYNAV), "fmu", "run", "--model", "MarsEntryNav", "--stop", "300", "--step", "1",
+        cmd = [str(ENTRYNAV_DEV), "fmu", "run", "--model", "MarsEntryNav", "--stop", "300", "--step", "1",
                "--input", str(csv), "--out", str(ref_csv)]
         cmd += [arg for k, v in params.items() for arg in ("--set", f"{k}={str(v).lower() if isinstance(v, bool) else v}")]
         subprocess.run(cmd, check=True, timeout=120)
@@ -150,7 +150,7 @@ def case_libcosim():
     try:
         ref_csv = tmp / "ref.csv"
         subprocess.run(
-            [str(ENTRYNAV), "fmu", "run", "--model", "MarsEntryNav", "--stop", str(steps), "--step", "1",
+            [str(ENTRYNAV_DEV), "fmu", "run", "--model", "MarsEntryNav", "--stop", str(steps), "--step", "1",
              "--set", "seed=4", "--set", "dispersed=true", "--set", "filter=dcifaif", "--out", str(ref_csv)],
             check=True,
             timeout=120,

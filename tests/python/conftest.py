@@ -9,6 +9,8 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 FMU_DIR = Path(os.environ.get("ENTRYNAV_FMU_DIR", ROOT / "target" / "fmu"))
 ENTRYNAV = Path(os.environ.get("ENTRYNAV_BIN", ROOT / "target" / "release" / "entrynav"))
+# The developer tools (fmu check, fuzz, run, cross-check): built with the workspace, not shipped.
+ENTRYNAV_DEV = Path(os.environ.get("ENTRYNAV_DEV_BIN", ROOT / "target" / "release" / "entrynav-dev"))
 VENV_BIN = ROOT / ".venv" / "bin"
 MODELS = ["MarsEntryNav", "MarsEntryNavFilter", "MarsEntryTruth"]
 

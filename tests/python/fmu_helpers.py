@@ -11,6 +11,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[2]
 FMU_DIR = Path(os.environ.get("ENTRYNAV_FMU_DIR", ROOT / "target" / "fmu"))
 ENTRYNAV = Path(os.environ.get("ENTRYNAV_BIN", ROOT / "target" / "release" / "entrynav"))
+ENTRYNAV_DEV = Path(os.environ.get("ENTRYNAV_DEV_BIN", ROOT / "target" / "release" / "entrynav-dev"))
 VENV_BIN = ROOT / ".venv" / "bin"
 COMBINED = FMU_DIR / "MarsEntryNav.fmu"
 FILTER = FMU_DIR / "MarsEntryNavFilter.fmu"

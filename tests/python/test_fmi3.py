@@ -19,7 +19,7 @@ from fmpy import extract
 from fmpy.validation import validate_fmu
 
 import test_fmusim
-from conftest import ENTRYNAV, FMU_DIR, MODELS, run
+from conftest import ENTRYNAV, ENTRYNAV_DEV, FMU_DIR, MODELS, run
 
 PARAMS = {"seed": 4, "dispersed": True}
 
@@ -166,7 +166,7 @@ def test_fmi3_cross_check_files_pass_fmpy(fmus3, tmp_path):
     from fmpy.util import read_ref_opt_file
 
     out = tmp_path / "xc3"
-    r = run([ENTRYNAV, "fmu", "cross-check", "--out", out, *fmus3.values()], timeout=600)
+    r = run([ENTRYNAV_DEV, "fmu", "cross-check", "--out", out, *fmus3.values()], timeout=600)
     assert r.returncode == 0, r.stdout + r.stderr
     n_fmus, _, problems = validate_repo(str(out))
     assert n_fmus == 3 and problems == [], problems

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import ENTRYNAV, MODELS, ROOT, VENV_BIN, run
+from conftest import ENTRYNAV_DEV, MODELS, ROOT, VENV_BIN, run
 
 HERE = Path(__file__).resolve().parent
 
@@ -136,7 +136,7 @@ def test_external_tool_case(fmus, case):
 
 @pytest.mark.parametrize("model", MODELS)
 def test_host_check_bitwise(fmus, model):
-    out = run([ENTRYNAV, "fmu", "check", fmus[model]], timeout=600)
+    out = run([ENTRYNAV_DEV, "fmu", "check", fmus[model]], timeout=600)
     print(out.stdout)
     assert out.returncode == 0, out.stdout + out.stderr
     assert "bitwise identical" in out.stdout
@@ -146,8 +146,8 @@ def test_host_check_bitwise(fmus, model):
 def test_host_fuzz_random_call_sequences(fmus, model):
     """100,000 random calls per FMU through our host (huge and tiny steps, every size-like
     argument past its bound): every illegal or refused call answered with fmi2Error, nothing on
-    stderr (no Rust panic message). `entrynav fmu fuzz --calls 5000000` is the long mode."""
-    out = run([ENTRYNAV, "fmu", "fuzz", fmus[model], "--calls", "100000", "--seed", "7"], timeout=600)
+    stderr (no Rust panic message). `entrynav-dev fmu fuzz --calls 5000000` is the long mode."""
+    out = run([ENTRYNAV_DEV, "fmu", "fuzz", fmus[model], "--calls", "100000", "--seed", "7"], timeout=600)
     print(out.stdout)
     assert out.returncode == 0, out.stdout + out.stderr
     assert out.stderr == "", out.stderr

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import ENTRYNAV, ROOT, run
+from conftest import ENTRYNAV_DEV, ROOT, run
 
 FMUSIM = Path(os.environ.get("ENTRYNAV_TOOLS", ROOT.parent / "shared" / "tools")) / "fmusim"
 
@@ -47,7 +47,7 @@ def fmusim(fmu, params, step, stop, tmp_path):
 def reference(model, params, step, stop, tmp_path):
     ref_csv = tmp_path / f"{model}_ref.csv"
     sets = [a for k, v in params.items() for a in ("--set", f"{k}={v}")]
-    r = run([ENTRYNAV, "fmu", "run", "--model", model, "--stop", stop, "--step", step, *sets, "--out", ref_csv])
+    r = run([ENTRYNAV_DEV, "fmu", "run", "--model", model, "--stop", stop, "--step", step, *sets, "--out", ref_csv])
     assert r.returncode == 0, r.stderr
     return np.genfromtxt(ref_csv, delimiter=",", names=True, deletechars="", dtype=np.float64)
 

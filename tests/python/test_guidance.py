@@ -1,7 +1,7 @@
 """MarsEntryGuidance (issue 28) in independent FMI tools, and the guided SSP in OMSimulator.
 
 * fmpy's validator finds no problem in the FMI 2.0 and FMI 3.0 guidance FMUs;
-* the FMI Cross-Check files of the guidance FMU (`entrynav fmu cross-check`: its inputs are what the
+* the FMI Cross-Check files of the guidance FMU (`entrynav-dev fmu cross-check`: its inputs are what the
   in-process guided loop, EKF in the loop, gave its guidance at each 1 s communication point) pass
   fmpy's repository validator, and fmpy (FMI 2.0 and FMI 3.0) and fmusim reproduce the reference
   exactly; the reference itself flies within the 20 deg/s rate limit, reverses the bank and
@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import ENTRYNAV, ROOT, run
+from conftest import ENTRYNAV, ENTRYNAV_DEV, ROOT, run
 
 HERE = Path(__file__).resolve().parent
 FMUSIM = Path(os.environ.get("ENTRYNAV_TOOLS", ROOT.parent / "shared" / "tools")) / "fmusim"
@@ -53,7 +53,7 @@ def packed(tmp_path_factory):
 @pytest.fixture(scope="module")
 def cross_check(packed, tmp_path_factory):
     out = tmp_path_factory.mktemp("guidance_xc")
-    r = run([ENTRYNAV, "fmu", "cross-check", "--out", out, packed / "MarsEntryGuidance.fmu"], timeout=600)
+    r = run([ENTRYNAV_DEV, "fmu", "cross-check", "--out", out, packed / "MarsEntryGuidance.fmu"], timeout=600)
     assert r.returncode == 0, r.stdout + r.stderr
     (model_dir,) = list(out.glob("fmus/2.0/cs/linux64/entrynav/*/MarsEntryGuidance"))
     return out, model_dir

@@ -17,7 +17,7 @@ import math
 import numpy as np
 import pytest
 
-from conftest import ENTRYNAV, run
+from conftest import ENTRYNAV, ENTRYNAV_DEV, run
 from test_fmusim import REASON as FMUSIM_REASON
 from test_fmusim import fmusim
 from test_omsimulator import HAVE_OMS, oms
@@ -110,7 +110,7 @@ def test_omsimulator_delivers_where_guidance_deliver_does(packed, core, tmp_path
 def test_the_guided_fmu_survives_the_host_fuzzer(packed, name):
     """Random call sequences through our host (FMI 2.0 or 3.0): no crash, every status as the fuzz
     model predicts (which knows the guided FMU needs a scenario with [guidance])."""
-    out = run([ENTRYNAV, "fmu", "fuzz", packed / name, "--calls", "50000", "--seed", "3"], timeout=600)
+    out = run([ENTRYNAV_DEV, "fmu", "fuzz", packed / name, "--calls", "50000", "--seed", "3"], timeout=600)
     assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-3000:]
     assert "no crash" in out.stdout + out.stderr
     assert "panicked" not in out.stderr

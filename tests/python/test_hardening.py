@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import ENTRYNAV, MODELS, VENV_BIN, run
+from conftest import ENTRYNAV, ENTRYNAV_DEV, MODELS, VENV_BIN, run
 
 HERE = Path(__file__).resolve().parent
 MIB = 1024 * 1024
@@ -75,12 +75,12 @@ def test_scenario_specific_fmu(specific, tmp_path):
     # No parameter needed: fmpy's default experiment equals the in-process reference, bit for bit.
     res = simulate_fmu(str(specific), output_interval=0.25)
     ref_csv = tmp_path / "ref.csv"
-    r = run([ENTRYNAV, "fmu", "run", "--fmu", specific, "--stop", "350", "--step", "0.25", "--out", ref_csv])
+    r = run([ENTRYNAV_DEV, "fmu", "run", "--fmu", specific, "--stop", "350", "--step", "0.25", "--out", ref_csv])
     assert r.returncode == 0, r.stderr
     ref = np.genfromtxt(ref_csv, delimiter=",", names=True, deletechars="", dtype=np.float64)
     for name in ["est.r", "est.lon", "est_sigma.v", "err.r", "truth_altitude", "nav_status"]:
         assert np.array_equal(np.asarray(res[name], dtype=np.float64), ref[name], equal_nan=True), name
-    r = run([ENTRYNAV, "fmu", "check", specific], timeout=600)
+    r = run([ENTRYNAV_DEV, "fmu", "check", specific], timeout=600)
     assert r.returncode == 0 and "bitwise identical" in r.stdout, r.stdout + r.stderr
     print(r.stdout)
     print(run_case("specific_binding", env=dict(os.environ, ENTRYNAV_SPECIFIC_FMU=str(specific))))
@@ -93,7 +93,7 @@ def test_cross_check_files_pass_fmpy(fmus, specific, tmp_path):
     from fmpy.util import read_ref_opt_file
 
     out = tmp_path / "xc"
-    r = run([ENTRYNAV, "fmu", "cross-check", "--out", out, *fmus.values(), specific], timeout=600)
+    r = run([ENTRYNAV_DEV, "fmu", "cross-check", "--out", out, *fmus.values(), specific], timeout=600)
     assert r.returncode == 0, r.stdout + r.stderr
     n_fmus, _, problems = validate_repo(str(out))
     assert n_fmus == 4 and problems == [], problems

@@ -3,7 +3,7 @@
 output (it drops the step's whole result row) and stops on fmi2Warning from a step.
 
 * each FMU alone, 1 s steps over the default 300 s: no result row lost, and every observed output
-  after every step bitwise equal to the in-process library (`entrynav fmu run`);
+  after every step bitwise equal to the in-process library (`entrynav-dev fmu run`);
 * the truth FMU with a 2 s step (longer than its 1 s sensors) runs to the end, bitwise equal;
 * the split pair connected in OMSimulator (truth measurements into the filter) beside the combined
   FMU: the filter's estimate is the combined FMU's one step late, bitwise;
@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import ENTRYNAV, run
+from conftest import ENTRYNAV, ENTRYNAV_DEV, run
 
 HERE = Path(__file__).resolve().parent
 
@@ -59,7 +59,7 @@ def oms(spec, tmp_path):
 def reference(model, step, stop, params, tmp_path):
     ref_csv = tmp_path / f"{model}_ref.csv"
     sets = [a for k, v in params.items() for a in ("--set", f"{k}={str(v).lower() if isinstance(v, bool) else v}")]
-    r = run([ENTRYNAV, "fmu", "run", "--model", model, "--stop", stop, "--step", step, *sets, "--out", ref_csv])
+    r = run([ENTRYNAV_DEV, "fmu", "run", "--model", model, "--stop", stop, "--step", step, *sets, "--out", ref_csv])
     assert r.returncode == 0, r.stderr
     return np.genfromtxt(ref_csv, delimiter=",", names=True, deletechars="", dtype=np.float64)
 

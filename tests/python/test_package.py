@@ -250,7 +250,7 @@ def test_observe_and_tune_and_a_refused_design_raise_or_return_like_the_cli(tmp_
 
 
 def test_fmu_pack_from_python(tmp_path):
-    lib = ROOT / "target" / "release" / "libmars_entry_nav.so"
+    lib = ROOT / "target" / "release" / "libentrynav_fmu.so"
     paths = entrynav.fmu_pack(tmp_path, fmi=3, library=lib)
     assert [p.name for p in paths] == ["MarsEntryGuidance-fmi3.fmu", "MarsEntryNav-fmi3.fmu", "MarsEntryNavFilter-fmi3.fmu",
                                        "MarsEntryNavGuided-fmi3.fmu", "MarsEntryTruth-fmi3.fmu"]

@@ -1,4 +1,4 @@
-//! Where `entrynav fmu pack` finds the FMU shared library (`libmars_entry_nav.so`, the cdylib of
+//! Where `entrynav fmu pack` finds the FMU shared library (`libentrynav_fmu.so`, the cdylib of
 //! the `entrynav-fmu` crate). `cargo install --path cli` installs only the `entrynav` binary, so
 //! the library is looked for, in this order:
 //!
@@ -15,7 +15,7 @@ use anyhow::Result;
 use std::path::{Path, PathBuf};
 
 /// File name of the FMU library.
-pub(super) const LIB_NAME: &str = "libmars_entry_nav.so";
+pub(super) const LIB_NAME: &str = "libentrynav_fmu.so";
 
 /// Environment variable naming the FMU library.
 pub(super) const LIB_ENV: &str = "ENTRYNAV_FMU_LIB";

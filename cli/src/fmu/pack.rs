@@ -3,15 +3,19 @@
 //! generic FMUs; with `--scenario S` the combined model specific to S, which embeds the scenario
 //! (and the files it refers to) in `resources/` and names its state outputs after its states.
 
-#![allow(non_snake_case)]
-
-use super::*;
+use anyhow::{Context, Result, ensure};
+use clap::Args;
 use entrynav::estimation::nav::FilterKind;
-use mars_entry_nav::ModelSpec;
-use mars_entry_nav::binding::{Binding, patch};
-use mars_entry_nav::{description_of, description3_of};
+use entrynav::scenario::{BUILTIN_NAMES, builtin_toml};
+use entrynav_fmu::ModelSpec;
+use entrynav_fmu::binding::{Binding, patch};
+use entrynav_fmu::vars::Model;
+use entrynav_fmu::{description_of, description3_of};
 use std::cell::RefCell;
+use std::io::Write;
+use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::Arc;
 
 /// Arguments of `entrynav fmu pack`.
 #[derive(Args)]
@@ -20,7 +24,7 @@ pub(super) struct PackArgs {
     #[arg(long, default_value = "target/fmu")]
     out: PathBuf,
     /// The FMU shared library (build it with `cargo build --release -p entrynav-fmu`). Default:
-    /// $ENTRYNAV_FMU_LIB, else libmars_entry_nav.so next to this executable, in ../lib, or in
+    /// $ENTRYNAV_FMU_LIB, else libentrynav_fmu.so next to this executable, in ../lib, or in
     /// the target folder it was built in.
     #[arg(long, visible_alias = "library")]
     lib: Option<PathBuf>,
@@ -100,7 +104,7 @@ fn specific(name: &str, filter: Option<&str>) -> Result<(ModelSpec, Resources)> 
     )?);
     let file = format!(
         "{}.toml",
-        mars_entry_nav::vars::specific_identifier(&src.config.name)
+        entrynav_fmu::vars::specific_identifier(&src.config.name)
     );
     let text = match builtin {
         true => builtin_toml(name.trim()).map(str::to_string),
@@ -115,7 +119,7 @@ fn specific(name: &str, filter: Option<&str>) -> Result<(ModelSpec, Resources)> 
                 .filter(|k| k.misfit(&scenario.onboard).is_none())
                 .collect();
             fits.iter()
-                .find(|k| k.name() == mars_entry_nav::vars::DEFAULT_FILTER)
+                .find(|k| k.name() == entrynav_fmu::vars::DEFAULT_FILTER)
                 .or(fits.first())
                 .copied()
                 .context("no filter fits this scenario")?
@@ -227,7 +231,7 @@ pub(super) fn pack(a: &PackArgs) -> Result<()> {
         let path = write_fmu(&a.out, spec, &so, resources, a.fmi)?;
         // The packed FMU must unpack to the model it was packed for (binding, description and,
         // for a specific FMU, the embedded scenario).
-        let u = entrynav_fmi_host::unpack(&path)
+        let u = entrynav_fmu_archive::open(&path)
             .with_context(|| format!("the packed {} does not check", path.display()))?;
         ensure!(
             u.spec.guid() == spec.guid(),

@@ -17,9 +17,11 @@
 //! level with names `<component>.<variable>`, so a user sets a study in one file. The truth and the
 //! filter must share seed and dispersion (the filter's start is drawn from the truth's seed).
 
-use super::*;
-use mars_entry_nav::vars::{MAX_BEACONS, Var, variables};
+use anyhow::{Context, Result, bail};
+use entrynav_fmu::vars::{Causality, MAX_BEACONS, Model, Type, Value, Var, variables};
 use std::fmt::Write as _;
+use std::io::Write;
+use std::path::{Path, PathBuf};
 
 const SSD_NS: &str = r#"xmlns:ssc="http://ssp-standard.org/SSP1/SystemStructureCommon" xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription""#;
 const SSV_NS: &str = r#"xmlns:ssv="http://ssp-standard.org/SSP1/SystemStructureParameterValues""#;
@@ -170,8 +172,8 @@ fn guided_system() -> Result<SystemSpec> {
         Some("truth"),
         "bank_angle".into(),
     ));
-    let scenario = mars_entry_nav::vars::guided_scenario()?;
-    let file = mars_entry_nav::vars::GUIDED_SCENARIO_FILE;
+    let scenario = entrynav_fmu::vars::guided_scenario()?;
+    let file = entrynav_fmu::vars::GUIDED_SCENARIO_FILE;
     Ok(SystemSpec {
         name: "MarsEntryGuided",
         description: "Mars entry guided in closed loop as three FMUs: truth -> navigation filter -> guidance -> truth bank angle, each transfer one step late",

@@ -1,9 +1,18 @@
 //! The fmi2 functions common to every FMI 2.0 interface: version, logging, instantiation,
 //! experiment set-up, initialisation, termination and reset.
 
-use super::*;
+use super::args::{TextError, slice, text};
+use super::inner::Inner;
+use super::logger::{CLogger, LogFn, c_text};
+use super::registry::status;
+use super::types::{CallbackFunctions, Fmi2Boolean, Fmi2Component, Fmi2Status};
+use super::{binding, panic_hook, registry};
 use crate::instance::resolve_spec;
+use crate::instance::{Instance, LogSink, Operation, Status};
 use crate::limits::{MAX_CATEGORIES, MAX_GUID_BYTES, MAX_LOCATION_BYTES, MAX_STRING_BYTES};
+use std::collections::HashMap;
+use std::ffi::{c_char, c_int};
+use std::sync::Arc;
 
 /// `fmi2GetTypesPlatform`.
 #[unsafe(no_mangle)]
@@ -43,7 +52,7 @@ pub(super) unsafe fn set_debug_logging(
     n: usize,
     categories: *const *const c_char,
 ) -> Fmi2Status {
-    const F: Fmi2 = Fmi2::SetDebugLogging;
+    const F: Operation = Operation::SetDebugLogging;
     status(c, name, |inner| {
         // SAFETY: the master passes `n` category strings (n is bounded first).
         let Some(cats) = (unsafe { slice(categories, n, MAX_CATEGORIES) }) else {
@@ -203,7 +212,7 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
     stop_time_defined: Fmi2Boolean,
     stop_time: f64,
 ) -> Fmi2Status {
-    status(c, Fmi2::SetupExperiment, |i| {
+    status(c, Operation::SetupExperiment, |i| {
         i.inst
             .setup_experiment(start_time, (stop_time_defined != 0).then_some(stop_time))
     })
@@ -215,7 +224,7 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2EnterInitializationMode(c: Fmi2Component) -> Fmi2Status {
-    status(c, Fmi2::EnterInitializationMode, |i| {
+    status(c, Operation::EnterInitializationMode, |i| {
         i.inst.enter_initialization_mode()
     })
 }
@@ -226,7 +235,7 @@ pub unsafe extern "C" fn fmi2EnterInitializationMode(c: Fmi2Component) -> Fmi2St
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2ExitInitializationMode(c: Fmi2Component) -> Fmi2Status {
-    status(c, Fmi2::ExitInitializationMode, |i| {
+    status(c, Operation::ExitInitializationMode, |i| {
         i.inst.exit_initialization_mode()
     })
 }
@@ -237,7 +246,7 @@ pub unsafe extern "C" fn fmi2ExitInitializationMode(c: Fmi2Component) -> Fmi2Sta
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2Terminate(c: Fmi2Component) -> Fmi2Status {
-    status(c, Fmi2::Terminate, |i| i.inst.terminate())
+    status(c, Operation::Terminate, |i| i.inst.terminate())
 }
 
 /// `fmi2Reset`.
@@ -246,5 +255,5 @@ pub unsafe extern "C" fn fmi2Terminate(c: Fmi2Component) -> Fmi2Status {
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2Reset(c: Fmi2Component) -> Fmi2Status {
-    status(c, Fmi2::Reset, |i| i.inst.reset())
+    status(c, Operation::Reset, |i| i.inst.reset())
 }

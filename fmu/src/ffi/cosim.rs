@@ -1,7 +1,12 @@
 //! Co-simulation: fmi2DoStep, fmi2CancelStep and the status queries; and the capabilities this
 //! FMU does not have (directional derivatives, input derivatives), answered with fmi2Error.
 
-use super::*;
+use super::args::null_arg;
+use super::inner::Inner;
+use super::registry::status;
+use super::types::{Fmi2Boolean, Fmi2Component, Fmi2Status};
+use crate::instance::{Operation, Status};
+use std::ffi::{c_char, c_int};
 
 use crate::instance::{StatusAnswer, StatusType};
 
@@ -19,9 +24,9 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
     _dv_known: *const f64,
     _dv_unknown: *mut f64,
 ) -> Fmi2Status {
-    status(c, Fmi2::GetDirectionalDerivative, |i| {
+    status(c, Operation::GetDirectionalDerivative, |i| {
         i.inst.unsupported(
-            Fmi2::GetDirectionalDerivative,
+            Operation::GetDirectionalDerivative,
             "directional derivatives (providesDirectionalDerivative = false)",
         )
     })
@@ -39,9 +44,9 @@ pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
     _order: *const c_int,
     _value: *const f64,
 ) -> Fmi2Status {
-    status(c, Fmi2::SetRealInputDerivatives, |i| {
+    status(c, Operation::SetRealInputDerivatives, |i| {
         i.inst.unsupported(
-            Fmi2::SetRealInputDerivatives,
+            Operation::SetRealInputDerivatives,
             "input derivatives (canInterpolateInputs = false)",
         )
     })
@@ -59,9 +64,9 @@ pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
     _order: *const c_int,
     _value: *mut f64,
 ) -> Fmi2Status {
-    status(c, Fmi2::GetRealOutputDerivatives, |i| {
+    status(c, Operation::GetRealOutputDerivatives, |i| {
         i.inst.unsupported(
-            Fmi2::GetRealOutputDerivatives,
+            Operation::GetRealOutputDerivatives,
             "output derivatives (maxOutputDerivativeOrder = 0)",
         )
     })
@@ -78,7 +83,7 @@ pub unsafe extern "C" fn fmi2DoStep(
     communication_step_size: f64,
     _no_set_fmu_state_prior: Fmi2Boolean,
 ) -> Fmi2Status {
-    status(c, Fmi2::DoStep, |i| {
+    status(c, Operation::DoStep, |i| {
         i.inst
             .do_step(current_communication_point, communication_step_size)
     })
@@ -90,7 +95,7 @@ pub unsafe extern "C" fn fmi2DoStep(
 /// FMI 2.0 calling conventions.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2CancelStep(c: Fmi2Component) -> Fmi2Status {
-    status(c, Fmi2::CancelStep, |i| i.inst.cancel_step())
+    status(c, Operation::CancelStep, |i| i.inst.cancel_step())
 }
 
 /// A status query: `answer` turns the instance's answer into the value written to `out`.
@@ -131,7 +136,7 @@ pub unsafe extern "C" fn fmi2GetStatus(
     kind: c_int,
     value: *mut Fmi2Status,
 ) -> Fmi2Status {
-    status(c, Fmi2::GetStatus, |i| {
+    status(c, Operation::GetStatus, |i| {
         status_query(i, StatusType::Status, kind, value, |_| None)
     })
 }
@@ -146,7 +151,7 @@ pub unsafe extern "C" fn fmi2GetRealStatus(
     kind: c_int,
     value: *mut f64,
 ) -> Fmi2Status {
-    status(c, Fmi2::GetRealStatus, |i| {
+    status(c, Operation::GetRealStatus, |i| {
         status_query(i, StatusType::Real, kind, value, |a| match a {
             StatusAnswer::Real(t) => Some(t),
             StatusAnswer::Boolean(_) => None,
@@ -164,7 +169,7 @@ pub unsafe extern "C" fn fmi2GetIntegerStatus(
     kind: c_int,
     value: *mut c_int,
 ) -> Fmi2Status {
-    status(c, Fmi2::GetIntegerStatus, |i| {
+    status(c, Operation::GetIntegerStatus, |i| {
         status_query(i, StatusType::Integer, kind, value, |_| None)
     })
 }
@@ -179,7 +184,7 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(
     kind: c_int,
     value: *mut Fmi2Boolean,
 ) -> Fmi2Status {
-    status(c, Fmi2::GetBooleanStatus, |i| {
+    status(c, Operation::GetBooleanStatus, |i| {
         status_query(i, StatusType::Boolean, kind, value, |a| match a {
             StatusAnswer::Boolean(b) => Some(b as Fmi2Boolean),
             StatusAnswer::Real(_) => None,
@@ -197,7 +202,7 @@ pub unsafe extern "C" fn fmi2GetStringStatus(
     kind: c_int,
     value: *mut *const c_char,
 ) -> Fmi2Status {
-    status(c, Fmi2::GetStringStatus, |i| {
+    status(c, Operation::GetStringStatus, |i| {
         status_query(i, StatusType::String, kind, value, |_| None)
     })
 }

@@ -1,7 +1,12 @@
 //! FMU states: get, set, free, serialise and deserialise (snapshots owned by the instance).
 
-use super::*;
+use super::args::{null_arg, slice, slice_mut};
+use super::inner::Inner;
+use super::registry::status;
+use super::types::{Fmi2Component, Fmi2State, Fmi2Status};
+use crate::instance::{Operation, Status};
 use crate::limits::{MAX_SNAPSHOTS, MAX_STATE_BYTES};
+use crate::state::Snapshot;
 
 /// A snapshot pointer owned by this instance (null, foreign and freed pointers are rejected).
 fn known(inner: &Inner, p: Fmi2State) -> bool {
@@ -10,7 +15,12 @@ fn known(inner: &Inner, p: Fmi2State) -> bool {
 
 /// Store `snap` in `*slot` (a state of this instance, overwritten) or in a new state; refused
 /// when the instance already holds [`MAX_SNAPSHOTS`] states.
-fn store_snapshot(inner: &mut Inner, func: Fmi2, slot: &mut Fmi2State, snap: Snapshot) -> Status {
+fn store_snapshot(
+    inner: &mut Inner,
+    func: Operation,
+    slot: &mut Fmi2State,
+    snap: Snapshot,
+) -> Status {
     if known(inner, *slot) {
         if let Some(b) = inner.snapshots.get_mut(&(*slot as usize)) {
             **b = snap;
@@ -50,7 +60,7 @@ pub(super) unsafe fn get_fmu_state(
 ) -> Fmi2Status {
     status(c, name, |i| {
         if state.is_null() {
-            return null_arg(i, Fmi2::GetFMUstate, "FMUstate");
+            return null_arg(i, Operation::GetFMUstate, "FMUstate");
         }
         // SAFETY: non-null pointer to the master's fmi2FMUstate variable.
         let slot = unsafe { &mut *state };
@@ -60,7 +70,7 @@ pub(super) unsafe fn get_fmu_state(
                 .error("fmi2GetFMUstate: *FMUstate is neither NULL nor a state of this instance");
         }
         match i.inst.get_state() {
-            Ok(snap) => store_snapshot(i, Fmi2::GetFMUstate, slot, snap),
+            Ok(snap) => store_snapshot(i, Operation::GetFMUstate, slot, snap),
             Err(s) => s,
         }
     })
@@ -116,11 +126,11 @@ pub(super) unsafe fn free_fmu_state(
     state: *mut Fmi2State,
 ) -> Fmi2Status {
     status(c, name, |i| {
-        if let Err(s) = i.inst.check(Fmi2::FreeFMUstate) {
+        if let Err(s) = i.inst.check(Operation::FreeFMUstate) {
             return s;
         }
         if state.is_null() {
-            return null_arg(i, Fmi2::FreeFMUstate, "FMUstate");
+            return null_arg(i, Operation::FreeFMUstate, "FMUstate");
         }
         // SAFETY: non-null pointer to the master's fmi2FMUstate variable.
         let slot = unsafe { &mut *state };
@@ -162,11 +172,11 @@ pub(super) unsafe fn serialized_size(
     size: *mut usize,
 ) -> Fmi2Status {
     status(c, name, |i| {
-        if let Err(s) = i.inst.check(Fmi2::SerializedFMUstateSize) {
+        if let Err(s) = i.inst.check(Operation::SerializedFMUstateSize) {
             return s;
         }
         if size.is_null() {
-            return null_arg(i, Fmi2::SerializedFMUstateSize, "size");
+            return null_arg(i, Operation::SerializedFMUstateSize, "size");
         }
         if !known(i, state) {
             return i
@@ -207,7 +217,7 @@ pub(super) unsafe fn serialize(
     size: usize,
 ) -> Fmi2Status {
     status(c, name, |i| {
-        if let Err(s) = i.inst.check(Fmi2::SerializeFMUstate) {
+        if let Err(s) = i.inst.check(Operation::SerializeFMUstate) {
             return s;
         }
         if !known(i, state) {
@@ -224,7 +234,7 @@ pub(super) unsafe fn serialize(
         }
         // SAFETY: the master provides `size` writable bytes; only the state's length is touched.
         let Some(out) = (unsafe { slice_mut(bytes, data.len(), MAX_STATE_BYTES) }) else {
-            return null_arg(i, Fmi2::SerializeFMUstate, "serializedState");
+            return null_arg(i, Operation::SerializeFMUstate, "serializedState");
         };
         out[..data.len()].copy_from_slice(&data);
         Status::Ok
@@ -258,7 +268,7 @@ pub(super) unsafe fn deserialize(
     state: *mut Fmi2State,
 ) -> Fmi2Status {
     status(c, name, |i| {
-        if let Err(s) = i.inst.check(Fmi2::DeSerializeFMUstate) {
+        if let Err(s) = i.inst.check(Operation::DeSerializeFMUstate) {
             return s;
         }
         if size > MAX_STATE_BYTES {
@@ -268,10 +278,10 @@ pub(super) unsafe fn deserialize(
         }
         // SAFETY: the master passes `size` readable bytes (bounded above).
         let Some(data) = (unsafe { slice(bytes, size, MAX_STATE_BYTES) }) else {
-            return null_arg(i, Fmi2::DeSerializeFMUstate, "serializedState");
+            return null_arg(i, Operation::DeSerializeFMUstate, "serializedState");
         };
         if state.is_null() {
-            return null_arg(i, Fmi2::DeSerializeFMUstate, "FMUstate");
+            return null_arg(i, Operation::DeSerializeFMUstate, "FMUstate");
         }
         // SAFETY: non-null pointer to the master's fmi2FMUstate variable.
         let slot = unsafe { &mut *state };
@@ -284,9 +294,9 @@ pub(super) unsafe fn deserialize(
             Ok(s) => s,
             Err(e) => return i.inst.error(&format!("fmi2DeSerializeFMUstate: {e}")),
         };
-        if let Err(s) = i.inst.check_snapshot(Fmi2::DeSerializeFMUstate, &snap) {
+        if let Err(s) = i.inst.check_snapshot(Operation::DeSerializeFMUstate, &snap) {
             return s;
         }
-        store_snapshot(i, Fmi2::DeSerializeFMUstate, slot, snap)
+        store_snapshot(i, Operation::DeSerializeFMUstate, slot, snap)
     })
 }

@@ -26,8 +26,10 @@
 //! instance runs or the logger is called, so instances on different threads do not wait on each
 //! other.
 
+use super::inner::Inner;
+use super::logger::CLogger;
 use super::panic_hook;
-use super::{CLogger, Fmi2Component, Inner};
+use super::types::{Fmi2Component, Fmi2Status};
 use crate::instance::Status;
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -168,8 +170,8 @@ pub(super) fn status(
     c: Fmi2Component,
     func: impl std::fmt::Display,
     f: impl FnOnce(&mut Inner) -> Status,
-) -> super::Fmi2Status {
-    with_inst(c, func, Status::Error, f) as super::Fmi2Status
+) -> Fmi2Status {
+    with_inst(c, func, Status::Error, f) as Fmi2Status
 }
 
 /// The number of live instances of this library in the process: instantiated and not yet freed

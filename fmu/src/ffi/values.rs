@@ -1,7 +1,14 @@
 //! fmi2Get* and fmi2Set*: variable values across the C ABI.
 
-use super::*;
+use super::args::{TextError, null_arg, slice, slice_mut, text};
+use super::inner::Inner;
+use super::logger::c_text;
+use super::registry::status;
+use super::types::{Fmi2Boolean, Fmi2Component, Fmi2Status};
+use crate::instance::{Operation, Status};
 use crate::limits::{MAX_STRING_BYTES, MAX_STRING_REFS, MAX_VALUE_REFS};
+use crate::vars::{Type, Value};
+use std::ffi::{CString, c_char, c_int};
 
 fn get_values<T>(
     inner: &mut Inner,
@@ -20,7 +27,7 @@ fn get_values<T>(
     let (Some(vrs), Some(out)) = (unsafe { slice(vr, nvr, max) }, unsafe {
         slice_mut(out, nvr, max)
     }) else {
-        return null_arg(inner, Fmi2::getter(ty), "vr or value");
+        return null_arg(inner, Operation::getter(ty), "vr or value");
     };
     match inner.inst.get(ty, vrs) {
         Ok(values) => {
@@ -48,7 +55,7 @@ pub unsafe extern "C" fn fmi2GetReal(
     nvr: usize,
     value: *mut f64,
 ) -> Fmi2Status {
-    status(c, Fmi2::GetReal, |i| {
+    status(c, Operation::GetReal, |i| {
         get_values(i, Type::Real, vr, nvr, value, |v, _| match v {
             Value::Real(x) => x,
             _ => f64::NAN,
@@ -67,7 +74,7 @@ pub unsafe extern "C" fn fmi2GetInteger(
     nvr: usize,
     value: *mut c_int,
 ) -> Fmi2Status {
-    status(c, Fmi2::GetInteger, |i| {
+    status(c, Operation::GetInteger, |i| {
         get_values(i, Type::Integer, vr, nvr, value, |v, _| match v {
             Value::Integer(x) => x,
             _ => 0,
@@ -86,7 +93,7 @@ pub unsafe extern "C" fn fmi2GetBoolean(
     nvr: usize,
     value: *mut Fmi2Boolean,
 ) -> Fmi2Status {
-    status(c, Fmi2::GetBoolean, |i| {
+    status(c, Operation::GetBoolean, |i| {
         get_values(i, Type::Boolean, vr, nvr, value, |v, _| {
             matches!(v, Value::Boolean(true)) as Fmi2Boolean
         })
@@ -105,7 +112,7 @@ pub unsafe extern "C" fn fmi2GetString(
     nvr: usize,
     value: *mut *const c_char,
 ) -> Fmi2Status {
-    status(c, Fmi2::GetString, |i| {
+    status(c, Operation::GetString, |i| {
         get_values(i, Type::String, vr, nvr, value, |v, store| {
             let s = match v {
                 Value::String(s) => c_text(&s),
@@ -129,7 +136,7 @@ fn set_values<T: Copy>(
     max: usize,
     mut conv: impl FnMut(T) -> Result<Value, TextError>,
 ) -> Status {
-    let func = Fmi2::setter(ty);
+    let func = Operation::setter(ty);
     // SAFETY: the master passes `nvr` references and values (nvr bounded first).
     let (Some(vrs), Some(vals)) = (unsafe { slice(vr, nvr, max) }, unsafe {
         slice(value, nvr, max)
@@ -161,7 +168,7 @@ pub unsafe extern "C" fn fmi2SetReal(
     nvr: usize,
     value: *const f64,
 ) -> Fmi2Status {
-    status(c, Fmi2::SetReal, |i| {
+    status(c, Operation::SetReal, |i| {
         set_values(i, Type::Real, vr, nvr, value, MAX_VALUE_REFS, |x| {
             Ok(Value::Real(x))
         })
@@ -179,7 +186,7 @@ pub unsafe extern "C" fn fmi2SetInteger(
     nvr: usize,
     value: *const c_int,
 ) -> Fmi2Status {
-    status(c, Fmi2::SetInteger, |i| {
+    status(c, Operation::SetInteger, |i| {
         set_values(i, Type::Integer, vr, nvr, value, MAX_VALUE_REFS, |x| {
             Ok(Value::Integer(x))
         })
@@ -197,7 +204,7 @@ pub unsafe extern "C" fn fmi2SetBoolean(
     nvr: usize,
     value: *const Fmi2Boolean,
 ) -> Fmi2Status {
-    status(c, Fmi2::SetBoolean, |i| {
+    status(c, Operation::SetBoolean, |i| {
         set_values(i, Type::Boolean, vr, nvr, value, MAX_VALUE_REFS, |x| {
             Ok(Value::Boolean(x != 0))
         })
@@ -215,7 +222,7 @@ pub unsafe extern "C" fn fmi2SetString(
     nvr: usize,
     value: *const *const c_char,
 ) -> Fmi2Status {
-    status(c, Fmi2::SetString, |i| {
+    status(c, Operation::SetString, |i| {
         set_values(i, Type::String, vr, nvr, value, MAX_STRING_REFS, |p| {
             // SAFETY: each value is null (rejected) or a C string.
             unsafe { text(p, MAX_STRING_BYTES) }.map(|s| Value::String(s.to_string()))

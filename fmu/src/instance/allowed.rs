@@ -58,30 +58,32 @@ const QUERY: Phases = Phases::of(&[StepComplete, Terminated]);
 
 macro_rules! table {
     ($($f:ident => $allowed:expr,)*) => {
-        /// An fmi2 function of the co-simulation interface (the 34 the FMU exports).
+        /// An operation of the instance, named after the fmi2 function of the co-simulation
+        /// interface that performs it (the 34 the FMU exports). An FMI 3.0 function is checked
+        /// as the operation it maps to (`ffi::fmi3::MAPPED`), so one table serves both interfaces.
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-        pub enum Fmi2 {
+        pub enum Operation {
             $(
                 #[doc = concat!("`fmi2", stringify!($f), "`.")]
                 $f,
             )*
         }
 
-        impl Fmi2 {
+        impl Operation {
             /// Every function, in the order of the standard's table.
-            pub const ALL: &[Fmi2] = &[$(Fmi2::$f,)*];
+            pub const ALL: &[Operation] = &[$(Operation::$f,)*];
 
             /// Its C name.
             pub const fn name(self) -> &'static str {
                 match self {
-                    $(Fmi2::$f => concat!("fmi2", stringify!($f)),)*
+                    $(Operation::$f => concat!("fmi2", stringify!($f)),)*
                 }
             }
 
             /// The phases in which it may be called: the table's entry.
             pub const fn allowed(self) -> Phases {
                 match self {
-                    $(Fmi2::$f => $allowed,)*
+                    $(Operation::$f => $allowed,)*
                 }
             }
         }
@@ -125,31 +127,31 @@ table! {
     GetStringStatus => QUERY,
 }
 
-impl Fmi2 {
+impl Operation {
     /// The fmi2Get function of values of type `ty`.
-    pub const fn getter(ty: crate::vars::Type) -> Fmi2 {
+    pub const fn getter(ty: crate::vars::Type) -> Operation {
         use crate::vars::Type;
         match ty {
-            Type::Real => Fmi2::GetReal,
-            Type::Integer => Fmi2::GetInteger,
-            Type::Boolean => Fmi2::GetBoolean,
-            Type::String => Fmi2::GetString,
+            Type::Real => Operation::GetReal,
+            Type::Integer => Operation::GetInteger,
+            Type::Boolean => Operation::GetBoolean,
+            Type::String => Operation::GetString,
         }
     }
 
     /// The fmi2Set function of values of type `ty`.
-    pub const fn setter(ty: crate::vars::Type) -> Fmi2 {
+    pub const fn setter(ty: crate::vars::Type) -> Operation {
         use crate::vars::Type;
         match ty {
-            Type::Real => Fmi2::SetReal,
-            Type::Integer => Fmi2::SetInteger,
-            Type::Boolean => Fmi2::SetBoolean,
-            Type::String => Fmi2::SetString,
+            Type::Real => Operation::SetReal,
+            Type::Integer => Operation::SetInteger,
+            Type::Boolean => Operation::SetBoolean,
+            Type::String => Operation::SetString,
         }
     }
 }
 
-impl std::fmt::Display for Fmi2 {
+impl std::fmt::Display for Operation {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.name())
     }
@@ -213,8 +215,8 @@ mod tests {
 
     #[test]
     fn every_entry_is_the_standards_row_on_the_phases_of_this_fmu() {
-        assert_eq!(Fmi2::ALL.len(), STANDARD.len());
-        for (f, (name, row)) in Fmi2::ALL.iter().zip(STANDARD) {
+        assert_eq!(Operation::ALL.len(), STANDARD.len());
+        for (f, (name, row)) in Operation::ALL.iter().zip(STANDARD) {
             assert_eq!(f.name(), name, "the table is not in the standard's order");
             let row = row.as_bytes();
             assert_eq!(row.len(), 10, "{name}: a row has one mark per state");

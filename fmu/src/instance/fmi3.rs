@@ -2,7 +2,9 @@
 //! FMI 3.0 type rules of its scalar variables (an Enumeration is read and written as `Int64`,
 //! never as `Int32`).
 
-use super::{Fmi2, Instance, Status};
+use super::allowed::Operation;
+use super::machine::Instance;
+use super::status::Status;
 use crate::vars::fmi3::{Extra, Var3, extras, state_slots};
 use crate::vars::{Causality, Key, Type, Value};
 
@@ -143,7 +145,7 @@ impl Instance {
             .iter()
             .any(|r| matches!(r, Ref3::Extra(x) if x.is_array()));
         if needs_engine && self.engine.is_none() && self.ensure_engine().is_err() {
-            let func = Fmi2::getter(scalar_ty);
+            let func = Operation::getter(scalar_ty);
             return Err(self.error(&format!(
                 "{func}: cannot compute outputs (the parameters do not build a run)"
             )));
@@ -205,7 +207,7 @@ impl Instance {
                     let v = vals.next();
                     let ok = match x.extra {
                         Extra::Slots => {
-                            if let Err(s) = self.check(Fmi2::setter(Type::Integer)) {
+                            if let Err(s) = self.check(Operation::setter(Type::Integer)) {
                                 return s;
                             }
                             // Fixed variability: settable until initialisation ends, as the
@@ -235,7 +237,7 @@ impl Instance {
             }
         }
         if scalar_vrs.is_empty() {
-            return match self.check(Fmi2::setter(scalar_ty)) {
+            return match self.check(Operation::setter(scalar_ty)) {
                 Ok(()) => Status::Ok,
                 Err(s) => s,
             };

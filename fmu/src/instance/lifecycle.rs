@@ -2,7 +2,9 @@
 //! against its entry of the allowed-state table, [`super::allowed`]), fmi2DoStep and the status
 //! queries.
 
-use super::{Fmi2, Instance, Status};
+use super::allowed::Operation;
+use super::machine::Instance;
+use super::status::Status;
 use crate::limits::MAX_CATEGORIES;
 use crate::state::{Phase, StepRecord};
 use crate::xml::LOG_CATEGORIES;
@@ -27,13 +29,13 @@ pub enum StatusType {
 
 impl StatusType {
     /// The function of this value type.
-    pub fn function(self) -> Fmi2 {
+    pub fn function(self) -> Operation {
         match self {
-            StatusType::Status => Fmi2::GetStatus,
-            StatusType::Real => Fmi2::GetRealStatus,
-            StatusType::Integer => Fmi2::GetIntegerStatus,
-            StatusType::Boolean => Fmi2::GetBooleanStatus,
-            StatusType::String => Fmi2::GetStringStatus,
+            StatusType::Status => Operation::GetStatus,
+            StatusType::Real => Operation::GetRealStatus,
+            StatusType::Integer => Operation::GetIntegerStatus,
+            StatusType::Boolean => Operation::GetBooleanStatus,
+            StatusType::String => Operation::GetStringStatus,
         }
     }
 }
@@ -58,7 +60,7 @@ const STATUS_KINDS: [(&str, StatusType); 4] = [
 impl Instance {
     /// fmi2SetDebugLogging.
     pub fn set_debug_logging(&mut self, on: bool, categories: &[String]) -> Status {
-        if let Err(s) = self.check(Fmi2::SetDebugLogging) {
+        if let Err(s) = self.check(Operation::SetDebugLogging) {
             return s;
         }
         if categories.len() > MAX_CATEGORIES {
@@ -82,7 +84,7 @@ impl Instance {
 
     /// fmi2SetupExperiment.
     pub fn setup_experiment(&mut self, start: f64, stop: Option<f64>) -> Status {
-        if let Err(s) = self.check(Fmi2::SetupExperiment) {
+        if let Err(s) = self.check(Operation::SetupExperiment) {
             return s;
         }
         if !start.is_finite() || start != 0.0 {
@@ -104,7 +106,7 @@ impl Instance {
 
     /// fmi2EnterInitializationMode.
     pub fn enter_initialization_mode(&mut self) -> Status {
-        if let Err(s) = self.check(Fmi2::EnterInitializationMode) {
+        if let Err(s) = self.check(Operation::EnterInitializationMode) {
             return s;
         }
         self.phase = InitializationMode;
@@ -114,7 +116,7 @@ impl Instance {
     /// fmi2ExitInitializationMode: builds the engine from the parameters. If it cannot (a scenario
     /// that does not load, a filter that does not fit it), the instance enters the error state.
     pub fn exit_initialization_mode(&mut self) -> Status {
-        if let Err(s) = self.check(Fmi2::ExitInitializationMode) {
+        if let Err(s) = self.check(Operation::ExitInitializationMode) {
             return s;
         }
         if let Err(e) = self.ensure_engine() {
@@ -129,7 +131,7 @@ impl Instance {
 
     /// fmi2Terminate.
     pub fn terminate(&mut self) -> Status {
-        if let Err(s) = self.check(Fmi2::Terminate) {
+        if let Err(s) = self.check(Operation::Terminate) {
             return s;
         }
         self.phase = Terminated;
@@ -138,7 +140,7 @@ impl Instance {
 
     /// fmi2Reset: back to the instantiated state with the start values.
     pub fn reset(&mut self) -> Status {
-        if let Err(s) = self.check(Fmi2::Reset) {
+        if let Err(s) = self.check(Operation::Reset) {
             return s;
         }
         self.values = self.vars.iter().map(|v| v.start.clone()).collect();
@@ -155,7 +157,7 @@ impl Instance {
     /// fmi2DoStep. A refused step (bad arguments, a request over a bound) changes nothing; a step
     /// in which the simulation fails moves the instance to the error state.
     pub fn do_step(&mut self, t: f64, h: f64) -> Status {
-        if let Err(s) = self.check(Fmi2::DoStep) {
+        if let Err(s) = self.check(Operation::DoStep) {
             return s;
         }
         if !(t.is_finite() && h.is_finite()) || h <= 0.0 || !(t + h).is_finite() {
@@ -242,7 +244,7 @@ impl Instance {
     pub fn last_successful_time(&self) -> f64 {
         self.engine
             .as_ref()
-            .map(super::Engine::time)
+            .map(super::engine::Engine::time)
             .unwrap_or(self.start_time)
     }
 
@@ -282,7 +284,7 @@ impl Instance {
     }
 
     /// Check an unsupported-capability call: legal sequence first, then "not supported".
-    pub fn unsupported(&self, f: Fmi2, what: &str) -> Status {
+    pub fn unsupported(&self, f: Operation, what: &str) -> Status {
         if let Err(s) = self.check(f) {
             return s;
         }
@@ -292,7 +294,7 @@ impl Instance {
     /// fmi2CancelStep: steps are synchronous, so there is never a step to cancel (the table
     /// allows it in no phase of this FMU).
     pub fn cancel_step(&self) -> Status {
-        match self.check(Fmi2::CancelStep) {
+        match self.check(Operation::CancelStep) {
             Ok(()) => Status::Ok,
             Err(s) => s,
         }

@@ -1,7 +1,9 @@
 //! FMU states of an instance: a snapshot is a replay log, restored by rebuilding the engine and
 //! replaying the steps (see [`crate::state`]).
 
-use super::{Fmi2, Instance, Status};
+use super::allowed::Operation;
+use super::machine::Instance;
+use super::status::Status;
 use crate::limits::MAX_STATE_BYTES;
 use crate::state::{Phase::*, Snapshot};
 use crate::vars::Value;
@@ -9,7 +11,7 @@ use crate::vars::Value;
 impl Instance {
     /// fmi2GetFMUstate.
     pub fn get_state(&self) -> Result<Snapshot, Status> {
-        self.check(Fmi2::GetFMUstate)?;
+        self.check(Operation::GetFMUstate)?;
         if let Some(t) = self.log_full_at {
             return Err(self.error(&format!(
                 "fmi2GetFMUstate: the replay log of this run outgrew the {MAX_STATE_BYTES} bytes an FMU state may have at t = {t}; no FMU state can be taken until fmi2Reset or fmi2SetFMUstate"
@@ -27,7 +29,7 @@ impl Instance {
     }
 
     /// Check a snapshot fits this instance (model, GUID, table).
-    pub fn check_snapshot(&self, func: Fmi2, s: &Snapshot) -> Result<(), Status> {
+    pub fn check_snapshot(&self, func: Operation, s: &Snapshot) -> Result<(), Status> {
         if s.model != self.model || s.guid != self.spec.guid() {
             return Err(self.error(&format!(
                 "{func}: the FMU state belongs to {} {}, not to this {} instance ({})",
@@ -61,10 +63,10 @@ impl Instance {
 
     /// fmi2SetFMUstate: rebuild and replay.
     pub fn set_state(&mut self, s: &Snapshot) -> Status {
-        if let Err(st) = self.check(Fmi2::SetFMUstate) {
+        if let Err(st) = self.check(Operation::SetFMUstate) {
             return st;
         }
-        if let Err(st) = self.check_snapshot(Fmi2::SetFMUstate, s) {
+        if let Err(st) = self.check_snapshot(Operation::SetFMUstate, s) {
             return st;
         }
         self.engine = None;
@@ -88,7 +90,7 @@ impl Instance {
                 }
                 let checked = self
                     .check_step_work(st.t, st.h)
-                    .map_err(super::InstanceError::from)
+                    .map_err(super::engine::InstanceError::from)
                     .and_then(|()| self.step_engine(st.t, st.h));
                 if let Err(e) = checked {
                     self.phase = Error;

@@ -1,8 +1,8 @@
 //! The model an `fmi2Instantiate` call gets: from the library's binding (see [`crate::binding`])
 //! and the GUID the importer passes.
 
-use super::InstantiateError;
 use super::scenario::load_resource_scenario;
+use super::status::InstantiateError;
 use crate::binding::Binding;
 use crate::vars::{Model, ModelSpec};
 use entrynav::estimation::nav::FilterKind;
@@ -17,7 +17,7 @@ pub fn resolve_spec(
     resource_location: Option<&str>,
 ) -> Result<Arc<ModelSpec>, InstantiateError> {
     let Some(b) = binding else {
-        return super::generic_spec(guid);
+        return generic_spec(guid);
     };
     if guid != b.guid {
         let other = Model::from_guid(guid)
@@ -66,4 +66,20 @@ pub fn resolve_spec(
         )));
     }
     Ok(Arc::new(spec))
+}
+
+/// The model a GUID names when no binding restricts it: one of the generic models.
+pub fn generic_spec(guid: &str) -> Result<Arc<ModelSpec>, InstantiateError> {
+    match Model::from_guid(guid) {
+        Some(m) => Ok(Arc::new(ModelSpec::generic(m))),
+        None => Err(InstantiateError::Guid {
+            given: guid.to_string(),
+            expected: format!(
+                "this library serves {}",
+                Model::ALL
+                    .map(|m| format!("{} {}", m.identifier(), crate::vars::guid_of(m)))
+                    .join(", ")
+            ),
+        }),
+    }
 }

@@ -1,8 +1,10 @@
 //! Variable access of an instance: fmi2Get* and fmi2Set* by value reference, and the parameter and
 //! input values the engine reads.
 
+use super::allowed::Operation;
+use super::machine::Instance;
 use super::outputs::validate;
-use super::{Fmi2, Instance, Status};
+use super::status::Status;
 use crate::state::Phase;
 use crate::vars::{Causality, Key, Type, Value};
 
@@ -21,7 +23,7 @@ impl Instance {
             .and_then(|i| self.values[i].as_ref())
     }
 
-    fn lookup(&self, func: Fmi2, vr: u32, ty: Type) -> Result<usize, Status> {
+    fn lookup(&self, func: Operation, vr: u32, ty: Type) -> Result<usize, Status> {
         match self.vars.get(vr as usize) {
             Some(v) if v.ty == ty => Ok(vr as usize),
             Some(v) => Err(self.error(&format!(
@@ -40,7 +42,7 @@ impl Instance {
 
     /// fmi2GetReal / Integer / Boolean / String: the values of `vrs`, all of type `ty`.
     pub fn get(&mut self, ty: Type, vrs: &[u32]) -> Result<Vec<Value>, Status> {
-        let func = Fmi2::getter(ty);
+        let func = Operation::getter(ty);
         self.check(func)?;
         let mut idx = Vec::with_capacity(vrs.len());
         for vr in vrs {
@@ -66,7 +68,7 @@ impl Instance {
     /// fmi2SetReal / Integer / Boolean / String: the `values` of `vrs`, all of type `ty`; a
     /// rejected call changes nothing.
     pub fn set(&mut self, ty: Type, vrs: &[u32], values: Vec<Value>) -> Status {
-        let func = Fmi2::setter(ty);
+        let func = Operation::setter(ty);
         if let Err(s) = self.check(func) {
             return s;
         }

@@ -1,6 +1,7 @@
 //! The byte format of a [`Snapshot`] (see [`super`]).
 
-use super::{FORMAT_VERSION, MAGIC, Phase, Snapshot, StateError, StepLog, StepRecord};
+use super::log::{StepLog, StepRecord};
+use super::{FORMAT_VERSION, MAGIC, Phase, Snapshot, StateError};
 use crate::limits::MAX_STATE_BYTES;
 use crate::vars::{Model, Value, fnv1a64};
 use std::sync::Arc;

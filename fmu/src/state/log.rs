@@ -1,8 +1,20 @@
-//! [`StepLog`]: the replay log of a run, shared in chunks between an instance and its snapshots.
+//! [`StepLog`]: the replay log of a run (its [`StepRecord`]s), shared in chunks between an
+//! instance and its snapshots.
 
-use super::StepRecord;
 use crate::vars::Value;
 use std::sync::Arc;
+
+/// One successful doStep.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepRecord {
+    /// Communication point.
+    pub t: f64,
+    /// Step size.
+    pub h: f64,
+    /// Values of the input variables used, in table order (shared with the previous step when
+    /// they did not change).
+    pub inputs: Arc<[Value]>,
+}
 
 /// Steps per shared chunk of a [`StepLog`].
 const CHUNK: usize = 4096;

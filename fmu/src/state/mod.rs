@@ -20,7 +20,6 @@
 
 use crate::limits::MAX_STATE_BYTES;
 use crate::vars::{Model, Value};
-use std::sync::Arc;
 use thiserror::Error;
 
 /// Why serialized FMU-state bytes cannot be restored.
@@ -115,18 +114,6 @@ impl Phase {
     }
 }
 
-/// One successful doStep.
-#[derive(Debug, Clone, PartialEq)]
-pub struct StepRecord {
-    /// Communication point.
-    pub t: f64,
-    /// Step size.
-    pub h: f64,
-    /// Values of the input variables used, in table order (shared with the previous step when
-    /// they did not change).
-    pub inputs: Arc<[Value]>,
-}
-
 /// A saved FMU state.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Snapshot {
@@ -149,4 +136,4 @@ pub struct Snapshot {
 mod bytes;
 mod log;
 
-pub use log::StepLog;
+pub use log::{StepLog, StepRecord};

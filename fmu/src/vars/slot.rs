@@ -1,7 +1,7 @@
 //! What a variable is bound to ([`Key`]) and the measurement slots ([`Slot`]) the truth FMU
 //! outputs and the filter FMU reads.
 
-use super::MAX_BEACONS;
+use super::sizes::MAX_BEACONS;
 use entrynav::sensors::Channel;
 
 /// A measurement slot (one scalar sensor reading).

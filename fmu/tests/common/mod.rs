@@ -2,9 +2,9 @@
 //! the exported fmi2 functions by variable key.
 #![allow(dead_code)]
 
-use mars_entry_nav::ffi::*;
-use mars_entry_nav::guid_of;
-use mars_entry_nav::vars::{Key, Model, variables};
+use entrynav_fmu::ffi::*;
+use entrynav_fmu::guid_of;
+use entrynav_fmu::vars::{Key, Model, variables};
 use std::ffi::{CStr, CString, c_char, c_int, c_void};
 use std::sync::Mutex;
 

@@ -2,9 +2,17 @@
 //! initialisation, fmi3DoStep, termination, reset, and the FMU-state functions (whose C
 //! signatures are those of FMI 2.0: they run the FMI 2.0 bodies).
 
+use super::super::args::{TextError, text};
+use super::super::common::set_debug_logging;
 use super::super::fmu_state;
-use super::super::*;
+use super::super::logger::{CLogger, LogFn, c_text};
+use super::super::registry::status;
+use super::super::types::Logger3Fn;
+use super::super::{panic_hook, registry};
+use crate::instance::{Operation, Status};
 use crate::limits::{MAX_GUID_BYTES, MAX_LOCATION_BYTES, MAX_STRING_BYTES};
+use std::ffi::{c_char, c_int, c_void};
+use std::sync::Arc;
 
 /// `fmi3Status` (a C enum: `int`).
 pub type Fmi3Status = c_int;
@@ -131,10 +139,10 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
     stop_time: f64,
 ) -> Fmi3Status {
     status(c, "fmi3EnterInitializationMode", |i| {
-        if let Err(s) = i
-            .inst
-            .check_as(Fmi2::EnterInitializationMode, "fmi3EnterInitializationMode")
-        {
+        if let Err(s) = i.inst.check_as(
+            Operation::EnterInitializationMode,
+            "fmi3EnterInitializationMode",
+        ) {
             return s;
         }
         let stop = (stop_time_defined != 0).then_some(stop_time);

@@ -23,73 +23,46 @@
 //! reach the master's `fmi3LogMessageCallback` in FMI 3.0 terms ([`in_fmi3_terms`]).
 
 mod lifecycle;
+pub(super) mod terms;
 mod unsupported;
 mod values;
 
 pub use lifecycle::*;
+pub use terms::in_fmi3_terms;
 pub use unsupported::*;
 pub use values::*;
 
-use crate::instance::Fmi2;
+use crate::instance::Operation;
 
 /// The FMI 3.0 functions this FMU supports and the instance operation each maps to.
-pub const MAPPED: [(&str, Fmi2); 20] = [
-    ("fmi3SetDebugLogging", Fmi2::SetDebugLogging),
-    ("fmi3FreeInstance", Fmi2::FreeInstance),
-    ("fmi3EnterInitializationMode", Fmi2::EnterInitializationMode),
-    ("fmi3ExitInitializationMode", Fmi2::ExitInitializationMode),
-    ("fmi3Terminate", Fmi2::Terminate),
-    ("fmi3Reset", Fmi2::Reset),
-    ("fmi3GetFloat64", Fmi2::GetReal),
-    ("fmi3GetInt32", Fmi2::GetInteger),
-    ("fmi3GetInt64", Fmi2::GetInteger),
-    ("fmi3GetUInt64", Fmi2::GetInteger),
-    ("fmi3GetBoolean", Fmi2::GetBoolean),
-    ("fmi3GetString", Fmi2::GetString),
-    ("fmi3SetFloat64", Fmi2::SetReal),
-    ("fmi3SetInt32", Fmi2::SetInteger),
-    ("fmi3SetInt64", Fmi2::SetInteger),
-    ("fmi3SetUInt64", Fmi2::SetInteger),
-    ("fmi3SetBoolean", Fmi2::SetBoolean),
-    ("fmi3SetString", Fmi2::SetString),
-    ("fmi3GetFMUState", Fmi2::GetFMUstate),
-    ("fmi3DoStep", Fmi2::DoStep),
+pub const MAPPED: [(&str, Operation); 20] = [
+    ("fmi3SetDebugLogging", Operation::SetDebugLogging),
+    ("fmi3FreeInstance", Operation::FreeInstance),
+    (
+        "fmi3EnterInitializationMode",
+        Operation::EnterInitializationMode,
+    ),
+    (
+        "fmi3ExitInitializationMode",
+        Operation::ExitInitializationMode,
+    ),
+    ("fmi3Terminate", Operation::Terminate),
+    ("fmi3Reset", Operation::Reset),
+    ("fmi3GetFloat64", Operation::GetReal),
+    ("fmi3GetInt32", Operation::GetInteger),
+    ("fmi3GetInt64", Operation::GetInteger),
+    ("fmi3GetUInt64", Operation::GetInteger),
+    ("fmi3GetBoolean", Operation::GetBoolean),
+    ("fmi3GetString", Operation::GetString),
+    ("fmi3SetFloat64", Operation::SetReal),
+    ("fmi3SetInt32", Operation::SetInteger),
+    ("fmi3SetInt64", Operation::SetInteger),
+    ("fmi3SetUInt64", Operation::SetInteger),
+    ("fmi3SetBoolean", Operation::SetBoolean),
+    ("fmi3SetString", Operation::SetString),
+    ("fmi3GetFMUState", Operation::GetFMUstate),
+    ("fmi3DoStep", Operation::DoStep),
 ];
-
-/// FMI 2.0 names in the instance's messages and their FMI 3.0 counterparts (longest first where
-/// one is a prefix of another); every other `fmi2X` becomes `fmi3X`.
-const RENAMED: [(&str, &str); 19] = [
-    ("fmi2Instantiate", "fmi3InstantiateCoSimulation"),
-    ("fmi2SetupExperiment", "fmi3EnterInitializationMode"),
-    ("fmi2GetReal", "fmi3GetFloat64"),
-    ("fmi2SetReal", "fmi3SetFloat64"),
-    ("fmi2GetInteger", "fmi3GetInt32"),
-    ("fmi2SetInteger", "fmi3SetInt32"),
-    ("fmi2GetFMUstate", "fmi3GetFMUState"),
-    ("fmi2SetFMUstate", "fmi3SetFMUState"),
-    ("fmi2FreeFMUstate", "fmi3FreeFMUState"),
-    ("fmi2SerializedFMUstateSize", "fmi3SerializedFMUStateSize"),
-    ("fmi2SerializeFMUstate", "fmi3SerializeFMUState"),
-    ("fmi2DeSerializeFMUstate", "fmi3DeserializeFMUState"),
-    ("fmi2Component", "fmi3Instance"),
-    ("FMUstate", "FMUState"),
-    ("binaries/linux64/", "binaries/x86_64-linux/"),
-    ("fmuResourceLocation", "resourcePath"),
-    ("GUID", "instantiation token"),
-    ("StepComplete", "StepMode"),
-    ("FMI 2.0", "FMI"),
-];
-
-/// A message of the instance (written in FMI 2.0 terms) in FMI 3.0 terms.
-pub fn in_fmi3_terms(msg: &str) -> String {
-    let mut s = msg.to_string();
-    for (from, to) in RENAMED {
-        if s.contains(from) {
-            s = s.replace(from, to);
-        }
-    }
-    s.replace("fmi2", "fmi3")
-}
 
 #[cfg(test)]
 mod tests {

@@ -2,9 +2,15 @@
 //! load every symbol) and answers `fmi3Error` with a logged reason, or NULL for the model-exchange
 //! and scheduled-execution instantiation functions.
 
-use super::super::*;
+use super::super::args::slice;
+use super::super::logger::{CLogger, LogFn};
+use super::super::panic_hook;
+use super::super::registry::status;
+use super::super::types::Logger3Fn;
 use super::lifecycle::{Fmi3Boolean, Fmi3Instance, Fmi3Status};
+use crate::instance::{Operation, Status};
 use crate::limits::MAX_VALUE_REFS;
+use std::ffi::{CString, c_char, c_int, c_void};
 
 /// Log `why` through the master's logger (if any) for an instantiation this FMU refuses.
 fn refuse_instantiation(env: *mut c_void, log: Option<Logger3Fn>, func: &str, why: &str) {
@@ -144,7 +150,11 @@ fn no_variables(
     nvr: usize,
 ) -> Fmi3Status {
     status(c, func, |i| {
-        let op = if get { Fmi2::GetReal } else { Fmi2::SetReal };
+        let op = if get {
+            Operation::GetReal
+        } else {
+            Operation::SetReal
+        };
         if let Err(s) = i.inst.check_as(op, func) {
             return s;
         }

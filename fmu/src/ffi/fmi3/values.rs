@@ -3,13 +3,19 @@
 //! instance ([`crate::instance::Ref3`]), arrays expanded row-major, `nValues` checked against
 //! what the references hold before any value is read or written.
 
-use super::super::*;
+use super::super::args::{TextError, slice, slice_mut, text};
+use super::super::inner::Inner;
+use super::super::logger::c_text;
+use super::super::registry::status;
 use super::lifecycle::{Fmi3Boolean, Fmi3Instance, Fmi3Status};
 use crate::instance::Type3;
+use crate::instance::{Operation, Status};
 use crate::limits::{MAX_STRING_BYTES, MAX_STRING_REFS, MAX_VALUE_REFS};
+use crate::vars::{Type, Value};
+use std::ffi::{CString, c_char};
 
 /// The instance operation whose allowed states a getter or setter of `ty` has.
-fn op(ty: Type3, get: bool) -> Fmi2 {
+fn op(ty: Type3, get: bool) -> Operation {
     let t = match ty {
         Type3::Float64 => Type::Real,
         Type3::Int32 | Type3::Int64 | Type3::UInt64 => Type::Integer,
@@ -17,9 +23,9 @@ fn op(ty: Type3, get: bool) -> Fmi2 {
         Type3::String => Type::String,
     };
     if get {
-        Fmi2::getter(t)
+        Operation::getter(t)
     } else {
-        Fmi2::setter(t)
+        Operation::setter(t)
     }
 }
 

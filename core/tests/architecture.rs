@@ -343,7 +343,10 @@ fn no_crate_has_a_file_level_import_cycle() {
     let mut bad = Vec::new();
     for (name, src) in &crates {
         for cycle in import_graph::cycles(&import_graph::graph(src)) {
-            bad.push(format!("{name}: a cycle of imports:\n    {}", cycle.join("\n    ")));
+            bad.push(format!(
+                "{name}: a cycle of imports:\n    {}",
+                cycle.join("\n    ")
+            ));
         }
     }
     assert!(bad.is_empty(), "{}", bad.join("\n"));
@@ -357,13 +360,25 @@ fn the_cycle_check_sees_a_planted_cycle() {
     let dir = std::env::temp_dir().join(format!("entrynav-cycles-{}", std::process::id()));
     let files: &[(&str, &str)] = &[
         ("lib.rs", "mod a;\nmod b;\nmod sim;\nmod down;\nmod leaf;\n"),
-        ("a.rs", "use crate::b::Thing; // crate::leaf in a comment is no import\n"),
+        (
+            "a.rs",
+            "use crate::b::Thing; // crate::leaf in a comment is no import\n",
+        ),
         ("b.rs", "pub struct Thing;\nfn f() { super::a::g(); }\n"),
-        ("sim/mod.rs", "mod run;\nmod bound;\npub use run::run;\npub struct TradeError;\n"),
+        (
+            "sim/mod.rs",
+            "mod run;\nmod bound;\npub use run::run;\npub struct TradeError;\n",
+        ),
         ("sim/run.rs", "use super::bound::sum;\npub fn run() {}\n"),
         ("sim/bound.rs", "use super::TradeError;\npub fn sum() {}\n"),
-        ("down.rs", "use crate::leaf::X;\nconst S: &str = \"crate::a::\";\n"),
-        ("leaf.rs", "pub struct X;\n#[cfg(test)]\nmod tests {\n    use crate::down::*;\n}\n"),
+        (
+            "down.rs",
+            "use crate::leaf::X;\nconst S: &str = \"crate::a::\";\n",
+        ),
+        (
+            "leaf.rs",
+            "pub struct X;\n#[cfg(test)]\nmod tests {\n    use crate::down::*;\n}\n",
+        ),
     ];
     for (path, text) in files {
         let p = dir.join(path);
@@ -374,10 +389,19 @@ fn the_cycle_check_sees_a_planted_cycle() {
     std::fs::remove_dir_all(&dir).ok();
     assert_eq!(cycles.len(), 2, "{cycles:?}");
     let all = cycles.concat().join("\n");
-    for edge in ["a.rs:1 -> ", "b.rs:2 -> ", "sim/mod.rs:3 -> ", "run.rs:1 -> ", "bound.rs:1 -> "] {
+    for edge in [
+        "a.rs:1 -> ",
+        "b.rs:2 -> ",
+        "sim/mod.rs:3 -> ",
+        "run.rs:1 -> ",
+        "bound.rs:1 -> ",
+    ] {
         assert!(all.contains(edge), "{edge} missing from {all}");
     }
-    assert!(!all.contains("down.rs") && !all.contains("leaf.rs"), "{all}");
+    assert!(
+        !all.contains("down.rs") && !all.contains("leaf.rs"),
+        "{all}"
+    );
 }
 
 #[test]

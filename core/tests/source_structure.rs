@@ -119,7 +119,10 @@ fn source_files_and_functions_stay_short() {
         let text = std::fs::read_to_string(ws.join(rel)).expect("readable source");
         let lines = text.lines().count();
         if lines > MAX_FILE_LINES {
-            bad.push(format!("{}: {lines} lines (at most {MAX_FILE_LINES})", rel.display()));
+            bad.push(format!(
+                "{}: {lines} lines (at most {MAX_FILE_LINES})",
+                rel.display()
+            ));
         }
         let code = import_graph::without_test_modules(&import_graph::code_only(&text));
         for (name, line, len) in functions(&code) {
@@ -131,7 +134,12 @@ fn source_files_and_functions_stay_short() {
             }
         }
     }
-    assert!(bad.is_empty(), "{} too long:\n{}", bad.len(), bad.join("\n"));
+    assert!(
+        bad.is_empty(),
+        "{} too long:\n{}",
+        bad.len(),
+        bad.join("\n")
+    );
 }
 
 #[test]

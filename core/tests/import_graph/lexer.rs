@@ -149,4 +149,3 @@ pub fn without_test_modules(code: &str) -> String {
     out.push_str(rest);
     out
 }
-

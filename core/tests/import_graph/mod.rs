@@ -208,11 +208,7 @@ fn inline_paths(code: &str, children: &BTreeSet<String>) -> Vec<(usize, Vec<Stri
 }
 
 /// The absolute module path `segs` names from module `here`, or `None` for another crate.
-fn absolute(
-    here: &[String],
-    segs: &[String],
-    children: &BTreeSet<String>,
-) -> Option<Vec<String>> {
+fn absolute(here: &[String], segs: &[String], children: &BTreeSet<String>) -> Option<Vec<String>> {
     let mut path: Vec<String>;
     let mut rest = segs;
     match segs.first().map(String::as_str) {

@@ -7,7 +7,7 @@ use crate::plot::scatter::{Cloud, ellipse, scatter_chart};
 use crate::plots::{Figure, Kind};
 use crate::report::html::{Cell, figures, note, table};
 use anyhow::Result;
-use entrynav::sim::delivery::{DeliveryReport, DeliveryRow};
+use entrynav::sim::guided::delivery::{DeliveryReport, DeliveryRow};
 
 /// Most runs drawn per row (the ellipse and the statistics are over every run).
 const MAX_DOTS: usize = 2000;

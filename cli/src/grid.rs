@@ -404,7 +404,7 @@ pub fn run(
         }
         reports.push((
             cell.label.clone(),
-            entrynav::sim::shard::scenario_fingerprint(&scenario),
+            entrynav::sim::monte_carlo::shard::scenario_fingerprint(&scenario),
             report,
         ));
         // Each finished cell is in the report at once, so an interrupted grid keeps them.

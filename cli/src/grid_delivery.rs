@@ -1,12 +1,12 @@
 //! Delivery at deployment in a Monte Carlo grid (`trade --grid`): a cell whose scenario has a
 //! `[guidance]` section also flies its runs with each filter in the guidance loop
-//! (`entrynav::sim::delivery::run_delivery`, the same run seeds as the cell's trade), and each
+//! (`entrynav::sim::guided::delivery::run_delivery`, the same run seeds as the cell's trade), and each
 //! filter's row carries its RMS miss, 99 % ellipse, failures and perfect navigation's RMS miss
 //! on the same runs.
 
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
-use entrynav::sim::delivery::{DeliveryRow, run_delivery};
+use entrynav::sim::guided::delivery::{DeliveryRow, run_delivery};
 use serde::Serialize;
 
 /// One filter's delivery in one cell.

@@ -1,12 +1,12 @@
 //! `trade --grid FILE --method lincov`: a grid cell's row from LinCov of one filter
-//! (`entrynav::sim::lincov_entry`) instead of a Monte Carlo — the same columns where they mean
+//! (`entrynav::sim::lincov`) instead of a Monte Carlo — the same columns where they mean
 //! the same (predicted position and velocity RMSE, predicted ANEES), none where they do not
 //! (±3σ fractions, diverged runs, CPU per step).
 
 use crate::grid::CellRow;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
-use entrynav::sim::lincov_entry::entry_lincov;
+use entrynav::sim::lincov::entry_lincov;
 
 /// The row of filter `kind` in a cell; a filter or scenario LinCov cannot analyse is a refused
 /// row naming why.

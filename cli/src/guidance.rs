@@ -1,13 +1,13 @@
 //! `entrynav guidance deliver` (and `reference`, in `guidance_reference`): the Monte Carlo of delivery at deployment with navigation filters
 //! in the guidance loop, against perfect navigation and the unguided reference bank on the same
-//! dispersion draws (`entrynav::sim::delivery`).
+//! dispersion draws (`entrynav::sim::guided::delivery`).
 
 use crate::exit::{check_output_file, is_stdout};
 use crate::threads::with_threads;
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
 use entrynav::estimation::nav::FilterKind;
-use entrynav::sim::delivery::{DeliveryReport, DeliveryRow, run_delivery};
+use entrynav::sim::guided::delivery::{DeliveryReport, DeliveryRow, run_delivery};
 use entrynav_loader as load;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -83,7 +83,7 @@ struct RunRow<'a> {
     run: usize,
     row: &'a str,
     #[serde(skip_serializing_if = "Option::is_none")]
-    delivery: Option<&'a entrynav::sim::guided_run::Delivery>,
+    delivery: Option<&'a entrynav::sim::guided::Delivery>,
     #[serde(skip_serializing_if = "Option::is_none")]
     failure: Option<String>,
 }

@@ -1,5 +1,5 @@
 //! `entrynav lincov`: LinCov of a filter along the scenario's nominal trajectory
-//! (`entrynav::sim::lincov_entry`): the predicted true RMSE, the filter's own σ and the predicted
+//! (`entrynav::sim::lincov`): the predicted true RMSE, the filter's own σ and the predicted
 //! NEES in one pass, optionally beside a Monte Carlo of the same filter (`--compare-mc RUNS`)
 //! with both wall times.
 
@@ -7,10 +7,8 @@ use crate::threads::with_threads;
 use anyhow::{Context, Result, bail};
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
-use entrynav::sim::lincov_entry::{
-    EntryLinCov, EntryLinCovEpoch, LinCovOptions, entry_lincov_with,
-};
-use entrynav::sim::report::FilterReport;
+use entrynav::sim::lincov::{EntryLinCov, EntryLinCovEpoch, LinCovOptions, entry_lincov_with};
+use entrynav::sim::monte_carlo::report::FilterReport;
 use entrynav::sim::{McOptions, TradeReport, run_trade};
 use entrynav_loader as load;
 use serde_json::{Map, Value, json};

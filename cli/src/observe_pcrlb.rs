@@ -1,6 +1,6 @@
 //! `entrynav observe --pcrlb`: the scenario's posterior Cramér–Rao lower bound from its truth
 //! runs alone, without running a filter (the same bound `entrynav trade` reports beside the
-//! RMSE; see `entrynav::sim::pcrlb`).
+//! RMSE; see `entrynav::sim::bounds::pcrlb`).
 
 use anyhow::{Result, bail};
 use entrynav::scenario::Scenario;

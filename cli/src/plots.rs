@@ -367,7 +367,7 @@ pub fn trade_plots(
     report: &TradeReport,
     names: &WeightNames,
     extra: &ExtraCurves,
-    delivery: Option<&entrynav::sim::delivery::DeliveryReport>,
+    delivery: Option<&entrynav::sim::guided::delivery::DeliveryReport>,
 ) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let mut figs = trade_figures_with(report, names, extra)?;

@@ -5,7 +5,7 @@ use crate::csv_file::FileWriter;
 use anyhow::{Context, Result};
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
-use entrynav::sim::replay::{Replay, replay_run};
+use entrynav::sim::monte_carlo::replay::{Replay, replay_run};
 use entrynav::sim::{channel_names, state_names};
 use std::path::Path;
 use std::sync::Arc;

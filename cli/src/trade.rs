@@ -22,9 +22,9 @@ use crate::trade_tables::print_tables;
 use anyhow::{Context, Result};
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
-use entrynav::sim::delivery::DeliveryReport;
-use entrynav::sim::delivery_shard::{DeliveryShard, deliver_runs, merge_delivery_shards};
-use entrynav::sim::shard::fold_partial;
+use entrynav::sim::guided::delivery::DeliveryReport;
+use entrynav::sim::guided::delivery_shard::{DeliveryShard, deliver_runs, merge_delivery_shards};
+use entrynav::sim::monte_carlo::shard::fold_partial;
 use entrynav::sim::{
     Checkpoint, McOptions, NoCheckpoint, Shard, ShardResult, TradeReport, merge_shards, run_shard,
 };
@@ -249,7 +249,7 @@ fn run_one_shard(args: &TradeArgs, shard: Shard, path: &Path) -> Result<()> {
     let setup = Setup::load(args)?;
     let blocks = setup
         .runs
-        .div_ceil(entrynav::sim::shard::ACCUMULATION_BLOCK);
+        .div_ceil(entrynav::sim::monte_carlo::shard::ACCUMULATION_BLOCK);
     if shard.blocks(setup.runs).is_empty() {
         eprintln!(
             "note: shard {}/{} of this {}-run study holds no runs: a shard holds whole accumulation \
@@ -258,7 +258,7 @@ fn run_one_shard(args: &TradeArgs, shard: Shard, path: &Path) -> Result<()> {
             shard.index,
             shard.count,
             setup.runs,
-            entrynav::sim::shard::ACCUMULATION_BLOCK
+            entrynav::sim::monte_carlo::shard::ACCUMULATION_BLOCK
         );
     }
     let opts = setup.options(args);
@@ -288,7 +288,7 @@ fn run_one_shard(args: &TradeArgs, shard: Shard, path: &Path) -> Result<()> {
         .is_some()
         .then(|| {
             let blocks = shard.blocks(setup.runs);
-            let block = entrynav::sim::shard::ACCUMULATION_BLOCK;
+            let block = entrynav::sim::monte_carlo::shard::ACCUMULATION_BLOCK;
             let runs = (blocks.start * block).min(setup.runs)..(blocks.end * block).min(setup.runs);
             with_threads(args.threads, || {
                 deliver_runs(&setup.scenario, &setup.filters, setup.runs, args.seed, runs)

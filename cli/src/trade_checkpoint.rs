@@ -7,7 +7,7 @@
 
 use crate::provenance::Provenance;
 use crate::trade_files::write_summary;
-use entrynav::sim::shard::fold_partial;
+use entrynav::sim::monte_carlo::shard::fold_partial;
 use entrynav::sim::{Checkpoint, ShardResult};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};

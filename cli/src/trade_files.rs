@@ -5,7 +5,7 @@ use crate::csv_file::{self, FileWriter, opt};
 use crate::exit::{check_output_dir, check_output_file, is_stdout};
 use crate::provenance::{Provenance, Summary, Timing};
 use anyhow::{Context, Result};
-use entrynav::sim::delivery_shard::DeliveryShard;
+use entrynav::sim::guided::delivery_shard::DeliveryShard;
 use entrynav::sim::{FilterReport, PcrlbReport, ShardResult, TradeReport};
 use std::io::Write;
 use std::path::Path;
@@ -45,7 +45,7 @@ pub struct Extras<'a> {
     /// `trade --method both`: LinCov beside the Monte Carlo.
     pub lincov: Option<&'a serde_json::Value>,
     /// A scenario with `[guidance]`: delivery at deployment.
-    pub delivery: Option<&'a entrynav::sim::delivery::DeliveryReport>,
+    pub delivery: Option<&'a entrynav::sim::guided::delivery::DeliveryReport>,
 }
 
 /// [`write_summary`] with the optional blocks (`lincov`, `delivery`).
@@ -243,7 +243,10 @@ fn json_or_null(v: &Option<serde_json::Value>) -> String {
 /// pasted-in block; it is not a signature against a deliberate forger.
 pub fn resume_checksum(block: &ShardResult) -> String {
     let text = serde_json::to_vec(block).unwrap_or_default();
-    format!("fnv1a64:{:016x}", entrynav::sim::shard::fnv1a64(text))
+    format!(
+        "fnv1a64:{:016x}",
+        entrynav::sim::monte_carlo::shard::fnv1a64(text)
+    )
 }
 
 /// Write `path` (`-`: standard output), creating its directory.

@@ -1,5 +1,5 @@
 //! `trade --method lincov|both`: the trade's statistics predicted by LinCov of each filter
-//! (`entrynav::sim::lincov_entry`) instead of, or beside, the Monte Carlo.
+//! (`entrynav::sim::lincov`) instead of, or beside, the Monte Carlo.
 //!
 //! `lincov` writes what `entrynav lincov` writes (JSON under `lincov`, `lincov_<filter>.csv`
 //! series). `both` flies the Monte Carlo as usual and adds, per filter and headline figure
@@ -17,7 +17,7 @@ use clap::ValueEnum;
 use entrynav::estimation::chi_square::chi_square_quantile;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
-use entrynav::sim::lincov_entry::LinCovOptions;
+use entrynav::sim::lincov::LinCovOptions;
 use entrynav::sim::{FilterReport, TradeReport};
 use serde_json::{Value, json};
 use std::path::Path;
@@ -220,7 +220,7 @@ impl Comparison {
         for a in &self.analysed {
             let l = &a.lincov;
             let name = format!("{} LinCov", l.filter);
-            let series = |f: &dyn Fn(&entrynav::sim::lincov_entry::EntryLinCovEpoch) -> f64| {
+            let series = |f: &dyn Fn(&entrynav::sim::lincov::EntryLinCovEpoch) -> f64| {
                 l.epochs.iter().map(|e| (e.t, f(e))).collect::<Vec<_>>()
             };
             let mut add = |metric: &str, points: Vec<(f64, f64)>| {

@@ -7,7 +7,7 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use entrynav::atmosphere::Exponential;
 use entrynav::estimation::adaptive::{NetworkFile, fit_onboard_exponential};
-use entrynav::sim::training::train_density_networks;
+use entrynav::sim::density::training::train_density_networks;
 use entrynav_loader as load;
 use std::path::PathBuf;
 
@@ -197,7 +197,7 @@ fn evaluate(
     runs: usize,
 ) -> Result<()> {
     use entrynav::estimation::nav::FilterKind;
-    use entrynav::sim::density_eval::{DensityEvalOptions, evaluate_density_filters};
+    use entrynav::sim::density::density_eval::{DensityEvalOptions, evaluate_density_filters};
     let kinds = FilterKind::parse_list(&args.filters, &scenario.onboard)?;
     let scenario = std::sync::Arc::new(scenario);
     let opts = DensityEvalOptions {
@@ -250,7 +250,7 @@ fn evaluate(
 fn fig10(
     path: &std::path::Path,
     scenario: &str,
-    r: &entrynav::sim::density_eval::DensityEvalReport,
+    r: &entrynav::sim::density::density_eval::DensityEvalReport,
 ) -> Result<()> {
     let mut svg = String::new();
     draw_fig10(&mut svg, scenario, r)?;
@@ -261,7 +261,7 @@ fn fig10(
 fn draw_fig10(
     svg: &mut String,
     scenario: &str,
-    r: &entrynav::sim::density_eval::DensityEvalReport,
+    r: &entrynav::sim::density::density_eval::DensityEvalReport,
 ) -> Result<()> {
     use plotters::prelude::*;
     let e = |e: DrawingAreaErrorKind<std::io::Error>| anyhow::anyhow!("{e}");

@@ -8,8 +8,8 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{FilterRetuneConfig, ScenarioConfig, builtin_toml};
-use entrynav::sim::report::FilterReport;
-use entrynav::sim::tuning::TuningRuns;
+use entrynav::sim::monte_carlo::report::FilterReport;
+use entrynav::sim::monte_carlo::tuning::TuningRuns;
 use entrynav_loader as load;
 use entrynav_optimizer::tune::{
     EntryTuning, TuneObjective, TuneOptions, TuneResult, TuningProblem, objective, tune,

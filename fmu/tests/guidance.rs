@@ -1,12 +1,12 @@
 //! `MarsEntryGuidance` through the C API: it reproduces the in-process guided loop
-//! (`entrynav::sim::guided_run`) bit for bit on the same inputs, refuses a scenario without
+//! (`entrynav::sim::guided::guided_run`) bit for bit on the same inputs, refuses a scenario without
 //! `[guidance]`, checks every input, and gives the same bank whatever the communication grid.
 
 mod common;
 
 use common::Inst;
 use entrynav::estimation::nav::FilterKind;
-use entrynav::sim::guided_run::{GuidedStep, fly_with_filter_recorded};
+use entrynav::sim::guided::{GuidedStep, fly_with_filter_recorded};
 use mars_entry_nav::vars::guided_scenario_toml;
 use mars_entry_nav::vars::{GUIDED_SCENARIO_FILE, Key, Model, Slot, guided_scenario};
 use std::path::PathBuf;

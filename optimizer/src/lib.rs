@@ -87,7 +87,7 @@ pub enum OptimizerError {
     Beacon(#[from] BeaconError),
     /// The nominal position bound could not be formed.
     #[error(transparent)]
-    NominalBound(#[from] entrynav::sim::nominal_bound::NominalBoundError),
+    NominalBound(#[from] entrynav::sim::bounds::nominal_bound::NominalBoundError),
     /// argmin failed while running `what` (the particle swarm or a Nelder–Mead polish).
     #[error("solver failure: {what}")]
     Argmin {

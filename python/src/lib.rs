@@ -13,8 +13,8 @@
 
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{BUILTIN_NAMES, Scenario, ScenarioConfig};
-use entrynav::sim::delivery_shard::deliver_runs;
-use entrynav::sim::shard::ACCUMULATION_BLOCK;
+use entrynav::sim::guided::delivery_shard::deliver_runs;
+use entrynav::sim::monte_carlo::shard::ACCUMULATION_BLOCK;
 use entrynav::sim::{
     McOptions, Shard, TradeError, TradeReport, run_shard, run_trade, simulate_truth_with_peaks,
 };

@@ -4,7 +4,7 @@
 #![allow(non_snake_case)]
 
 use super::*;
-use entrynav::sim::guided_run::GuidedStep;
+use entrynav::sim::guided::GuidedStep;
 use entrynav_fmi_host::*;
 
 /// The input values at communication point `t` for a check run (bank profile, beacon 2 outage,

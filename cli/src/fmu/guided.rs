@@ -1,12 +1,12 @@
 //! Inputs of the guidance FMU (`MarsEntryGuidance`) for `fmu check` and `fmu cross-check`: what
-//! the in-process guided loop (`entrynav::sim::guided_run`, the EKF in the loop, Monte Carlo run
+//! the in-process guided loop (`entrynav::sim::guided::guided_run`, the EKF in the loop, Monte Carlo run
 //! 0 of the seed) gave its guidance at each communication point. With a communication step equal
 //! to the guidance period, the FMU's bank then equals the loop's bank at every communication point
 //! bit for bit (`fmu/tests/guidance.rs` checks every truth step).
 
 use super::*;
 use entrynav::estimation::nav::FilterKind;
-use entrynav::sim::guided_run::{GuidedStep, fly_with_filter_recorded};
+use entrynav::sim::guided::{GuidedStep, fly_with_filter_recorded};
 
 /// The recorded loop on `scenario` with `seed`, sampled at `t = k·h` for `k = 0..=n` (`h` a
 /// multiple of the truth step; after the loop's end at deployment the last inputs are held).

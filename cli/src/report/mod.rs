@@ -27,7 +27,7 @@ pub fn write_trade(
     provenance: &crate::provenance::Provenance,
     wall_s: f64,
     extra: &crate::plots::ExtraCurves,
-    delivery: Option<&entrynav::sim::delivery::DeliveryReport>,
+    delivery: Option<&entrynav::sim::guided::delivery::DeliveryReport>,
 ) -> Result<f64> {
     write(path, || {
         let mut figures = crate::plots::trade_figures_with(report, names, extra)?;

@@ -13,7 +13,7 @@ use entrynav::sensors::{Channel, MeasurementEpoch};
 use entrynav::sim::engine::{
     EngineError, EntryCoSim, NavStatus, Navigator, StepReport, TruthSensors,
 };
-use entrynav::sim::guided_run::GuidedRunError;
+use entrynav::sim::guided::GuidedRunError;
 use std::sync::Arc;
 use thiserror::Error;
 

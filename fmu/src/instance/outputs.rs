@@ -128,8 +128,7 @@ impl Instance {
         if let Engine::Guided(g) = engine {
             let f = g.flight();
             let d = g.delivery();
-            let of =
-                |x: fn(&entrynav::sim::guided_run::Delivery) -> f64| real(d.map(x).unwrap_or(0.0));
+            let of = |x: fn(&entrynav::sim::guided::Delivery) -> f64| real(d.map(x).unwrap_or(0.0));
             match key {
                 Key::GuidanceBankRate => return real(f.bank_rate()),
                 Key::GuidanceCommand => return real(f.command()),

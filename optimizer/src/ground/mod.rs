@@ -18,7 +18,7 @@
 //!   `Σ σ⁻² n nᵀ` [m⁻²] (eq. 36); the search maximises the time average;
 //! * `MinEig` — `min_t λ_min(F(t))` [m⁻²]; the search maximises its log10;
 //! * `PcrlbAvg`, `PcrlbFinal` — the position PCRLB \[m\] along the nominal trajectory
-//!   ([`entrynav::sim::nominal_bound`]: dynamics, prior, every non-radio sensor and the ranges to
+//!   ([`entrynav::sim::bounds::nominal_bound`]: dynamics, prior, every non-radio sensor and the ranges to
 //!   the sites together, with the truth's sensors and epochs), averaged over the epochs or at the
 //!   last one; the search *minimises* its log10. Unlike the proxies above they bound what
 //!   navigation can reach: the time-averaged and the final position RMSE of a trade;
@@ -50,7 +50,7 @@ use entrynav::observability::{
     AnalysisPoint, ChannelSet, DegreeSeries, Method, Scaling, analysis_points, degree_series,
 };
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use entrynav::sim::nominal_bound::{NominalBound, NominalBoundSeries, RangeSite};
+use entrynav::sim::bounds::nominal_bound::{NominalBound, NominalBoundSeries, RangeSite};
 use nalgebra::{Matrix3, Vector3};
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::time::Instant;

@@ -87,7 +87,7 @@ impl Scenarios {
         let (mut timing, mut fits, mut guided) = (HashMap::new(), HashMap::new(), Vec::new());
         for (name, s) in all {
             if s.config.guidance.is_some()
-                && entrynav::sim::guided_run::accel_slots(&s.onboard).is_some()
+                && entrynav::sim::guided::accel_slots(&s.onboard).is_some()
             {
                 guided.push(name.clone());
             }

@@ -23,13 +23,13 @@
 //! orbits ([`NominalBound::moving_sites`], line of sight by eq. 58–60); range-rate channels are
 //! refused.
 
-use super::engine::SimError;
 use super::pcrlb::{NoBound, TruthStates, bound_model, information, transition};
-use super::record::{RecordedRun, simulate_truth};
+use super::pcrlb_epochs::KIN;
 use crate::beacons::{ground_visibility_margin, orbiter_visibility_margin};
 use crate::frames::{rotate_z, spherical_to_position};
 use crate::scenario::Scenario;
 use crate::sensors::Channel;
+use crate::sim::engine::{RecordedRun, SimError, simulate_truth};
 use crate::state_dim::{DimVisitor, UnsupportedDimension, with_state_dim};
 use nalgebra::{SMatrix, SVector};
 use rand::SeedableRng;
@@ -344,7 +344,7 @@ impl DimVisitor for Collect<'_> {
             let (base, (jp, _)) = information(scenario, &model, &x, &others, scenario.truth_bank)?;
             let mut jp_n = SMatrix::<f64, 3, N>::zeros();
             for i in 0..3 {
-                for j in 0..N.min(super::pcrlb_epochs::KIN) {
+                for j in 0..N.min(KIN) {
                     jp_n[(i, j)] = jp[(i, j)];
                 }
             }

@@ -1,7 +1,7 @@
 //! The posterior Cramér–Rao lower bound of a trade's scenario, from its Monte Carlo truth runs.
 //!
 //! **What is bounded.** The filter's state (same coordinates, units and truth-equivalent values
-//! as the RMSE tables, [`super::judge::truth_in_filter_coords`]) under the scenario's *truth*:
+//! as the RMSE tables, [`truth_in_filter_coords`]) under the scenario's *truth*:
 //! the truth's dynamics and atmosphere realisation of each run, the truth's sensors with their
 //! true noise, the epochs each run actually had (sensor rates, outages, visibility). The prior is
 //! the filter start covariance P0 (the scenario's dispersions where the filter start is drawn
@@ -23,9 +23,7 @@
 //! planet-fixed (spherical states) or inertial (Cartesian states) position or velocity: the bound
 //! on the `pos_m`/`vel_mps` RMSE of the tables.
 
-use super::engine::TruthSample;
-use super::judge::{kinematic_truth, truth_in_filter_coords};
-use super::record::RecordedRun;
+use super::pcrlb_epochs::{BoundRunData, KIN};
 use crate::atmosphere::AtmosphereModel;
 use crate::dynamics::{AugmentedParam, EntryModel};
 use crate::frames::{fixed_to_inertial, spherical_to_fixed};
@@ -34,13 +32,13 @@ use crate::scenario::{Scenario, TruthDraw};
 use crate::sensors::Channel;
 use crate::sensors::Noise;
 use crate::sensors::channels::{kinematics, kinematics_from_motion};
+use crate::sim::engine::judge::{kinematic_truth, truth_in_filter_coords};
+use crate::sim::engine::{RecordedRun, TruthSample};
+use crate::sim::monte_carlo::state_names::state_names;
 use crate::state_dim::{DimVisitor, UnsupportedDimension, with_state_dim};
 use nalgebra::{SMatrix, SVector};
 use std::borrow::Cow;
 use thiserror::Error;
-
-pub use super::pcrlb_epochs::BoundRunData;
-use super::pcrlb_epochs::KIN;
 
 /// Why a scenario has no PCRLB (a status of the study, reported beside the tables, not a failure).
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -202,7 +200,7 @@ impl<'a, const N: usize> TruthStates<'a, N> {
 }
 
 fn no_counterpart(scenario: &Scenario, i: usize) -> NoBound {
-    let names = super::monte_carlo::state_names(scenario);
+    let names = state_names(scenario);
     NoBound::NoTruthCounterpart(names.get(i).cloned().unwrap_or_else(|| format!("#{i}")))
 }
 
@@ -332,7 +330,7 @@ fn cartesian_maps() -> Maps {
 mod tests {
     use super::*;
     use crate::scenario::ScenarioConfig;
-    use crate::sim::record::record_run;
+    use crate::sim::engine::record_run;
 
     /// The 6-variable AD of the motion lifted to N gives the information matrix and maps of plain
     /// N-variable AD (the spherical path of `information`).

@@ -1,10 +1,12 @@
 //! Run sums of the PCRLB inputs and the bound they give (see [`super::pcrlb`]).
 
-use super::monte_carlo::{TradeError, state_names};
-use super::pcrlb::{BoundRun, BoundRunData, bound_run};
-use super::record::{RunError, record_run};
+use super::pcrlb::{BoundRun, bound_run};
+use super::pcrlb_epochs::BoundRunData;
 use crate::pcrlb_recursion::{BoundStep, pcrlb_recursion};
 use crate::scenario::Scenario;
+use crate::sim::engine::{RunError, record_run};
+use crate::sim::monte_carlo::state_names::state_names;
+use crate::sim::monte_carlo::trade_error::TradeError;
 use nalgebra::DMatrix;
 use rayon::prelude::*;
 use serde::Serialize;

@@ -18,14 +18,14 @@
 //! The runs are those of `entrynav trade` with the same seed (same truth, noise and filter
 //! start per run), folded in run order.
 
-use super::TruthSample;
-use super::engine::{FilterFailure, Judgement, Navigator, Observer};
-use super::record::{RunError, record_run};
 use crate::estimation::Onboard;
 use crate::estimation::adaptive::DensityNetworkSet;
 use crate::estimation::nav::{FilterKind, NavError};
 use crate::scenario::Scenario;
 use crate::sensors::MeasurementEpoch;
+use crate::sim::engine::{
+    EngineError, FilterFailure, Judgement, Navigator, Observer, RunError, TruthSample, record_run,
+};
 use rayon::prelude::*;
 use std::sync::Arc;
 use thiserror::Error;
@@ -53,7 +53,7 @@ pub enum DensityEvalError {
         /// Filter name.
         filter: String,
         /// Why.
-        source: super::engine::EngineError,
+        source: EngineError,
     },
     /// A truth run failed.
     #[error(transparent)]

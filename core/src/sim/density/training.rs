@@ -3,7 +3,6 @@
 //! training of one network per altitude band. The network itself and its fitting are in
 //! [`crate::estimation::adaptive`].
 
-use super::engine::TruthPropagator;
 use crate::atmosphere::Atmosphere;
 use crate::dynamics::EntryModel;
 use crate::estimation::adaptive::{
@@ -11,6 +10,7 @@ use crate::estimation::adaptive::{
     NetworkRecord, TrainingData, fit_onboard_exponential, train_network,
 };
 use crate::scenario::Scenario;
+use crate::sim::engine::TruthPropagator;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;

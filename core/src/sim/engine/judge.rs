@@ -2,7 +2,7 @@
 //! error, NEES, position and velocity error norms, the deployment (downrange/crossrange) error
 //! and the density errors. This is the only code that puts an estimate beside the truth.
 
-use super::engine::TruthSample;
+use super::truth::TruthSample;
 use crate::estimation::spd::cholesky;
 use crate::frames::{inertial_to_spherical, spherical_to_fixed, spherical_to_inertial};
 use crate::math::wrap_pi;

@@ -1,11 +1,11 @@
 //! A whole truth run recorded: the batch loop over the engine's truth step, and one Monte Carlo
 //! run's truth with its filter start ([`record_run`]), which every filter then flies
-//! ([`Navigator::fly`](super::engine::Navigator::fly)).
+//! ([`Navigator::fly`](super::Navigator::fly)).
 
-use super::engine::{SimError, StopReason, TruthSample, TruthSensors, TruthStep};
-use super::run_seed;
-use super::shared_truth::SharedTruth;
+use super::run_seed::run_seed;
 use super::start::initial_estimate;
+use super::truth::{SimError, StopReason, TruthSample, TruthStep};
+use super::truth_sensors::TruthSensors;
 use crate::scenario::{Scenario, TruthDraw};
 use crate::sensors::{Channel, MeasurementEpoch};
 use rand::{Rng, SeedableRng};
@@ -108,7 +108,7 @@ impl TruthRun {
 
 /// Simulate one truth run of `scenario` for the realisation `draw`, drawing measurement noise
 /// from `rng`: [`TruthSensors`] run to the end at the scenario's bank with every beacon available
-/// (see the engine's step in [`super::engine`]).
+/// (see the engine's step in [`super`]).
 pub fn simulate_truth<R: Rng>(
     scenario: &Scenario,
     draw: &TruthDraw,
@@ -181,20 +181,21 @@ pub struct RecordedRun {
 /// Run `run` draws everything from `ChaCha8Rng::seed_from_u64(run_seed(seed, run))`, in this
 /// order: the truth dispersions, the measurement noise of the whole run, the initial estimate.
 pub fn record_run(scenario: &Scenario, seed: u64, run: usize) -> Result<RecordedRun, RunError> {
-    record_run_sharing(scenario, seed, run, None)
+    record_run_following(scenario, seed, run, |_| None)
 }
 
-/// [`record_run`], following `shared`'s trajectory when the run's realisation is the one it
-/// was integrated for (`sim/shared_truth.rs`): the same record.
-pub fn record_run_sharing(
+/// [`record_run`], following the trajectory `stored` gives for the run's realisation, when it
+/// gives one (integrated before for that realisation, `sim/monte_carlo/shared_truth.rs`): the
+/// same record.
+pub fn record_run_following(
     scenario: &Scenario,
     seed: u64,
     run: usize,
-    shared: Option<&SharedTruth>,
+    stored: impl FnOnce(&TruthDraw) -> Option<Arc<[TruthStep]>>,
 ) -> Result<RecordedRun, RunError> {
     let mut rng = ChaCha8Rng::seed_from_u64(run_seed(seed, run as u64));
     let draw = scenario.draw_truth_run(run, &mut rng);
-    let truth = match shared.and_then(|s| s.trajectory_for(&draw)) {
+    let truth = match stored(&draw) {
         Some(steps) => simulate_truth_replaying(scenario, &draw, &mut rng, steps),
         None => simulate_truth(scenario, &draw, &mut rng),
     }

@@ -2,8 +2,8 @@
 //! 001 §V.B) a draw around the run's truth. This needs the truth, so it lives here and not in the
 //! filter: the filter only receives the vector.
 
-use super::engine::TruthSample;
 use super::judge::truth_in_filter_coords;
+use super::truth::TruthSample;
 use crate::scenario::{Scenario, TruthDraw};
 use rand::Rng;
 use rand_distr::{Distribution, StandardNormal};

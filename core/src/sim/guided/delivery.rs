@@ -4,18 +4,20 @@
 //! the unguided constant bank (the reference bank `guidance.reference_bank_deg`, the bank the
 //! target was designed with) — reduced to miss statistics and the 99 % delivery ellipse.
 //!
-//! Reproducibility as the trade's ([`super::monte_carlo`]): run `r` draws its truth from
+//! Reproducibility as the trade's ([`crate::sim::monte_carlo`]): run `r` draws its truth from
 //! `run_seed(seed, r)` ([`crate::scenario::Scenario::draw_truth_run`]); runs execute in parallel
 //! (rayon) and are reduced in run order, so any thread count gives the same report. A run that
 //! fails (filter failure, no trigger before the truth stops) is counted with its reason, never
 //! dropped silently; the statistics are over the runs that deployed.
 
-use super::engine::EngineError;
+use super::deployment::{Delivery, within_rate_limit};
 use super::guided_flight::{GuidedFlightSettings, fly_perfect_navigation};
-use super::guided_run::{Delivery, GuidedRunError, fly_with_filter, within_rate_limit};
+use super::guided_run::fly_with_filter;
+use super::guided_run_error::GuidedRunError;
 use crate::estimation::nav::FilterKind;
 use crate::guidance::{BankActuator, Guidance, GuidanceError, NavState};
 use crate::scenario::Scenario;
+use crate::sim::engine::{EngineError, run_seed};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -154,7 +156,7 @@ fn reference_run(
     let mut built = scenario
         .build_guidance()
         .ok_or_else(|| GuidedRunError::NoGuidance(name()))??;
-    let mut rng = ChaCha8Rng::seed_from_u64(super::run_seed(seed, run as u64));
+    let mut rng = ChaCha8Rng::seed_from_u64(run_seed(seed, run as u64));
     let draw = scenario.draw_truth_run(run, &mut rng);
     let bank0 = cfg.reference_bank_deg.to_radians();
     let mut fixed = ConstantBank(bank0);

@@ -10,7 +10,8 @@
 use super::delivery::{
     DeliveryError, DeliveryReport, RunDeliveries, algorithm_name, deliver_run, report_of, row_names,
 };
-use super::guided_run::{Delivery, GuidedRunError};
+use super::deployment::Delivery;
+use super::guided_run_error::GuidedRunError;
 use crate::estimation::nav::FilterKind;
 use crate::guidance::BankLimits;
 use crate::scenario::Scenario;

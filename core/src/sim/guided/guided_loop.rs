@@ -18,15 +18,14 @@
 //!    (interpolated between the two truth samples around the crossing). A truth that stops first
 //!    ends the run with [`GuidedRunError::NoTrigger`].
 
-use super::engine::{EntryCoSim, NavStatus, TruthSample};
-use super::guided_run::{
-    Delivery, DeployNavError, GuidedRunError, accel_slots, deployment, guidance_every, triad,
-    trigger_on,
-};
+use super::deployment::{Delivery, DeployNavError, deployment, trigger_on};
+use super::guided_run_error::GuidedRunError;
+use super::loop_inputs::{accel_slots, guidance_every, triad};
 use crate::estimation::Onboard;
 use crate::estimation::nav::FilterKind;
 use crate::guidance::{BankActuator, BuiltGuidance, NavState, Trigger};
 use crate::scenario::Scenario;
+use crate::sim::engine::{EntryCoSim, NavStatus, TruthSample};
 use std::sync::Arc;
 
 /// What guidance was given and what it flew on one truth step of a [`GuidedLoop`]: the onboard

@@ -29,20 +29,20 @@
 //! numerical failure (along the nominal every local lives, or the LinCov fails) and the innovation
 //! gate's exclusions (refused, with the gate).
 
+use super::ekf_steps::{Start, failed, fill, noise_slope, scalar_gain, start, time_update};
+use super::epoch::EntryLinCovEpoch;
+use super::error::EntryLinCovError;
 use super::joint::{Joint, block_diagonal, stack};
-use super::recursion::{
-    Start, failed, fill, noise_slope, scalar_gain, start, statistics, time_update,
-};
 use super::second_order::{mean_drift, measurement_bias};
+use super::statistics::statistics;
 use super::truth::{NominalTruth, TruthEpoch};
-use super::{EntryLinCovEpoch, EntryLinCovError};
 use crate::estimation::ci::{covariance_intersection_with_gains, feedback};
 use crate::estimation::ekf::LinearizedMeasurement;
 use crate::estimation::nav::fusion::{local_start_scale, weighting};
 use crate::estimation::nav::{EkfNav, FilterCore, fuse_exact_with_gains, local_update};
 use crate::estimation::{FusionCovariance, Onboard};
 use crate::scenario::Scenario;
-use crate::sim::judge::estimation_error;
+use crate::sim::engine::judge::estimation_error;
 use crate::state_dim::DimVisitor;
 use nalgebra::{DMatrix, SMatrix, SVector};
 use std::sync::Arc;
@@ -146,7 +146,7 @@ impl FusionRecursion<'_> {
     }
 
     /// `dcifaif` with the exact covariance: every local's batch update of the common prior
-    /// (`fusion_exact::local_update`), fused with eq. 21's weights; every local is reset to the
+    /// (`estimation::nav::local_update`), fused with eq. 21's weights; every local is reset to the
     /// result.
     fn exact<const N: usize>(
         &self,
@@ -350,8 +350,8 @@ mod tests {
     use super::*;
     use crate::estimation::nav::FilterKind;
     use crate::scenario::ScenarioConfig;
-    use crate::sim::lincov_entry::recursion::Recursion;
-    use crate::sim::lincov_entry::truth::nominal_truth;
+    use crate::sim::lincov::recursion::Recursion;
+    use crate::sim::lincov::truth::nominal_truth;
     use crate::state_dim::with_state_dim;
 
     /// One local filter over every channel: the fusion's LinCov (stacked moments, the CI of one

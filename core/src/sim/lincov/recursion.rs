@@ -4,182 +4,28 @@
 //! C_θĥ is kept as its p rows c_j = E\[θ_j δx̂\] (N-vectors) and S_k as its columns s_j, so every
 //! product is of fixed-size matrices.
 
+use super::ekf_steps::{Start, failed, fill, noise_slope, scalar_gain, start, time_update};
+use super::epoch::EntryLinCovEpoch;
+use super::error::EntryLinCovError;
 use super::second_order::{mean_drift, measurement_bias};
+use super::statistics::statistics;
 use super::truth::NominalTruth;
-use super::{EntryLinCovEpoch, EntryLinCovError};
 use crate::estimation::Onboard;
-use crate::estimation::nav::{EkfNav, FilterCore, FilterStart};
-use crate::frames::spherical_to_fixed;
-use crate::math::{dual_gradient, seed_duals};
+use crate::estimation::nav::{EkfNav, FilterCore};
 use crate::scenario::Scenario;
-use crate::sim::judge::estimation_error;
+use crate::sim::engine::judge::estimation_error;
 use crate::state_dim::DimVisitor;
-use nalgebra::{DMatrix, SMatrix, SVector};
+use nalgebra::{SMatrix, SVector};
 use std::sync::Arc;
 
+/// The LinCov of one EKF (the UKF as its EKF equivalent) along the nominal, a [`DimVisitor`]
+/// for the filter's dimension.
 pub(super) struct Recursion<'a> {
     pub scenario: &'a Scenario,
     pub onboard: &'a Arc<Onboard>,
     pub truth: &'a NominalTruth,
     /// Add the second-order mean drift ([`super::second_order`]).
     pub second_order: bool,
-}
-
-/// The position and velocity maps (3×N) at the filter state `x`: Jacobians of the planet-fixed
-/// position and velocity for spherical states (the Monte Carlo's `pos_m`, `vel_mps`), the
-/// identity blocks for Cartesian ones.
-fn maps<const N: usize>(
-    spherical: bool,
-    x: &SVector<f64, N>,
-) -> (SMatrix<f64, 3, N>, SMatrix<f64, 3, N>) {
-    let mut jp = SMatrix::<f64, 3, N>::zeros();
-    let mut jv = SMatrix::<f64, 3, N>::zeros();
-    if spherical {
-        let x6 = SVector::<f64, 6>::from_fn(|i, _| x[i]);
-        let d = seed_duals(&x6);
-        let (pf, vf) = spherical_to_fixed(&[d[0], d[1], d[2], d[3], d[4], d[5]]);
-        for i in 0..3 {
-            let (gp, gv) = (dual_gradient(&pf[i]), dual_gradient(&vf[i]));
-            for j in 0..6 {
-                jp[(i, j)] = gp[j];
-                jv[(i, j)] = gv[j];
-            }
-        }
-    } else {
-        for i in 0..3 {
-            jp[(i, i)] = 1.0;
-            jv[(i, 3 + i)] = 1.0;
-        }
-    }
-    (jp, jv)
-}
-
-/// tr(P⁻¹E) over the entries `idx`, on the correlation scale of P (as the Monte Carlo's NEES,
-/// [`crate::sim::judge::nees`]); NaN when that block of P is not positive definite.
-fn trace_ratio<const N: usize>(
-    p: &SMatrix<f64, N, N>,
-    e: &SMatrix<f64, N, N>,
-    idx: &[usize],
-) -> f64 {
-    let m = idx.len();
-    let d: Vec<f64> = idx.iter().map(|&i| p[(i, i)].max(0.0).sqrt()).collect();
-    if m == 0 || d.iter().any(|v| v.is_nan() || *v <= 0.0) {
-        return f64::NAN;
-    }
-    let c = DMatrix::from_fn(m, m, |a, b| p[(idx[a], idx[b])] / (d[a] * d[b]));
-    let s = DMatrix::from_fn(m, m, |a, b| e[(idx[a], idx[b])] / (d[a] * d[b]));
-    c.cholesky().map_or(f64::NAN, |ch| ch.solve(&s).trace())
-}
-
-/// ∂R_f/∂z of the variance the filter assumes for channel `slot` at the measured value `z`
-/// (zero for an absolute σ; 2f²z for σ = f|z|).
-pub(super) fn noise_slope(onboard: &Onboard, slot: usize, z: f64) -> f64 {
-    let Some(spec) = onboard.channels.get(slot) else {
-        return 0.0;
-    };
-    let var = |v: f64| spec.noise.sigma(v).powi(2);
-    let dz = 1e-6 * z.abs().max(1e-12);
-    (var(z + dz) - var(z - dz)) / (2.0 * dz)
-}
-
-pub(super) fn column<const N: usize>(s: &DMatrix<f64>, j: usize) -> SVector<f64, N> {
-    SVector::from_fn(|i, _| s[(i, j)])
-}
-
-/// `x` with its non-finite entries (no truth counterpart) taken from `fallback`.
-pub(super) fn fill<const N: usize>(x: &[f64], fallback: &SVector<f64, N>) -> SVector<f64, N> {
-    SVector::from_fn(|i, _| if x[i].is_finite() { x[i] } else { fallback[i] })
-}
-
-/// Why the filter failed along the nominal.
-pub(super) fn failed(e: crate::estimation::EstimationError) -> EntryLinCovError {
-    EntryLinCovError::Filter(e.to_string())
-}
-
-/// The start of the recursion: the nominal x̄_0, the filter's start and the moments of its
-/// deviation δx̂_0 (the rows c_j = E\[θ_j δx̂_0\], C_ĥĥ and the mean).
-pub(super) struct Start<const N: usize> {
-    pub xbar: SVector<f64, N>,
-    pub filter: FilterStart<N>,
-    pub c: Vec<SVector<f64, N>>,
-    pub chh: SMatrix<f64, N, N>,
-    pub m: SVector<f64, N>,
-}
-
-/// x̂_0 drawn around the truth (δx̂_0 = S_0θ + P0^½w) or the fixed nominal start.
-pub(super) fn start<const N: usize>(
-    sc: &Scenario,
-    onboard: &Onboard,
-    truth: &NominalTruth,
-) -> Start<N> {
-    let nominal_start =
-        SVector::<f64, N>::from_fn(|i, _| onboard.initial_estimate.get(i).copied().unwrap_or(0.0));
-    let xbar = fill(&truth.x0, &nominal_start);
-    let filter = FilterStart::<N>::with_estimate(onboard, xbar.as_slice());
-    let p_count = truth.params.len();
-    let (c, chh, m) = if sc.config.filter.sample_initial_from_p0 {
-        let c: Vec<SVector<f64, N>> = (0..p_count).map(|j| column(&truth.s0, j)).collect();
-        let chh = c.iter().fold(filter.p0, |acc, s| acc + s * s.transpose());
-        (c, chh, SVector::<f64, N>::zeros())
-    } else {
-        let m0 = estimation_error(sc, &nominal_start, &xbar);
-        (vec![SVector::zeros(); p_count], SMatrix::zeros(), m0)
-    };
-    Start {
-        xbar,
-        filter,
-        c,
-        chh,
-        m,
-    }
-}
-
-/// Time update of `navs` (all holding the same estimate, each its own P) to `t` with the
-/// filter's own model: every sub-step's mean and Φ from the first, as the EKF and the fusion's
-/// shared prediction compute them. Returns the transition Φ over the whole step.
-pub(super) fn time_update<const N: usize>(
-    navs: &mut [EkfNav<N>],
-    t: f64,
-) -> Result<SMatrix<f64, N, N>, EntryLinCovError> {
-    let mut phi = SMatrix::<f64, N, N>::identity();
-    let Some(first) = navs.first() else {
-        return Ok(phi);
-    };
-    let (steps, h, q) = first.substeps_to(t).map_err(failed)?;
-    for _ in 0..steps {
-        let (x_next, f) = navs[0].substep(h);
-        for nav in navs.iter_mut() {
-            nav.apply_substep(x_next, &f, &q).map_err(failed)?;
-        }
-        phi = f * phi;
-    }
-    for nav in navs.iter_mut() {
-        nav.finish_prediction(t);
-    }
-    Ok(phi)
-}
-
-/// The EKF's scalar gain K = P h/(hᵀP h + r_f) with the consider rows zero, and hᵀP h + r_f.
-pub(super) fn scalar_gain<const N: usize>(
-    p: &SMatrix<f64, N, N>,
-    hrow: &SVector<f64, N>,
-    r_f: f64,
-    n_consider: usize,
-    t: f64,
-) -> Result<(SVector<f64, N>, f64), EntryLinCovError> {
-    let ph = p * hrow;
-    let s = hrow.dot(&ph) + r_f;
-    if !(s.is_finite() && s > 0.0) {
-        return Err(EntryLinCovError::NonFinite {
-            what: "innovation variance".into(),
-            t,
-        });
-    }
-    let mut k = ph / s;
-    for i in N.saturating_sub(n_consider)..N {
-        k[i] = 0.0;
-    }
-    Ok((k, s))
 }
 
 impl DimVisitor for Recursion<'_> {
@@ -266,54 +112,4 @@ impl DimVisitor for Recursion<'_> {
         }
         Ok(out)
     }
-}
-
-/// The epoch's predicted statistics from the augmented moments.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn statistics<const N: usize>(
-    spherical: bool,
-    t: f64,
-    truth_x: &[f64],
-    s: &DMatrix<f64>,
-    c: &[SVector<f64, N>],
-    chh: &SMatrix<f64, N, N>,
-    m: &SVector<f64, N>,
-    p: &SMatrix<f64, N, N>,
-    xbar: &SVector<f64, N>,
-) -> Result<EntryLinCovEpoch, EntryLinCovError> {
-    let mut e2 = chh + m * m.transpose();
-    for (j, cj) in c.iter().enumerate() {
-        let sj = column::<N>(s, j);
-        e2 += sj * sj.transpose() - cj * sj.transpose() - sj * cj.transpose();
-    }
-    let e2 = (e2 + e2.transpose()) * 0.5;
-    if e2.iter().chain(p.iter()).any(|v| !v.is_finite()) {
-        return Err(EntryLinCovError::NonFinite {
-            what: "the augmented covariance".into(),
-            t,
-        });
-    }
-    let has = |i: usize| truth_x[i].is_finite();
-    let idx: Vec<usize> = (0..N).filter(|&i| has(i)).collect();
-    let (jp, jv) = maps(spherical, xbar);
-    let root = |v: f64| v.max(0.0).sqrt();
-    let kinematic: Vec<usize> = (0..6.min(N)).collect();
-    Ok(EntryLinCovEpoch {
-        t,
-        rmse: (0..N)
-            .map(|i| if has(i) { root(e2[(i, i)]) } else { f64::NAN })
-            .collect(),
-        mean_error: (0..N)
-            .map(|i| if has(i) { m[i] } else { f64::NAN })
-            .collect(),
-        sigma: (0..N).map(|i| root(p[(i, i)])).collect(),
-        pos_m: root((jp * e2 * jp.transpose()).trace()),
-        vel_mps: root((jv * e2 * jv.transpose()).trace()),
-        pos_sigma_m: root((jp * p * jp.transpose()).trace()),
-        vel_sigma_mps: root((jv * p * jv.transpose()).trace()),
-        nees: trace_ratio(p, &e2, &idx),
-        nees_dof: idx.len(),
-        nees_kinematic: trace_ratio(p, &e2, &kinematic),
-        onboard_cov: p.transpose().iter().copied().collect(),
-    })
 }

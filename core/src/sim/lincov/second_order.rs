@@ -28,8 +28,8 @@
 //! RMS deviation of state a. Only the mean is carried: the covariance's fourth-moment terms and
 //! the truth model's difference from the filter's in the second derivatives are not.
 
-use super::EntryLinCovError;
-use super::recursion::time_update;
+use super::ekf_steps::time_update;
+use super::error::EntryLinCovError;
 use crate::beacons::BeaconState;
 use crate::estimation::nav::EkfNav;
 use crate::sensors::MeasurementEpoch;
@@ -139,8 +139,8 @@ mod tests {
     use crate::estimation::Onboard;
     use crate::estimation::nav::{FilterCore, FilterKind};
     use crate::scenario::{Scenario, ScenarioConfig};
-    use crate::sim::lincov_entry::recursion::{fill, start};
-    use crate::sim::lincov_entry::truth::{NominalTruth, nominal_truth};
+    use crate::sim::lincov::ekf_steps::{fill, start};
+    use crate::sim::lincov::truth::{NominalTruth, nominal_truth};
     use std::sync::Arc;
 
     /// orbiters-3's nominal truth and an EKF at its start, with P0.

@@ -9,15 +9,15 @@
 //! Cov θ = I. A parameter that cannot move the truth (σ zero, a grid point above the trajectory)
 //! is left out.
 
-use super::EntryLinCovError;
+use super::error::EntryLinCovError;
 use crate::atmosphere::{AtmosphereModel, Perturbed};
 use crate::math::wrap_pi;
 use crate::scenario::{Scenario, TruthDraw};
 use crate::sensors::MeasurementEpoch;
 use crate::sensors::channels::kinematics;
 use crate::sim::engine::TruthSample;
-use crate::sim::judge::truth_in_filter_coords;
-use crate::sim::record::simulate_truth;
+use crate::sim::engine::judge::truth_in_filter_coords;
+use crate::sim::engine::simulate_truth;
 use nalgebra::{DMatrix, DVector, SVector};
 use rand::SeedableRng;
 

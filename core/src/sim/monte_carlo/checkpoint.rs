@@ -2,19 +2,19 @@
 //! killed outright (SIGKILL, power loss) loses at most the runs since its last checkpoint.
 //!
 //! The engine decides *what* a checkpoint holds (the finished blocks and the current block's
-//! sums, a `complete: false` [`ShardResult`] that [`super::resume_shard`] continues exactly); the
+//! sums, a `complete: false` [`ShardResult`] that [`resume_shard`](super::study::resume_shard) continues exactly); the
 //! caller decides *when* ([`Checkpoint::due`]) and *where* ([`Checkpoint::save`]). The core does
 //! no I/O and reads no clock.
 
 use super::shard::ShardResult;
 
-/// Receives a study's partial results ([`super::monte_carlo::run_study`]).
+/// Receives a study's partial results ([`run_study`](super::study::run_study)).
 pub trait Checkpoint {
     /// Whether a checkpoint is wanted now; asked once before the first run and after every chunk
     /// of runs (so at most one chunk's runs are lost beyond the caller's interval).
     fn due(&mut self) -> bool;
     /// Keep `partial`: the study so far, `complete: false`, resumable by
-    /// [`super::resume_shard`].
+    /// [`resume_shard`](super::study::resume_shard).
     fn save(&mut self, partial: &ShardResult);
 }
 

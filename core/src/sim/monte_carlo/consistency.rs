@@ -15,9 +15,20 @@
 //!   terms of every local filter (the IMU channels once per local filter); banks the terms of
 //!   their mixture's predictive distribution.
 
-use super::metrics::{EpochRecord, nees_bounds_95};
+use super::run_record::EpochRecord;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
+
+/// Two-sided 95 % bounds for the mean of `runs` NEES values with `dof` degrees of freedom each
+/// (χ² with runs·dof degrees, Wilson–Hilferty approximation, divided by `runs`).
+pub fn nees_bounds_95(dof: usize, runs: usize) -> (f64, f64) {
+    let k = (dof * runs).max(1) as f64;
+    let q = |z: f64| k * (1.0 - 2.0 / (9.0 * k) + z * (2.0 / (9.0 * k)).sqrt()).powi(3);
+    (
+        q(-1.959_963_984_540_054).max(0.0) / runs.max(1) as f64,
+        q(1.959_963_984_540_054) / runs.max(1) as f64,
+    )
+}
 
 /// Consistency sums over runs, folded in run order (serialisable for shards).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -244,4 +255,25 @@ pub struct Consistency {
     pub anis_per_dof: Option<f64>,
     /// Per channel.
     pub nis_per_channel: BTreeMap<String, ChannelNis>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn chi_square_bounds_match_tables() {
+        // χ²(0.025, 100) = 74.22, χ²(0.975, 100) = 129.56 (standard tables).
+        let (lo, hi) = nees_bounds_95(100, 1);
+        assert!(
+            (lo - 74.22).abs() < 0.1 && (hi - 129.56).abs() < 0.1,
+            "{lo} {hi}"
+        );
+        // Mean of 50 runs of 8-dof NEES: χ²(0.025, 400) = 346.48, χ²(0.975, 400) = 457.31, over 50.
+        let (lo, hi) = nees_bounds_95(8, 50);
+        assert!(
+            (lo - 346.48 / 50.0).abs() < 0.01 && (hi - 457.31 / 50.0).abs() < 0.01,
+            "{lo} {hi}"
+        );
+    }
 }

@@ -21,7 +21,7 @@
 use super::consistency::ConsistencySums;
 use super::gate_stats::GateSums;
 use super::moments::{EpochSums, FinalSums};
-pub use super::run_record::{EpochRecord, FinalRecord, RunRecord};
+use super::run_record::{EpochRecord, RunRecord};
 use serde::Serialize;
 
 /// A completed run whose final-epoch NEES exceeds this many times its degrees of freedom counts as
@@ -74,17 +74,6 @@ pub struct FinalRow {
     /// ellipse); `None` without a last epoch or in shard files written before it existed.
     #[serde(default)]
     pub downrange_crossrange_m: Option<(f64, f64)>,
-}
-
-/// Two-sided 95 % bounds for the mean of `runs` NEES values with `dof` degrees of freedom each
-/// (χ² with runs·dof degrees, Wilson–Hilferty approximation, divided by `runs`).
-pub fn nees_bounds_95(dof: usize, runs: usize) -> (f64, f64) {
-    let k = (dof * runs).max(1) as f64;
-    let q = |z: f64| k * (1.0 - 2.0 / (9.0 * k) + z * (2.0 / (9.0 * k)).sqrt()).powi(3);
-    (
-        q(-1.959_963_984_540_054).max(0.0) / runs.max(1) as f64,
-        q(1.959_963_984_540_054) / runs.max(1) as f64,
-    )
 }
 
 /// Sums over runs of one filter, folded in run-index order so results do not depend on thread
@@ -244,26 +233,5 @@ impl FilterAccumulator {
                 ),
             });
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn chi_square_bounds_match_tables() {
-        // χ²(0.025, 100) = 74.22, χ²(0.975, 100) = 129.56 (standard tables).
-        let (lo, hi) = nees_bounds_95(100, 1);
-        assert!(
-            (lo - 74.22).abs() < 0.1 && (hi - 129.56).abs() < 0.1,
-            "{lo} {hi}"
-        );
-        // Mean of 50 runs of 8-dof NEES: χ²(0.025, 400) = 346.48, χ²(0.975, 400) = 457.31, over 50.
-        let (lo, hi) = nees_bounds_95(8, 50);
-        assert!(
-            (lo - 346.48 / 50.0).abs() < 0.01 && (hi - 457.31 / 50.0).abs() < 0.01,
-            "{lo} {hi}"
-        );
     }
 }

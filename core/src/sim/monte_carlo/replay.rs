@@ -2,13 +2,11 @@
 //! innovations and NIS, and fusion weights or model probabilities. `entrynav trade --replay-run K`
 //! writes it as CSV to trace a failed or diverged run found in a study's `failures`.
 
-use super::TruthSample;
-use super::engine::{FilterFailure, Judgement, Navigator, Observer};
-use super::monte_carlo::TradeError;
-use super::record::record_run;
+use super::trade_error::TradeError;
 use crate::estimation::nav::FilterKind;
 use crate::scenario::Scenario;
 use crate::sensors::MeasurementEpoch;
+use crate::sim::engine::{FilterFailure, Judgement, Navigator, Observer, TruthSample, record_run};
 use std::sync::Arc;
 
 /// One epoch of a replayed filter.

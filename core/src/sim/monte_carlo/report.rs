@@ -6,6 +6,7 @@ use super::consistency::Consistency;
 use super::gate_stats::GatingSummary;
 use super::metrics::{FilterAccumulator, FinalRow, RunProblem};
 use super::moments::{EpochSums, FinalSums, Moments};
+use crate::sim::bounds::pcrlb_sums::PcrlbReport;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -145,7 +146,7 @@ pub struct FilterReport {
 
 impl FilterReport {
     /// Fill the efficiencies RMSE / PCRLB from the scenario's `bound`.
-    pub fn set_efficiency(&mut self, bound: &crate::sim::PcrlbReport) {
+    pub fn set_efficiency(&mut self, bound: &PcrlbReport) {
         let ratio = |rmse: &BTreeMap<String, Option<f64>>, b: &BTreeMap<String, Option<f64>>| {
             rmse.iter()
                 .map(|(k, r)| {

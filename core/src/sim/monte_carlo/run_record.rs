@@ -3,14 +3,12 @@
 //! weights the accumulators of [`super::metrics`] fold, and [`filter_run`], which flies a filter
 //! over a recorded run with it.
 
-use super::engine::{FilterFailure, Judgement, Navigator, Observer};
-use super::gate_stats::{JudgedExclusion, judge_exclusions};
-use super::record::RecordedRun;
+use super::exclusions::{JudgedExclusion, judge_exclusions};
 use crate::estimation::Onboard;
 use crate::estimation::nav::{FilterKind, GateReport};
 use crate::scenario::Scenario;
 use crate::sensors::MeasurementEpoch;
-use crate::sim::TruthSample;
+use crate::sim::engine::{FilterFailure, Judgement, Navigator, Observer, RecordedRun, TruthSample};
 use std::sync::Arc;
 
 /// What one filter produced at one epoch of one run.

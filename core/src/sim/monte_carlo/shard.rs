@@ -2,9 +2,10 @@
 //! separate processes (or Dask workers) and merge into exactly the single-process statistics.
 
 use super::metrics::FilterAccumulator;
-use super::monte_carlo::{TradeError, TradeReport};
-use super::pcrlb_sums::BoundSums;
+use super::trade_error::TradeError;
+use super::trade_report::TradeReport;
 use crate::scenario::Scenario;
+use crate::sim::bounds::pcrlb_sums::BoundSums;
 use serde::Serialize;
 
 /// Runs per accumulation block. Sums are formed per block in run order and blocks are combined
@@ -78,7 +79,7 @@ pub struct ShardResult {
     pub states: Vec<String>,
     /// Channel names.
     pub channels: Vec<String>,
-    /// The truth atmosphere file and its run → profile rule ([`super::TradeReport::atmosphere`]).
+    /// The truth atmosphere file and its run → profile rule ([`TradeReport::atmosphere`]).
     #[serde(default)]
     pub atmosphere: Option<crate::atmosphere::ProfileProvenance>,
     /// Which shard this is.

@@ -4,17 +4,19 @@
 //! filter start are Table 1's), so every run flies the same truth trajectory and has the same
 //! PCRLB contribution. [`SharedTruth`] integrates the trajectory of one run's realisation once
 //! and forms that run's PCRLB contribution once; every run whose realisation equals it follows
-//! the stored trajectory ([`TruthSensors::with_draw_replaying`](super::engine::TruthSensors::with_draw_replaying))
+//! the stored trajectory ([`TruthSensors::with_draw_replaying`](crate::sim::engine::TruthSensors::with_draw_replaying))
 //! and, when its truth samples and measurement pattern equal it too, takes the stored
 //! contribution. Both are the values the run would compute itself (the same operations on the
 //! same numbers), so a study's results are bit-identical with or without the sharing; a run
 //! whose realisation differs (dispersed initial state, vehicle, atmosphere) computes its own.
 
-use super::engine::{TruthPropagator, TruthSample, TruthStep};
-use super::pcrlb::{BoundRun, bound_run};
-use super::record::{RecordedRun, record_run};
 use crate::scenario::{Scenario, TruthDraw};
 use crate::sensors::MeasurementEpoch;
+use crate::sim::bounds::pcrlb::{BoundRun, bound_run};
+use crate::sim::engine::{
+    RecordedRun, RunError, TruthPropagator, TruthSample, TruthStep, record_run,
+    record_run_following,
+};
 use std::sync::Arc;
 
 /// One realisation's trajectory and PCRLB contribution, for the runs that share it.
@@ -97,6 +99,19 @@ impl SharedTruth {
     }
 }
 
+/// [`record_run`], following `shared`'s trajectory when the run's realisation is the one it
+/// was integrated for: the same record.
+pub fn record_run_sharing(
+    scenario: &Scenario,
+    seed: u64,
+    run: usize,
+    shared: Option<&SharedTruth>,
+) -> Result<RecordedRun, RunError> {
+    record_run_following(scenario, seed, run, |draw| {
+        shared.and_then(|s| s.trajectory_for(draw))
+    })
+}
+
 /// Every truth integration step of `draw` at the scenario's bank, until the truth stops; `None`
 /// if a step fails.
 fn trajectory(scenario: &Scenario, draw: &TruthDraw) -> Option<Vec<TruthStep>> {
@@ -129,7 +144,7 @@ mod tests {
         let shared = SharedTruth::new(&s, 7, 0, true).unwrap();
         for run in [1, 2, 5] {
             let alone = record_run(&s, 7, run).unwrap();
-            let with = super::super::record::record_run_sharing(&s, 7, run, Some(&shared)).unwrap();
+            let with = record_run_sharing(&s, 7, run, Some(&shared)).unwrap();
             assert!(shared.trajectory_for(&alone.draw).is_some(), "run {run}");
             assert_eq!(alone.truth.samples, with.truth.samples);
             assert_eq!(alone.truth.epochs, with.truth.epochs, "the noise too");

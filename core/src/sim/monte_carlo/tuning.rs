@@ -7,13 +7,14 @@
 //! accumulation block, 256 runs), on any thread count.
 
 use super::metrics::FilterAccumulator;
-use super::monte_carlo::{TradeError, state_names};
-use super::record::{RecordedRun, channel_names, record_run};
 use super::report::FilterReport;
 use super::run_record::{RunRecord, filter_run};
+use super::state_names::state_names;
+use super::trade_error::TradeError;
 use crate::estimation::Onboard;
 use crate::estimation::nav::FilterKind;
 use crate::scenario::Scenario;
+use crate::sim::engine::{RecordedRun, channel_names, record_run};
 use rayon::prelude::*;
 use std::sync::Arc;
 

@@ -21,10 +21,10 @@ use serde::{Deserialize, Serialize};
 use super::error::AtmosphereError;
 use super::tabulated::{MIN_TABLE_POINTS, Tabulated};
 
-pub use super::columns::{
-    DENSITY_ALIASES, HEIGHT_ALIASES, HeightUnit, RADIUS_ALIASES, TableColumns,
+use super::columns::{
+    DENSITY_ALIASES, HEIGHT_ALIASES, HeightUnit, RADIUS_ALIASES, TableColumns, declared_unit,
+    find_column,
 };
-use super::columns::{declared_unit, find_column};
 
 /// Most data rows read from one table text (all profiles together); more is an error.
 pub const MAX_TABLE_ROWS: usize = 1_000_000;

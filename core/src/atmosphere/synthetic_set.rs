@@ -36,10 +36,12 @@
 //! a Mars-GRAM Monte Carlo set (a `#` header of `Var_X DENSTOT Radius`, stacked profiles), which
 //! `atmosphere::parse_profiles` reads back. The core does no I/O: the CLI writes the text.
 
+use super::density_model::Atmosphere;
 use super::error::{AtmosphereError, check_closed, check_open};
-use super::model::AtmosphereModel;
-use super::perturbed::{PerturbationSpec, Perturbed};
-use super::{Atmosphere, Tabulated};
+use super::model::{AtmosphereModel, Perturbed};
+use super::perturbation_spec::PerturbationSpec;
+use super::profiles::MAX_PROFILES;
+use super::tabulated::Tabulated;
 
 /// Altitude (m) below which a case's `f_below` applies.
 pub const SYNTHETIC_BLEND_BOTTOM_M: f64 = 60_000.0;
@@ -198,13 +200,13 @@ impl SyntheticSetSpec {
     /// [0.5, 2], perturbation factors in [0, 10], scale in [0, 10] (and scale × factor ≤ 10), a
     /// range of at least three rows.
     pub fn validate(&self) -> Result<(), AtmosphereError> {
-        if self.cases.is_empty() || self.cases.len() > super::MAX_PROFILES {
+        if self.cases.is_empty() || self.cases.len() > MAX_PROFILES {
             return Err(AtmosphereError::InvalidField {
                 field: "cases".to_string(),
                 problem: format!(
                     "{} cases; between 1 and {} are allowed",
                     self.cases.len(),
-                    super::MAX_PROFILES
+                    MAX_PROFILES
                 ),
             });
         }

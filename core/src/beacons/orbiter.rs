@@ -11,10 +11,9 @@
 //! Table 3: a 3700 km, e 0, i 90°, ω 0, f 355°, Ω 127.3°) or in the circular-orbit form of seed
 //! 002 eq. 55–56 (see [`super::elements`]).
 
-use super::{
-    BeaconError, BeaconMotion, CircularOrbit, KeplerElements, check_finite, check_finite3,
-    check_planet,
-};
+use super::elements::{CircularOrbit, KeplerElements};
+use super::error::{BeaconError, check_finite, check_finite3, check_planet};
+use super::motion::BeaconMotion;
 use crate::math::{add, cross, dot, norm, scale};
 use crate::planet::Planet;
 use std::f64::consts::TAU;

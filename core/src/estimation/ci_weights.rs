@@ -2,8 +2,8 @@
 //! determinant of the fused covariance over the simplex `Σ ω_i = 1, ω_i ≥ 0`, by an active-set
 //! projected Newton method on the scaled information matrices that [`super::ci`] prepares.
 
-use super::EstimationError;
-use super::ci::not_pd;
+use super::ci_scaling::not_pd;
+use super::error::EstimationError;
 use super::spd::{cholesky, inverse_from_cholesky, lower_inverse};
 use nalgebra::{Cholesky, Const, DMatrix, DVector, SMatrix};
 

@@ -3,8 +3,9 @@
 //! but which are never updated (Schmidt 1966; Tapley, Schutz & Born, *Statistical Orbit
 //! Determination*, §6.4: K_c = 0, covariance by the Joseph form, which holds for any gain).
 
+use super::covariance::{check_covariance, symmetrize};
+use super::error::EstimationError;
 use super::propagate::phi_p_phit;
-use super::{EstimationError, check_covariance, symmetrize};
 use crate::math::all_finite;
 use nalgebra::{SMatrix, SVector};
 

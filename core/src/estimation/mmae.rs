@@ -7,7 +7,8 @@
 //! Everything works with log-weights and max-subtracted log-sum-exp, so neither tiny likelihoods
 //! (the underflow seed 003 §3 blames on Magill's bank) nor large gating activations give NaN.
 
-use super::{EstimationError, check_covariance, symmetrize};
+use super::covariance::{check_covariance, symmetrize};
+use super::error::EstimationError;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
 /// Default learning rate η of [`MixtureOfExperts`] (seed 003 eq. 23 does not print its value).

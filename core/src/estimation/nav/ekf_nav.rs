@@ -1,13 +1,14 @@
 //! The EKF navigation filter: centralised over every channel, or local over a channel subset.
 
+use super::nav_filter::{FilterCore, NavFilter};
 use super::start::FilterStart;
+use super::step_info::StepInfo;
 use super::ukf_common::substeps;
-use super::{FilterCore, NavFilter, StepInfo, channel_sigma};
 use crate::atmosphere::AtmosphereModel;
 use crate::dynamics::EntryModel;
-use crate::estimation::EstimationError;
-use crate::estimation::Onboard;
 use crate::estimation::ekf::{Ekf, LinearizedMeasurement};
+use crate::estimation::error::EstimationError;
+use crate::estimation::onboard::Onboard;
 use crate::estimation::onboard::OnboardChannel;
 use crate::math::all_finite;
 use crate::math::{V3, dual_gradient, seed_duals};
@@ -403,4 +404,9 @@ impl<const N: usize> FilterCore<N> for EkfNav<N> {
     fn altitude(&self) -> f64 {
         self.model.altitude(&self.ekf.x)
     }
+}
+
+/// Noise 1σ the filters assume for a channel with measured value `z`.
+fn channel_sigma(spec: &OnboardChannel, z: f64) -> f64 {
+    spec.noise.sigma(z)
 }

@@ -3,15 +3,17 @@
 
 use super::ekf_nav::{EkfNav, RELINEARIZATION_TOLERANCE};
 use super::ensemble::EkfEnsemble;
-use super::fusion_exact::{fuse_exact, local_update};
+use super::fusion_exact::fuse_exact;
+use super::local_update::local_update;
+use super::nav_filter::{FilterCore, NavFilter};
 use super::prior_information::PriorInformation;
 use super::start::FilterStart;
-use super::{FilterCore, NavFilter, StepInfo};
-use crate::estimation::EstimationError;
+use super::step_info::StepInfo;
 use crate::estimation::ci::{CiWeighting, covariance_intersection_from, feedback};
 use crate::estimation::ekf::LinearizedMeasurement;
 use crate::estimation::ekf::linearization_error_values;
-use crate::estimation::{FusionCovariance, Onboard};
+use crate::estimation::error::EstimationError;
+use crate::estimation::onboard::{FusionCovariance, Onboard};
 use crate::math::V3;
 use crate::math::all_finite;
 use crate::sensors::MeasurementEpoch;

@@ -15,11 +15,14 @@
 //! Hidden orbiters simply give no information, so no visibility penalty is needed. The answer
 //! is a local optimum of the bound near the proxy's optimum, never worse than the proxy's.
 
-use crate::ground::final_position_bound_of;
-use crate::orbiters::{OrbitElements, OrbiterProblem, OrbiterSolution};
+use super::error::OptimizerError;
+use super::ground::final_bound::final_position_bound_of;
+use super::orbiters::problem::OrbiterProblem;
+use super::orbiters::solution::OrbiterSolution;
+use super::progress::Progress;
+use crate::orbiters::OrbitElements;
 use crate::output::{BeaconNoise, orbiter_beacons};
 use crate::search::{SearchOptions, SearchResult, polish_from};
-use crate::{OptimizerError, Progress};
 use entrynav::scenario::ScenarioConfig;
 use std::time::Instant;
 

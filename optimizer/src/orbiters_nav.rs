@@ -9,9 +9,11 @@
 //! (particle swarm + restarted Nelder–Mead over (Ω, i, f) per orbiter) runs on it directly.
 //! Hidden orbiters give no information, so no visibility penalty is needed.
 
-use crate::orbiters::{OrbitElements, OrbiterProblem};
+use super::error::OptimizerError;
+use super::orbiters::problem::OrbiterProblem;
+use super::progress::Progress;
+use crate::orbiters::OrbitElements;
 use crate::search::{SearchOptions, SearchResult, minimize};
-use crate::{OptimizerError, Progress};
 use entrynav::scenario::Scenario;
 use entrynav::sim::bounds::nominal_bound::{NominalBound, NominalBoundSeries};
 use std::time::Instant;

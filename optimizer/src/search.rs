@@ -13,7 +13,8 @@
 //! graded penalty. Costs that come back NaN or infinite are replaced by [`NON_FINITE_COST`] before
 //! argmin sees them.
 
-use crate::{OptimizerError, Progress};
+use super::error::OptimizerError;
+use super::progress::Progress;
 use argmin::core::{CostFunction, Error as ArgminError, Executor, State};
 use argmin::solver::neldermead::NelderMead;
 use argmin::solver::particleswarm::ParticleSwarm;

@@ -25,8 +25,11 @@
 //! early (`AlmostSolved`, `InsufficientProgress`). The bounds are exact up to floating-point
 //! rounding of a few 3×3 products (≲ 1e-13 here, far below the default gap tolerance 1e-6).
 
+use super::criterion::SelectionCriterion;
+use super::problem::LN_DET_FLOOR;
+use super::problem::SelectionProblem;
 use super::relaxation::{RawRelaxation, Subproblem};
-use super::*;
+use nalgebra::Matrix3;
 
 /// A dual point of the relaxation: any such point bounds every node (module docs).
 #[derive(Debug, Clone, PartialEq)]
@@ -296,6 +299,7 @@ impl SelectionProblem {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::select::problem::AtMost;
     use nalgebra::Vector3;
 
     /// Deterministic pseudo-random numbers in [−1, 1) (SplitMix64).

@@ -18,8 +18,10 @@
 //!    weight, then the lower index) is the branching variable.
 
 use super::bounds::DualPoint;
+use super::problem::SelectionProblem;
 use super::relaxation::Subproblem;
-use super::*;
+use super::report::Selection;
+use crate::error::OptimizerError;
 use clarabel::solver::SolverStatus;
 use std::sync::Arc;
 

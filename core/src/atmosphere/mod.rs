@@ -28,7 +28,9 @@ pub mod model;
 pub mod parse;
 pub mod perturbation_spec;
 pub mod profiles;
+pub mod synthetic_case;
 pub mod synthetic_set;
+mod table_header;
 pub mod tabulated;
 
 pub use columns::{DENSITY_ALIASES, HEIGHT_ALIASES, HeightUnit, RADIUS_ALIASES, TableColumns};
@@ -48,8 +50,8 @@ pub use profiles::{
     Datum, HeightReference, MAX_PROFILES, Placement, Profile, ProfileChoice, ProfileProvenance,
     ProfileSet, areoid_radius_m, parse_profiles,
 };
+pub use synthetic_case::SyntheticCase;
 pub use synthetic_set::{
-    SyntheticCase, SyntheticProfile, SyntheticSetSpec, generate_synthetic_set,
-    synthetic_set_gram_text,
+    SyntheticProfile, SyntheticSetSpec, generate_synthetic_set, synthetic_set_gram_text,
 };
 pub use tabulated::{MIN_TABLE_POINTS, Tabulated};

@@ -24,6 +24,7 @@ pub mod error;
 mod field_checks;
 pub mod motion;
 pub mod orbiter;
+pub mod stumpff;
 pub mod surface;
 pub mod visibility;
 
@@ -34,7 +35,8 @@ pub use elements::{CircularOrbit, KeplerElements};
 pub use ephemeris_table::{BeaconState, EphemerisTable};
 pub use error::BeaconError;
 pub use motion::BeaconMotion;
-pub use orbiter::{Orbiter, stumpff};
+pub use orbiter::Orbiter;
+pub use stumpff::stumpff;
 pub use surface::SurfaceBeacon;
 pub use visibility::{
     Beacon, ground_visibility_margin, ground_visible, orbiter_visibility_margin, orbiter_visible,

@@ -9,8 +9,9 @@ use super::step_info::StepInfo;
 use crate::dynamics::AugmentedParam;
 use crate::estimation::error::EstimationError;
 use crate::estimation::mmae::{
-    ClassicBank, DEFAULT_ETA, DEFAULT_P_MIN, MixtureOfExperts, fuse_bank, gaussian_log_likelihood,
+    ClassicBank, DEFAULT_ETA, DEFAULT_P_MIN, MixtureOfExperts, fuse_bank,
 };
+use crate::estimation::model_probability::gaussian_log_likelihood;
 use crate::estimation::onboard::Onboard;
 use crate::math::V3;
 use crate::sensors::Channel;

@@ -108,7 +108,7 @@ fn fuse_with<const N: usize>(
 mod tests {
     use super::*;
     use crate::estimation::ci::covariance_intersection;
-    use crate::estimation::ekf::LinearizedMeasurement;
+    use crate::estimation::linearization::LinearizedMeasurement;
     use crate::estimation::nav::local_update::local_update;
     use nalgebra::{Matrix3, Vector3};
     use rand::SeedableRng;

@@ -1,8 +1,8 @@
 //! One local filter's update of the common prior ([`LocalUpdate`], [`local_update`]): the batch
 //! EKF update the exact DCIFAIF fusion (`fusion_exact.rs`) and LinCov's fusion recursion build on.
 
-use crate::estimation::ekf::LinearizedMeasurement;
 use crate::estimation::error::EstimationError;
+use crate::estimation::linearization::LinearizedMeasurement;
 use crate::math::all_finite;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 

@@ -37,7 +37,7 @@ use super::second_order::{mean_drift, measurement_bias};
 use super::statistics::statistics;
 use super::truth::{NominalTruth, TruthEpoch};
 use crate::estimation::ci::{covariance_intersection_with_gains, feedback};
-use crate::estimation::ekf::LinearizedMeasurement;
+use crate::estimation::linearization::LinearizedMeasurement;
 use crate::estimation::nav::fusion::{local_start_scale, weighting};
 use crate::estimation::nav::{EkfNav, FilterCore, fuse_exact_with_gains, local_update};
 use crate::estimation::{FusionCovariance, Onboard};

@@ -3,9 +3,9 @@
 
 use entrynav::beacons::Beacon;
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use entrynav::sim::bounds::nominal_bound::{NominalBound, NominalBoundError, RangeSite};
 use entrynav::sim::bounds::pcrlb::bound_run;
 use entrynav::sim::bounds::pcrlb_sums::BoundSums;
+use entrynav::sim::bounds::{NominalBound, NominalBoundError, RangeSite};
 use entrynav::sim::monte_carlo::state_names;
 use entrynav::sim::{RecordedRun, simulate_truth};
 use rand::SeedableRng;

@@ -26,7 +26,7 @@ pub enum OptimizerError {
     Beacon(#[from] BeaconError),
     /// The nominal position bound could not be formed.
     #[error(transparent)]
-    NominalBound(#[from] entrynav::sim::bounds::nominal_bound::NominalBoundError),
+    NominalBound(#[from] entrynav::sim::bounds::NominalBoundError),
     /// argmin failed while running `what` (the particle swarm or a Nelder–Mead polish).
     #[error("solver failure: {what}")]
     Argmin {

@@ -10,6 +10,7 @@ pub mod builtin;
 pub mod config;
 pub mod draw;
 pub mod error;
+pub mod noise_inflation;
 mod onboard;
 pub mod plausibility;
 pub mod reference;

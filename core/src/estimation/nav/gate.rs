@@ -8,7 +8,7 @@
 //! what the filter itself believes (x̂⁻, P⁻, R); for the sigma-point filters S is linearised at
 //! the prior mean rather than taken from their sigma points, which is the same to first order.
 
-use super::ekf_nav::linearize_epoch;
+use super::epoch_linearization::linearize_epoch;
 use super::gate_report::GateReport;
 use super::nav_filter::{FilterCore, NavFilter};
 use super::step_info::StepInfo;

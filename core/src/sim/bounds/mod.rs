@@ -11,11 +11,14 @@
 //!   design, where each candidate set of sites costs only the recursion.
 
 pub mod nominal_bound;
+pub mod nominal_bound_error;
+mod nominal_epochs;
 pub mod pcrlb;
 mod pcrlb_epochs;
 pub mod pcrlb_sums;
 
-pub use nominal_bound::{NominalBound, NominalBoundError, NominalBoundSeries, RangeSite};
+pub use nominal_bound::{NominalBound, NominalBoundSeries, RangeSite};
+pub use nominal_bound_error::NominalBoundError;
 pub use pcrlb::{BoundRun, NoBound, bound_run};
 pub use pcrlb_epochs::BoundRunData;
 pub use pcrlb_sums::{BoundSums, PcrlbReport, pcrlb_study};

@@ -23,53 +23,16 @@
 //! orbits ([`NominalBound::moving_sites`], line of sight by eq. 58–60); range-rate channels are
 //! refused.
 
-use super::pcrlb::{NoBound, TruthStates, bound_model, information, transition};
-use super::pcrlb_epochs::KIN;
+use super::nominal_bound_error::NominalBoundError;
+use super::nominal_epochs::{Collect, Epoch};
 use crate::beacons::{ground_visibility_margin, orbiter_visibility_margin};
-use crate::frames::{rotate_z, spherical_to_position};
+use crate::frames::rotate_z;
 use crate::scenario::Scenario;
 use crate::sensors::Channel;
-use crate::sim::engine::{RecordedRun, SimError, simulate_truth};
-use crate::state_dim::{DimVisitor, UnsupportedDimension, with_state_dim};
+use crate::sim::engine::{RecordedRun, simulate_truth};
+use crate::state_dim::{DimVisitor, with_state_dim};
 use nalgebra::{SMatrix, SVector};
 use rand::SeedableRng;
-use thiserror::Error;
-
-/// Why the nominal bound cannot be formed.
-#[derive(Debug, Error, Clone, PartialEq)]
-pub enum NominalBoundError {
-    /// The scenario has no PCRLB (see [`NoBound`]).
-    #[error(transparent)]
-    NoBound(#[from] NoBound),
-    /// The nominal truth could not be simulated.
-    #[error("the nominal truth failed: {0}")]
-    Truth(#[from] SimError),
-    /// The filter dimension is outside the supported range.
-    #[error(transparent)]
-    Dimension(#[from] UnsupportedDimension),
-    /// The scenario has no range sensor and beacon to give the range epochs.
-    #[error("scenario '{0}' has no range channel: give [sensors.range] and at least one beacon")]
-    NoRange(String),
-    /// Range-rate channels depend on the velocity map, which this bound does not place.
-    #[error("scenario '{0}' measures range rate; the nominal bound places range beacons only")]
-    RangeRate(String),
-    /// A site with a non-finite position, a σ that is not positive or a mask outside [0, π/2).
-    #[error(
-        "site {index}: position {position:?} m, sigma {sigma} m (finite, sigma > 0, elevation \
-         mask in [0, 90) deg)"
-    )]
-    BadSite {
-        /// Site index.
-        index: usize,
-        /// Its planet-fixed position \[m\].
-        position: [f64; 3],
-        /// Its range 1σ \[m\].
-        sigma: f64,
-    },
-    /// The recursion lost positive definiteness or produced a non-finite bound.
-    #[error("the nominal bound became non-finite at t = {0} s")]
-    NonFinite(f64),
-}
 
 /// A range beacon on the planet: planet-fixed position \[m\], range 1σ \[m\] and elevation mask.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -101,24 +64,6 @@ impl NominalBoundSeries {
     pub fn final_value(&self) -> f64 {
         self.pos_m.last().copied().unwrap_or(f64::NAN)
     }
-}
-
-/// One epoch's beacon-independent data (matrices column-major, N the filter dimension).
-#[derive(Debug, Clone)]
-struct Epoch {
-    t: f64,
-    phi: Vec<f64>,
-    /// Information of the non-radio channels (`None`: none measured).
-    base: Option<Vec<f64>>,
-    /// 3×N position map.
-    jp: Vec<f64>,
-    /// Vehicle planet-fixed position \[m\].
-    vehicle_fixed: [f64; 3],
-    /// Rotation angle from the planet-fixed to the position map's frame (0 when the map is
-    /// planet-fixed, ωt for inertial Cartesian states).
-    angle: f64,
-    /// The range sensor samples at this epoch.
-    ranged: bool,
 }
 
 /// The beacon-independent part of the nominal-trajectory bound of a scenario.
@@ -309,62 +254,6 @@ impl NominalBound {
             }
         }
         with_state_dim(self.n, Evaluate { bound: self, sites })?
-    }
-}
-
-/// Collects the beacon-independent epochs (dimension N).
-struct Collect<'a> {
-    scenario: &'a Scenario,
-    rec: &'a RecordedRun,
-}
-
-impl DimVisitor for Collect<'_> {
-    type Output = Result<Vec<Epoch>, NominalBoundError>;
-
-    fn visit<const N: usize, const L: usize>(self) -> Self::Output {
-        let (scenario, rec) = (self.scenario, self.rec);
-        let model = bound_model(scenario, &rec.draw)?;
-        let truth = TruthStates::<N>::new(scenario, rec)?;
-        let first = rec.truth.samples.first().ok_or(NoBound::EmptyRun)?;
-        let (mut t_prev, mut x_prev) = (first.t, truth.at(first));
-        let omega = model.omega();
-        let cartesian = model.kind.is_cartesian();
-        let mut out = Vec::with_capacity(rec.truth.epochs.len());
-        for (epoch, sample) in rec.truth.epochs_with_truth() {
-            let phi = transition(scenario, &model, &x_prev, epoch.t - t_prev);
-            let x = truth.checked_at(sample)?;
-            let radio = |c: usize| scenario.channels[c].channel.beacon().is_some();
-            let ranged = (0..epoch.values.len()).any(|c| radio(c) && epoch.values[c].is_some());
-            let mut others = epoch.clone();
-            for (c, v) in others.values.iter_mut().enumerate() {
-                if radio(c) {
-                    *v = None;
-                }
-            }
-            let (base, (jp, _)) = information(scenario, &model, &x, &others, scenario.truth_bank)?;
-            let mut jp_n = SMatrix::<f64, 3, N>::zeros();
-            for i in 0..3 {
-                for j in 0..N.min(KIN) {
-                    jp_n[(i, j)] = jp[(i, j)];
-                }
-            }
-            let [r, lon, lat] = [
-                sample.spherical[0],
-                sample.spherical[1],
-                sample.spherical[2],
-            ];
-            out.push(Epoch {
-                t: epoch.t,
-                phi: phi.as_slice().to_vec(),
-                base: (base.iter().any(|v| *v != 0.0)).then(|| base.as_slice().to_vec()),
-                jp: jp_n.as_slice().to_vec(),
-                vehicle_fixed: spherical_to_position(r, lon, lat),
-                angle: if cartesian { omega * epoch.t } else { 0.0 },
-                ranged,
-            });
-            (t_prev, x_prev) = (epoch.t, x);
-        }
-        Ok(out)
     }
 }
 

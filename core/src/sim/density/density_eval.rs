@@ -164,6 +164,39 @@ pub fn evaluate_density_filters(
     opts: &DensityEvalOptions,
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<Vec<DensityEvalReport>, DensityEvalError> {
+    let onboard = checked_onboard(scenario, kinds, networks)?;
+    let mut sums: Vec<FilterSums> = kinds.iter().map(|_| FilterSums::default()).collect();
+    let chunk = 64;
+    let mut done = 0;
+    for start in (0..opts.runs).step_by(chunk) {
+        let end = (start + chunk).min(opts.runs);
+        let runs: Vec<Result<Vec<DensitySeries>, DensityEvalError>> = (start..end)
+            .into_par_iter()
+            .map(|run| one_run(scenario, &onboard, kinds, opts.seed, run))
+            .collect();
+        for (i, r) in runs.into_iter().enumerate() {
+            for (s, series) in sums.iter_mut().zip(r?) {
+                s.add(series, start + i < opts.keep_runs);
+            }
+            done += 1;
+        }
+        progress(done);
+    }
+    Ok(kinds
+        .iter()
+        .zip(sums)
+        .map(|(k, s)| s.report(k.name(), opts.runs))
+        .collect())
+}
+
+/// The onboard view the evaluation flies (the scenario's, with `networks` if given), once the
+/// scenario is seed 001's 8-state layout and every filter of `kinds` is a density filter that
+/// fits it.
+fn checked_onboard(
+    scenario: &Scenario,
+    kinds: &[FilterKind],
+    networks: Option<&DensityNetworkSet>,
+) -> Result<Arc<Onboard>, DensityEvalError> {
     let states = scenario.onboard.state_dim();
     if states != 8 {
         return Err(DensityEvalError::StateDimension {
@@ -181,89 +214,85 @@ pub fn evaluate_density_filters(
         }
         k.check_fits(&onboard)?;
     }
-    let nk = kinds.len();
-    // Per filter and epoch: Σ|e_p|, Σ|e_s|, Σe_p², Σe_s², n.
-    let mut sums: Vec<Vec<[f64; 5]>> = vec![Vec::new(); nk];
-    let mut times: Vec<Vec<f64>> = vec![Vec::new(); nk];
-    let mut kept: Vec<Vec<Vec<f64>>> = vec![Vec::new(); nk];
-    let mut failed = vec![0usize; nk];
-    let chunk = 64;
-    let mut done = 0;
-    for start in (0..opts.runs).step_by(chunk) {
-        let end = (start + chunk).min(opts.runs);
-        let runs: Vec<Result<Vec<DensitySeries>, DensityEvalError>> = (start..end)
-            .into_par_iter()
-            .map(|run| one_run(scenario, &onboard, kinds, opts.seed, run))
-            .collect();
-        for (i, r) in runs.into_iter().enumerate() {
-            for (
-                j,
-                DensitySeries {
-                    times: t,
-                    errs: e,
-                    failed: f,
-                },
-            ) in r?.into_iter().enumerate()
-            {
-                if f {
-                    failed[j] += 1;
-                }
-                if t.len() > times[j].len() {
-                    times[j] = t;
-                }
-                if sums[j].len() < e.len() {
-                    sums[j].resize(e.len(), [0.0; 5]);
-                }
-                for (s, (p, q)) in sums[j].iter_mut().zip(&e) {
-                    if p.is_finite() && q.is_finite() {
-                        *s = [
-                            s[0] + p.abs(),
-                            s[1] + q.abs(),
-                            s[2] + p * p,
-                            s[3] + q * q,
-                            s[4] + 1.0,
-                        ];
-                    }
-                }
-                if start + i < opts.keep_runs {
-                    kept[j].push(e.iter().map(|(p, _)| 100.0 * p).collect());
-                }
-            }
-            done += 1;
+    Ok(onboard)
+}
+
+/// One filter's sums over the runs, folded in run order: per epoch Σ|e_p|, Σ|e_s|, Σe_p², Σe_s²
+/// and the count, the longest run's epoch times, the kept runs' profile errors, the failures.
+#[derive(Default)]
+struct FilterSums {
+    sums: Vec<[f64; 5]>,
+    times: Vec<f64>,
+    kept: Vec<Vec<f64>>,
+    failed: usize,
+}
+
+impl FilterSums {
+    /// Fold in one run's `series`; `keep` its profile errors for the plots.
+    fn add(&mut self, series: DensitySeries, keep: bool) {
+        let DensitySeries {
+            times: t,
+            errs: e,
+            failed: f,
+        } = series;
+        if f {
+            self.failed += 1;
         }
-        progress(done);
-    }
-    Ok(kinds
-        .iter()
-        .enumerate()
-        .map(|(j, k)| {
-            let valid: Vec<&[f64; 5]> = sums[j].iter().filter(|s| s[4] > 0.0).collect();
-            let avg = |i: usize| {
-                100.0 * valid.iter().map(|s| s[i] / s[4]).sum::<f64>() / valid.len().max(1) as f64
-            };
-            let rms = |i: usize| -> Vec<f64> {
-                sums[j]
-                    .iter()
-                    .map(|s| {
-                        if s[4] > 0.0 {
-                            100.0 * (s[i] / s[4]).sqrt()
-                        } else {
-                            f64::NAN
-                        }
-                    })
-                    .collect()
-            };
-            DensityEvalReport {
-                filter: k.name().to_string(),
-                runs: opts.runs,
-                failed: failed[j],
-                rmspe_profile_pct: avg(0),
-                rmspe_state_pct: avg(1),
-                times_s: times[j].clone(),
-                rms_profile_pct: rms(2),
-                rms_state_pct: rms(3),
-                sample_runs_profile_pct: std::mem::take(&mut kept[j]),
+        if t.len() > self.times.len() {
+            self.times = t;
+        }
+        if self.sums.len() < e.len() {
+            self.sums.resize(e.len(), [0.0; 5]);
+        }
+        for (s, (p, q)) in self.sums.iter_mut().zip(&e) {
+            if p.is_finite() && q.is_finite() {
+                *s = [
+                    s[0] + p.abs(),
+                    s[1] + q.abs(),
+                    s[2] + p * p,
+                    s[3] + q * q,
+                    s[4] + 1.0,
+                ];
             }
-        })
-        .collect())
+        }
+        if keep {
+            self.kept.push(e.iter().map(|(p, _)| 100.0 * p).collect());
+        }
+    }
+
+    /// The statistics of `filter` over `runs` runs.
+    fn report(self, filter: &str, runs: usize) -> DensityEvalReport {
+        let FilterSums {
+            sums,
+            times,
+            kept,
+            failed,
+        } = self;
+        let valid: Vec<&[f64; 5]> = sums.iter().filter(|s| s[4] > 0.0).collect();
+        let avg = |i: usize| {
+            100.0 * valid.iter().map(|s| s[i] / s[4]).sum::<f64>() / valid.len().max(1) as f64
+        };
+        let rms = |i: usize| -> Vec<f64> {
+            sums.iter()
+                .map(|s| {
+                    if s[4] > 0.0 {
+                        100.0 * (s[i] / s[4]).sqrt()
+                    } else {
+                        f64::NAN
+                    }
+                })
+                .collect()
+        };
+        DensityEvalReport {
+            filter: filter.to_string(),
+            runs,
+            failed,
+            rmspe_profile_pct: avg(0),
+            rmspe_state_pct: avg(1),
+            times_s: times,
+            rms_profile_pct: rms(2),
+            rms_state_pct: rms(3),
+            sample_runs_profile_pct: kept,
+        }
+    }
 }

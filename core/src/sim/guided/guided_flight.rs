@@ -193,22 +193,8 @@ pub fn fly_perfect_navigation<A: Atmosphere>(
             .trigger
             .function(step.kin.density, step.kin.airspeed);
         if armed && c <= 0.0 {
-            let prev = samples[samples.len() - 2].spherical;
-            let w = c_prev / (c_prev - c);
-            let lerp = |i: usize| prev[i] + w * (s[i] - prev[i]);
-            let (lat, lon, psi) = (lerp(2), lerp(1), lerp(5));
-            let dist = central_angle(lat, lon, target.lat, target.lon);
-            let b = bearing(lat, lon, target.lat, target.lon);
             let radius = truth.planet.radius;
-            return Ok(GuidedFlight {
-                t_deploy: step.t - dt + w * dt,
-                deploy_lat_lon: [lat, lon],
-                deploy_altitude_m: lerp(0) - radius,
-                miss_m: radius * dist,
-                downrange_error_m: -radius * dist * (b - psi).cos(),
-                crossrange_error_m: radius * (dist.sin() * (b - psi).sin()).asin(),
-                samples,
-            });
+            return Ok(deployed(samples, (c_prev, c), step.t, dt, target, radius));
         }
         armed |= c > 0.0;
         c_prev = c;
@@ -227,4 +213,34 @@ pub fn fly_perfect_navigation<A: Atmosphere>(
         altitude_m: last[0] - truth.planet.radius,
         speed_mps: last[3],
     })
+}
+
+/// The flight that deployed on its last truth step (from `t − dt` to `t`), where the trigger
+/// function went from `c_prev > 0` to `c ≤ 0`: the deployment point interpolated linearly in the
+/// trigger function between the last two samples, and its miss to `target` on a sphere of
+/// `radius`.
+fn deployed(
+    samples: Vec<GuidedSample>,
+    (c_prev, c): (f64, f64),
+    t: f64,
+    dt: f64,
+    target: &Target,
+    radius: f64,
+) -> GuidedFlight {
+    let prev = samples[samples.len() - 2].spherical;
+    let s = samples[samples.len() - 1].spherical;
+    let w = c_prev / (c_prev - c);
+    let lerp = |i: usize| prev[i] + w * (s[i] - prev[i]);
+    let (lat, lon, psi) = (lerp(2), lerp(1), lerp(5));
+    let dist = central_angle(lat, lon, target.lat, target.lon);
+    let b = bearing(lat, lon, target.lat, target.lon);
+    GuidedFlight {
+        t_deploy: t - dt + w * dt,
+        deploy_lat_lon: [lat, lon],
+        deploy_altitude_m: lerp(0) - radius,
+        miss_m: radius * dist,
+        downrange_error_m: -radius * dist * (b - psi).cos(),
+        crossrange_error_m: radius * (dist.sin() * (b - psi).sin()).asin(),
+        samples,
+    }
 }

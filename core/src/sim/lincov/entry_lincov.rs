@@ -9,7 +9,7 @@ use super::recursion::Recursion;
 use super::truth::{NominalTruth, nominal_truth};
 use crate::estimation::Onboard;
 use crate::estimation::nav::FilterKind;
-use crate::estimation::nav::fusion::local_masks;
+use crate::estimation::nav::fusion_setup::local_masks;
 use crate::scenario::Scenario;
 use crate::sim::monte_carlo::state_names::state_names;
 use crate::state_dim::with_state_dim;

@@ -76,6 +76,7 @@ mod entry_lincov;
 mod epoch;
 mod error;
 mod fusion;
+mod fusion_exact;
 mod joint;
 mod options;
 mod recursion;

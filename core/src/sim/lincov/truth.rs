@@ -239,29 +239,7 @@ pub(super) fn nominal_truth(
         .zip(s_iter)
         .zip(slots.iter().zip(zetas))
     {
-        let values = readings(scenario, &nominal, sample, sl);
-        let mut filter_epoch = MeasurementEpoch {
-            t: epoch.t,
-            values: vec![None; epoch.values.len()],
-        };
-        let mut meas = Vec::with_capacity(sl.len());
-        for ((&slot, &value), zeta) in sl.iter().zip(&values).zip(zeta) {
-            let sigma = scenario.channels[slot].noise.sigma(value);
-            if !(value.is_finite() && sigma.is_finite() && sigma > 0.0)
-                || zeta.iter().any(|v| !v.is_finite())
-            {
-                return Err(EntryLinCovError::NonFinite {
-                    what: format!("truth channel {}", scenario.channels[slot].name),
-                    t: epoch.t,
-                });
-            }
-            filter_epoch.values[slot] = Some(value);
-            meas.push(TruthMeasurement {
-                slot,
-                zeta,
-                r: sigma * sigma,
-            });
-        }
+        let (filter_epoch, meas) = measurements(scenario, &nominal, epoch, sample, sl, zeta)?;
         out_epochs.push(TruthEpoch {
             t: epoch.t,
             x: in_filter(&nominal, sample),
@@ -277,6 +255,43 @@ pub(super) fn nominal_truth(
         truncated: (k_max < epochs.len()).then(|| epochs[k_max].t),
         epochs: out_epochs,
     })
+}
+
+/// The nominal run's epoch `epoch` (truth `sample`) as the filter meets it: the truth's
+/// noise-free readings of the channels `slots`, with their sensitivities `zetas` and the truth's
+/// noise variances.
+fn measurements(
+    scenario: &Scenario,
+    nominal: &TruthDraw,
+    epoch: &MeasurementEpoch,
+    sample: &TruthSample,
+    slots: &[usize],
+    zetas: Vec<DVector<f64>>,
+) -> Result<(MeasurementEpoch, Vec<TruthMeasurement>), EntryLinCovError> {
+    let values = readings(scenario, nominal, sample, slots);
+    let mut filter_epoch = MeasurementEpoch {
+        t: epoch.t,
+        values: vec![None; epoch.values.len()],
+    };
+    let mut meas = Vec::with_capacity(slots.len());
+    for ((&slot, &value), zeta) in slots.iter().zip(&values).zip(zetas) {
+        let sigma = scenario.channels[slot].noise.sigma(value);
+        if !(value.is_finite() && sigma.is_finite() && sigma > 0.0)
+            || zeta.iter().any(|v| !v.is_finite())
+        {
+            return Err(EntryLinCovError::NonFinite {
+                what: format!("truth channel {}", scenario.channels[slot].name),
+                t: epoch.t,
+            });
+        }
+        filter_epoch.values[slot] = Some(value);
+        meas.push(TruthMeasurement {
+            slot,
+            zeta,
+            r: sigma * sigma,
+        });
+    }
+    Ok((filter_epoch, meas))
 }
 
 #[cfg(test)]

@@ -6,9 +6,10 @@
 //! (`n = (sin θ cos φ, sin θ sin φ, cos θ)`), which is unit-length for every real (θ, φ), so the
 //! search needs no constraint. The cost is `−det(Σ n nᵀ)/(N/3)³`.
 
-use super::error::OptimizerError;
-use super::progress::Progress;
-use crate::search::{SearchOptions, SearchResult, minimize};
+use crate::error::OptimizerError;
+use crate::progress::Progress;
+use crate::search::minimize;
+use crate::search_options::{SearchOptions, SearchResult};
 use nalgebra::{Matrix3, Vector3};
 use std::f64::consts::{PI, TAU};
 

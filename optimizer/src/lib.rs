@@ -46,6 +46,7 @@ pub mod orbiters_nav;
 pub mod output;
 pub mod progress;
 pub mod search;
+pub mod search_options;
 pub mod select;
 pub mod trajectory;
 pub mod tune;
@@ -58,7 +59,8 @@ pub use orbiters_bound::{OrbiterBoundProblem, OrbiterBoundSolution};
 pub use orbiters_lincov::OrbiterLinCovSolution;
 pub use orbiters_nav::{BoundFigure, OrbiterNavProblem, OrbiterNavSolution};
 pub use progress::{Progress, no_progress};
-pub use search::{SearchOptions, SearchResult, minimize, polish_from};
+pub use search::{minimize, polish_from};
+pub use search_options::{SearchOptions, SearchResult};
 pub use select::{
     AtMost, BranchBoundOptions, BranchBoundReport, ProofStatus, Selection, SelectionCriterion,
     SelectionProblem, SelectionReport,

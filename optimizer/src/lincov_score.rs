@@ -12,7 +12,7 @@
 //! the nominal bound of the same figure and polishes its optimum on this score
 //! ([`crate::search::polish_from`]).
 
-use super::error::OptimizerError;
+use crate::error::OptimizerError;
 use entrynav::beacons::BeaconConfig;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;

@@ -9,11 +9,12 @@
 //! (particle swarm + restarted Nelder–Mead over (Ω, i, f) per orbiter) runs on it directly.
 //! Hidden orbiters give no information, so no visibility penalty is needed.
 
-use super::error::OptimizerError;
-use super::orbiters::problem::OrbiterProblem;
-use super::progress::Progress;
+use crate::error::OptimizerError;
 use crate::orbiters::OrbitElements;
-use crate::search::{SearchOptions, SearchResult, minimize};
+use crate::orbiters::problem::OrbiterProblem;
+use crate::progress::Progress;
+use crate::search::minimize;
+use crate::search_options::{SearchOptions, SearchResult};
 use entrynav::scenario::Scenario;
 use entrynav::sim::bounds::nominal_bound::{NominalBound, NominalBoundSeries};
 use std::time::Instant;

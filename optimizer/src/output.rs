@@ -2,8 +2,8 @@
 //! serialised to TOML and validated by [`ScenarioConfig::from_toml_str`] (so `entrynav trade` and
 //! every other command accept them).
 
-use super::error::OptimizerError;
-use super::ground::site::Site;
+use crate::error::OptimizerError;
+use crate::ground::site::Site;
 use crate::orbiters::OrbitElements;
 use entrynav::beacons::{BeaconConfig, CircularConfig, OrbiterBeaconConfig, SurfaceBeaconConfig};
 use entrynav::scenario::ScenarioConfig;

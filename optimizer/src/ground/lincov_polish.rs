@@ -15,7 +15,8 @@ use crate::error::OptimizerError;
 use crate::lincov_score::{LinCovFigures, LinCovScore};
 use crate::output::surface_beacons;
 use crate::progress::Progress;
-use crate::search::{SearchOptions, SearchResult, polish_from};
+use crate::search::polish_from;
+use crate::search_options::{SearchOptions, SearchResult};
 use entrynav::beacons::BeaconConfig;
 use std::time::Instant;
 

@@ -8,7 +8,7 @@ use crate::error::OptimizerError;
 use crate::output::BeaconNoise;
 use crate::output::surface_beacons;
 use crate::output::template_noise;
-use crate::search::SearchOptions;
+use crate::search_options::SearchOptions;
 use crate::trajectory::Trajectory;
 use entrynav::files::FileLoader;
 use entrynav::observability::AnalysisPoint;

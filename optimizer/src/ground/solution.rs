@@ -2,7 +2,7 @@
 //! ([`GroundEvaluation`]) and an optimized set ([`GroundSolution`]).
 
 use super::site::Site;
-use crate::search::SearchResult;
+use crate::search_options::SearchResult;
 
 /// The objective and constraint data at one set of sites.
 #[derive(Debug, Clone, PartialEq)]

@@ -4,7 +4,7 @@
 
 use super::objective::OrbiterObjective;
 use crate::error::OptimizerError;
-use crate::search::SearchOptions;
+use crate::search_options::SearchOptions;
 use crate::trajectory::Trajectory;
 use entrynav::math::norm;
 use std::f64::consts::PI;

@@ -2,7 +2,7 @@
 //! ([`OrbiterEvaluation`]) and an optimized constellation ([`OrbiterSolution`]).
 
 use super::elements::OrbitElements;
-use crate::search::SearchResult;
+use crate::search_options::SearchResult;
 
 /// The objective and its constraint data at one geometry.
 #[derive(Debug, Clone, PartialEq)]

@@ -49,6 +49,7 @@ pub mod bounds;
 pub mod branch_bound;
 pub mod branch_bound_report;
 pub mod criterion;
+pub mod dual_point;
 pub mod heuristics;
 mod information;
 mod node;
@@ -57,12 +58,12 @@ mod relaxation;
 pub mod report;
 mod search_tree;
 
-pub use bounds::DualPoint;
 pub use branch_bound_report::{
     BranchBoundOptions, BranchBoundProgress, BranchBoundReport, PROOF_GAP, ProofStatus,
 };
 pub use clarabel::solver::SolverStatus;
 pub use criterion::SelectionCriterion;
+pub use dual_point::DualPoint;
 pub use information::{separation_constraints, site_information};
 pub use problem::{AtMost, LN_DET_FLOOR, SelectionProblem};
 pub use report::{Relaxation, Selection, SelectionReport};

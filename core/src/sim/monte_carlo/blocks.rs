@@ -69,31 +69,18 @@ pub(super) fn run_blocks(
         }
         for start in (first..last).step_by(chunk) {
             let end = (start + chunk).min(last);
-            // A run not started because of a cancellation is `None`; the chunk is folded up to
-            // the first of them, so the statistics are those of runs 0..done in run order.
-            let records: Vec<Option<Result<RunWithBound, TradeError>>> = (start..end)
-                .into_par_iter()
-                .map(|run| {
-                    (!opts.cancelled()).then(|| {
-                        let shared = shared.as_ref();
-                        one_run_with_bound(scenario, filters, opts.seed, run, opts.pcrlb, shared)
-                    })
-                })
-                .collect();
-            let mut chunk_bounds = Vec::with_capacity(end - start);
-            for (i, rec) in records.into_iter().enumerate() {
-                let Some(rec) = rec else {
-                    cut = true;
-                    break;
-                };
-                let (runs, bound) = rec?;
-                for (acc, r) in accs.iter_mut().zip(runs.iter()) {
-                    acc.add(start + i, r);
-                }
-                chunk_bounds.extend(bound);
-                done += 1;
-            }
-            bounds.add_runs(&chunk_bounds);
+            let runs = start..end;
+            let (folded, cut_here) = fold_chunk(
+                scenario,
+                filters,
+                opts,
+                shared.as_ref(),
+                runs,
+                &mut accs,
+                &mut bounds,
+            )?;
+            done += folded;
+            cut = cut_here;
             progress(done);
             // The runs so far, as resumable blocks (built only when a checkpoint is due).
             save(&|| {
@@ -123,4 +110,43 @@ pub(super) fn run_blocks(
         }
     }
     Ok((out, true))
+}
+
+/// Fly the runs `runs` in parallel and fold them in run order into `accs` and `bounds`. A run
+/// not started because of a cancellation is `None`; the chunk is folded up to the first of them,
+/// so the statistics are those of the runs before it in run order. Returns the number of runs
+/// folded and whether a cancellation cut the chunk.
+fn fold_chunk(
+    scenario: &Arc<Scenario>,
+    filters: &[FilterKind],
+    opts: &McOptions,
+    shared: Option<&SharedTruth>,
+    runs: std::ops::Range<usize>,
+    accs: &mut [FilterAccumulator],
+    bounds: &mut BoundSums,
+) -> Result<(usize, bool), TradeError> {
+    let start = runs.start;
+    let mut chunk_bounds = Vec::with_capacity(runs.len());
+    let records: Vec<Option<Result<RunWithBound, TradeError>>> = runs
+        .into_par_iter()
+        .map(|run| {
+            (!opts.cancelled())
+                .then(|| one_run_with_bound(scenario, filters, opts.seed, run, opts.pcrlb, shared))
+        })
+        .collect();
+    let (mut folded, mut cut) = (0, false);
+    for (i, rec) in records.into_iter().enumerate() {
+        let Some(rec) = rec else {
+            cut = true;
+            break;
+        };
+        let (runs, bound) = rec?;
+        for (acc, r) in accs.iter_mut().zip(runs.iter()) {
+            acc.add(start + i, r);
+        }
+        chunk_bounds.extend(bound);
+        folded += 1;
+    }
+    bounds.add_runs(&chunk_bounds);
+    Ok((folded, cut))
 }

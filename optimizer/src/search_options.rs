@@ -2,7 +2,7 @@
 //! polish, seed), and what it returns, [`SearchResult`] (the best point, its cost and the
 //! evaluation counts).
 
-/// Budget and seeding of [`minimize`].
+/// Budget and seeding of [`minimize`](crate::search::minimize).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SearchOptions {
     /// Master seed.
@@ -13,7 +13,7 @@ pub struct SearchOptions {
     pub particles: usize,
     /// Swarm iterations per start.
     pub iterations: usize,
-    /// Nelder–Mead iterations per polish round (up to [`POLISH_ROUNDS`] restarted rounds per
+    /// Nelder–Mead iterations per polish round (up to [`POLISH_ROUNDS`](crate::search::POLISH_ROUNDS) restarted rounds per
     /// start; 0 disables the polish).
     pub polish_iterations: usize,
     /// Initial simplex edge of the polish as a fraction of each variable's box width.
@@ -43,7 +43,7 @@ impl SearchOptions {
     }
 }
 
-/// What [`minimize`] found.
+/// What [`minimize`](crate::search::minimize) found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SearchResult {
     /// Best point.

@@ -4,7 +4,7 @@
 //! reference sphere). They turn with the planet (`r_B(t) = R_z(ωt) r_B,fixed`).
 //!
 //! **Constraint** (eq. 52): each beacon sees the vehicle above its local horizon at every
-//! trajectory sample. The visibility margin of [`ground_visibility_margin`] is the vehicle's
+//! trajectory sample. The visibility margin of [`ground_visibility_margin`](entrynav::beacons::ground_visibility_margin) is the vehicle's
 //! elevation \[rad\] seen from the beacon; a site is feasible when its smallest elevation over the
 //! trajectory is at least `min_elevation` (default 0, the paper's rule). The feasible set of one
 //! site is an intersection of spherical caps (one per sample), so it is convex on the sphere and

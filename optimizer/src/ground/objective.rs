@@ -6,7 +6,7 @@ use entrynav::observability::Method;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum GroundObjective {
     /// `min_t δ(t)` (seed 002 eq. 49) with this observability method; `scaled` picks the scaled δ
-    /// of [`Scaling`] instead of the raw-SI one.
+    /// of [`Scaling`](entrynav::observability::Scaling) instead of the raw-SI one.
     MinDelta {
         /// How the observability matrix is computed.
         method: Method,
@@ -39,7 +39,7 @@ impl GroundObjective {
     }
 
     /// Whether the objective is the nominal position bound (needs
-    /// [`GroundProblem::with_reference`] for [`GroundObjective::Navigation`]).
+    /// [`GroundProblem::with_reference`](super::GroundProblem::with_reference) for [`GroundObjective::Navigation`]).
     pub fn is_bound(self) -> bool {
         matches!(
             self,

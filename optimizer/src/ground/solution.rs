@@ -7,7 +7,7 @@ use crate::search_options::SearchResult;
 /// The objective and constraint data at one set of sites.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GroundEvaluation {
-    /// Objective value (units: [`GroundObjective::units`]); `None` when infeasible.
+    /// Objective value (units: [`GroundObjective::units`](super::GroundObjective::units)); `None` when infeasible.
     pub value: Option<f64>,
     /// Search cost.
     pub cost: f64,

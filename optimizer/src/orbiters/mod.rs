@@ -19,7 +19,7 @@
 //!
 //! **Visibility** (eq. 58–60) enters as a finite graded penalty: the search minimises
 //! `−J + c ∫ Σ_j max(0, −m_j(t)) dt`, where `m_j` is the visibility margin θ₀ + θ₁ − θ \[rad\] of
-//! [`orbiter_visibility_margin`] and `c` = [`OrbiterProblem::penalty_per_rad_s`].
+//! [`orbiter_visibility_margin`](entrynav::beacons::orbiter_visibility_margin) and `c` = [`OrbiterProblem::penalty_per_rad_s`].
 //!
 //! Files: `objective.rs` the objective, `problem.rs` the problem and its settings,
 //! `solution.rs` what the search gives; `elements.rs` the unknowns of one orbiter;

@@ -5,7 +5,7 @@ use super::report::Selection;
 use std::time::Duration;
 
 /// The certified gap at or below which an answer is called optimal, on the criterion's scale
-/// ([`SelectionProblem::tolerance`]): above the accuracy of the node relaxations and far above
+/// ([`SelectionProblem::tolerance`](super::SelectionProblem::tolerance)): above the accuracy of the node relaxations and far above
 /// floating-point rounding.
 pub const PROOF_GAP: f64 = 1e-6;
 
@@ -34,11 +34,11 @@ impl ProofStatus {
     }
 }
 
-/// Options of [`SelectionProblem::branch_and_bound`].
+/// Options of [`SelectionProblem::branch_and_bound`](super::SelectionProblem::branch_and_bound).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BranchBoundOptions {
     /// Close a node when its bound exceeds the incumbent by at most this, on the criterion's
-    /// scale ([`SelectionProblem::tolerance`]).
+    /// scale ([`SelectionProblem::tolerance`](super::SelectionProblem::tolerance)).
     pub gap: f64,
     /// Stop after this wall time (checked between batches; the first batch always runs).
     pub time_limit: Option<Duration>,
@@ -91,7 +91,7 @@ pub struct BranchBoundReport {
     /// `bound − best.value` (≥ 0): the certified gap.
     pub gap: f64,
     /// The certified gap at or below which `best` counts as optimal: [`PROOF_GAP`] on the
-    /// criterion's scale ([`SelectionProblem::tolerance`]).
+    /// criterion's scale ([`SelectionProblem::tolerance`](super::SelectionProblem::tolerance)).
     pub proof_tolerance: f64,
     /// How the search stopped.
     pub status: ProofStatus,

@@ -1,5 +1,5 @@
 //! A dual point of the selection relaxation ([`DualPoint`]) and its evaluation on one node
-//! ([`Scored`]: the base and the adjusted scores whose `r` largest give the bound of
+//! (`Scored`: the base and the adjusted scores whose `r` largest give the bound of
 //! [`super::bounds`]).
 
 use super::problem::LN_DET_FLOOR;

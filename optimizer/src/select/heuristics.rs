@@ -3,7 +3,7 @@
 //! [`SelectionProblem::solve`] which certifies the better heuristic with the relaxation bound
 //! (Joshi & Boyd 2009, §IV: rounding and local optimisation of the relaxed solution).
 //!
-//! Every heuristic keeps to the problem's side constraints ([`AtMost`]); with constraints a
+//! Every heuristic keeps to the problem's side constraints ([`AtMost`](super::AtMost)); with constraints a
 //! heuristic may find no admissible k-subset, which is reported as `None`.
 
 use super::criterion::SelectionCriterion;

@@ -26,13 +26,13 @@ pub struct Relaxation {
     /// Interior-point iterations.
     pub iterations: u32,
     /// clarabel's status: `Solved` or `AlmostSolved` (any other is an error of
-    /// [`SelectionProblem::relax`]); its `Display` is the variant name.
+    /// [`SelectionProblem::relax`](super::SelectionProblem::relax)); its `Display` is the variant name.
     pub status: SolverStatus,
     /// Wall time of the solve \[s\].
     pub solve_time_s: f64,
 }
 
-/// Everything [`SelectionProblem::solve`] produces.
+/// Everything [`SelectionProblem::solve`](super::SelectionProblem::solve) produces.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SelectionReport {
     /// The relaxation and its bound.

@@ -6,7 +6,7 @@
 //!    extension of §VI) each band gets its own fit over its altitudes.
 //! 2. N trajectories are simulated on that model from initial states and vehicles drawn from
 //!    the scenario's dispersions (Table 1), and (r, ρ) is recorded every `sample_interval_s`
-//!    for `duration_s` (`sim::training::generate_data`, which drives the simulation engine).
+//!    for `duration_s` (`sim::density::training::generate_data`, which drives the simulation engine).
 //! 3. Densities are transformed by ϱ = √(𝓑 − log₁₀ ρ) (eq. 29, 𝓑 = 0), inputs and outputs are
 //!    normalised with the training-set mean and standard deviation (eq. 30–31), the samples
 //!    are split into training and validation sets, and a 1-H-1 tanh network (eq. 32–33) is

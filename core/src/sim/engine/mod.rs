@@ -56,6 +56,16 @@
 //!
 //! Everything is deterministic: the same parameters and the same sequence of `do_step` calls give
 //! bit-identical outputs, which is what the FMU's state serialisation (a replay log) relies on.
+//!
+//! # Files
+//!
+//! `truth.rs` the truth's RK4 step ([`TruthPropagator`]); `truth_sensors.rs` the sensors'
+//! schedule, noise and availability ([`TruthSensors`]); `navigator.rs` and `filter.rs` the filter
+//! behind one object-safe interface ([`Navigator`]); `entry.rs` both together ([`EntryCoSim`]);
+//! `flight.rs` the loop over a recorded run ([`Navigator::fly`], [`Observer`]); [`record`] a whole
+//! truth run recorded and Monte Carlo run k's truth and filter start ([`record_run`], seeded by
+//! [`run_seed`]); [`judge`] the estimate beside the truth; [`start`] a run's initial estimate;
+//! `error.rs` [`EngineError`]; `step_check.rs` the communication-step checks.
 
 mod entry;
 mod error;

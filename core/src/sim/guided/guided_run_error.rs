@@ -45,7 +45,7 @@ pub enum GuidedRunError {
         /// What failed.
         reason: String,
     },
-    /// A [`GuidedLoop`] was stepped after its run had ended.
+    /// A [`GuidedLoop`](super::guided_loop::GuidedLoop) was stepped after its run had ended.
     #[error("the guided run has ended ({0}); there is nothing more to step")]
     Ended(String),
     /// The truth stopped (ground, stop speed, duration) before the deployment trigger.

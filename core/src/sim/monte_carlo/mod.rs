@@ -22,7 +22,7 @@
 //!   folded in run order; [`report`] — the summary they give ([`FilterReport`]);
 //! * [`shard`] — a study split into blocks that run apart and merge exactly; [`checkpoint`] —
 //!   where a running study's partial results go;
-//! * [`state_names`] — the names of the filter states, the columns of every table;
+//! * [`mod@state_names`] — the names of the filter states, the columns of every table;
 //! * [`replay`] — one run replayed in full; [`tuning`] — the recorded runs `tune` evaluates
 //!   tunings on.
 

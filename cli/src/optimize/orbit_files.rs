@@ -166,7 +166,7 @@ pub(super) fn write_orbiter_json(
         v["navigation"] = json!({
             "objective": n.objective,
             "value": n.solution.value,
-            "definition": "nominal-trajectory position PCRLB [m] (entrynav::sim::bounds::nominal_bound); nav = 1/2 (avg/avg_input + final/final_input)",
+            "definition": "nominal-trajectory position PCRLB [m] (entrynav::sim::nominal_bound); nav = 1/2 (avg/avg_input + final/final_input)",
             "time_avg_pos_m": n.solution.series.time_avg(),
             "final_pos_m": n.solution.series.final_value(),
             "input_time_avg_pos_m": n.own.map(|o| o.0),

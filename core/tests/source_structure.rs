@@ -46,7 +46,7 @@ fn sources() -> Vec<PathBuf> {
     files.sort();
     files
         .into_iter()
-        .filter(|f| !f.file_name().is_some_and(|n| n == "tests.rs"))
+        .filter(|f| f.file_name().is_none_or(|n| n != "tests.rs"))
         .map(|f| f.strip_prefix(&ws).expect("in the workspace").to_path_buf())
         .filter(|f| !GENERATED.iter().any(|g| f == Path::new(g)))
         .collect()

@@ -3,7 +3,7 @@
 
 use anyhow::{Context, Result};
 use entrynav::sim::TradeReport;
-use entrynav::sim::delivery::DeliveryReport;
+use entrynav::sim::guided::delivery::DeliveryReport;
 use entrynav_render::chart::Curve;
 use entrynav_render::chart::labels::WeightNames;
 use entrynav_render::trade_figures::{ExtraCurves, Figure};

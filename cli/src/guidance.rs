@@ -7,7 +7,7 @@
 use crate::exit::{check_output_file, is_stdout};
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
-use entrynav::sim::delivery::{DeliveryReport, DeliveryRow};
+use entrynav::sim::guided::delivery::{DeliveryReport, DeliveryRow};
 use entrynav_studies::ScenarioInput;
 use entrynav_studies::guidance::{DeliverOptions, run_deliver};
 use entrynav_studies::progress::silent;

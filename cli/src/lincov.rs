@@ -6,7 +6,7 @@
 use anyhow::{Context, Result};
 use entrynav::scenario::Scenario;
 use entrynav::sim::TradeReport;
-use entrynav::sim::lincov_entry::EntryLinCovEpoch;
+use entrynav::sim::lincov::EntryLinCovEpoch;
 use entrynav_studies::ScenarioInput;
 use entrynav_studies::lincov::document::write_csv;
 use entrynav_studies::lincov::{Analysed, LinCovStudyOptions, mean_error_nees, run_lincov};

@@ -24,7 +24,7 @@ pub fn write_trade(
     provenance: &Provenance,
     wall_s: f64,
     extra: &ExtraCurves,
-    delivery: Option<&entrynav::sim::delivery::DeliveryReport>,
+    delivery: Option<&entrynav::sim::guided::delivery::DeliveryReport>,
 ) -> Result<f64> {
     write(path, || {
         let page = entrynav_render::report::trade_report(

@@ -164,8 +164,8 @@ fn print_consistency(f: &FilterReport) {
             p.run,
             p.t_s,
             match p.kind {
-                entrynav::sim::metrics::ProblemKind::Numerical => "numerical",
-                entrynav::sim::metrics::ProblemKind::Nees => "NEES",
+                entrynav::sim::monte_carlo::metrics::ProblemKind::Numerical => "numerical",
+                entrynav::sim::monte_carlo::metrics::ProblemKind::Nees => "NEES",
             },
             p.reason
         );
@@ -181,7 +181,7 @@ fn print_consistency(f: &FilterReport) {
 }
 
 /// The innovation gate's line and, per excluded beacon, its detections.
-fn print_gating(g: &entrynav::sim::gate_stats::GatingSummary) {
+fn print_gating(g: &entrynav::sim::monte_carlo::gate_stats::GatingSummary) {
     println!(
         "  gate: {:.3} % of measurements rejected, ANIS/dof before gating {}; runs with a false beacon exclusion {:.1} %",
         100.0 * g.rejected_frac,

@@ -7,7 +7,7 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use entrynav::atmosphere::Exponential;
 use entrynav::estimation::adaptive::{NetworkFile, fit_onboard_exponential};
-use entrynav::sim::training::train_density_networks;
+use entrynav::sim::density::training::train_density_networks;
 use entrynav_loader as load;
 use std::path::PathBuf;
 
@@ -197,7 +197,7 @@ fn evaluate(
     runs: usize,
 ) -> Result<()> {
     use entrynav::estimation::nav::FilterKind;
-    use entrynav::sim::density_eval::{DensityEvalOptions, evaluate_density_filters};
+    use entrynav::sim::density::density_eval::{DensityEvalOptions, evaluate_density_filters};
     let kinds = FilterKind::parse_list(&args.filters, &scenario.onboard)?;
     let scenario = std::sync::Arc::new(scenario);
     let opts = DensityEvalOptions {
@@ -248,7 +248,7 @@ fn evaluate(
 fn fig10(
     path: &std::path::Path,
     scenario: &str,
-    r: &entrynav::sim::density_eval::DensityEvalReport,
+    r: &entrynav::sim::density::density_eval::DensityEvalReport,
 ) -> Result<()> {
     let svg = entrynav_render::density_figure::density_error_figure(scenario, r)?;
     Ok(entrynav_studies::output::atomic_file::write(path, svg)?)

@@ -5,7 +5,7 @@
 
 use anyhow::{Context, Result};
 use clap::Args;
-use entrynav::sim::report::FilterReport;
+use entrynav::sim::monte_carlo::report::FilterReport;
 use entrynav_studies::ScenarioInput;
 use entrynav_studies::progress::Step;
 use entrynav_studies::tune::figures::{band, fmt, objective_zero, per_dof, sig3};

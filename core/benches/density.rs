@@ -10,8 +10,8 @@ use entrynav::estimation::adaptive::{
 };
 use entrynav::estimation::nav::{FilterKind, FilterStart, build_filter};
 use entrynav::scenario::{DensityTrainingConfig, Scenario, ScenarioConfig};
-use entrynav::sim::start::initial_estimate;
-use entrynav::sim::training::generate_data;
+use entrynav::sim::density::training::generate_data;
+use entrynav::sim::engine::start::initial_estimate;
 use entrynav::sim::{run_seed, simulate_truth};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;

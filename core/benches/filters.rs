@@ -7,8 +7,8 @@
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use entrynav::estimation::nav::{FilterKind, FilterStart, build_filter};
 use entrynav::scenario::{Scenario, ScenarioConfig};
+use entrynav::sim::engine::start::initial_estimate;
 use entrynav::sim::simulate_truth;
-use entrynav::sim::start::initial_estimate;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::hint::black_box;

@@ -6,7 +6,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use entrynav::sim::monte_carlo::{filter_run, record_run};
+use entrynav::sim::{filter_run, record_run};
 use std::hint::black_box;
 use std::sync::Arc;
 

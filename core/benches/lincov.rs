@@ -6,8 +6,8 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use entrynav::sim::lincov_entry::entry_lincov;
-use entrynav::sim::monte_carlo::{filter_run, record_run};
+use entrynav::sim::lincov::entry_lincov;
+use entrynav::sim::{filter_run, record_run};
 use std::hint::black_box;
 use std::sync::Arc;
 

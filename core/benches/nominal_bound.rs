@@ -1,4 +1,4 @@
-//! The nominal-trajectory position bound per beacon-design candidate (`sim::nominal_bound`):
+//! The nominal-trajectory position bound per beacon-design candidate (`sim::bounds::nominal_bound`):
 //! `ground-beacons-3` (240 range epochs, 6 states) with its three surface beacons, the cost of
 //! one candidate in `entrynav optimize ground --objective pcrlb-*` (issue target ≤ 0.2 ms on the
 //! project's 2-core machine), and the one-off set-up (nominal truth, STMs, maps).
@@ -6,7 +6,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use entrynav::beacons::Beacon;
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use entrynav::sim::nominal_bound::{NominalBound, RangeSite};
+use entrynav::sim::bounds::nominal_bound::{NominalBound, RangeSite};
 use std::hint::black_box;
 
 fn bench(c: &mut Criterion) {

@@ -6,8 +6,7 @@
 //! Use as `#[serde(with = "crate::fixed_len::array")]` on a `[f64; N]` field and
 //! `#[serde(default, with = "crate::fixed_len::option_array")]` on an `Option<[f64; N]>`.
 
-use serde::de::{Deserializer, Error, Expected};
-use serde::{Deserialize, Serialize, Serializer};
+use serde::de::{Error, Expected};
 use std::fmt;
 
 /// "exactly N numbers", for the error message.
@@ -25,7 +24,8 @@ fn exactly<E: Error, const N: usize>(v: Vec<f64>) -> Result<[f64; N], E> {
 
 /// A `[f64; N]` field.
 pub mod array {
-    use super::*;
+    use super::exactly;
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
     /// Read exactly `N` numbers.
     pub fn deserialize<'de, D: Deserializer<'de>, const N: usize>(
@@ -42,7 +42,8 @@ pub mod array {
 
 /// An `Option<[f64; N]>` field.
 pub mod option_array {
-    use super::*;
+    use super::exactly;
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
     /// Read exactly `N` numbers when present.
     pub fn deserialize<'de, D: Deserializer<'de>, const N: usize>(

@@ -28,7 +28,7 @@
 //! Dimensions are known only at run time here (the bound is formed when a study's sums are
 //! reported, after runs of a scenario-dependent state size), so this uses dynamic matrices.
 //!
-//! This is plain matrix numerics (the bottom layer): `sim::pcrlb` feeds it with Monte Carlo
+//! This is plain matrix numerics (the bottom layer): `sim::bounds::pcrlb` feeds it with Monte Carlo
 //! averages along the truth runs, and nothing here knows of scenarios or simulations.
 
 use nalgebra::DMatrix;

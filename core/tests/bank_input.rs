@@ -5,8 +5,8 @@
 
 use entrynav::estimation::nav::{FilterKind, FilterStart, NavFilter, StepInfo, build_filter};
 use entrynav::scenario::{Scenario, ScenarioConfig, TruthDraw};
-use entrynav::sim::judge::estimate_spherical;
-use entrynav::sim::start::initial_estimate;
+use entrynav::sim::engine::judge::estimate_spherical;
+use entrynav::sim::engine::start::initial_estimate;
 use entrynav::sim::{TruthRun, run_seed, simulate_truth};
 use entrynav::state_dim::{DimVisitor, with_state_dim};
 use nalgebra::{SMatrix, SVector};

@@ -6,8 +6,8 @@
 
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use entrynav::sim::delivery::run_delivery;
-use entrynav::sim::delivery_shard::{
+use entrynav::sim::guided::delivery::run_delivery;
+use entrynav::sim::guided::delivery_shard::{
     DeliveryShard, DeliveryShardError, deliver_runs, merge_delivery_shards,
 };
 

@@ -9,8 +9,8 @@ use entrynav::atmosphere::{
 use entrynav::estimation::nav::uskf_nn::UskfNnNav;
 use entrynav::estimation::nav::{FilterKind, FilterStart, NavFilter};
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use entrynav::sim::monte_carlo::record_run;
-use entrynav::sim::replay::replay_run;
+use entrynav::sim::monte_carlo::replay::replay_run;
+use entrynav::sim::record_run;
 use entrynav::sim::{McOptions, run_trade};
 use std::sync::Arc;
 

@@ -5,7 +5,7 @@
 
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use entrynav::sim::report::FilterReport;
+use entrynav::sim::monte_carlo::report::FilterReport;
 use entrynav::sim::{McOptions, run_trade};
 
 const RUNS: usize = 100;

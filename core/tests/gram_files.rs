@@ -321,7 +321,7 @@ fn recorded_runs_fly_profile_run_mod_n_in_any_order() {
     let profiles = &sc.truth_profiles.as_ref().unwrap().set.profiles;
     let h = 70e3;
     let rho = |run: usize| {
-        entrynav::sim::monte_carlo::record_run(&sc, 11, run)
+        entrynav::sim::record_run(&sc, 11, run)
             .unwrap()
             .draw
             .model

@@ -4,7 +4,7 @@
 //! Guidance predicts with the onboard model: the filter's vehicle constants and planet, and the
 //! pre-flight climatology (`filter.density.climatology`, the mean profile the filter's exponential
 //! model was fitted to) as its atmosphere — what a reference trajectory is designed on before
-//! flight. It never sees the truth model; `sim::guided_flight` hands it the truth state as a
+//! flight. It never sees the truth model; `sim::guided::guided_flight` hands it the truth state as a
 //! navigation solution (perfect navigation).
 
 use entrynav::dynamics::EntryModel;
@@ -16,7 +16,9 @@ use entrynav::guidance::{
     config::reference_and_target,
 };
 use entrynav::scenario::{Scenario, ScenarioConfig, TruthDraw};
-use entrynav::sim::guided_flight::{GuidedFlight, GuidedFlightSettings, fly_perfect_navigation};
+use entrynav::sim::guided::guided_flight::{
+    GuidedFlight, GuidedFlightSettings, fly_perfect_navigation,
+};
 use nalgebra::SVector;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;

@@ -7,8 +7,8 @@
 use entrynav::guidance::safeguard::AltitudeSafeguard;
 use entrynav::guidance::{BankActuator, Guidance, GuidanceError, NavState};
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use entrynav::sim::delivery::{DeliveryRow, run_delivery};
-use entrynav::sim::guided_flight::{
+use entrynav::sim::guided::delivery::{DeliveryRow, run_delivery};
+use entrynav::sim::guided::guided_flight::{
     GuidedFlight, GuidedFlightError, GuidedFlightSettings, fly_perfect_navigation,
 };
 
@@ -108,7 +108,7 @@ fn on_dispersed_entries_the_safeguard_fails_less_than_unguided_and_unprotected_g
     let plain = run_delivery(&msl(None), &[], runs, 1, &|_| ()).unwrap();
     let safe = run_delivery(&msl(Some(floor_m)), &[], runs, 1, &|_| ()).unwrap();
     // Perfect-navigation runs that failed or deployed below the floor.
-    let low = |r: &entrynav::sim::delivery::DeliveryReport| {
+    let low = |r: &entrynav::sim::guided::delivery::DeliveryReport| {
         r.per_run
             .iter()
             .filter(|d| d[0].as_ref().map_or(true, |d| d.altitude_m < floor_m))

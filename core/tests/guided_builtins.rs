@@ -7,7 +7,7 @@
 use entrynav::estimation::nav::FilterKind;
 use entrynav::guidance::GuidanceAlgorithm;
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use entrynav::sim::delivery::{DeliveryRow, run_delivery};
+use entrynav::sim::guided::delivery::{DeliveryRow, run_delivery};
 
 fn builtin(name: &str) -> Scenario {
     Scenario::build(

@@ -5,8 +5,8 @@
 use entrynav::estimation::nav::FilterKind;
 use entrynav::guidance::GuidanceAlgorithm;
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use entrynav::sim::delivery::{DeliveryReport, run_delivery};
 use entrynav::sim::engine::EntryCoSim;
+use entrynav::sim::guided::delivery::{DeliveryReport, run_delivery};
 use entrynav::sim::run_seed;
 use std::sync::Arc;
 
@@ -80,7 +80,7 @@ fn delivery_tables_for_the_docs() {
     }
 }
 
-fn row<'a>(r: &'a DeliveryReport, name: &str) -> &'a entrynav::sim::delivery::DeliveryRow {
+fn row<'a>(r: &'a DeliveryReport, name: &str) -> &'a entrynav::sim::guided::delivery::DeliveryRow {
     r.rows.iter().find(|x| x.name == name).unwrap()
 }
 

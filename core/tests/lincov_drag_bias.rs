@@ -13,11 +13,11 @@
 use entrynav::atmosphere::AtmosphereConfig;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use entrynav::sim::lincov_entry::{
+use entrynav::sim::engine::record::record_run;
+use entrynav::sim::lincov::{
     EntryLinCov, EntryLinCovEpoch, LinCovOptions, entry_lincov, entry_lincov_with,
 };
-use entrynav::sim::record::record_run;
-use entrynav::sim::run_record::filter_run;
+use entrynav::sim::monte_carlo::run_record::filter_run;
 use rayon::prelude::*;
 
 /// orbiters-3 with both atmospheres' reference density times `rho`.

@@ -4,7 +4,7 @@
 
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use entrynav::sim::lincov_entry::{EntryLinCov, EntryLinCovError, entry_lincov};
+use entrynav::sim::lincov::{EntryLinCov, EntryLinCovError, entry_lincov};
 use entrynav::sim::{McOptions, TradeReport, run_trade};
 
 fn build(cfg: ScenarioConfig) -> Scenario {

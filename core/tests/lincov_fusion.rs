@@ -3,7 +3,7 @@
 
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use entrynav::sim::lincov_entry::{EntryLinCov, entry_lincov};
+use entrynav::sim::lincov::{EntryLinCov, entry_lincov};
 use entrynav::sim::{McOptions, run_trade};
 
 /// The figures compared: position and velocity RMSE (time average and final) and NEES/dof.

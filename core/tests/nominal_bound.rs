@@ -1,12 +1,12 @@
-//! The nominal-trajectory position bound for beacon design (`sim::nominal_bound`) against the
+//! The nominal-trajectory position bound for beacon design (`sim::bounds::nominal_bound`) against the
 //! trade's own PCRLB machinery run on the same nominal truth, and its basic properties.
 
 use entrynav::beacons::Beacon;
 use entrynav::scenario::{Scenario, ScenarioConfig};
+use entrynav::sim::bounds::pcrlb::bound_run;
+use entrynav::sim::bounds::pcrlb_sums::BoundSums;
+use entrynav::sim::bounds::{NominalBound, NominalBoundError, RangeSite};
 use entrynav::sim::monte_carlo::state_names;
-use entrynav::sim::nominal_bound::{NominalBound, NominalBoundError, RangeSite};
-use entrynav::sim::pcrlb::bound_run;
-use entrynav::sim::pcrlb_sums::BoundSums;
 use entrynav::sim::{RecordedRun, simulate_truth};
 use rand::SeedableRng;
 

@@ -423,7 +423,7 @@ fn a_resumed_trade_is_exactly_the_uninterrupted_one() {
     assert!(!partial.complete);
     let held: Vec<usize> = partial.blocks.iter().map(|b| b.index).collect();
     assert_eq!(held, [0, 1]);
-    let folded = entrynav::sim::shard::fold_partial(partial.clone()).unwrap();
+    let folded = entrynav::sim::monte_carlo::shard::fold_partial(partial.clone()).unwrap();
     assert_eq!(folded.runs_completed, 306);
     // Through JSON, as the CLI stores it.
     let partial: entrynav::sim::ShardResult =

@@ -6,7 +6,7 @@ mod common;
 
 use common::Inst;
 use entrynav::estimation::nav::FilterKind;
-use entrynav::sim::guided_run::{GuidedStep, fly_with_filter_recorded};
+use entrynav::sim::guided::{GuidedStep, fly_with_filter_recorded};
 use entrynav_fmu::vars::guided_scenario_toml;
 use entrynav_fmu::vars::{GUIDED_SCENARIO_FILE, Key, Model, Slot, guided_scenario};
 use std::path::PathBuf;

@@ -6,7 +6,7 @@ mod common;
 
 use common::Inst;
 use entrynav::estimation::nav::FilterKind;
-use entrynav::sim::guided_run::{Delivery, GuidedStep, fly_with_filter_recorded};
+use entrynav::sim::guided::{Delivery, GuidedStep, fly_with_filter_recorded};
 use entrynav_fmu::vars::{GUIDED_SCENARIO_FILE, Key, Model, guided_scenario, guided_scenario_toml};
 use std::path::PathBuf;
 use std::sync::Arc;

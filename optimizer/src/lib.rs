@@ -15,7 +15,7 @@
 //!   (IEEE TSP 2009) solved by clarabel: D-optimal (log det through exponential and PSD cones)
 //!   or E-optimal (max-min λ_min as an SDP); an upper bound, a rounded and swap-improved
 //!   selection, and the certified gap of any selection;
-//! * [`free`] — N free unit vectors (no visibility), whose optimum `(N/3)³` (eq. 40) checks the
+//! * [`free_vectors`] — N free unit vectors (no visibility), whose optimum `(N/3)³` (eq. 40) checks the
 //!   search;
 //! * [`search`] — the global search shared by all of them: seeded multi-start particle swarm
 //!   followed by a Nelder–Mead polish (argmin, `Vec<f64>` backend), reproducible from a seed,
@@ -33,7 +33,8 @@
 // Links the system OpenBLAS/LAPACK that clarabel's SDP cone calls.
 use openblas_src as _;
 
-pub mod free;
+pub mod error;
+pub mod free_vectors;
 pub mod ground;
 pub mod lincov_score;
 pub mod orbiters;
@@ -41,139 +42,24 @@ pub mod orbiters_bound;
 pub mod orbiters_lincov;
 pub mod orbiters_nav;
 pub mod output;
+pub mod progress;
 pub mod search;
+pub mod search_options;
 pub mod select;
 pub mod trajectory;
 
+pub use error::OptimizerError;
 pub use ground::{GroundObjective, GroundProblem, GroundSolution, Site};
 pub use lincov_score::{LinCovFigure, LinCovFigures, LinCovScore};
 pub use orbiters::{OrbitElements, OrbiterObjective, OrbiterProblem, OrbiterSolution};
 pub use orbiters_bound::{OrbiterBoundProblem, OrbiterBoundSolution};
 pub use orbiters_lincov::OrbiterLinCovSolution;
 pub use orbiters_nav::{BoundFigure, OrbiterNavProblem, OrbiterNavSolution};
-pub use search::{SearchOptions, SearchResult, minimize, polish_from};
+pub use progress::{Progress, no_progress};
+pub use search::{minimize, polish_from};
+pub use search_options::{SearchOptions, SearchResult};
 pub use select::{
     AtMost, BranchBoundOptions, BranchBoundReport, ProofStatus, Selection, SelectionCriterion,
     SelectionProblem, SelectionReport,
 };
 pub use trajectory::Trajectory;
-
-use entrynav::beacons::BeaconError;
-use entrynav::observability::ObservabilityError;
-use entrynav::scenario::ScenarioError;
-use thiserror::Error;
-
-/// Why an optimization could not be set up or run.
-#[derive(Debug, Error)]
-pub enum OptimizerError {
-    /// The request has no feasible answer (no site visible for the whole entry, k larger than
-    /// the number of candidates, an orbit below the surface, …).
-    #[error("infeasible request: {0}")]
-    Infeasible(String),
-    /// An argument is out of range or inputs do not fit together.
-    #[error("invalid input: {0}")]
-    InvalidInput(String),
-    /// The observability analysis failed.
-    #[error(transparent)]
-    Observability(#[from] ObservabilityError),
-    /// The scenario could not be built or validated.
-    #[error(transparent)]
-    Scenario(#[from] ScenarioError),
-    /// A beacon could not be built.
-    #[error(transparent)]
-    Beacon(#[from] BeaconError),
-    /// The nominal position bound could not be formed.
-    #[error(transparent)]
-    NominalBound(#[from] entrynav::sim::nominal_bound::NominalBoundError),
-    /// argmin failed while running `what` (the particle swarm or a Nelder–Mead polish).
-    #[error("solver failure: {what}")]
-    Argmin {
-        /// The argmin solver that failed.
-        what: &'static str,
-        /// argmin's error.
-        #[source]
-        source: argmin::core::Error,
-    },
-    /// An argmin run ended without any best point (it evaluated nothing).
-    #[error("solver failure: {what} found no point")]
-    NoPoint {
-        /// The argmin solver or search that found nothing.
-        what: &'static str,
-    },
-    /// clarabel refused the data or settings of `what` before solving.
-    #[error("solver failure: clarabel setup of {what}")]
-    ClarabelSetup {
-        /// The conic program being set up.
-        what: &'static str,
-        /// clarabel's error.
-        #[source]
-        source: clarabel::solver::SolverError,
-    },
-    /// clarabel ran but ended without a (reduced-accuracy) solution of `what`.
-    #[error("solver failure: clarabel did not solve {what}: {status:?}")]
-    Unsolved {
-        /// The conic program that was not solved.
-        what: &'static str,
-        /// How clarabel stopped (neither `Solved` nor `AlmostSolved`).
-        status: clarabel::solver::SolverStatus,
-    },
-    /// The Monte Carlo behind an objective failed: the truth run of the PCRLB objective, or the
-    /// filters of a tuning evaluation.
-    #[error(transparent)]
-    Trade(#[from] entrynav::sim::TradeError),
-}
-
-/// A progress callback: `(evaluations done, evaluations budgeted)`. Called from worker threads.
-pub type Progress<'a> = &'a (dyn Fn(usize, usize) + Sync);
-
-/// A progress callback that does nothing.
-pub fn no_progress(_done: usize, _total: usize) {}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use std::error::Error as _;
-
-    /// The text `entrynav` prints for an error: the message, then every source (`{:#}` of
-    /// anyhow).
-    fn chain(e: &OptimizerError) -> String {
-        let mut text = e.to_string();
-        let mut source = e.source();
-        while let Some(s) = source {
-            text += &format!(": {s}");
-            source = s.source();
-        }
-        text
-    }
-
-    #[test]
-    fn solver_errors_keep_their_typed_source() {
-        let argmin = argmin::core::Error::msg("simplex collapsed");
-        let e = OptimizerError::Argmin {
-            what: "Nelder-Mead",
-            source: argmin,
-        };
-        assert_eq!(chain(&e), "solver failure: Nelder-Mead: simplex collapsed");
-        let e = OptimizerError::ClarabelSetup {
-            what: "the relaxation",
-            source: clarabel::solver::SolverError::BadInputData("A has the wrong shape"),
-        };
-        assert!(matches!(
-            e.source()
-                .and_then(|s| s.downcast_ref::<clarabel::solver::SolverError>()),
-            Some(clarabel::solver::SolverError::BadInputData(_))
-        ));
-        assert_eq!(
-            chain(&e),
-            "solver failure: clarabel setup of the relaxation: Bad input data: A has the wrong shape"
-        );
-        let e = OptimizerError::Unsolved {
-            what: "the relaxation",
-            status: clarabel::solver::SolverStatus::InsufficientProgress,
-        };
-        assert_eq!(
-            e.to_string(),
-            "solver failure: clarabel did not solve the relaxation: InsufficientProgress"
-        );
-    }
-}

@@ -2,7 +2,7 @@
 //! `lincov-final` and `lincov-nav` objectives of `optimize ground` and `optimize orbiters`.
 //!
 //! The score of a beacon set is the position RMSE that the linear covariance analysis of the
-//! actual filter predicts along the nominal entry ([`entrynav::sim::lincov_entry`]: Maybeck vol. 1
+//! actual filter predicts along the nominal entry ([`entrynav::sim::lincov`]: Maybeck vol. 1
 //! ch. 6, Geller 2006), model mismatch and the filter's own gains included — unlike the PCRLB,
 //! which bounds every estimator. The scenario is rebuilt with the candidate beacons
 //! ([`Scenario::with_beacons`]: no file is read again) and the LinCov run on it.
@@ -12,11 +12,11 @@
 //! the nominal bound of the same figure and polishes its optimum on this score
 //! ([`crate::search::polish_from`]).
 
-use crate::OptimizerError;
+use crate::error::OptimizerError;
 use entrynav::beacons::BeaconConfig;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
-use entrynav::sim::lincov_entry::{EntryLinCov, entry_lincov, unsupported_reason};
+use entrynav::sim::lincov::{EntryLinCov, entry_lincov, unsupported_reason};
 
 /// Which figure of the predicted position RMSE is minimised.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

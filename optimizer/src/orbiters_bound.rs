@@ -15,11 +15,15 @@
 //! Hidden orbiters simply give no information, so no visibility penalty is needed. The answer
 //! is a local optimum of the bound near the proxy's optimum, never worse than the proxy's.
 
-use crate::ground::final_position_bound_of;
-use crate::orbiters::{OrbitElements, OrbiterProblem, OrbiterSolution};
+use crate::error::OptimizerError;
+use crate::ground::final_bound::final_position_bound_of;
+use crate::orbiters::OrbitElements;
+use crate::orbiters::problem::OrbiterProblem;
+use crate::orbiters::solution::OrbiterSolution;
 use crate::output::{BeaconNoise, orbiter_beacons};
-use crate::search::{SearchOptions, SearchResult, polish_from};
-use crate::{OptimizerError, Progress};
+use crate::progress::Progress;
+use crate::search::polish_from;
+use crate::search_options::{SearchOptions, SearchResult};
 use entrynav::scenario::ScenarioConfig;
 use std::time::Instant;
 

@@ -7,12 +7,14 @@
 //! (Ω, i, f) per orbiter on the LinCov score. Hidden orbiters give no measurements, so, as for
 //! the bound, no visibility penalty is needed.
 
+use crate::error::OptimizerError;
 use crate::lincov_score::{LinCovFigures, LinCovScore};
 use crate::orbiters::OrbitElements;
 use crate::orbiters_nav::OrbiterNavProblem;
 use crate::output::{BeaconNoise, orbiter_beacons};
-use crate::search::{SearchOptions, SearchResult, polish_from};
-use crate::{OptimizerError, Progress};
+use crate::progress::Progress;
+use crate::search::polish_from;
+use crate::search_options::{SearchOptions, SearchResult};
 use std::time::Instant;
 
 /// The LinCov-polished constellation.

@@ -1,7 +1,7 @@
 //! Relay orbiters placed for navigation: `optimize orbiters --objective nav|pcrlb-avg|pcrlb-final`.
 //!
 //! The objective is the nominal-trajectory position bound of the scenario with the candidate
-//! orbiters ([`entrynav::sim::nominal_bound`], moving sites: the trade's PCRLB recursion on the
+//! orbiters ([`entrynav::sim::bounds::nominal_bound`], moving sites: the trade's PCRLB recursion on the
 //! nominal truth with the beacon-independent parts computed once, line of sight by seed 002
 //! eq. 58–60): its time average (`pcrlb-avg`), its value at the last epoch (`pcrlb-final`), or
 //! `nav` = ½ (avg / avg_input + final / final_input) relative to the scenario's own orbiters.
@@ -9,11 +9,14 @@
 //! (particle swarm + restarted Nelder–Mead over (Ω, i, f) per orbiter) runs on it directly.
 //! Hidden orbiters give no information, so no visibility penalty is needed.
 
-use crate::orbiters::{OrbitElements, OrbiterProblem};
-use crate::search::{SearchOptions, SearchResult, minimize};
-use crate::{OptimizerError, Progress};
+use crate::error::OptimizerError;
+use crate::orbiters::OrbitElements;
+use crate::orbiters::problem::OrbiterProblem;
+use crate::progress::Progress;
+use crate::search::minimize;
+use crate::search_options::{SearchOptions, SearchResult};
 use entrynav::scenario::Scenario;
-use entrynav::sim::nominal_bound::{NominalBound, NominalBoundSeries};
+use entrynav::sim::bounds::nominal_bound::{NominalBound, NominalBoundSeries};
 use std::time::Instant;
 
 /// Which figure of the nominal position bound is minimised.

@@ -2,8 +2,8 @@
 //! serialised to TOML and validated by [`ScenarioConfig::from_toml_str`] (so `entrynav trade` and
 //! every other command accept them).
 
-use crate::OptimizerError;
-use crate::ground::Site;
+use crate::error::OptimizerError;
+use crate::ground::site::Site;
 use crate::orbiters::OrbitElements;
 use entrynav::beacons::{BeaconConfig, CircularConfig, OrbiterBeaconConfig, SurfaceBeaconConfig};
 use entrynav::scenario::ScenarioConfig;

@@ -13,7 +13,9 @@
 //! graded penalty. Costs that come back NaN or infinite are replaced by [`NON_FINITE_COST`] before
 //! argmin sees them.
 
-use crate::{OptimizerError, Progress};
+use crate::error::OptimizerError;
+use crate::progress::Progress;
+use crate::search_options::{SearchOptions, SearchResult};
 use argmin::core::{CostFunction, Error as ArgminError, Executor, State};
 use argmin::solver::neldermead::NelderMead;
 use argmin::solver::particleswarm::ParticleSwarm;
@@ -27,64 +29,6 @@ pub const POLISH_ROUNDS: usize = 8;
 
 /// The finite cost that replaces a NaN or infinite one.
 pub const NON_FINITE_COST: f64 = 1e30;
-
-/// Budget and seeding of [`minimize`].
-#[derive(Debug, Clone, PartialEq)]
-pub struct SearchOptions {
-    /// Master seed.
-    pub seed: u64,
-    /// Independent swarm starts.
-    pub starts: usize,
-    /// Particles per swarm.
-    pub particles: usize,
-    /// Swarm iterations per start.
-    pub iterations: usize,
-    /// Nelder–Mead iterations per polish round (up to [`POLISH_ROUNDS`] restarted rounds per
-    /// start; 0 disables the polish).
-    pub polish_iterations: usize,
-    /// Initial simplex edge of the polish as a fraction of each variable's box width.
-    pub polish_step: f64,
-}
-
-impl Default for SearchOptions {
-    fn default() -> Self {
-        SearchOptions {
-            seed: 2,
-            starts: 4,
-            particles: 40,
-            iterations: 200,
-            polish_iterations: 400,
-            polish_step: 0.02,
-        }
-    }
-}
-
-impl SearchOptions {
-    /// The evaluation budget (the progress total): swarm evaluations plus an estimate of the
-    /// polish (Nelder–Mead uses about two evaluations per iteration).
-    pub fn budget(&self, dim: usize) -> usize {
-        let swarm = self.particles * (self.iterations + 1);
-        let polish = 3 * (dim + 1 + 2 * self.polish_iterations);
-        self.starts.max(1) * (swarm + polish)
-    }
-}
-
-/// What [`minimize`] found.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SearchResult {
-    /// Best point.
-    pub x: Vec<f64>,
-    /// Its cost.
-    pub cost: f64,
-    /// Cost evaluations in total (all starts, swarm and polish).
-    pub evaluations: usize,
-    /// Of which in the swarms.
-    pub swarm_evaluations: usize,
-    /// Best cost of each start after its polish, in start order.
-    pub start_costs: Vec<f64>,
-    /// Index of the winning start.
-    pub best_start: usize,
-}
 
 /// The seed of start `s`: SplitMix64 of the master seed and the start index.
 pub fn start_seed(seed: u64, start: usize) -> u64 {

@@ -7,7 +7,7 @@
 //! weights sum to 240 s, so an integrand bounded by 1 (such as `det(N₃)` of three unit vectors)
 //! integrates to at most 240 — the paper's maximum.
 
-use crate::OptimizerError;
+use crate::error::OptimizerError;
 use entrynav::frames::rotate_z;
 use entrynav::observability::{AnalysisPoint, analysis_points};
 use entrynav::planet::Planet;

@@ -1,7 +1,7 @@
 //! N free unit vectors without visibility: the search recovers seed 002's (N/3)³ (eq. 40,
 //! Table 1) for N = 3..8.
 
-use entrynav_optimizer::free::free_unit_vectors;
+use entrynav_optimizer::free_vectors::free_unit_vectors;
 use entrynav_optimizer::{OptimizerError, SearchOptions, no_progress};
 
 #[test]

@@ -219,7 +219,7 @@ fn the_nominal_bound_objective_equals_the_core_bound_and_improves_on_table_6() {
     // The input is the unit of the objective, and the problem's circular orbits reproduce the
     // scenario's own orbiters in the core's bound.
     assert!((p.value(&table6()).unwrap() - 1.0).abs() < 1e-12);
-    let bound = entrynav::sim::nominal_bound::NominalBound::new(&s).unwrap();
+    let bound = entrynav::sim::bounds::nominal_bound::NominalBound::new(&s).unwrap();
     let times = bound.epoch_times();
     let positions: Vec<Vec<[f64; 3]>> = s
         .beacons

@@ -7,7 +7,7 @@ use crate::chart::scatter::{Cloud, ellipse, scatter_chart};
 use crate::error::Result;
 use crate::report::html::{Cell, figures, note, table};
 use crate::trade_figures::{Figure, Kind};
-use entrynav::sim::delivery::{DeliveryReport, DeliveryRow};
+use entrynav::sim::guided::delivery::{DeliveryReport, DeliveryRow};
 
 /// Most runs drawn per row (the ellipse and the statistics are over every run).
 const MAX_DOTS: usize = 2000;

@@ -2,7 +2,7 @@
 //! onboard model at the true altitude over time, per run and as the RMS over all runs.
 
 use crate::error::{RenderError, Result};
-use entrynav::sim::density_eval::DensityEvalReport;
+use entrynav::sim::density::density_eval::DensityEvalReport;
 
 /// Seed 001 Fig. 10: percentage error of the filter's density model at the true altitude vs
 /// time, one grey line per run (the first 50) and the RMS over all runs; values beyond 3× the

@@ -365,7 +365,7 @@ pub fn trade_plots(
     report: &TradeReport,
     names: &WeightNames,
     extra: &ExtraCurves,
-    delivery: Option<&entrynav::sim::delivery::DeliveryReport>,
+    delivery: Option<&entrynav::sim::guided::delivery::DeliveryReport>,
 ) -> Result<Vec<Figure>> {
     let mut figs = trade_figures_with(report, names, extra)?;
     if let Some(d) = delivery {

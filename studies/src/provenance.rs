@@ -52,7 +52,9 @@ impl Provenance {
         scenario: &entrynav::scenario::Scenario,
         atmosphere_file: Option<&std::path::Path>,
     ) -> Provenance {
-        self.scenario_fingerprint = Some(entrynav::sim::shard::scenario_fingerprint(scenario));
+        self.scenario_fingerprint = Some(entrynav::sim::monte_carlo::shard::scenario_fingerprint(
+            scenario,
+        ));
         self.scenario = serde_json::to_value(&scenario.config).ok();
         let truth = &scenario.config.truth;
         self.atmosphere = Some(serde_json::json!({
@@ -107,9 +109,9 @@ pub struct Summary<'a> {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lincov: Option<&'a serde_json::Value>,
     /// Only for a scenario with `[guidance]`: delivery at deployment with each filter in the
-    /// guidance loop, perfect navigation and the unguided reference bank (`entrynav::sim::delivery`).
+    /// guidance loop, perfect navigation and the unguided reference bank (`entrynav::sim::guided::delivery`).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub delivery: Option<&'a entrynav::sim::delivery::DeliveryReport>,
+    pub delivery: Option<&'a entrynav::sim::guided::delivery::DeliveryReport>,
     /// Wall-clock timing.
     pub timing: Timing,
 }

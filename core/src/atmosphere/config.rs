@@ -4,13 +4,15 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::columns::{HeightUnit, TableColumns};
 use super::cospar::Cospar;
 use super::error::{AtmosphereError, check_closed, check_open, field_path};
 use super::exponential::Exponential;
 use super::mars_mean::mars_mean_profile;
 use super::model::AtmosphereModel;
-use super::parse::{HeightUnit, TableColumns, TableFormat};
-use super::perturbed::{Envelope, PerturbationSpec, Perturbed};
+use super::model::Perturbed;
+use super::parse::TableFormat;
+use super::perturbation_spec::{Envelope, PerturbationSpec};
 use super::profiles::{Datum, Placement, ProfileChoice, parse_profiles};
 use crate::files::FileLoader;
 use crate::planet::Planet;

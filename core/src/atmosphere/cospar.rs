@@ -2,7 +2,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::Atmosphere;
+use super::density_model::Atmosphere;
 use super::error::{AtmosphereError, check_open};
 use crate::math::Real;
 

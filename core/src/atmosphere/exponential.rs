@@ -1,6 +1,6 @@
 //! Isothermal exponential density model and its least-squares fit.
 
-use super::Atmosphere;
+use super::density_model::Atmosphere;
 use super::error::{AtmosphereError, check_open};
 use crate::math::Real;
 

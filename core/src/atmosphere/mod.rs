@@ -1,7 +1,7 @@
 //! Atmosphere models behind one trait.
 //!
 //! Every model maps geometric altitude above the reference sphere (`r − R`, metres) to density
-//! (kg/m³) and is generic over [`Real`] so that dynamics and measurement Jacobians can be taken
+//! (kg/m³) and is generic over [`Real`](crate::math::Real) so that dynamics and measurement Jacobians can be taken
 //! through it by forward-mode AD.
 //!
 //! | model | source | type |
@@ -17,47 +17,41 @@
 //! [`AtmosphereModel`] gathers them for scenario-driven code and [`AtmosphereConfig`] /
 //! [`PerturbationConfig`] describe them in scenario files. All failures are [`AtmosphereError`].
 
-use crate::math::Real;
-
 pub mod columns;
 pub mod config;
 pub mod cospar;
+pub mod density_model;
 pub mod error;
 pub mod exponential;
 pub mod mars_mean;
 pub mod model;
 pub mod parse;
-pub mod perturbed;
+pub mod perturbation_spec;
 pub mod profiles;
+pub mod synthetic_case;
 pub mod synthetic_set;
+mod table_header;
 pub mod tabulated;
 
+pub use columns::{DENSITY_ALIASES, HEIGHT_ALIASES, HeightUnit, RADIUS_ALIASES, TableColumns};
 pub use config::{AtmosphereConfig, PerturbationConfig};
 pub use cospar::Cospar;
+pub use density_model::Atmosphere;
 pub use error::AtmosphereError;
 pub use exponential::{Exponential, exponential_density};
 pub use mars_mean::{
     MARS_MEAN_GAS_CONSTANT, MARS_MEAN_KNEE_WIDTH_M, MARS_MEAN_SURFACE_PRESSURE_PA,
     MARS_MEAN_TEMPERATURE_KNOTS, MARS_MEAN_TOP_M, mars_mean_profile, mars_mean_temperature,
 };
-pub use model::AtmosphereModel;
-pub use parse::{
-    DENSITY_ALIASES, HEIGHT_ALIASES, HeightUnit, MAX_TABLE_ROWS, RADIUS_ALIASES, TableColumns,
-    TableFormat, parse_csv, parse_mars_gram,
-};
-pub use perturbed::{Envelope, PerturbationSpec, Perturbed};
+pub use model::{AtmosphereModel, Perturbed};
+pub use parse::{MAX_TABLE_ROWS, TableFormat, parse_csv, parse_mars_gram};
+pub use perturbation_spec::{Envelope, PerturbationSpec};
 pub use profiles::{
     Datum, HeightReference, MAX_PROFILES, Placement, Profile, ProfileChoice, ProfileProvenance,
     ProfileSet, areoid_radius_m, parse_profiles,
 };
+pub use synthetic_case::SyntheticCase;
 pub use synthetic_set::{
-    SyntheticCase, SyntheticProfile, SyntheticSetSpec, generate_synthetic_set,
-    synthetic_set_gram_text,
+    SyntheticProfile, SyntheticSetSpec, generate_synthetic_set, synthetic_set_gram_text,
 };
 pub use tabulated::{MIN_TABLE_POINTS, Tabulated};
-
-/// A density model ρ(h).
-pub trait Atmosphere {
-    /// Density (kg/m³) at altitude `altitude_m` (m) above the reference sphere.
-    fn density<T: Real>(&self, altitude_m: T) -> T;
-}

@@ -21,10 +21,8 @@ use serde::{Deserialize, Serialize};
 use super::error::AtmosphereError;
 use super::tabulated::{MIN_TABLE_POINTS, Tabulated};
 
-pub use super::columns::{
-    DENSITY_ALIASES, HEIGHT_ALIASES, HeightUnit, RADIUS_ALIASES, TableColumns,
-};
-use super::columns::{declared_unit, find_column};
+use super::columns::{HeightUnit, TableColumns};
+use super::table_header::{ChosenColumns, choose_columns, find_header, table_number};
 
 /// Most data rows read from one table text (all profiles together); more is an error.
 pub const MAX_TABLE_ROWS: usize = 1_000_000;
@@ -103,56 +101,6 @@ pub struct RawTable {
     pub rows: Vec<RawRow>,
 }
 
-fn is_numeric_row(line: &str) -> bool {
-    let mut fields = line
-        .split(|c: char| c == ',' || c.is_whitespace())
-        .filter(|f| !f.is_empty())
-        .peekable();
-    fields.peek().is_some() && fields.all(|f| parse_number(f.trim_matches('"')).is_some())
-}
-
-fn is_name_row(line: &str) -> bool {
-    let mut fields = line
-        .split(|c: char| c == ',' || c.is_whitespace())
-        .filter(|f| !f.is_empty())
-        .peekable();
-    fields.peek().is_some() && fields.all(|f| parse_number(f.trim_matches('"')).is_none())
-}
-
-/// The header line: its 1-based number and its text without a leading `#`.
-pub(crate) fn find_header(text: &str) -> Option<(usize, &str)> {
-    let lines: Vec<(usize, &str)> = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim()))
-        .filter(|(_, l)| !l.is_empty())
-        .collect();
-    for (k, &(n, l)) in lines.iter().enumerate() {
-        match l.strip_prefix('#') {
-            None => return Some((n, l.strip_prefix('\u{feff}').unwrap_or(l))),
-            Some(body) => {
-                let next_is_data = lines
-                    .get(k + 1)
-                    .is_some_and(|(_, next)| !next.starts_with('#') && is_numeric_row(next));
-                if is_name_row(body) && next_is_data {
-                    return Some((n, body.trim()));
-                }
-            }
-        }
-    }
-    None
-}
-
-pub(crate) fn parse_number(text: &str) -> Option<f64> {
-    text.parse::<f64>().ok().or_else(|| {
-        if text.contains(['D', 'd']) && !text.contains(['E', 'e']) {
-            text.replace(['D', 'd'], "E").parse::<f64>().ok()
-        } else {
-            None
-        }
-    })
-}
-
 /// Read every data row of a table (no profile splitting, no datum): header detection, column
 /// choice ([`TableColumns`]), numbers, positive densities, the [`MAX_TABLE_ROWS`] cap.
 pub fn read_table(
@@ -166,54 +114,7 @@ pub fn read_table(
     let (header_line, header_text) =
         find_header(text).ok_or_else(|| AtmosphereError::NoHeader { source_name: src() })?;
     let header = format.split(header_text);
-    let missing =
-        |role: &'static str, requested: &str, tried: Vec<String>| AtmosphereError::MissingColumn {
-            source_name: src(),
-            line: header_line,
-            role,
-            requested: requested.to_string(),
-            tried: tried.join(", "),
-            found: header.join(", "),
-        };
-    let hi = find_column(&header, &columns.height, "height", &HEIGHT_ALIASES)
-        .map_err(|t| missing("height", &columns.height, t))?;
-    let di = find_column(&header, &columns.density, "denstot", &DENSITY_ALIASES)
-        .map_err(|t| missing("density", &columns.density, t))?;
-    let ri = match &columns.radius {
-        Some(name) => {
-            Some(find_column(&header, name, "", &[]).map_err(|t| missing("radius", name, t))?)
-        }
-        None => find_column(&header, "radius", "radius", &RADIUS_ALIASES).ok(),
-    };
-    let (h_name, d_name) = (header[hi].to_string(), header[di].to_string());
-    let r_name = ri.map(|i| header[i].to_string());
-    let declared = declared_unit(&h_name).filter(|d| *d != columns.height_unit);
-    if let Some(declared) = declared {
-        return Err(AtmosphereError::HeightUnitMismatch {
-            source_name: src(),
-            line: header_line,
-            column: h_name,
-            declared,
-            requested: columns.height_unit,
-        });
-    }
-    let number = |line: usize, column: &str, text: &str| -> Result<f64, AtmosphereError> {
-        match parse_number(text) {
-            None => Err(AtmosphereError::MalformedNumber {
-                source_name: src(),
-                line,
-                column: column.to_string(),
-                text: text.to_string(),
-            }),
-            Some(v) if !v.is_finite() => Err(AtmosphereError::NonFiniteNumber {
-                source_name: src(),
-                line,
-                column: column.to_string(),
-                text: text.to_string(),
-            }),
-            Some(v) => Ok(v),
-        }
-    };
+    let chosen = choose_columns(&header, header_line, source_name, columns)?;
     let mut rows = Vec::new();
     for (i, raw) in text.lines().enumerate().skip(header_line) {
         let (line, t) = (i + 1, raw.trim());
@@ -239,44 +140,65 @@ pub fn read_table(
                 limit: MAX_TABLE_ROWS,
             });
         }
-        let h = number(line, &h_name, row[hi])?;
-        let density = number(line, &d_name, row[di])?;
-        if density <= 0.0 {
-            return Err(AtmosphereError::NonPositiveDensity {
-                source_name: src(),
-                line,
-                column: d_name.clone(),
-                value: density,
-            });
-        }
-        let [min, max] = DENSITY_ENVELOPE_KGM3;
-        if !(min..=max).contains(&density) {
-            return Err(AtmosphereError::DensityOutOfRange {
-                source_name: src(),
-                line,
-                column: d_name.clone(),
-                value: density,
-                min,
-                max,
-            });
-        }
-        let radius_m = match (ri, &r_name) {
-            (Some(i), Some(name)) => Some(number(line, name, row[i])? * 1e3),
-            _ => None,
-        };
-        rows.push(RawRow {
+        rows.push(read_row(
+            &row,
             line,
-            height_m: h * columns.height_unit.to_metres(),
-            density,
-            radius_m,
-        });
+            &chosen,
+            source_name,
+            columns.height_unit,
+        )?);
     }
     Ok(RawTable {
         header_line,
-        height_column: h_name,
-        density_column: d_name,
-        radius_column: r_name,
+        height_column: chosen.height.1,
+        density_column: chosen.density.1,
+        radius_column: chosen.radius.map(|(_, name)| name),
         rows,
+    })
+}
+
+/// One data row's height, density (positive, within [`DENSITY_ENVELOPE_KGM3`]) and radius, from
+/// the fields of line `line` in the `chosen` columns.
+fn read_row(
+    row: &[&str],
+    line: usize,
+    chosen: &ChosenColumns,
+    source_name: &str,
+    height_unit: HeightUnit,
+) -> Result<RawRow, AtmosphereError> {
+    let src = || source_name.to_string();
+    let (hi, h_name) = &chosen.height;
+    let (di, d_name) = &chosen.density;
+    let h = table_number(source_name, line, h_name, row[*hi])?;
+    let density = table_number(source_name, line, d_name, row[*di])?;
+    if density <= 0.0 {
+        return Err(AtmosphereError::NonPositiveDensity {
+            source_name: src(),
+            line,
+            column: d_name.clone(),
+            value: density,
+        });
+    }
+    let [min, max] = DENSITY_ENVELOPE_KGM3;
+    if !(min..=max).contains(&density) {
+        return Err(AtmosphereError::DensityOutOfRange {
+            source_name: src(),
+            line,
+            column: d_name.clone(),
+            value: density,
+            min,
+            max,
+        });
+    }
+    let radius_m = match &chosen.radius {
+        Some((i, name)) => Some(table_number(source_name, line, name, row[*i])? * 1e3),
+        None => None,
+    };
+    Ok(RawRow {
+        line,
+        height_m: h * height_unit.to_metres(),
+        density,
+        radius_m,
     })
 }
 
@@ -398,6 +320,7 @@ fn parse_single(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::atmosphere::table_header::parse_number;
 
     #[test]
     fn fortran_exponents() {

@@ -1,6 +1,6 @@
 //! Tabulated density profile: natural cubic spline of ln ρ versus altitude.
 
-use super::Atmosphere;
+use super::density_model::Atmosphere;
 use super::error::AtmosphereError;
 use crate::math::Real;
 

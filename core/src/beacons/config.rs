@@ -20,8 +20,12 @@
 //! Exactly one way of placing the beacon must be given. An outage may end at `inf` (e.g. seed
 //! 000's fault case, where orbiter 2 gives no measurement after 200 s).
 
-use super::config_validate::check;
-use super::{Beacon, BeaconError, CircularOrbit, KeplerElements, Orbiter, SurfaceBeacon};
+use super::elements::{CircularOrbit, KeplerElements};
+use super::error::BeaconError;
+use super::field_checks::check;
+use super::orbiter::Orbiter;
+use super::surface::SurfaceBeacon;
+use super::visibility::Beacon;
 use crate::planet::Planet;
 use serde::{Deserialize, Serialize};
 

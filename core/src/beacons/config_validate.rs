@@ -1,34 +1,9 @@
 //! Placement checks behind [`super::BeaconConfig::validate`]: which of the mutually exclusive ways
 //! of placing a beacon was given, and whether its numbers are in range. Errors name the field path.
 
-use super::BeaconError;
 use super::config::{OrbiterBeaconConfig, SurfaceBeaconConfig};
-
-/// Check `value` is finite and satisfies `ok`.
-pub(super) fn check(field: &str, value: f64, ok: bool, allowed: &str) -> Result<(), BeaconError> {
-    if value.is_finite() && ok {
-        Ok(())
-    } else {
-        Err(BeaconError::invalid(field, value, allowed))
-    }
-}
-
-/// Check all three components are finite.
-pub(super) fn check3(field: &str, value: &[f64; 3]) -> Result<(), BeaconError> {
-    if value.iter().all(|x| x.is_finite()) {
-        Ok(())
-    } else {
-        Err(BeaconError::invalid(field, value, "three finite numbers"))
-    }
-}
-
-/// A [`BeaconError::Choice`] for the entry `field`.
-pub(super) fn choice(field: &str, message: String) -> BeaconError {
-    BeaconError::Choice {
-        field: field.to_string(),
-        message,
-    }
-}
+use super::error::BeaconError;
+use super::field_checks::{check, check3, choice};
 
 impl SurfaceBeaconConfig {
     pub(super) fn validate_placement(&self, p: &str) -> Result<(), BeaconError> {

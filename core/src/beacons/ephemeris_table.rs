@@ -7,7 +7,8 @@
 //! [`BeaconMotion::state_at`] at the same `t` (so a looked-up state is the computed one bit for
 //! bit); any other time is computed on the spot.
 
-use super::{Beacon, BeaconMotion};
+use super::motion::BeaconMotion;
+use super::visibility::Beacon;
 use std::borrow::Cow;
 
 /// A beacon's inertial (position \[m\], velocity [m/s]).

@@ -10,7 +10,8 @@
 //! Seed 000 Table 2 lists the velocity as (0, 0, 0) — the planet-relative velocity; the inertial
 //! velocity above is the same point seen from the non-rotating frame.
 
-use super::{BeaconError, BeaconMotion, check_finite, check_finite3, check_planet};
+use super::error::{BeaconError, check_finite, check_finite3, check_planet};
+use super::motion::BeaconMotion;
 use crate::frames::{rotate_z, spherical_to_position};
 use crate::math::norm;
 use crate::planet::Planet;

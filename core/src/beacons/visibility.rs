@@ -13,7 +13,9 @@
 //! `atan2(|a × b|, a · b)`, which is accurate near 0 and π where `arccos` is not. Positions passed
 //! in must be in the same (inertial) frame; finite inputs always give finite margins.
 
-use super::{BeaconMotion, Orbiter, SurfaceBeacon};
+use super::motion::BeaconMotion;
+use super::orbiter::Orbiter;
+use super::surface::SurfaceBeacon;
 use crate::math::{cross, dot, norm, sub};
 
 /// Angle between two vectors \[rad\] ∈ [0, π]; 0 if either is zero.

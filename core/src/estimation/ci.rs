@@ -19,9 +19,14 @@
 //! `D = diag(1/√p̄_k)`, `p̄_k = (1/n) Σ_i (P_i)_kk`, which makes every scaled variance O(1).
 //! The fused result is mapped back exactly (`P_CI = D⁻¹ P'_CI D⁻¹`).
 
+use super::ci_fast_weights::{fast_weights, fast_weights_scaled};
+use super::ci_scaling::{
+    Mat, Vect, congruence, invalid, nonfinite, not_pd, scale_from, scaled_infos, spd_inverse,
+};
 use super::ci_weights::{Weights, optimal_weights};
+use super::covariance::symmetrize;
+use super::error::EstimationError;
 use super::spd::{cholesky, inverse_from_cholesky};
-use super::{EstimationError, symmetrize};
 use crate::math::all_finite;
 use nalgebra::{SMatrix, SVector};
 use serde::{Deserialize, Serialize};
@@ -33,9 +38,6 @@ pub const FEEDBACK_WEIGHT_FLOOR: f64 = 1e-6;
 
 /// Tolerance on `|Σ ω_i − 1|` accepted by [`ci_fuse`] (the weights are then renormalised).
 pub const WEIGHT_SUM_TOLERANCE: f64 = 1e-8;
-
-type Mat<const N: usize> = SMatrix<f64, N, N>;
-type Vect<const N: usize> = SVector<f64, N>;
 
 /// How the CI weights ω are chosen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
@@ -62,72 +64,6 @@ pub struct CiResult<const N: usize> {
     pub p: SMatrix<f64, N, N>,
     /// The weights ω_i used, in input order (non-negative, summing to 1).
     pub weights: Vec<f64>,
-}
-
-fn nonfinite(what: String) -> EstimationError {
-    EstimationError::NonFinite { what }
-}
-pub(super) fn not_pd(what: String) -> EstimationError {
-    EstimationError::NotPositiveDefinite { what }
-}
-fn invalid<T>(msg: String) -> Result<T, EstimationError> {
-    Err(EstimationError::InvalidInput(msg))
-}
-
-/// Symmetrise, check finite and positive definite, and invert by Cholesky.
-fn spd_inverse<const N: usize>(
-    m: &Mat<N>,
-    what: impl Fn() -> String,
-) -> Result<Mat<N>, EstimationError> {
-    if !all_finite(m.as_slice()) {
-        return Err(nonfinite(what()));
-    }
-    let chol = cholesky(&symmetrize(m)).ok_or_else(|| not_pd(what()))?;
-    let inv = inverse_from_cholesky(chol.l_dirty());
-    if !all_finite(inv.as_slice()) {
-        return Err(not_pd(what()));
-    }
-    Ok(inv)
-}
-
-/// Scale vector `s = diag(D)`, `s_k = 1/√p̄_k`, from the summed covariance diagonals.
-fn scale_from<const N: usize>(pdiag_sum: &Vect<N>, n: usize) -> Result<Vect<N>, EstimationError> {
-    if pdiag_sum.iter().any(|p| *p <= 0.0) {
-        return Err(not_pd("CI covariance (non-positive variance)".into()));
-    }
-    let s = pdiag_sum.map(|p| 1.0 / (p / n as f64).sqrt());
-    match s.iter().all(|v| v.is_finite() && *v > 0.0) {
-        true => Ok(s),
-        false => Err(nonfinite("CI scaling (mean variance)".into())),
-    }
-}
-
-/// `D P D` for a covariance, or `D⁻¹ Y D⁻¹` for an information matrix when `s` is inverted.
-fn congruence<const N: usize>(m: &Mat<N>, s: &Vect<N>) -> Mat<N> {
-    Mat::<N>::from_fn(|r, c| m[(r, c)] * s[r] * s[c])
-}
-
-/// Scaled information matrices `Y'_i = (D P_i D)⁻¹` plus the scale vector, from covariances.
-fn scaled_infos<const N: usize>(
-    estimates: &[(Vect<N>, Mat<N>)],
-) -> Result<(Vec<Mat<N>>, Vect<N>), EstimationError> {
-    if estimates.is_empty() {
-        return invalid("CI needs at least one estimate".into());
-    }
-    let mut dsum = Vect::<N>::zeros();
-    for (i, (x, p)) in estimates.iter().enumerate() {
-        if !(all_finite(x.as_slice()) && all_finite(p.as_slice())) {
-            return Err(nonfinite(format!("CI estimate {i}")));
-        }
-        dsum += p.diagonal();
-    }
-    let s = scale_from(&dsum, estimates.len())?;
-    let ys = estimates
-        .iter()
-        .enumerate()
-        .map(|(i, (_, p))| spd_inverse(&congruence(p, &s), || format!("CI covariance P_{i}")))
-        .collect::<Result<Vec<_>, _>>()?;
-    Ok((ys, s))
 }
 
 /// Fusion (eq. 19–20) on the scaled problem; `w` already validated. `chol`, when given, is the
@@ -164,73 +100,6 @@ fn fuse_scaled<'a, const N: usize>(
         return Err(nonfinite("fused CI estimate".into()));
     }
     Ok((CiResult { x, p, weights: w }, yinv))
-}
-
-/// Seed 000 eq. 21 generalised to `n` estimates:
-///
-/// ```text
-/// ω_i = (‖Y‖∞ − ‖Y − Y_i‖∞ + ‖Y_i‖∞) / (n‖Y‖∞ + Σ_j (‖Y_j‖∞ − ‖Y − Y_j‖∞)),   Y = Σ_j Y_j.
-/// ```
-///
-/// The denominator is the sum of the numerators, so Σ ω_i = 1; every numerator is ≥ 0 by the
-/// triangle inequality (round-off negatives are clamped to 0). For `n = 1`, ω = [1].
-fn fast_weights<const N: usize>(infos: &[Mat<N>]) -> Result<Vec<f64>, EstimationError> {
-    fast_weights_scaled(infos, &Vect::<N>::repeat(1.0))
-}
-
-/// [`fast_weights`] of the informations `S Y'_i S` (`S = diag(s)`), without forming them: each
-/// entry `Y'_i,rc s_r s_c`, their sum and every row's absolute sums are taken column by column,
-/// with the same operations in the same order as on the formed matrices (`Y = Σ Y_i` from zero,
-/// row sums from zero in column order), so the weights are the same to the bit.
-fn fast_weights_scaled<const N: usize>(
-    ys: &[Mat<N>],
-    s: &Vect<N>,
-) -> Result<Vec<f64>, EstimationError> {
-    // Column c of S Y'_i S (entry r: (Y'_i)_rc s_r s_c, as `congruence` forms it).
-    let column = |yi: &Mat<N>, c: usize| -> [f64; N] {
-        let col = &yi.data.0[c];
-        std::array::from_fn(|r| col[r] * s[r] * s[c])
-    };
-    // Y = Σ_i S Y'_i S from zero, by columns.
-    let mut y = [[0.0f64; N]; N];
-    for yi in ys {
-        for (c, yc) in y.iter_mut().enumerate() {
-            for (acc, v) in yc.iter_mut().zip(column(yi, c)) {
-                *acc += v;
-            }
-        }
-    }
-    // ‖·‖∞ from the rows' absolute sums, accumulated column by column (each row in column order).
-    let max_row = |rows: &[f64; N]| rows.iter().fold(0.0, |m: f64, v| m.max(*v));
-    let mut rows = [0.0f64; N];
-    for yc in &y {
-        for (acc, v) in rows.iter_mut().zip(yc) {
-            *acc += v.abs();
-        }
-    }
-    let ny = max_row(&rows);
-    let (mut norm_i, mut norm_rest) = (Vec::with_capacity(ys.len()), Vec::with_capacity(ys.len()));
-    for yi in ys {
-        let (mut own, mut rest) = ([0.0f64; N], [0.0f64; N]);
-        for (c, yc) in y.iter().enumerate() {
-            for (((o, r), v), total) in own.iter_mut().zip(&mut rest).zip(column(yi, c)).zip(yc) {
-                *o += v.abs();
-                *r += (total - v).abs();
-            }
-        }
-        norm_i.push(max_row(&own));
-        norm_rest.push(max_row(&rest));
-    }
-    let num: Vec<f64> = norm_i
-        .iter()
-        .zip(&norm_rest)
-        .map(|(ni, nr)| (ny - nr + ni).max(0.0))
-        .collect();
-    let den: f64 = num.iter().sum();
-    if !den.is_finite() || den <= 0.0 {
-        return Err(nonfinite("∞-norm CI weight denominator".into()));
-    }
-    Ok(num.iter().map(|v| v / den).collect())
 }
 
 /// CI weights ω for information matrices `infos` = `Y_i = P_i⁻¹` (seed 000 §3.3): by minimum

@@ -2,9 +2,9 @@
 //! determinant of the fused covariance over the simplex `Σ ω_i = 1, ω_i ≥ 0`, by an active-set
 //! projected Newton method on the scaled information matrices that [`super::ci`] prepares.
 
-use super::EstimationError;
-use super::ci::not_pd;
-use super::spd::{cholesky, inverse_from_cholesky, lower_inverse};
+use super::ci_scaling::not_pd;
+use super::ci_weight_problem::{Factor, Problem};
+use super::error::EstimationError;
 use nalgebra::{Cholesky, Const, DMatrix, DVector, SMatrix};
 
 /// Iteration cap of the optimal-weight Newton solver (it normally needs 3–10 iterations).
@@ -21,159 +21,6 @@ type Mat<const N: usize> = SMatrix<f64, N, N>;
 
 /// Weights and, from the optimal-weight search, the Cholesky factor of `Σ ω_i Y_i` at them.
 pub(super) type Weights<const N: usize> = (Vec<f64>, Option<Cholesky<f64, Const<N>>>);
-
-/// Objective (and optionally gradient and Hessian in ω) of the optimal-weight problem on the
-/// scaled information matrices. With `Y = Σ ω_i Y_i`, `M_i = Y⁻¹ Y_i`, `S_i = M_i Y⁻¹`:
-/// * det: `f = −log det Y`, `∂f/∂ω_i = −tr(Y⁻¹Y_i) = −tr M_i`, `∂²f/∂ω_i∂ω_j = tr(M_i M_j)`;
-/// * trace: `f = tr Y⁻¹`, `∂f/∂ω_i = −tr(Y⁻¹Y_iY⁻¹) = −tr S_i`,
-///   `∂²f/∂ω_i∂ω_j = 2 tr(Y⁻¹Y_iY⁻¹Y_jY⁻¹) = 2 tr(M_i S_j)`.
-///
-/// The det derivatives are formed on the symmetric `B_i = T Y_i Tᵀ`, `T = L⁻¹` for the Cholesky
-/// factor `Y = L Lᵀ` (so `Y⁻¹ = TᵀT`): `tr M_i = tr B_i` and `tr(M_i M_j) = ⟨B_i, B_j⟩_F`. With
-/// `T` triangular and only `B_i`'s lower triangle formed, that is ≈ N³ (1/6 + 4/6 n) multiply–adds
-/// and half-size Frobenius products, against N³ (1/3 + n) for `Y⁻¹` and the products `Y⁻¹Y_i`.
-///
-/// `m`, `s` (trace) and `b` (det, lower triangles by columns) are work space; `g`, `h` receive
-/// the gradient and Hessian.
-struct Problem<'a, const N: usize> {
-    ys: &'a [Mat<N>],
-    trace: bool,
-    m: Vec<Mat<N>>,
-    s: Vec<Mat<N>>,
-    b: Vec<[[f64; N]; N]>,
-    g: Vec<f64>,
-    h: DMatrix<f64>,
-}
-
-/// Factorisation of `Y(ω)`: Cholesky factor, objective value and (trace objective) `Y⁻¹`.
-struct Factor<const N: usize> {
-    chol: Cholesky<f64, Const<N>>,
-    f: f64,
-    yinv: Option<Mat<N>>,
-}
-
-impl<'a, const N: usize> Problem<'a, N> {
-    fn new(ys: &'a [Mat<N>], trace: bool) -> Self {
-        let (n, z) = (ys.len(), Mat::<N>::zeros());
-        let (g, h) = (vec![0.0; n], DMatrix::zeros(n, n));
-        let (mats, lowers) = if trace { (n, 0) } else { (0, n) };
-        Problem {
-            ys,
-            trace,
-            m: vec![z; mats],
-            s: vec![z; mats],
-            b: vec![[[0.0; N]; N]; lowers],
-            g,
-            h,
-        }
-    }
-
-    /// Factor `Y(ω)` and evaluate `f`; `None` if not positive definite.
-    fn factor(&self, w: &[f64]) -> Option<Factor<N>> {
-        // Σ ω_i Y_i accumulated in place, entry by entry: the same sums as adding the scaled
-        // matrices, without the temporaries.
-        let mut y = Mat::<N>::zeros();
-        for (yi, wi) in self.ys.iter().zip(w) {
-            for (acc, v) in y.as_mut_slice().iter_mut().zip(yi.as_slice()) {
-                *acc += v * *wi;
-            }
-        }
-        let chol = cholesky(&y)?;
-        let yinv = self.trace.then(|| inverse_from_cholesky(chol.l_dirty()));
-        let f = match &yinv {
-            Some(yi) => yi.trace(),
-            None => -2.0 * chol.l_dirty().diagonal().map(f64::ln).sum(),
-        };
-        f.is_finite().then_some(Factor { chol, f, yinv })
-    }
-
-    /// Gradient `g` and Hessian `h` at a factorisation.
-    fn derivatives(&mut self, fac: &Factor<N>) {
-        match &fac.yinv {
-            Some(yinv) => self.trace_derivatives(yinv),
-            None => self.det_derivatives(fac),
-        }
-    }
-
-    /// The det objective's gradient alone, `g_i = −tr(Y⁻¹Y_i) = −⟨Y⁻¹, Y_i⟩_F` from `Y⁻¹`
-    /// (≈ N³/3 + n N² multiply–adds against ≈ N³ (1/6 + 4/6 n) for the Hessian too); `h` keeps
-    /// the last Hessian (a chord step, see [`optimal_weights`]). `false` for the trace
-    /// objective, which has no cheaper gradient.
-    fn det_gradient(&mut self, fac: &Factor<N>) -> bool {
-        if fac.yinv.is_some() {
-            return false;
-        }
-        let yinv = inverse_from_cholesky(fac.chol.l_dirty());
-        for (g, yi) in self.g.iter_mut().zip(self.ys) {
-            *g = -yinv.dot(yi);
-        }
-        true
-    }
-
-    /// The trace objective's derivatives from `Y⁻¹`.
-    fn trace_derivatives(&mut self, yinv: &Mat<N>) {
-        let (m, s) = (&mut self.m, &mut self.s);
-        for i in 0..self.ys.len() {
-            m[i] = yinv * self.ys[i];
-            s[i] = m[i] * yinv;
-            self.g[i] = -s[i].trace();
-            let mt = m[i].transpose();
-            for (j, sj) in s[..=i].iter().enumerate() {
-                // 2 tr(M_i S_j) = 2 Σ (M_iᵀ)_kl (S_j)_kl.
-                let hij = 2.0 * mt.dot(sj);
-                (self.h[(i, j)], self.h[(j, i)]) = (hij, hij);
-            }
-        }
-    }
-
-    /// The det objective's derivatives from `B_i = T Y_i Tᵀ` (see [`Problem`]).
-    #[allow(clippy::needless_range_loop)] // columns of several arrays at one index
-    fn det_derivatives(&mut self, fac: &Factor<N>) {
-        // t[k][r] = T_rk, zero for r < k.
-        let t = lower_inverse(fac.chol.l_dirty());
-        for i in 0..self.ys.len() {
-            // y[c][k] = (Y_i)_kc.
-            let y = &self.ys[i].data.0;
-            // C = T Y_i by columns: C[:, c] = Σ_k T[:, k] (Y_i)_kc, T[:, k] non-zero from row k.
-            let mut cm = [[0.0f64; N]; N];
-            for c in 0..N {
-                for k in 0..N {
-                    let v = y[c][k];
-                    for r in k..N {
-                        cm[c][r] += t[k][r] * v;
-                    }
-                }
-            }
-            // B = C Tᵀ, lower triangle: B[r, s] = Σ_{k ≤ s} C[r, k] T_sk for r ≥ s.
-            let b = &mut self.b[i];
-            let mut trace = 0.0;
-            for s in 0..N {
-                b[s] = [0.0; N];
-                for k in 0..=s {
-                    let v = t[k][s];
-                    for r in s..N {
-                        b[s][r] += cm[k][r] * v;
-                    }
-                }
-                trace += b[s][s];
-            }
-            self.g[i] = -trace;
-            for j in 0..=i {
-                // ⟨B_i, B_j⟩_F from the lower triangles: diagonal once, the rest twice.
-                let (bi, bj) = (&self.b[i], &self.b[j]);
-                let (mut diag, mut off) = (0.0, 0.0);
-                for s in 0..N {
-                    diag += bi[s][s] * bj[s][s];
-                    for r in s + 1..N {
-                        off += bi[s][r] * bj[s][r];
-                    }
-                }
-                let hij = diag + 2.0 * off;
-                (self.h[(i, j)], self.h[(j, i)]) = (hij, hij);
-            }
-        }
-    }
-}
 
 /// Newton direction on the face `{Σ_{i∈free} d_i = 0}`: solve the KKT system
 /// `[H_FF + δI, 1; 1ᵀ, 0] [d; λ] = [−g_F; 0]` (δ a 1e-12 relative damping for flat directions).
@@ -255,8 +102,7 @@ fn search<const N: usize>(
         let (f, g) = (fac.f, prob.g.clone());
         let free: Vec<usize> = (0..n).filter(|&i| active[i]).collect();
         let gmax = g.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
-        let mean_g = |set: &[usize]| set.iter().map(|&i| g[i]).sum::<f64>() / set.len() as f64;
-        let mu = mean_g(&free);
+        let mu = mean_gradient(&g, &free);
         let pg = free.iter().map(|&i| (g[i] - mu).abs()).fold(0.0, f64::max);
         let tilted = free.len() > 1 && pg > 1e-13 * gmax;
         let dir = tilted
@@ -264,73 +110,148 @@ fn search<const N: usize>(
             .flatten();
         let mut stationary = dir.is_none();
         if let Some(d) = dir {
-            let slope: f64 = free.iter().zip(&d).map(|(&i, di)| g[i] * di).sum();
-            let dmax = d.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
-            let (mut amax, mut block) = (f64::INFINITY, None);
-            for (&i, &di) in free.iter().zip(&d) {
-                if di < 0.0 && -w[i] / di < amax {
-                    amax = -w[i] / di;
-                    block = Some(i);
-                }
-            }
-            let small = -slope <= 1e-12 * (1.0 + f.abs());
+            let step = Step::along(&free, &d, &g, &w, f, chord_step, chord_decrement);
             // A chord step ends the search when its decrement is tiny and its full step stays
             // inside the simplex; otherwise this point gets exact derivatives after all.
-            let certified = chord_step && slope < 0.0 && -slope <= CHORD_FINAL && amax > 1.0;
-            if chord_step && !certified && !small {
+            if chord_step && !step.certified && !step.small {
                 continue;
             }
-            stationary = small || certified || dmax <= 1e-12 || slope.is_nan() || slope >= 0.0;
-            if !stationary || small || certified {
-                // Near the optimum (`small`) the full Newton step is taken without a line search,
-                // whose Armijo test would only see round-off.
-                let mut alpha = amax.min(1.0);
-                let mut accepted = false;
-                for _ in 0..40 {
-                    trial.copy_from_slice(&w);
-                    for (&i, di) in free.iter().zip(&d) {
-                        trial[i] = (w[i] + alpha * di).max(0.0);
-                    }
-                    let hit = (alpha == amax).then_some(block).flatten();
-                    if let Some(b) = hit {
-                        trial[b] = 0.0;
-                    }
-                    let sum: f64 = trial.iter().sum();
-                    trial.iter_mut().for_each(|t| *t /= sum);
-                    let cand = prob
-                        .factor(&trial)
-                        .filter(|c| small || certified || c.f <= f + 1e-4 * alpha * slope);
-                    if let Some(c) = cand {
+            let dmax = d.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
+            let slope = step.slope;
+            stationary =
+                step.small || step.certified || dmax <= 1e-12 || slope.is_nan() || slope >= 0.0;
+            if !stationary || step.small || step.certified {
+                match line_search(&prob, &step, &mut w, &mut trial) {
+                    Some((c, hit, next_chord)) => {
                         fac = c;
-                        w.copy_from_slice(&trial);
                         if let Some(b) = hit {
                             active[b] = false;
                         }
-                        accepted = true;
-                        chord = !chord_step
-                            && !small
-                            && alpha == 1.0
-                            && hit.is_none()
-                            && -slope <= chord_decrement;
-                        break;
+                        chord = next_chord;
                     }
-                    alpha *= 0.5;
+                    None => stationary = true,
                 }
-                stationary |= !accepted;
             }
         }
-        if stationary {
-            let mu = mean_g(&(0..n).filter(|&i| active[i]).collect::<Vec<_>>());
-            let worst = (0..n)
-                .filter(|&i| !active[i])
-                .min_by(|&i, &j| g[i].total_cmp(&g[j]));
-            match worst {
-                Some(j) if g[j] < mu - 1e-12 * gmax => active[j] = true,
-                _ => break,
-            }
+        if stationary && !release_one(&g, &mut active, gmax) {
+            break;
         }
     }
     Ok((w, Some(fac.chol)))
+}
+
+/// The mean of the gradient `g` over the weights `set`.
+fn mean_gradient(g: &[f64], set: &[usize]) -> f64 {
+    set.iter().map(|&i| g[i]).sum::<f64>() / set.len() as f64
+}
+
+/// A Newton (or chord) step of the weight search: the direction `d` on the `free` weights, its
+/// slope `gᵀd`, the longest step `amax` that stays in the simplex and the weight it zeroes.
+struct Step<'a> {
+    free: &'a [usize],
+    d: &'a [f64],
+    f: f64,
+    slope: f64,
+    amax: f64,
+    block: Option<usize>,
+    /// The decrement is at round-off level: the full step is taken without a line search.
+    small: bool,
+    /// A chord step whose tiny decrement and inside full step end the search.
+    certified: bool,
+    chord_step: bool,
+    chord_decrement: f64,
+}
+
+impl<'a> Step<'a> {
+    /// The step along `d` from the weights `w` (objective `f`, gradient `g`).
+    fn along(
+        free: &'a [usize],
+        d: &'a [f64],
+        g: &[f64],
+        w: &[f64],
+        f: f64,
+        chord_step: bool,
+        chord_decrement: f64,
+    ) -> Self {
+        let slope: f64 = free.iter().zip(d).map(|(&i, di)| g[i] * di).sum();
+        let (mut amax, mut block) = (f64::INFINITY, None);
+        for (&i, &di) in free.iter().zip(d) {
+            if di < 0.0 && -w[i] / di < amax {
+                amax = -w[i] / di;
+                block = Some(i);
+            }
+        }
+        let small = -slope <= 1e-12 * (1.0 + f.abs());
+        let certified = chord_step && slope < 0.0 && -slope <= CHORD_FINAL && amax > 1.0;
+        Step {
+            free,
+            d,
+            f,
+            slope,
+            amax,
+            block,
+            small,
+            certified,
+            chord_step,
+            chord_decrement,
+        }
+    }
+}
+
+/// The backtracking (Armijo) line search along `step` from `w`, renormalised onto the simplex.
+/// Near the optimum (`small`) the full Newton step is taken without it, whose Armijo test would
+/// only see round-off. On success `w` holds the new weights; returns their factorisation, the
+/// weight the step zeroed and whether the next step is a chord step.
+fn line_search<const N: usize>(
+    prob: &Problem<'_, N>,
+    step: &Step<'_>,
+    w: &mut [f64],
+    trial: &mut [f64],
+) -> Option<(Factor<N>, Option<usize>, bool)> {
+    let mut alpha = step.amax.min(1.0);
+    for _ in 0..40 {
+        trial.copy_from_slice(w);
+        for (&i, di) in step.free.iter().zip(step.d) {
+            trial[i] = (w[i] + alpha * di).max(0.0);
+        }
+        let hit = (alpha == step.amax).then_some(step.block).flatten();
+        if let Some(b) = hit {
+            trial[b] = 0.0;
+        }
+        let sum: f64 = trial.iter().sum();
+        trial.iter_mut().for_each(|t| *t /= sum);
+        let cand = prob
+            .factor(trial)
+            .filter(|c| step.small || step.certified || c.f <= step.f + 1e-4 * alpha * step.slope);
+        if let Some(c) = cand {
+            w.copy_from_slice(trial);
+            let chord = !step.chord_step
+                && !step.small
+                && alpha == 1.0
+                && hit.is_none()
+                && -step.slope <= step.chord_decrement;
+            return Some((c, hit, chord));
+        }
+        alpha *= 0.5;
+    }
+    None
+}
+
+/// At a stationary point of the current face: free the inactive weight whose gradient is most
+/// below the active ones' mean. `false` when there is none (the optimum).
+fn release_one(g: &[f64], active: &mut [bool], gmax: f64) -> bool {
+    let n = g.len();
+    let mu = mean_gradient(g, &(0..n).filter(|&i| active[i]).collect::<Vec<_>>());
+    let worst = (0..n)
+        .filter(|&i| !active[i])
+        .min_by(|&i, &j| g[i].total_cmp(&g[j]));
+    match worst {
+        Some(j) if g[j] < mu - 1e-12 * gmax => {
+            active[j] = true;
+            true
+        }
+        _ => false,
+    }
 }
 
 #[cfg(test)]

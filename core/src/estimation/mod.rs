@@ -17,10 +17,17 @@
 pub mod adaptive;
 pub mod chi_square;
 pub mod ci;
+mod ci_fast_weights;
+mod ci_scaling;
+mod ci_weight_problem;
 mod ci_weights;
+pub mod covariance;
 pub mod ekf;
+pub mod error;
 pub mod gating;
+pub mod linearization;
 pub mod mmae;
+pub mod model_probability;
 pub mod nav;
 pub mod onboard;
 pub mod propagate;
@@ -28,52 +35,6 @@ pub mod spd;
 pub mod ukf;
 pub mod unscented;
 
+pub use covariance::{check_covariance, symmetrize};
+pub use error::EstimationError;
 pub use onboard::{FilterRetune, FilterTuning, FusionCovariance, Onboard, OnboardChannel};
-
-use crate::math::all_finite;
-use nalgebra::SMatrix;
-use thiserror::Error;
-
-/// Numerical failure of an estimator step.
-#[derive(Debug, Error, Clone, PartialEq)]
-pub enum EstimationError {
-    /// A covariance (or innovation covariance) is not positive definite.
-    #[error("{what} is not positive definite")]
-    NotPositiveDefinite {
-        /// Which matrix.
-        what: String,
-    },
-    /// A value became NaN or infinite.
-    #[error("{what} became non-finite")]
-    NonFinite {
-        /// Which quantity.
-        what: String,
-    },
-    /// Inputs that do not fit together (lengths, weights, parameters).
-    #[error("invalid input: {0}")]
-    InvalidInput(String),
-}
-
-/// `(P + Pᵀ)/2`.
-pub fn symmetrize<const N: usize>(p: &SMatrix<f64, N, N>) -> SMatrix<f64, N, N> {
-    // Entry by entry, without the transposed copy: the same (a + b) · 0.5.
-    SMatrix::from_fn(|r, c| (p[(r, c)] + p[(c, r)]) * 0.5)
-}
-
-/// Check a covariance is finite and positive definite (Cholesky succeeds).
-pub fn check_covariance<const N: usize>(
-    p: &SMatrix<f64, N, N>,
-    what: &str,
-) -> Result<(), EstimationError> {
-    if !all_finite(p.as_slice()) {
-        return Err(EstimationError::NonFinite {
-            what: what.to_string(),
-        });
-    }
-    if spd::cholesky(p).is_none() {
-        return Err(EstimationError::NotPositiveDefinite {
-            what: what.to_string(),
-        });
-    }
-    Ok(())
-}

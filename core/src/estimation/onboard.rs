@@ -10,9 +10,10 @@
 //! The scenario layer builds the value (`Scenario::build`); the estimation layer never imports
 //! the scenario or the simulation.
 
-use super::adaptive::{DensityFilterConfig, DensityNetworkSet};
-use super::nav::FilterKind;
-use super::ukf::UkfParams;
+use super::adaptive::config::DensityFilterConfig;
+use super::adaptive::network::DensityNetworkSet;
+use super::nav::kind::FilterKind;
+use super::unscented::UkfParams;
 use crate::atmosphere::AtmosphereModel;
 use crate::beacons::{Beacon, BeaconState, EphemerisTable};
 use crate::dynamics::EntryModel;

@@ -31,9 +31,10 @@
 //! Seed 001 eq. 42–43 print `√(L + λP)`; the intended square root is of `(L + λ)P`, taken here
 //! as the lower Cholesky factor.
 
+use super::covariance::{check_covariance, symmetrize};
+use super::error::EstimationError;
 pub use super::unscented::{SigmaPoints, UkfParams, UnscentedTransform, unscented_transform};
 use super::unscented::{measurement_moments, non_finite, not_pd};
-use super::{EstimationError, check_covariance, symmetrize};
 use nalgebra::{Cholesky, DMatrix, DVector, SMatrix, SVector};
 
 /// Result of one measurement update.

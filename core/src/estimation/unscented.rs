@@ -2,7 +2,8 @@
 //! sigma points (eq. 41–43) and the transform of a distribution through a map (eq. 44–47,
 //! 61–65). The weights and the treatment of a negative `w₀` are explained in [`super::ukf`].
 
-use super::{EstimationError, symmetrize};
+use super::covariance::symmetrize;
+use super::error::EstimationError;
 use nalgebra::{Cholesky, Const, DMatrix, DVector, Dyn, OMatrix, SMatrix, SVector};
 
 /// Scaled unscented-transform constants (seed 001 §IV.B, after eq. 43 and eq. 48–50).

@@ -23,11 +23,13 @@
 //! lateral logic still active. MSL instead switches to a heading-alignment phase there; we do not
 //! implement it.
 
+use super::algorithm::Guidance;
 use super::error::GuidanceError;
 use super::lateral::Lateral;
 use super::limits::BankLimits;
+use super::nav_state::NavState;
 use super::reference::ReferenceTrajectory;
-use super::{Guidance, NavState, Target, range_crossrange};
+use super::target::{Target, range_crossrange};
 use serde::{Deserialize, Serialize};
 
 /// `[guidance.apollo]`.

@@ -1,6 +1,7 @@
 //! `[guidance]`: which algorithm, its target, rate, limits and parameters, and the one function
 //! that builds a guidance from it and the onboard model.
 
+use super::algorithm::Guidance;
 use super::apollo::{ApolloConfig, ApolloGuidance};
 use super::error::GuidanceError;
 use super::fnpeg::{Fnpeg, FnpegConfig};
@@ -9,7 +10,7 @@ use super::limits::BankLimits;
 use super::longitudinal::{LongModel, Trigger};
 use super::reference::{ReferenceSettings, ReferenceTrajectory};
 use super::safeguard::AltitudeSafeguard;
-use super::{Guidance, Target, destination};
+use super::target::{Target, destination};
 use crate::atmosphere::Atmosphere;
 use crate::dynamics::EntryModel;
 use serde::{Deserialize, Serialize};

@@ -19,11 +19,13 @@
 //! κ ← κ + β (D_sensed/D_model − κ) corrects the onboard atmosphere (the density-ratio filter of
 //! the predictor–corrector literature, Lu 2014 §V; β is ours).
 
+use super::algorithm::Guidance;
 use super::error::GuidanceError;
 use super::lateral::Lateral;
 use super::limits::BankLimits;
 use super::longitudinal::{LongModel, R, Trigger, V};
-use super::{Guidance, NavState, Target, range_crossrange};
+use super::nav_state::NavState;
+use super::target::{Target, range_crossrange};
 use crate::atmosphere::Atmosphere;
 use crate::dynamics::EntryModel;
 use nalgebra::SVector;

@@ -31,11 +31,11 @@
 //! κ) above 0.05 g, β = [`DENSITY_GAIN`]), which also absorbs a C_D S/m error. An L/D error is
 //! not corrected: the floor must carry that margin.
 
-use super::Guidance;
-use super::NavState;
+use super::algorithm::Guidance;
 use super::error::GuidanceError;
 use super::limits::BankLimits;
 use super::longitudinal::{LongModel, R, Trigger};
+use super::nav_state::NavState;
 use crate::atmosphere::Atmosphere;
 use crate::dynamics::EntryModel;
 use nalgebra::SVector;

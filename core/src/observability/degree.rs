@@ -17,7 +17,7 @@
 //! numerical-rank tolerance). When the rank is below n, δ is reported as 0 together with the rank
 //! (never NaN); `sigma_ratio` keeps the unthresholded σ_min/σ_max for reference.
 
-use super::ObservabilityError;
+use super::error::ObservabilityError;
 use crate::dynamics::{AugmentedParam, EntryModel};
 use nalgebra::DMatrix;
 

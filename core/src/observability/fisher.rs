@@ -7,7 +7,7 @@
 //! which is ∂R_i/∂r (eq. 29) and ∂Ṙ_i/∂v (eq. 42). All positions and velocities are inertial \[m\],
 //! [m/s]; σ in the measurement's unit (m or m/s).
 
-use super::ObservabilityError;
+use super::error::ObservabilityError;
 use crate::math::{V3, cross, dot, norm, scale, sub};
 use nalgebra::{Matrix3, Vector3};
 

@@ -1,7 +1,7 @@
 //! Beacon geometry: the best possible directions for N range beacons (seed 002 eq. 39–40,
 //! Table 1) and the range FIM and geometry index along a scenario's trajectory (Fig. 5–6).
 
-use super::ObservabilityError;
+use super::error::ObservabilityError;
 use super::fisher::{FimSummary, geometry_index, summarize, unit_vector};
 use super::system::AnalysisPoint;
 use crate::math::{V3, dot, norm, scale};

@@ -24,7 +24,7 @@
 //! truth reference density × truth density factor when the truth atmosphere is exponential — and
 //! the filter's initial augmented value where the truth has no such constant.
 
-use super::ObservabilityError;
+use super::error::ObservabilityError;
 use crate::atmosphere::AtmosphereModel;
 use crate::dynamics::{AugmentedParam, EntryModel};
 use crate::frames::inertial_to_spherical;

@@ -2,8 +2,9 @@
 //! subsystems of seed 000 §2.3.3 (IMU + one beacon, eq. 9; Fig. 2–3).
 
 use super::degree::{Degree, Scaling, degree};
-use super::system::{AnalysisPoint, ScenarioSystem};
-use super::{Method, ObservabilityError, observability_matrix};
+use super::error::ObservabilityError;
+use super::method::{Method, observability_matrix};
+use super::system::{AnalysisPoint, ObservedSystem, ScenarioSystem};
 use crate::scenario::Scenario;
 use crate::sensors::Noise;
 use crate::state_dim::{DimVisitor, with_state_dim};
@@ -215,7 +216,7 @@ fn series_n<const N: usize>(
             bank: scenario.truth_bank,
         };
         let mut y = vec![0.0; specs.len()];
-        super::system::ObservedSystem::<N>::h(&sys, &x0, &mut y);
+        ObservedSystem::<N>::h(&sys, &x0, &mut y);
         let mut sigma = Vec::with_capacity(specs.len());
         for (spec, v) in specs.iter().zip(&y) {
             let s = match spec.noise {

@@ -6,7 +6,6 @@
 //! step, the tuning and the nominal initial estimate. The truth model, the dispersions, the
 //! sensor biases and the true noise stay out.
 
-use super::build::ChannelSpec;
 use super::config::ScenarioConfig;
 use crate::atmosphere::AtmosphereModel;
 use crate::beacons::{Beacon, EphemerisTable};
@@ -14,6 +13,7 @@ use crate::dynamics::EntryModel;
 use crate::estimation::nav::FilterKind;
 use crate::estimation::ukf::UkfParams;
 use crate::estimation::{FilterRetune, FilterTuning, Onboard, OnboardChannel};
+use crate::sensors::ChannelSpec;
 use crate::sensors::MeasurementModel;
 use std::sync::Arc;
 

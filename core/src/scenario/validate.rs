@@ -5,15 +5,12 @@
 
 use super::config::*;
 use super::error::ScenarioError;
+pub use super::validate_filter::MAX_UPDATE_ITERATIONS;
 use super::validate_filter::density_bias_range;
+use super::validate_range::R;
 pub use super::validate_range::{Checker, Limit, Range, RangeCheck, named};
 pub use super::validate_state::StateForm;
 use crate::planet::Planet;
-
-pub(super) type R = Result<(), ScenarioError>;
-
-/// Largest `filter.update_iterations` (each iteration is one more linearisation per update).
-pub const MAX_UPDATE_ITERATIONS: usize = 20;
 
 /// Longest `timing.truth_step_s` \[s\] (and never longer than the run).
 const MAX_TRUTH_STEP_S: f64 = 10.0;

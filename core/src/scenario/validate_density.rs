@@ -3,7 +3,7 @@
 
 use super::config::*;
 use super::error::ScenarioError;
-use super::validate::R;
+use super::validate_range::R;
 use super::validate_range::{Checker, Range, named};
 
 /// Counts from `lo` to `hi`, both included.

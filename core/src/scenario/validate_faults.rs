@@ -3,7 +3,7 @@
 
 use super::config::ScenarioConfig;
 use super::error::ScenarioError;
-use super::validate::R;
+use super::validate_range::R;
 use super::validate_range::{Checker, Range};
 use crate::sensors::FaultConfig;
 

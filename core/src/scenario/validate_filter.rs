@@ -3,12 +3,14 @@
 
 use super::config::{FilterConfig, NoiseInflation, ScenarioConfig};
 use super::error::ScenarioError;
-use super::validate::{MAX_UPDATE_ITERATIONS, R};
-use super::validate_range::{Checker, Range};
+use super::validate_range::{Checker, R, Range};
 use super::validate_state::{cd_s_over_m_range, lift_to_drag_range};
 use crate::dynamics::AugmentedParam;
 use crate::estimation::nav::FilterKind;
 use crate::planet::Planet;
+
+/// Largest `filter.update_iterations` (each iteration is one more linearisation per update).
+pub const MAX_UPDATE_ITERATIONS: usize = 20;
 
 /// Allowed density biases Δ (ρ = ρ_model (1 + Δ)).
 pub(super) fn density_bias_range() -> Range {

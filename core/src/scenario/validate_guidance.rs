@@ -3,7 +3,8 @@
 
 use super::config::ScenarioConfig;
 use super::error::ScenarioError;
-use super::validate::{R, is_multiple};
+use super::validate::is_multiple;
+use super::validate_range::R;
 use super::validate_range::{Checker, Range, named};
 use crate::guidance::{GuidanceConfig, TargetConfig, Trigger};
 

@@ -5,6 +5,9 @@
 use super::error::ScenarioError;
 use std::fmt::{self, Display};
 
+/// The result of one section's checks: the first error, naming field, value and range.
+pub(super) type R = Result<(), ScenarioError>;
+
 /// One end of a [`Range`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Limit {

@@ -3,8 +3,7 @@
 
 use super::config::{StateConfig, VehicleConfig};
 use super::error::ScenarioError;
-use super::validate::R;
-use super::validate_range::{Checker, Range, named};
+use super::validate_range::{Checker, R, Range, named};
 use crate::planet::Planet;
 
 /// Which complete form a [`StateConfig`] has.

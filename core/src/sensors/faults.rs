@@ -11,6 +11,7 @@
 //! started or the sample is available; a scenario without random faults draws exactly what it
 //! drew before faults existed.
 
+use super::channels::Channel;
 use rand::Rng;
 use rand_distr::{Distribution, StandardUniform};
 use serde::{Deserialize, Serialize};
@@ -201,18 +202,18 @@ impl Fault {
         }
     }
 
-    fn acts_on(&self, channel: super::Channel) -> Option<usize> {
+    fn acts_on(&self, channel: Channel) -> Option<usize> {
         match (self.target, channel) {
-            (Target::Range(None), super::Channel::Range(_)) => Some(0),
-            (Target::Range(Some(b)), super::Channel::Range(i)) if b == i => Some(0),
-            (Target::Accel, super::Channel::Accel(k)) => Some(k as usize),
+            (Target::Range(None), Channel::Range(_)) => Some(0),
+            (Target::Range(Some(b)), Channel::Range(i)) if b == i => Some(0),
+            (Target::Accel, Channel::Accel(k)) => Some(k as usize),
             _ => None,
         }
     }
 }
 
 /// Whether a stuck fault holds `channel` at time `t`.
-pub fn is_stuck(faults: &[Fault], channel: super::Channel, t: f64) -> bool {
+pub fn is_stuck(faults: &[Fault], channel: Channel, t: f64) -> bool {
     faults
         .iter()
         .any(|f| f.effect == Effect::Stuck && t >= f.start_s && f.acts_on(channel).is_some())
@@ -220,7 +221,7 @@ pub fn is_stuck(faults: &[Fault], channel: super::Channel, t: f64) -> bool {
 
 /// The error the `faults` add to a due sample of `channel` at time `t`, drawing the random
 /// faults' values from `rng` (always, see the module documentation).
-pub fn fault_error(faults: &[Fault], channel: super::Channel, t: f64, rng: &mut impl Rng) -> f64 {
+pub fn fault_error(faults: &[Fault], channel: Channel, t: f64, rng: &mut impl Rng) -> f64 {
     let mut error = 0.0;
     for f in faults {
         let Some(axis) = f.acts_on(channel) else {

@@ -1,7 +1,7 @@
 //! What a scenario's sensors produce: the channels with their schedules and noise, and the
 //! measurement epoch (one value slot per channel) that the truth emits and a filter consumes.
 
-use super::Channel;
+use super::channels::Channel;
 
 /// Noise of one channel.
 #[derive(Debug, Clone, Copy, PartialEq)]

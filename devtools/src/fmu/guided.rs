@@ -7,7 +7,7 @@
 use anyhow::{Context, Result, ensure};
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
-use entrynav::sim::guided_run::{GuidedStep, fly_with_filter_recorded};
+use entrynav::sim::guided::{GuidedStep, fly_with_filter_recorded};
 use entrynav_fmu::vars::{Key, Slot, Value};
 use std::sync::Arc;
 

@@ -9,7 +9,7 @@ use entrynav::estimation::nav::NavError;
 use entrynav::scenario::Scenario;
 use entrynav::sensors::Channel;
 use entrynav::sim::engine::{EngineError, EntryCoSim, Navigator, TruthSensors};
-use entrynav::sim::guided_run::GuidedRunError;
+use entrynav::sim::guided::GuidedRunError;
 use thiserror::Error;
 
 /// Why an instance cannot build or step its engine, or refuses a value.

@@ -1,6 +1,6 @@
 //! The engine of `MarsEntryGuidance`: the scenario's `[guidance]` fed with a navigation estimate
 //! and the accelerometer triad, its command through the [`BankActuator`], stepped on the truth
-//! step grid exactly as the in-process guided loop (`entrynav::sim::guided_run`).
+//! step grid exactly as the in-process guided loop (`entrynav::sim::guided::guided_run`).
 //!
 //! **Time.** The actuator moves on the grid k·Δt of the scenario's `timing.truth_step_s`; a guidance
 //! cycle runs at the start of every grid step k that is a multiple of the guidance period (P =
@@ -33,7 +33,7 @@ use entrynav::guidance::{
     BankActuator, BuiltGuidance, GuidanceError, NavState, Trigger, range_crossrange,
 };
 use entrynav::scenario::Scenario;
-use entrynav::sim::guided_run;
+use entrynav::sim::guided;
 use std::sync::Arc;
 use thiserror::Error;
 
@@ -153,7 +153,7 @@ impl GuidanceEngine {
             .guidance
             .as_ref()
             .ok_or_else(|| GuidanceStepError::NoGuidance(name()))?;
-        if guided_run::accel_slots(&scenario.onboard).is_none() {
+        if guided::accel_slots(&scenario.onboard).is_none() {
             return Err(GuidanceStepError::NoAccelerometers(name()));
         }
         let built = scenario
@@ -164,12 +164,11 @@ impl GuidanceEngine {
             .ok_or_else(|| GuidanceStepError::NoGuidance(name()))?;
         let timing = &scenario.config.timing;
         let dt = timing.truth_step_s;
-        let every = guided_run::guidance_every(cfg.period_s(), dt).map_err(|_| {
-            GuidanceStepError::Period {
+        let every =
+            guided::guidance_every(cfg.period_s(), dt).map_err(|_| GuidanceStepError::Period {
                 period_s: cfg.period_s(),
                 step_s: dt,
-            }
-        })?;
+            })?;
         // Checked against the run bound by `limits::check_scenario` before this is called.
         let max_steps = (timing.duration_s / dt).round() as usize;
         let bank0 = cfg.reference_bank_deg.to_radians();

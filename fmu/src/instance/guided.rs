@@ -21,7 +21,7 @@
 
 use entrynav::scenario::Scenario;
 use entrynav::sim::engine::EntryCoSim;
-use entrynav::sim::guided_run::{Delivery, GuidedLoop, GuidedRunError};
+use entrynav::sim::guided::{Delivery, GuidedLoop, GuidedRunError};
 use std::sync::Arc;
 
 /// How the guided flight stands (`guided_status`).

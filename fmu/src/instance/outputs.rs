@@ -10,7 +10,7 @@ use entrynav::estimation::nav::FilterKind;
 use entrynav::frames::inertial_to_spherical;
 use entrynav::sim::StopReason;
 use entrynav::sim::engine::{EntryCoSim, Navigator, TruthSensors};
-use entrynav::sim::guided_run::Delivery;
+use entrynav::sim::guided::Delivery;
 
 impl Instance {
     /// The value of output `key`. No output is ever NaN (system masters such as OMSimulator reject

@@ -6,7 +6,11 @@
 //! [`crate::select`] there is no relaxation bound and no certificate: the answer is a local
 //! optimum (no exchange improves it), and the search says so.
 
-use super::*;
+use super::objective::GroundObjective;
+use super::problem::GroundProblem;
+use super::site::Site;
+use crate::error::OptimizerError;
+use std::f64::consts::PI;
 
 /// A selection on the bound.
 #[derive(Debug, Clone, PartialEq)]

@@ -1,7 +1,33 @@
 //! What a set of ground sites is worth: δ(t) and the FIM along the entry, the objective's value,
 //! its cost with the visibility penalty, and the search over sites.
 
-use super::*;
+use super::objective::GroundObjective;
+use super::penalty::INFEASIBLE_COST;
+use super::penalty::PENALTY_PER_RAD;
+use super::problem::GroundProblem;
+use super::site::Site;
+use super::solution::GroundEvaluation;
+use super::solution::GroundSolution;
+use crate::error::OptimizerError;
+use crate::progress::Progress;
+use crate::search::minimize;
+use crate::search_options::SearchOptions;
+use entrynav::beacons::ground_visibility_margin;
+use entrynav::frames::rotate_z;
+use entrynav::frames::spherical_to_position;
+use entrynav::math::norm;
+use entrynav::math::sub;
+use entrynav::observability::AnalysisPoint;
+use entrynav::observability::DegreeSeries;
+use entrynav::observability::Method;
+use entrynav::observability::degree_series;
+use entrynav::sim::bounds::nominal_bound::NominalBound;
+use entrynav::sim::bounds::nominal_bound::NominalBoundSeries;
+use entrynav::sim::bounds::nominal_bound::RangeSite;
+use nalgebra::Matrix3;
+use nalgebra::Vector3;
+use std::f64::consts::PI;
+use std::time::Instant;
 
 impl GroundProblem {
     /// The analysis points with the beacons placed at `sites` (availability by eq. 52).

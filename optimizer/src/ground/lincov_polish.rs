@@ -7,11 +7,16 @@
 //! an infeasible candidate costs the same graded penalty, so the polish never leaves the feasible
 //! set for a better-looking score.
 
-use super::{GroundProblem, GroundSolution, INFEASIBLE_COST, Site};
+use super::penalty::INFEASIBLE_COST;
+use super::problem::GroundProblem;
+use super::site::Site;
+use super::solution::GroundSolution;
+use crate::error::OptimizerError;
 use crate::lincov_score::{LinCovFigures, LinCovScore};
 use crate::output::surface_beacons;
-use crate::search::{SearchOptions, SearchResult, polish_from};
-use crate::{OptimizerError, Progress};
+use crate::progress::Progress;
+use crate::search::polish_from;
+use crate::search_options::{SearchOptions, SearchResult};
 use entrynav::beacons::BeaconConfig;
 use std::time::Instant;
 

@@ -9,9 +9,12 @@
 //! (slot, candidate) pair, whatever the thread count. Like the bound's, the answer is a local
 //! optimum without certificate. A candidate set whose LinCov fails is skipped (never chosen).
 
-use super::*;
+use super::problem::GroundProblem;
+use super::site::Site;
+use crate::error::OptimizerError;
 use crate::lincov_score::{LinCovFigures, LinCovScore};
 use rayon::prelude::*;
+use std::f64::consts::PI;
 
 /// A selection improved on LinCov.
 #[derive(Debug, Clone, PartialEq)]

@@ -1,7 +1,14 @@
 //! Where a ground site can be: eq. 52 visibility of the vehicle during the whole entry, the
 //! visible lattice of candidate sites and the search box around the feasible set.
 
-use super::*;
+use super::problem::GroundProblem;
+use super::site::Site;
+use crate::error::OptimizerError;
+use entrynav::beacons::ground_visibility_margin;
+use entrynav::frames::position_to_spherical;
+use entrynav::math::norm;
+use std::f64::consts::FRAC_PI_2;
+use std::f64::consts::PI;
 
 impl GroundProblem {
     /// Smallest elevation \[rad\] of the vehicle above the local horizon of `site` over the

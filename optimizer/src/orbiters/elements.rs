@@ -1,7 +1,11 @@
 //! The unknowns of one orbiter on a circular orbit (seed 002 eq. 55–56): (Ω, i, f), their
 //! canonical form and the core orbiter they describe.
 
-use super::*;
+use crate::error::OptimizerError;
+use entrynav::beacons::CircularOrbit;
+use entrynav::beacons::Orbiter;
+use std::f64::consts::PI;
+use std::f64::consts::TAU;
 
 /// The circular-orbit unknowns of one orbiter (radians).
 #[derive(Debug, Clone, Copy, PartialEq)]

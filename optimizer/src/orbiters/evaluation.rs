@@ -1,7 +1,26 @@
 //! What a constellation is worth: orbiter positions along the trajectory, the integral of the
 //! objective with the visibility penalty (eq. 57–62), and the search over elements.
 
-use super::*;
+use super::elements::OrbitElements;
+use super::objective::LOG_DET_FLOOR;
+use super::objective::OrbiterObjective;
+use super::problem::OrbiterProblem;
+use super::solution::OrbiterEvaluation;
+use super::solution::OrbiterSolution;
+use crate::error::OptimizerError;
+use crate::progress::Progress;
+use crate::search::minimize;
+use crate::search_options::SearchOptions;
+use entrynav::beacons::orbiter_visibility_margin;
+use entrynav::math::cross;
+use entrynav::math::dot;
+use entrynav::math::norm;
+use entrynav::math::sub;
+use nalgebra::Matrix3;
+use nalgebra::Vector3;
+use std::f64::consts::PI;
+use std::f64::consts::TAU;
+use std::time::Instant;
 
 impl OrbiterProblem {
     /// Inertial position of an orbiter at sample `k` \[m\].

@@ -25,65 +25,11 @@
 //! early (`AlmostSolved`, `InsufficientProgress`). The bounds are exact up to floating-point
 //! rounding of a few 3×3 products (≲ 1e-13 here, far below the default gap tolerance 1e-6).
 
+use super::criterion::SelectionCriterion;
+use super::dual_point::{DualPoint, Scored, inner, top_sum};
+use super::problem::SelectionProblem;
 use super::relaxation::{RawRelaxation, Subproblem};
-use super::*;
-
-/// A dual point of the relaxation: any such point bounds every node (module docs).
-#[derive(Debug, Clone, PartialEq)]
-pub enum DualPoint {
-    /// D-optimal: `W ≻ 0` (the inverse of a relaxed information matrix) and side-constraint
-    /// multipliers `μ ≥ 0`.
-    LogDet {
-        /// The matrix multiplier `W`.
-        w: Matrix3<f64>,
-        /// One multiplier per side constraint.
-        mu: Vec<f64>,
-    },
-    /// E-optimal: `Y_e ⪰ 0` per epoch with `Σ tr Y_e = 1`, and multipliers `μ ≥ 0`.
-    MinEig {
-        /// The PSD multipliers, one per epoch.
-        y: Vec<Matrix3<f64>>,
-        /// One multiplier per side constraint.
-        mu: Vec<f64>,
-    },
-}
-
-/// `⟨P, Q⟩ = tr(P Q)` of symmetric 3×3 matrices.
-fn inner(p: &Matrix3<f64>, q: &Matrix3<f64>) -> f64 {
-    p.component_mul(q).sum()
-}
-
-/// A dual point evaluated on one node: the bound is `finish(base + Σ of the r largest scores)`.
-struct Scored {
-    /// `⟨W, C⟩ + Σ_c μ_c (u_c − |G_c ∩ F|)` (or its E-optimal counterpart).
-    base: f64,
-    /// Adjusted scores of the free sites (same order as `sub.free`).
-    scores: Vec<f64>,
-    /// D-optimal: `ln det W` (the bound is `3 ln(G/3) − ln det W`); E-optimal: `None`.
-    ln_det_w: Option<f64>,
-}
-
-impl Scored {
-    fn finish(&self, g: f64) -> f64 {
-        match self.ln_det_w {
-            Some(_) if g <= 0.0 => LN_DET_FLOOR,
-            Some(l) => (3.0 * (g / 3.0).ln() - l).max(LN_DET_FLOOR),
-            None => g,
-        }
-    }
-}
-
-/// Sum of the `r` largest of `v` (summed in descending order; `v` is reordered).
-fn top_sum(v: &mut [f64], r: usize) -> f64 {
-    let r = r.min(v.len());
-    if r == 0 {
-        return 0.0;
-    }
-    v.select_nth_unstable_by(r - 1, |a, b| b.total_cmp(a));
-    let top = &mut v[..r];
-    top.sort_unstable_by(|a, b| b.total_cmp(a));
-    top.iter().sum()
-}
+use nalgebra::Matrix3;
 
 impl SelectionProblem {
     /// The dual point's base and adjusted scores on `sub`; `None` for a `W` that is not positive
@@ -296,6 +242,7 @@ impl SelectionProblem {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::select::problem::{AtMost, LN_DET_FLOOR};
     use nalgebra::Vector3;
 
     /// Deterministic pseudo-random numbers in [−1, 1) (SplitMix64).

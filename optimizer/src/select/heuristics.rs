@@ -3,10 +3,17 @@
 //! [`SelectionProblem::solve`] which certifies the better heuristic with the relaxation bound
 //! (Joshi & Boyd 2009, §IV: rounding and local optimisation of the relaxed solution).
 //!
-//! Every heuristic keeps to the problem's side constraints ([`AtMost`]); with constraints a
+//! Every heuristic keeps to the problem's side constraints ([`AtMost`](super::AtMost)); with constraints a
 //! heuristic may find no admissible k-subset, which is reported as `None`.
 
-use super::*;
+use super::criterion::SelectionCriterion;
+use super::problem::SelectionProblem;
+use super::problem::ln_det;
+use super::report::Selection;
+use super::report::SelectionReport;
+use crate::error::OptimizerError;
+use nalgebra::Matrix3;
+use std::time::Instant;
 
 impl SelectionProblem {
     /// The `k` candidates with the largest weights (ties to the lower index), skipping a

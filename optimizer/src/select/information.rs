@@ -1,9 +1,10 @@
 //! The selection's data from a ground-beacon problem: the information blocks of candidate sites
 //! and the minimum-spacing side constraints between them.
 
-use super::AtMost;
-use crate::OptimizerError;
-use crate::ground::{GroundProblem, Site};
+use super::problem::AtMost;
+use crate::error::OptimizerError;
+use crate::ground::problem::GroundProblem;
+use crate::ground::site::Site;
 use entrynav::beacons::ground_visibility_margin;
 use entrynav::math::{norm, sub};
 use nalgebra::{Matrix3, Vector3};

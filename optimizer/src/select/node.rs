@@ -17,9 +17,11 @@
 //!    incumbent candidate, and the free site whose weight is closest to ½ (ties: the larger
 //!    weight, then the lower index) is the branching variable.
 
-use super::bounds::DualPoint;
+use super::dual_point::DualPoint;
+use super::problem::SelectionProblem;
 use super::relaxation::Subproblem;
-use super::*;
+use super::report::Selection;
+use crate::error::OptimizerError;
 use clarabel::solver::SolverStatus;
 use std::sync::Arc;
 

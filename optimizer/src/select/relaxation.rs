@@ -9,12 +9,17 @@
 //! node is solved from clarabel's own initial point; the parent's dual point is reused instead by
 //! the cheap bounds of [`super::bounds`].
 
-use super::*;
+use super::criterion::SelectionCriterion;
+use super::problem::SelectionProblem;
+use super::report::Relaxation;
+use crate::error::OptimizerError;
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettings, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
     SupportedConeT::{ExponentialConeT, NonnegativeConeT, PSDTriangleConeT, ZeroConeT},
 };
+use nalgebra::Matrix3;
+use std::time::Instant;
 
 /// A node of the relaxation: `fixed` chosen, `free` undecided (ascending), `r` more to choose.
 pub(super) struct Subproblem<'a> {

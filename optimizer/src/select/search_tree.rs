@@ -3,12 +3,17 @@
 //! counters, with one method per step of a round — take a batch, evaluate it in parallel, fold
 //! the outcomes in batch order — and the final report.
 
-use super::branch_bound::{BranchBoundOptions, BranchBoundProgress, BranchBoundReport, PROOF_GAP};
+use super::branch_bound_report::{
+    BranchBoundOptions, BranchBoundProgress, BranchBoundReport, PROOF_GAP, ProofStatus,
+};
 use super::node::{Evaluation, Node, Outcome};
-use super::*;
+use super::problem::SelectionProblem;
+use super::report::Selection;
+use crate::error::OptimizerError;
 use rayon::prelude::*;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
+use std::time::Instant;
 
 /// A queued node ordered by bound, then depth, then age.
 struct Queued(Node);

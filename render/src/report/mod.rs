@@ -11,7 +11,7 @@ use crate::chart::labels::WeightNames;
 use crate::error::Result;
 use crate::trade_figures::{ExtraCurves, trade_figures_with};
 use entrynav::sim::TradeReport;
-use entrynav::sim::delivery::DeliveryReport;
+use entrynav::sim::guided::delivery::DeliveryReport;
 use entrynav_studies::provenance::Provenance;
 
 /// The trade report of `report` (the study ran `wall_s` seconds; `extra`: LinCov curves beside

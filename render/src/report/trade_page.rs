@@ -20,7 +20,7 @@ pub struct TradePage<'a> {
     /// Wall time of the study (s).
     pub wall_s: f64,
     /// Delivery at deployment with guidance in the loop (a scenario with `[guidance]`).
-    pub delivery: Option<&'a entrynav::sim::delivery::DeliveryReport>,
+    pub delivery: Option<&'a entrynav::sim::guided::delivery::DeliveryReport>,
 }
 
 fn svgs(figs: &[Figure], keep: impl Fn(&Kind) -> bool) -> Vec<&str> {

@@ -7,8 +7,8 @@
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
 use entrynav::sim::FilterReport;
-use entrynav::sim::delivery::{DeliveryRow, run_delivery};
-use entrynav::sim::lincov_entry::entry_lincov;
+use entrynav::sim::guided::delivery::{DeliveryRow, run_delivery};
+use entrynav::sim::lincov::entry_lincov;
 use serde::Serialize;
 
 /// One filter's delivery in one cell.

@@ -232,7 +232,9 @@ pub fn run_grid<E: From<StudyError>>(
         }
         out.reports.push(CellReport {
             cell: cell.label.clone(),
-            scenario_fingerprint: entrynav::sim::shard::scenario_fingerprint(&scenario),
+            scenario_fingerprint: entrynav::sim::monte_carlo::shard::scenario_fingerprint(
+                &scenario,
+            ),
             report,
         });
         // Each finished cell is in the results at once, so an interrupted grid keeps them.

@@ -9,8 +9,8 @@ use crate::progress::{Progress, Step};
 use crate::threads::with_threads;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
-use entrynav::sim::delivery::{DeliveryReport, run_delivery};
-use entrynav::sim::guided_run::Delivery;
+use entrynav::sim::guided::Delivery;
+use entrynav::sim::guided::delivery::{DeliveryReport, run_delivery};
 use serde::Serialize;
 
 /// What to fly in the loop, how often.

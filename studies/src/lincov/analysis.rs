@@ -4,10 +4,8 @@
 use crate::error::{StudyError, StudyResult};
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
-use entrynav::sim::lincov_entry::{
-    EntryLinCov, EntryLinCovError, LinCovOptions, entry_lincov_with,
-};
-use entrynav::sim::report::FilterReport;
+use entrynav::sim::lincov::{EntryLinCov, EntryLinCovError, LinCovOptions, entry_lincov_with};
+use entrynav::sim::monte_carlo::report::FilterReport;
 use std::time::Instant;
 
 /// One analysed filter with its wall time.
@@ -55,7 +53,7 @@ pub fn parse_filters(list: &str, scenario: &Scenario) -> StudyResult<Vec<FilterK
 }
 
 /// The NEES/dof share of a mean error, time average and final
-/// ([`EntryLinCovEpoch::nees_of_mean`](entrynav::sim::lincov_entry::EntryLinCovEpoch::nees_of_mean)):
+/// ([`EntryLinCovEpoch::nees_of_mean`](entrynav::sim::lincov::EntryLinCovEpoch::nees_of_mean)):
 /// LinCov's own with `mc = None`, else the Monte Carlo's mean error per epoch scored in LinCov's
 /// onboard covariance, over the epochs both have. A share the Monte Carlo has and LinCov does not
 /// is a second-order mean error (docs/results.md, CI on orbiters-3).

@@ -4,7 +4,7 @@
 use crate::lincov::analysis::{Analysed, mean_error_nees};
 use entrynav::scenario::Scenario;
 use entrynav::sim::TradeReport;
-use entrynav::sim::lincov_entry::{EntryLinCov, EntryLinCovEpoch};
+use entrynav::sim::lincov::{EntryLinCov, EntryLinCovEpoch};
 use serde_json::{Map, Value, json};
 
 /// The Monte Carlo summary's per-state and pos/vel RMSE keys, predicted.

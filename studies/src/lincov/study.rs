@@ -7,7 +7,7 @@ use crate::lincov::document::to_json;
 use crate::options::{check_count, check_threads};
 use crate::threads::with_threads;
 use entrynav::scenario::Scenario;
-use entrynav::sim::lincov_entry::LinCovOptions;
+use entrynav::sim::lincov::LinCovOptions;
 use entrynav::sim::{McOptions, TradeReport, run_trade};
 use serde_json::Value;
 use std::time::Instant;

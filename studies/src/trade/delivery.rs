@@ -10,9 +10,9 @@ use crate::threads::with_threads;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
 use entrynav::sim::Shard;
-use entrynav::sim::delivery::DeliveryReport;
-use entrynav::sim::delivery_shard::{DeliveryShard, deliver_runs, merge_delivery_shards};
-use entrynav::sim::shard::ACCUMULATION_BLOCK;
+use entrynav::sim::guided::delivery::DeliveryReport;
+use entrynav::sim::guided::delivery_shard::{DeliveryShard, deliver_runs, merge_delivery_shards};
+use entrynav::sim::monte_carlo::shard::ACCUMULATION_BLOCK;
 
 /// The delivery runs of `shard`'s blocks, merged by run index when the shards are merged.
 pub fn shard_delivery(

@@ -14,7 +14,7 @@ use crate::statistics::{Z95, se_anees, se_rmse_bound};
 use entrynav::estimation::chi_square::chi_square_quantile;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::Scenario;
-use entrynav::sim::lincov_entry::{EntryLinCovEpoch, LinCovOptions};
+use entrynav::sim::lincov::{EntryLinCovEpoch, LinCovOptions};
 use entrynav::sim::{FilterReport, TradeReport};
 use serde_json::{Value, json};
 use std::collections::BTreeMap;

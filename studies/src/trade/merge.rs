@@ -7,8 +7,8 @@ use crate::provenance::{Provenance, Summary};
 use crate::trade::delivery::merged_delivery;
 use crate::trade::shard::StudyProvenance;
 use crate::trade::study::{pretty, summary};
-use entrynav::sim::delivery::DeliveryReport;
-use entrynav::sim::delivery_shard::DeliveryShard;
+use entrynav::sim::guided::delivery::DeliveryReport;
+use entrynav::sim::guided::delivery_shard::DeliveryShard;
 use entrynav::sim::{ShardResult, TradeReport, merge_shards};
 use serde_json::Value;
 

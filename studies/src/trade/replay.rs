@@ -5,7 +5,7 @@ use crate::error::StudyResult;
 use crate::trade::options::{TradeMode, TradeOptions};
 use crate::trade::setup::TradeSetup;
 use entrynav::scenario::Scenario;
-use entrynav::sim::replay::{Replay, replay_run};
+use entrynav::sim::monte_carlo::replay::{Replay, replay_run};
 use entrynav::sim::{channel_names, state_names};
 use std::io::Write;
 use std::sync::Arc;

@@ -11,7 +11,10 @@ use serde_json::Value;
 /// pasted-in block; it is not a signature against a deliberate forger.
 pub fn resume_checksum(block: &ShardResult) -> String {
     let text = serde_json::to_vec(block).unwrap_or_default();
-    format!("fnv1a64:{:016x}", entrynav::sim::shard::fnv1a64(text))
+    format!(
+        "fnv1a64:{:016x}",
+        entrynav::sim::monte_carlo::shard::fnv1a64(text)
+    )
 }
 
 /// The block sums stored in the partial summary `text`, refused unless they match the

@@ -8,7 +8,7 @@ use crate::tune::options::TuneStudyOptions;
 use crate::tune::search::{TuneObjective, objective};
 use crate::tune::tuned_file::six_digits;
 use crate::tune::verdict::{rmse_avg, rmse_final};
-use entrynav::sim::report::FilterReport;
+use entrynav::sim::monte_carlo::report::FilterReport;
 
 /// Where a comment's figures come from: the options, the scenario as the user named it, the
 /// objective and the validation runs' seed.

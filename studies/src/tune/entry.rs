@@ -19,8 +19,8 @@ use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::config::MAX_NOISE_INFLATION;
 use entrynav::scenario::{FilterRetuneConfig, ScenarioConfig};
 use entrynav::sensors::Channel;
-use entrynav::sim::report::FilterReport;
-use entrynav::sim::tuning::TuningRuns;
+use entrynav::sim::monte_carlo::report::FilterReport;
+use entrynav::sim::monte_carlo::tuning::TuningRuns;
 use std::sync::Arc;
 
 /// One tuned factor.

@@ -1,7 +1,7 @@
 //! How `tune` writes its figures, in the comment above each tuned table and in the command's
 //! printed summary alike.
 
-use entrynav::sim::report::FilterReport;
+use entrynav::sim::monte_carlo::report::FilterReport;
 
 /// An objective value with three significant digits (`1.23e-2`).
 pub fn sig3(x: f64) -> String {

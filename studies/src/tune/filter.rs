@@ -10,7 +10,7 @@ use crate::tune::search::{TuneOptions, TuneResult, TuningProblem, objective, tun
 use crate::tune::tuned_file::rounded;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{FilterRetuneConfig, ScenarioConfig};
-use entrynav::sim::tuning::TuningRuns;
+use entrynav::sim::monte_carlo::tuning::TuningRuns;
 use std::time::Instant;
 
 /// Smallest relative drop of the objective for which a tuning is written: below it the

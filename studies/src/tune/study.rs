@@ -14,8 +14,8 @@ use crate::tune::tuned_file::{Retune, edit};
 use crate::tune::verdict::worse_figures;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::ScenarioConfig;
-use entrynav::sim::report::FilterReport;
-use entrynav::sim::tuning::TuningRuns;
+use entrynav::sim::monte_carlo::report::FilterReport;
+use entrynav::sim::monte_carlo::tuning::TuningRuns;
 use std::path::Path;
 use std::time::Instant;
 

@@ -3,7 +3,7 @@
 //! the input — fewer epochs inside the NEES band, or a higher time-averaged or final position
 //! RMSE, each by more than [`TOLERANCE`] — saying which filter and which figure.
 
-use entrynav::sim::report::FilterReport;
+use entrynav::sim::monte_carlo::report::FilterReport;
 
 /// Relative change tolerated before a figure counts as worse (10 %).
 pub const TOLERANCE: f64 = 0.10;

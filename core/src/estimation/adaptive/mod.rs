@@ -14,7 +14,7 @@
 //!
 //! The Monte Carlo evaluation of the density estimates (eq. 70, Table 6, Fig. 10) and the
 //! simulation of Algorithm 1's training trajectories drive the simulation engine, so they live in
-//! the simulation layer (`sim::density_eval`, `sim::training`).
+//! the simulation layer (`sim::density`).
 //!
 //! UKF-AC (eq. 24–26) needs no building block beyond the UKF: its correction factor is an
 //! augmented random-walk state (see [`super::nav::ukf_ac`]).
@@ -26,6 +26,7 @@ pub mod error;
 pub mod mlo;
 pub mod network;
 pub mod nn;
+pub mod onboard_networks;
 pub mod training;
 
 pub use adam::Adam;
@@ -38,34 +39,7 @@ pub use network::{
     TrainingRecord, builtin_network_toml,
 };
 pub use nn::{Activations, DensityNetwork, Normalisation, tanh_fast};
+pub use onboard_networks::load_network_set;
 pub use training::{
     BandedExponential, TrainedNetwork, TrainingData, fit_onboard_exponential, train_network,
 };
-
-use super::Onboard;
-
-/// The USKF-NN network set of `onboard`: its loaded networks if any, else the built-in network
-/// file named by `filter.density.network`; checked to be trained for the onboard planet radius.
-pub fn load_network_set(onboard: &Onboard) -> Result<DensityNetworkSet, NetworkError> {
-    let cfg = onboard.tuning.density_settings();
-    let name = cfg.network.trim();
-    let set = match &onboard.density_networks {
-        Some(set) => set.clone(),
-        None => {
-            let text = builtin_network_toml(name).ok_or_else(|| NetworkError::UnknownNetwork {
-                name: name.to_string(),
-                known: BUILTIN_NETWORKS.join(", "),
-            })?;
-            NetworkFile::from_toml_str(text, name)?.to_set()?
-        }
-    };
-    let r = onboard.model.planet.radius;
-    if (set.planet_radius_m - r).abs() > 1e-6 * r {
-        return Err(NetworkError::PlanetMismatch {
-            name: name.to_string(),
-            trained: set.planet_radius_m,
-            used: r,
-        });
-    }
-    Ok(set)
-}

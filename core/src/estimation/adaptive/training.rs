@@ -6,7 +6,7 @@
 //!    extension of §VI) each band gets its own fit over its altitudes.
 //! 2. N trajectories are simulated on that model from initial states and vehicles drawn from
 //!    the scenario's dispersions (Table 1), and (r, ρ) is recorded every `sample_interval_s`
-//!    for `duration_s` (`sim::training::generate_data`, which drives the simulation engine).
+//!    for `duration_s` (`sim::density::training::generate_data`, which drives the simulation engine).
 //! 3. Densities are transformed by ϱ = √(𝓑 − log₁₀ ρ) (eq. 29, 𝓑 = 0), inputs and outputs are
 //!    normalised with the training-set mean and standard deviation (eq. 30–31), the samples
 //!    are split into training and validation sets, and a 1-H-1 tanh network (eq. 32–33) is
@@ -166,50 +166,19 @@ pub fn train_network(
     let inputs: Vec<f64> = data.r_m.iter().map(|r| (r - r_mean) / r_std).collect();
     let targets: Vec<f64> = varrho.iter().map(|q| (q - q_mean) / q_std).collect();
 
-    // PyTorch's default initialisation: U(±1/√fan_in).
     let h = cfg.hidden;
-    let mut xi = Vec::with_capacity(3 * h + 1);
-    for _ in 0..2 * h {
-        xi.push(rng.random_range(-1.0..1.0));
-    }
-    let s2 = 1.0 / (h as f64).sqrt();
-    for _ in 0..=h {
-        xi.push(rng.random_range(-s2..s2));
-    }
+    let xi = initial_parameters(h, &mut rng);
     let mut net = DensityNetwork::new(h, xi, norm)?;
     let mut adam = Adam::new(net.n_params(), 0.9, 0.999, 1e-8, true);
     let batch = cfg.batch_size.min(train_idx.len()).max(1);
     let mut history = Vec::with_capacity(cfg.epochs);
     let np = net.n_params();
     for epoch in 0..cfg.epochs {
-        let lr = if cfg.epochs > 1 {
-            let c = (std::f64::consts::PI * epoch as f64 / (cfg.epochs - 1) as f64).cos();
-            cfg.lr_min + 0.5 * (cfg.lr_max - cfg.lr_min) * (1.0 + c)
-        } else {
-            cfg.lr_max
-        };
+        let lr = cosine_learning_rate(cfg, epoch);
         train_idx.shuffle(&mut rng);
         let mut sum_sq = 0.0;
         for mb in train_idx.chunks(batch) {
-            let chunk = mb.len().div_ceil(GRAD_CHUNKS).max(1);
-            let net_ref = &net;
-            let parts: Vec<(Vec<f64>, f64)> = mb
-                .par_chunks(chunk)
-                .map(|c| {
-                    let mut g = vec![0.0; np];
-                    let mut act = Activations::default();
-                    let mut sq = 0.0;
-                    let scale = 2.0 / mb.len() as f64;
-                    for &k in c {
-                        let i = inputs[k];
-                        let o = net_ref.forward(i, &mut act);
-                        let e = o - targets[k];
-                        sq += e * e;
-                        net_ref.backward_output(i, scale * e, &mut g, &act);
-                    }
-                    (g, sq)
-                })
-                .collect();
+            let parts = batch_gradients(&net, mb, &inputs, &targets);
             let mut g = vec![0.0; np];
             for (pg, sq) in &parts {
                 g.iter_mut().zip(pg).for_each(|(a, b)| *a += b);
@@ -224,13 +193,7 @@ pub fn train_network(
     train_idx.sort_unstable();
     let train_mse = mse(&net, &inputs, &targets, &train_idx);
     let val_mse = mse(&net, &inputs, &targets, &val_idx);
-    let mut rel: Vec<f64> = val_idx
-        .iter()
-        .map(|&k| (net.density(data.r_m[k]) - data.rho[k]).abs() / data.rho[k])
-        .collect();
-    rel.sort_by(f64::total_cmp);
-    let pct = |p: f64| rel[((rel.len() - 1) as f64 * p).round() as usize];
-    let below = rel.iter().filter(|&&e| e < 0.01).count() as f64 / rel.len() as f64;
+    let (percentiles, below) = validation_errors(&net, data, &val_idx);
     let trajectories = data
         .trajectory
         .iter()
@@ -248,11 +211,80 @@ pub fn train_network(
             batch_size: batch,
             train_mse,
             validation_mse: val_mse,
-            validation_rel_err_p50_p99_max: [pct(0.5), pct(0.99), pct(1.0)],
+            validation_rel_err_p50_p99_max: percentiles,
             validation_frac_below_1pct: below,
             wall_time_s: clock.elapsed().as_secs_f64(),
         },
         network: net,
         train_mse_history: history,
     })
+}
+
+/// PyTorch's default initialisation of a 1-`h`-1 network: U(±1/√fan_in), the 2h input-layer
+/// parameters first, then the h + 1 output-layer ones.
+fn initial_parameters(h: usize, rng: &mut ChaCha8Rng) -> Vec<f64> {
+    let mut xi = Vec::with_capacity(3 * h + 1);
+    for _ in 0..2 * h {
+        xi.push(rng.random_range(-1.0..1.0));
+    }
+    let s2 = 1.0 / (h as f64).sqrt();
+    for _ in 0..=h {
+        xi.push(rng.random_range(-s2..s2));
+    }
+    xi
+}
+
+/// The cosine-annealed learning rate of `epoch`, from `cfg.lr_max` down to `cfg.lr_min`.
+fn cosine_learning_rate(cfg: &DensityTrainingConfig, epoch: usize) -> f64 {
+    if cfg.epochs > 1 {
+        let c = (std::f64::consts::PI * epoch as f64 / (cfg.epochs - 1) as f64).cos();
+        cfg.lr_min + 0.5 * (cfg.lr_max - cfg.lr_min) * (1.0 + c)
+    } else {
+        cfg.lr_max
+    }
+}
+
+/// The MSE gradient of the minibatch `mb` and its squared errors, in [`GRAD_CHUNKS`] parallel
+/// parts (in chunk order; the caller sums them in that order).
+fn batch_gradients(
+    net: &DensityNetwork,
+    mb: &[usize],
+    inputs: &[f64],
+    targets: &[f64],
+) -> Vec<(Vec<f64>, f64)> {
+    let np = net.n_params();
+    let chunk = mb.len().div_ceil(GRAD_CHUNKS).max(1);
+    mb.par_chunks(chunk)
+        .map(|c| {
+            let mut g = vec![0.0; np];
+            let mut act = Activations::default();
+            let mut sq = 0.0;
+            let scale = 2.0 / mb.len() as f64;
+            for &k in c {
+                let i = inputs[k];
+                let o = net.forward(i, &mut act);
+                let e = o - targets[k];
+                sq += e * e;
+                net.backward_output(i, scale * e, &mut g, &act);
+            }
+            (g, sq)
+        })
+        .collect()
+}
+
+/// The relative density errors of the trained network on the validation samples: their 50th,
+/// 99th and 100th percentiles and the fraction below 1 %.
+fn validation_errors(
+    net: &DensityNetwork,
+    data: &TrainingData,
+    val_idx: &[usize],
+) -> ([f64; 3], f64) {
+    let mut rel: Vec<f64> = val_idx
+        .iter()
+        .map(|&k| (net.density(data.r_m[k]) - data.rho[k]).abs() / data.rho[k])
+        .collect();
+    rel.sort_by(f64::total_cmp);
+    let pct = |p: f64| rel[((rel.len() - 1) as f64 * p).round() as usize];
+    let below = rel.iter().filter(|&&e| e < 0.01).count() as f64 / rel.len() as f64;
+    ([pct(0.5), pct(0.99), pct(1.0)], below)
 }

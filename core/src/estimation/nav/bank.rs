@@ -3,14 +3,16 @@
 
 use super::ekf_nav::EkfNav;
 use super::ensemble::EkfEnsemble;
+use super::nav_filter::{FilterCore, NavFilter};
 use super::start::FilterStart;
-use super::{FilterCore, NavFilter, StepInfo};
+use super::step_info::StepInfo;
 use crate::dynamics::AugmentedParam;
-use crate::estimation::EstimationError;
-use crate::estimation::Onboard;
+use crate::estimation::error::EstimationError;
 use crate::estimation::mmae::{
-    ClassicBank, DEFAULT_ETA, DEFAULT_P_MIN, MixtureOfExperts, fuse_bank, gaussian_log_likelihood,
+    ClassicBank, DEFAULT_ETA, DEFAULT_P_MIN, MixtureOfExperts, fuse_bank,
 };
+use crate::estimation::model_probability::gaussian_log_likelihood;
+use crate::estimation::onboard::Onboard;
 use crate::math::V3;
 use crate::sensors::Channel;
 use crate::sensors::MeasurementEpoch;

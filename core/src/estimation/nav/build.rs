@@ -4,13 +4,15 @@ use super::bank::BankNav;
 use super::ekf_nav::EkfNav;
 use super::fusion::FusionNav;
 use super::gate::GatedNav;
+use super::kind::FilterKind;
+use super::nav_filter::NavFilter;
 use super::start::FilterStart;
 use super::ukf_ac::UkfAcNav;
 use super::ukf_cm::UkfCmNav;
 use super::ukf_nav::UkfNav;
 use super::uskf_nn::UskfNnNav;
-use super::{FilterKind, NavFilter};
-use crate::estimation::{EstimationError, Onboard};
+use crate::estimation::error::EstimationError;
+use crate::estimation::onboard::Onboard;
 use std::sync::Arc;
 
 /// Build filter `kind` on the `onboard` models from `start`. `L` must be `N + 1` (the internal

@@ -1,18 +1,20 @@
 //! The EKF navigation filter: centralised over every channel, or local over a channel subset.
 
+use super::epoch_linearization::{epoch_channels, linearize_epoch};
+use super::nav_filter::{FilterCore, NavFilter};
 use super::start::FilterStart;
+use super::step_info::StepInfo;
 use super::ukf_common::substeps;
-use super::{FilterCore, NavFilter, StepInfo, channel_sigma};
 use crate::atmosphere::AtmosphereModel;
 use crate::dynamics::EntryModel;
-use crate::estimation::EstimationError;
-use crate::estimation::Onboard;
-use crate::estimation::ekf::{Ekf, LinearizedMeasurement};
-use crate::estimation::onboard::OnboardChannel;
+use crate::estimation::ekf::Ekf;
+use crate::estimation::error::EstimationError;
+use crate::estimation::linearization::LinearizedMeasurement;
+use crate::estimation::onboard::Onboard;
+use crate::math::V3;
 use crate::math::all_finite;
-use crate::math::{V3, dual_gradient, seed_duals};
 use crate::sensors::MeasurementEpoch;
-use crate::sensors::channels::{kinematics, kinematics_ad};
+use crate::sensors::channels::kinematics;
 use nalgebra::{SMatrix, SVector};
 use std::sync::Arc;
 
@@ -287,62 +289,6 @@ impl<const N: usize> EkfNav<N> {
             mask,
         )
     }
-}
-
-/// The epoch's available channels (those in `mask`, when given): slot, onboard channel and
-/// measured value, in slot order.
-fn epoch_channels<'a>(
-    onboard: &'a Onboard,
-    epoch: &'a MeasurementEpoch,
-    mask: Option<&'a [usize]>,
-) -> impl Iterator<Item = (usize, &'a OnboardChannel, f64)> + 'a {
-    epoch
-        .values
-        .iter()
-        .enumerate()
-        .filter_map(move |(c, value)| {
-            let z = (*value)?;
-            if mask.is_some_and(|m| !m.contains(&c)) {
-                return None;
-            }
-            Some((c, onboard.channels.get(c)?, z))
-        })
-}
-
-/// Linearised items `(h(x), ∂h/∂x by AD, z, r)` of the epoch's available channels (those in
-/// `mask`, when given) at `x`, with the `onboard` measurement model on the dynamics `model`
-/// flying `bank`, and the noise the filter assumes; with the channel slot of each. The EKFs'
-/// update and the innovation gate ([`super::GatedNav`]) share it.
-pub(super) fn linearize_epoch<const N: usize>(
-    onboard: &Onboard,
-    model: &EntryModel<AtmosphereModel>,
-    bank: f64,
-    x: &SVector<f64, N>,
-    epoch: &MeasurementEpoch,
-    beacons: &[(V3<f64>, V3<f64>)],
-    mask: Option<&[usize]>,
-) -> (Vec<usize>, Vec<LinearizedMeasurement<N>>) {
-    let xd = seed_duals(x);
-    let kin = kinematics_ad(model, x, &xd, epoch.t);
-    let mut triad = None;
-    let n = mask.map_or(epoch.values.len(), <[usize]>::len);
-    let mut slots = Vec::with_capacity(n);
-    let mut items = Vec::with_capacity(n);
-    for (c, spec, z) in epoch_channels(onboard, epoch, mask) {
-        let d = onboard.measurement.evaluate_sharing_triad(
-            model,
-            &xd,
-            &kin,
-            bank,
-            beacons,
-            spec.channel,
-            &mut triad,
-        );
-        let sigma = channel_sigma(spec, z);
-        slots.push(c);
-        items.push((d.re, dual_gradient(&d), z, sigma * sigma));
-    }
-    (slots, items)
 }
 
 impl<const N: usize> NavFilter<N> for EkfNav<N> {

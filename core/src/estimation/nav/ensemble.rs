@@ -2,10 +2,11 @@
 //! filters): the members, a member dropped when it fails numerically, the combined estimate, its
 //! time and the bank command every member flies.
 
-use super::FilterCore;
-use super::NavFilter;
 use super::ekf_nav::EkfNav;
-use crate::estimation::{EstimationError, Onboard};
+use super::nav_filter::FilterCore;
+use super::nav_filter::NavFilter;
+use crate::estimation::error::EstimationError;
+use crate::estimation::onboard::Onboard;
 use nalgebra::{SMatrix, SVector};
 use std::sync::Arc;
 

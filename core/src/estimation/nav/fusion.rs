@@ -3,15 +3,16 @@
 
 use super::ekf_nav::{EkfNav, RELINEARIZATION_TOLERANCE};
 use super::ensemble::EkfEnsemble;
-use super::fusion_exact::{fuse_exact, local_update};
+use super::fusion_pass::{FusionPass, fusion_pass};
+use super::fusion_setup::{local_masks, local_start_scale, weighting};
+use super::nav_filter::{FilterCore, NavFilter};
 use super::prior_information::PriorInformation;
 use super::start::FilterStart;
-use super::{FilterCore, NavFilter, StepInfo};
-use crate::estimation::EstimationError;
+use super::step_info::StepInfo;
 use crate::estimation::ci::{CiWeighting, covariance_intersection_from, feedback};
-use crate::estimation::ekf::LinearizedMeasurement;
-use crate::estimation::ekf::linearization_error_values;
-use crate::estimation::{FusionCovariance, Onboard};
+use crate::estimation::error::EstimationError;
+use crate::estimation::linearization::linearization_error_values;
+use crate::estimation::onboard::{FusionCovariance, Onboard};
 use crate::math::V3;
 use crate::math::all_finite;
 use crate::sensors::MeasurementEpoch;
@@ -48,42 +49,6 @@ pub struct FusionNav<const N: usize> {
     /// The last fusion's weights per local filter (0 for those not fused): the next epoch's
     /// optimal-weight search starts from them (`covariance_intersection_from`).
     last_weights: Vec<f64>,
-}
-
-/// The channel slots of each local filter: the non-radio channels (the IMU) plus the radio
-/// channels of one beacon, one local per beacon with radio channels (seed 000 §3.4).
-pub fn local_masks(onboard: &Onboard) -> Vec<Vec<usize>> {
-    let of_beacon = |b: Option<usize>| -> Vec<usize> {
-        (0..onboard.channels.len())
-            .filter(|&i| onboard.channels[i].channel.beacon() == b)
-            .collect()
-    };
-    let common = of_beacon(None);
-    onboard
-        .radio_beacons()
-        .into_iter()
-        .map(|b| [common.clone(), of_beacon(Some(b))].concat())
-        .collect()
-}
-
-/// The CI weights of the fusion: determinant-optimal without feedback (`ci`), the fast ∞-norm
-/// rule of seed 000 eq. 21 with it (`dcifaif`).
-pub fn weighting(with_feedback: bool) -> CiWeighting {
-    if with_feedback {
-        CiWeighting::FastInfNorm
-    } else {
-        CiWeighting::OptimalDet
-    }
-}
-
-/// The factor on P0 of every local filter's start: `n_locals` for the paper's feedback (the
-/// equal-weight feedback of (x̂0, P0), eq. 22), 1 otherwise.
-pub fn local_start_scale(n_locals: usize, with_feedback: bool, exact: bool) -> f64 {
-    if with_feedback && !exact {
-        n_locals as f64
-    } else {
-        1.0
-    }
 }
 
 impl<const N: usize> FusionNav<N> {
@@ -288,80 +253,6 @@ impl<const N: usize> FusionNav<N> {
             gate: None,
         })
     }
-}
-
-/// One fusion of the locals' updates of the common prior (`x`, `p`), linearised at `lin`.
-struct FusionPass<const N: usize> {
-    x: SVector<f64, N>,
-    p: SMatrix<f64, N, N>,
-    weights: Vec<f64>,
-    nis: f64,
-    n_meas: usize,
-    nis_terms: Vec<(usize, f64)>,
-    /// Locals whose update failed numerically (dropped from the fusion).
-    failed: Vec<usize>,
-}
-
-#[allow(clippy::too_many_arguments)]
-fn fusion_pass<const N: usize>(
-    x: &SVector<f64, N>,
-    p: &SMatrix<f64, N, N>,
-    info: Option<&PriorInformation<N>>,
-    lin: &SVector<f64, N>,
-    items: &[(usize, LinearizedMeasurement<N>)],
-    masks: &[(usize, &[usize])],
-    n_locals: usize,
-    n_consider: usize,
-) -> Result<FusionPass<N>, EstimationError> {
-    let mut updates = Vec::new();
-    let mut slots = Vec::new();
-    let mut failed = Vec::new();
-    for &(i, mask) in masks {
-        match local_update(x, p, lin, items, mask, n_consider) {
-            Ok(Some(u)) => {
-                updates.push(u);
-                slots.push(i);
-            }
-            Ok(None) => {}
-            Err(_) => failed.push(i),
-        }
-    }
-    let mut weights = vec![0.0; n_locals];
-    let (mut nis, mut n_meas, mut nis_terms) = (0.0, 0, Vec::new());
-    for u in &updates {
-        nis += u.nis;
-        n_meas += u.nis_terms.len();
-        nis_terms.extend(u.nis_terms.iter().copied());
-    }
-    let (xf, pf) = match updates.len() {
-        0 => (*x, *p),
-        1 => {
-            weights[slots[0]] = 1.0;
-            let post = updates[0].posterior(p);
-            if !all_finite(post.as_slice()) {
-                return Err(EstimationError::NonFinite {
-                    what: "a local filter's update".into(),
-                });
-            }
-            (updates[0].x, post)
-        }
-        _ => {
-            let (xf, pf, w) = fuse_exact(p, info, &updates)?;
-            for (&i, wi) in slots.iter().zip(w) {
-                weights[i] = wi;
-            }
-            (xf, pf)
-        }
-    };
-    Ok(FusionPass {
-        x: xf,
-        p: pf,
-        weights,
-        nis,
-        n_meas,
-        nis_terms,
-        failed,
-    })
 }
 
 impl<const N: usize> NavFilter<N> for FusionNav<N> {

@@ -8,32 +8,17 @@
 //! what the filter itself believes (x̂⁻, P⁻, R); for the sigma-point filters S is linearised at
 //! the prior mean rather than taken from their sigma points, which is the same to first order.
 
-use super::ekf_nav::linearize_epoch;
-use super::{FilterCore, NavFilter, StepInfo};
-use crate::estimation::gating::{BeaconMonitor, ExclusionEvent, Gate, GatingConfig};
-use crate::estimation::{EstimationError, Onboard};
+use super::epoch_linearization::linearize_epoch;
+use super::gate_report::GateReport;
+use super::nav_filter::{FilterCore, NavFilter};
+use super::step_info::StepInfo;
+use crate::estimation::error::EstimationError;
+use crate::estimation::gating::{BeaconMonitor, Gate, GatingConfig};
+use crate::estimation::onboard::Onboard;
 use crate::math::V3;
 use crate::sensors::MeasurementEpoch;
 use nalgebra::{DMatrix, DVector};
 use std::sync::Arc;
-
-/// What the gate did at one epoch.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct GateReport {
-    /// Per available channel before gating: the slot and ν²/S at the prior.
-    pub terms: Vec<(usize, f64)>,
-    /// Channel slots the gate rejected (excluded beacons' channels not included).
-    pub rejected: Vec<usize>,
-    /// Channel slots withheld because their beacon is excluded.
-    pub withheld: Vec<usize>,
-    /// Beacons excluded after this epoch.
-    pub excluded_beacons: Vec<usize>,
-    /// Exclusions and re-admissions decided at this epoch.
-    pub events: Vec<ExclusionEvent>,
-    /// The gate opened for the radio channels: several admitted beacons have been outside it at
-    /// once for `exclude_after` epochs (one fault at a time is assumed, so the prior is suspect).
-    pub opened: bool,
-}
 
 /// A navigation filter behind an innovation gate and a beacon monitor.
 pub struct GatedNav<const N: usize> {

@@ -31,11 +31,12 @@
 //! `W_i` (an N × N product each) and `B` from every local's gain columns. The two forms are equal
 //! in exact arithmetic; a test checks them against each other to round-off.
 
-use super::fusion_exact::{Fused, LocalUpdate, checked};
-use crate::estimation::EstimationError;
+use super::fused_estimate::{Fused, checked};
+use super::local_update::LocalUpdate;
 use crate::estimation::ci::{CiWeighting, fuse_infos};
+use crate::estimation::covariance::symmetrize;
+use crate::estimation::error::EstimationError;
 use crate::estimation::spd::{cholesky, inverse_from_cholesky};
-use crate::estimation::symmetrize;
 use crate::math::all_finite;
 use nalgebra::{SMatrix, SVector};
 

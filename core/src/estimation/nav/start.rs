@@ -1,6 +1,6 @@
 //! A filter's start: initial estimate, covariance and process noise.
 
-use crate::estimation::Onboard;
+use crate::estimation::onboard::Onboard;
 use nalgebra::{SMatrix, SVector};
 
 /// Start of a filter for one run.

@@ -16,12 +16,14 @@
 //! The filter is generic over the navigation dimension `N` (8 for seed 001's layout) with
 //! `L = N + 1` internal states.
 
+use super::nav_filter::{FilterCore, NavFilter};
 use super::start::FilterStart;
+use super::step_info::StepInfo;
 use super::ukf_common::UkfCore;
-use super::{FilterCore, NavFilter, StepInfo};
 use crate::atmosphere::{Atmosphere, AtmosphereModel};
+use crate::estimation::error::EstimationError;
+use crate::estimation::onboard::Onboard;
 use crate::estimation::ukf::Ukf;
-use crate::estimation::{EstimationError, Onboard};
 use crate::math::V3;
 use crate::sensors::MeasurementEpoch;
 use nalgebra::{SMatrix, SVector};

@@ -7,13 +7,14 @@
 //! (10) steps is available, every step replaces Q by the Myers–Tapley estimate over the last
 //! batch, reset to `diag(|Q̂ᵢᵢ|)` ([`CovarianceMatching`]). No consider analysis (§V.B).
 
+use super::nav_filter::{FilterCore, NavFilter};
 use super::start::FilterStart;
+use super::step_info::StepInfo;
 use super::ukf_common::UkfCore;
-use super::{FilterCore, NavFilter, StepInfo};
 use crate::atmosphere::{Atmosphere, AtmosphereModel};
-use crate::estimation::EstimationError;
-use crate::estimation::Onboard;
-use crate::estimation::adaptive::CovarianceMatching;
+use crate::estimation::adaptive::covariance_matching::CovarianceMatching;
+use crate::estimation::error::EstimationError;
+use crate::estimation::onboard::Onboard;
 use crate::estimation::ukf::Ukf;
 use crate::math::V3;
 use crate::sensors::MeasurementEpoch;

@@ -2,11 +2,12 @@
 //! epoch's measurement vector with its noise, the measurement function over sigma points, the step
 //! report, and [`UkfCore`], the state and loops of every UKF navigation filter.
 
-use super::{FilterCore, StepInfo};
+use super::nav_filter::FilterCore;
+use super::step_info::StepInfo;
 use crate::atmosphere::Atmosphere;
 use crate::dynamics::EntryModel;
-use crate::estimation::EstimationError;
-use crate::estimation::Onboard;
+use crate::estimation::error::EstimationError;
+use crate::estimation::onboard::Onboard;
 use crate::estimation::ukf::{Ukf, UkfUpdate, UkfWorkspace};
 use crate::math::V3;
 use crate::sensors::MeasurementEpoch;

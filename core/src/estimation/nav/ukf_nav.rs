@@ -1,11 +1,12 @@
 //! The UKF navigation filter (seed 001 eq. 41–66; no consider states here).
 
+use super::nav_filter::{FilterCore, NavFilter};
 use super::start::FilterStart;
+use super::step_info::StepInfo;
 use super::ukf_common::UkfCore;
-use super::{FilterCore, NavFilter, StepInfo};
 use crate::atmosphere::AtmosphereModel;
-use crate::estimation::EstimationError;
-use crate::estimation::Onboard;
+use crate::estimation::error::EstimationError;
+use crate::estimation::onboard::Onboard;
 use crate::estimation::ukf::Ukf;
 use crate::math::V3;
 use crate::sensors::MeasurementEpoch;

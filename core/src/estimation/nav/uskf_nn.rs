@@ -24,17 +24,21 @@
 //! measurement epochs (each at its own prior mean) in the loss; a network file with several
 //! altitude bands uses one network per band and adapts the one serving the prior altitude.
 
+use super::nav_filter::{FilterCore, NavFilter};
 use super::start::FilterStart;
+use super::step_info::StepInfo;
 use super::ukf_ac::augment_start;
 use super::ukf_common::{UkfCore, epoch_measurements};
-use super::{FilterCore, NavFilter, StepInfo};
 use crate::dynamics::EntryModel;
-use crate::estimation::adaptive::{
-    Activations, DensityNetworkSet, LossContext, LossTerm, MloOutcome, MloSettings, NnAtmosphere,
-    OnlineAdam, load_network_set, maximise_likelihood,
+use crate::estimation::adaptive::mlo::{
+    LossContext, LossTerm, MloOutcome, MloSettings, OnlineAdam, maximise_likelihood,
 };
+use crate::estimation::adaptive::network::{DensityNetworkSet, NnAtmosphere};
+use crate::estimation::adaptive::nn::Activations;
+use crate::estimation::adaptive::onboard_networks::load_network_set;
+use crate::estimation::error::EstimationError;
+use crate::estimation::onboard::Onboard;
 use crate::estimation::ukf::Ukf;
-use crate::estimation::{EstimationError, Onboard};
 use crate::math::V3;
 use crate::sensors::MeasurementEpoch;
 use crate::sensors::channels::kinematics;

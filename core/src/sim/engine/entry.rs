@@ -1,10 +1,13 @@
 //! [`EntryCoSim`]: truth, sensors and navigation filter together, the filter run at every
 //! measurement epoch of the truth and judged against it.
 
+use super::error::EngineError;
 use super::filter::Judgement;
 use super::navigator::{NavStatus, Navigator};
+use super::run_seed::run_seed;
+use super::step_check::check_step;
+use super::truth_sensors::StepReport;
 use super::truth_sensors::TruthSensors;
-use super::{EngineError, StepReport, check_step};
 use crate::estimation::nav::FilterKind;
 use crate::scenario::Scenario;
 use rand::SeedableRng;
@@ -50,7 +53,7 @@ impl EntryCoSim {
         seed: u64,
         run: usize,
     ) -> Result<EntryCoSim, EngineError> {
-        let s = crate::sim::run_seed(seed, run as u64);
+        let s = run_seed(seed, run as u64);
         let mut rng = ChaCha8Rng::seed_from_u64(s);
         let draw = scenario.draw_truth_run(run, &mut rng);
         let truth = TruthSensors::with_draw(Arc::clone(&scenario), draw, rng);

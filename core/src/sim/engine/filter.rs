@@ -3,6 +3,7 @@
 //! ([`crate::state_dim::with_state_dim`]). Every numerical result (estimate, σ, NEES, errors)
 //! is computed in the filter's own fixed-size types and only then copied out.
 
+use super::judge;
 use super::truth::TruthSample;
 use crate::estimation::nav::{FilterKind, FilterStart, NavFilter, StepInfo, build_filter};
 use crate::estimation::{EstimationError, Onboard};
@@ -10,7 +11,6 @@ use crate::math::V3;
 use crate::math::all_finite;
 use crate::scenario::{Scenario, TruthDraw};
 use crate::sensors::MeasurementEpoch;
-use crate::sim::judge;
 use crate::state_dim::{DimVisitor, UnsupportedDimension, with_state_dim};
 use nalgebra::SVector;
 use std::sync::Arc;

@@ -7,10 +7,10 @@
 
 use super::filter::{FilterFailure, Judgement};
 use super::navigator::{NavStatus, Navigator};
+use super::record::RecordedRun;
 use super::truth::TruthSample;
 use crate::scenario::Scenario;
 use crate::sensors::MeasurementEpoch;
-use crate::sim::record::RecordedRun;
 use std::time::Instant;
 
 /// What a consumer of a flight keeps. The engine calls [`Observer::epoch`] after every epoch the

@@ -16,12 +16,12 @@
 //!    [`Onboard`](crate::estimation::Onboard) view only, predicts to the epoch with the onboard
 //!    models at the commanded bank and updates with the available channels; a numerical failure
 //!    freezes its estimate ([`NavStatus::Failed`]).
-//! 4. **Judgement** ([`Judgement`], [`crate::sim::judge`]): the estimate beside the truth (error,
+//! 4. **Judgement** ([`Judgement`], [`judge`]): the estimate beside the truth (error,
 //!    NEES, position/velocity and deployment errors, density errors). Only the engine holds both.
 //!
 //! [`TruthSensors`] and [`Navigator`] advance by communication steps of any length (the FMI
 //! co-simulation interface); [`EntryCoSim`] combines them. A batch run is a loop over the same
-//! steps: [`crate::sim::simulate_truth`] runs the truth to its end, then one [`Navigator`] per
+//! steps: [`simulate_truth`] runs the truth to its end, then one [`Navigator`] per
 //! filter flies the recorded epochs ([`Navigator::fly`], the engine's one loop: process, stop on
 //! failure, judge, hand to an [`Observer`]). The Monte Carlo, the replay of a run, the density
 //! evaluation and `tune` are observers; none writes its own loop.
@@ -56,69 +56,44 @@
 //!
 //! Everything is deterministic: the same parameters and the same sequence of `do_step` calls give
 //! bit-identical outputs, which is what the FMU's state serialisation (a replay log) relies on.
+//!
+//! # Files
+//!
+//! `truth.rs` the truth's RK4 step ([`TruthPropagator`]); `truth_sensors.rs` the sensors'
+//! schedule, noise and availability ([`TruthSensors`]); `navigator.rs` and `filter.rs` the filter
+//! behind one object-safe interface ([`Navigator`]); `entry.rs` both together ([`EntryCoSim`]);
+//! `flight.rs` the loop over a recorded run ([`Navigator::fly`], [`Observer`]); [`record`] a whole
+//! truth run recorded and Monte Carlo run k's truth and filter start ([`record_run`], seeded by
+//! [`run_seed`]); [`judge`] the estimate beside the truth; [`start`] a run's initial estimate;
+//! `error.rs` [`EngineError`]; `step_check.rs` the communication-step checks.
 
 mod entry;
+mod error;
 mod filter;
 mod flight;
+pub mod judge;
 mod navigator;
+pub mod record;
+mod run_seed;
+pub mod start;
+mod step_check;
 mod truth;
 mod truth_sensors;
 
 pub use entry::EntryCoSim;
+pub use error::EngineError;
 pub use filter::{BuildError, FilterFailure, Judgement, NavEstimate};
 pub use flight::{FlightEnd, Observer};
 pub use navigator::{NavStatus, Navigator};
+pub use record::{
+    Peak, Peaks, RecordedRun, RunError, TruthRun, channel_names, is_radio, record_run,
+    record_run_following, simulate_truth, simulate_truth_with_peaks,
+};
+pub use run_seed::run_seed;
+pub use start::initial_estimate;
+pub use step_check::same_time;
 pub use truth::{SimError, StopReason, TruthPropagator, TruthSample, TruthStep, truth_sample};
 pub use truth_sensors::{StepReport, TruthOutputs, TruthSensors};
-
-use crate::estimation::nav::NavError;
-use thiserror::Error;
-
-/// Why an engine step or set-up failed.
-#[derive(Debug, Error, Clone, PartialEq)]
-pub enum EngineError {
-    /// The filter does not fit the scenario.
-    #[error(transparent)]
-    Nav(#[from] NavError),
-    /// The filter could not be built.
-    #[error(transparent)]
-    Build(#[from] BuildError),
-    /// The truth became non-finite.
-    #[error(transparent)]
-    Truth(#[from] SimError),
-    /// A step that does not start where the previous one ended.
-    #[error("step starts at t = {got} s but the current communication point is t = {expected} s")]
-    CommunicationPoint {
-        /// Current time of the engine \[s\].
-        expected: f64,
-        /// Start time asked for \[s\].
-        got: f64,
-    },
-    /// A step size that is not finite and positive.
-    #[error("communication step size must be finite and > 0 (got {0})")]
-    StepSize(f64),
-    /// A non-finite input.
-    #[error("input '{0}' is not finite")]
-    NonFiniteInput(&'static str),
-}
-
-/// Whether two communication points are the same instant (relative tolerance 1e-9).
-pub fn same_time(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(1.0)
-}
-
-pub(super) fn check_step(time: f64, t: f64, h: f64) -> Result<(), EngineError> {
-    if !t.is_finite() || !same_time(time, t) {
-        return Err(EngineError::CommunicationPoint {
-            expected: time,
-            got: t,
-        });
-    }
-    if !(h.is_finite() && h > 0.0) {
-        return Err(EngineError::StepSize(h));
-    }
-    Ok(())
-}
 
 #[cfg(test)]
 mod tests;

@@ -2,15 +2,17 @@
 //! the FMUs expose and the Monte Carlo records. It holds the filter and the [`Onboard`] view it
 //! was built from, never the truth; [`Navigator::judge`] is given the truth from outside.
 
+use super::error::EngineError;
 use super::filter::{ErasedFilter, FilterFailure, Judgement, NavEstimate, build_erased};
+use super::start::initial_estimate;
+use super::step_check::check_step;
 use super::truth::{TruthSample, truth_sample};
+use super::truth_sensors::StepReport;
 use super::truth_sensors::truth_draw;
-use super::{EngineError, StepReport, check_step};
 use crate::estimation::Onboard;
 use crate::estimation::nav::{FilterKind, StepInfo};
 use crate::scenario::{Scenario, TruthDraw};
 use crate::sensors::MeasurementEpoch;
-use crate::sim::start::initial_estimate;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::sync::Arc;

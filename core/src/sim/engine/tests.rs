@@ -1,12 +1,13 @@
 //! The engine's step-wise and batch paths agree bit for bit.
 
+use super::record::simulate_truth;
+use super::run_seed::run_seed;
+use super::start::initial_estimate;
 use super::*;
 use crate::estimation::nav::FilterKind;
 use crate::files::no_files;
 use crate::scenario::{Scenario, ScenarioConfig};
 use crate::sensors::MeasurementEpoch;
-use crate::sim::start::initial_estimate;
-use crate::sim::{run_seed, simulate_truth};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::sync::Arc;

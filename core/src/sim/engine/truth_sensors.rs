@@ -1,11 +1,12 @@
 //! [`TruthSensors`]: the truth trajectory and the measurement records, communication step by
 //! communication step.
 
+use super::error::EngineError;
+use super::step_check::check_step;
 use super::truth::{
     EpochSchedule, SimError, StopReason, TruthAtEpoch, TruthPropagator, TruthSample, TruthStep,
     measure_epoch, truth_sample,
 };
-use super::{EngineError, check_step};
 use crate::scenario::{Scenario, TruthDraw};
 use crate::sensors::channels::kinematics;
 use crate::sensors::{Channel, MeasurementEpoch, range, range_rate};

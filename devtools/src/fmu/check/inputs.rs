@@ -6,7 +6,7 @@ use super::super::guided::guided_input;
 use anyhow::Result;
 use entrynav::scenario::Scenario;
 use entrynav::sim::engine::TruthSensors;
-use entrynav::sim::guided_run::GuidedStep;
+use entrynav::sim::guided::GuidedStep;
 use entrynav_fmu::vars::{Causality, Key, MAX_BEACONS, Model, Slot, Value, Var};
 use std::path::Path;
 use std::sync::Arc;

@@ -14,7 +14,7 @@ use super::guided::guided_rows;
 use anyhow::{Result, bail, ensure};
 use entrynav::scenario::Scenario;
 use entrynav::sim::engine::TruthSensors;
-use entrynav::sim::guided_run::GuidedStep;
+use entrynav::sim::guided::GuidedStep;
 use entrynav_fmi_host::{
     OutputGroups, Slave, Unpacked, file_uri, in_process_get_all, output_groups, unpack,
 };

@@ -3,7 +3,7 @@
 use anyhow::Result;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{BUILTIN_NAMES, Scenario, ScenarioConfig};
-use entrynav::sim::guided_run::accel_slots;
+use entrynav::sim::guided::accel_slots;
 use entrynav_fmu::vars::{GUIDED_SCENARIO_FILE, Specific, guided_scenario};
 use std::collections::HashMap;
 use std::sync::Arc;

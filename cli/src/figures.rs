@@ -6,7 +6,8 @@ use entrynav::sim::TradeReport;
 use entrynav::sim::guided::delivery::DeliveryReport;
 use entrynav_render::chart::Curve;
 use entrynav_render::chart::labels::WeightNames;
-use entrynav_render::trade_figures::{ExtraCurves, Figure};
+use entrynav_render::figure::Figure;
+use entrynav_render::trade_figures::ExtraCurves;
 use entrynav_studies::output::atomic_file;
 use std::path::Path;
 

@@ -5,8 +5,9 @@
 
 use anyhow::{Context, Result};
 use entrynav::scenario::Scenario;
+use entrynav::sim::FilterReport;
 use entrynav::sim::TradeReport;
-use entrynav::sim::lincov::EntryLinCovEpoch;
+use entrynav::sim::lincov::{EntryLinCov, EntryLinCovEpoch};
 use entrynav_studies::ScenarioInput;
 use entrynav_studies::lincov::document::write_csv;
 use entrynav_studies::lincov::{Analysed, LinCovStudyOptions, mean_error_nees, run_lincov};
@@ -112,62 +113,11 @@ pub(crate) fn print_table(
             println!("  note: {n}");
         }
         let mc_f = mc.and_then(|(r, _)| r.filters.iter().find(|f| f.name == l.filter));
-        let mc_get = |m: Option<&BTreeMap<String, Option<f64>>>, k: &str| {
-            m.and_then(|m| m.get(k).copied().flatten())
-        };
         println!(
             "  {:<24} {:>12} {:>12} {:>12} {:>12}",
             "", "time-avg", "final", "MC time-avg", "MC final"
         );
-        let bias = mean_error_nees(l, None);
-        let mc_bias = mc_f.map(|f| mean_error_nees(l, Some(f)));
-        let rows: [Row; 6] = [
-            (
-                "pos RMSE [m]",
-                l.time_avg(|e| e.pos_m),
-                l.final_value(|e| e.pos_m),
-                mc_get(mc_f.map(|f| &f.rmse_time_avg), "pos_m"),
-                mc_get(mc_f.map(|f| &f.rmse_final), "pos_m"),
-            ),
-            (
-                "vel RMSE [m/s]",
-                l.time_avg(|e| e.vel_mps),
-                l.final_value(|e| e.vel_mps),
-                mc_get(mc_f.map(|f| &f.rmse_time_avg), "vel_mps"),
-                mc_get(mc_f.map(|f| &f.rmse_final), "vel_mps"),
-            ),
-            (
-                "onboard pos σ [m]",
-                l.time_avg(|e| e.pos_sigma_m),
-                l.final_value(|e| e.pos_sigma_m),
-                None,
-                None,
-            ),
-            (
-                "onboard vel σ [m/s]",
-                l.time_avg(|e| e.vel_sigma_mps),
-                l.final_value(|e| e.vel_sigma_mps),
-                None,
-                None,
-            ),
-            (
-                "NEES / dof",
-                l.nees_ratio_time_avg(),
-                l.final_value(EntryLinCovEpoch::nees_per_dof),
-                mc_f.and_then(|f| {
-                    let c = &f.consistency;
-                    c.anees.map(|a| a / c.nees_dof.max(1) as f64)
-                }),
-                None,
-            ),
-            (
-                "  of it, the mean error",
-                bias.0,
-                bias.1,
-                mc_bias.map(|b| b.0),
-                mc_bias.map(|b| b.1),
-            ),
-        ];
+        let rows = rows_of(l, mc_f);
         for (name, avg, fin, mavg, mfin) in rows {
             let o = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.5}"));
             println!(
@@ -195,4 +145,60 @@ pub(crate) fn print_table(
             seconds / lincov_s.max(1e-12)
         );
     }
+}
+
+/// The rows of one filter's table: its prediction beside the Monte Carlo's figures.
+fn rows_of(l: &EntryLinCov, mc_f: Option<&FilterReport>) -> [Row<'static>; 6] {
+    let mc_get = |m: Option<&BTreeMap<String, Option<f64>>>, k: &str| {
+        m.and_then(|m| m.get(k).copied().flatten())
+    };
+    let bias = mean_error_nees(l, None);
+    let mc_bias = mc_f.map(|f| mean_error_nees(l, Some(f)));
+    [
+        (
+            "pos RMSE [m]",
+            l.time_avg(|e| e.pos_m),
+            l.final_value(|e| e.pos_m),
+            mc_get(mc_f.map(|f| &f.rmse_time_avg), "pos_m"),
+            mc_get(mc_f.map(|f| &f.rmse_final), "pos_m"),
+        ),
+        (
+            "vel RMSE [m/s]",
+            l.time_avg(|e| e.vel_mps),
+            l.final_value(|e| e.vel_mps),
+            mc_get(mc_f.map(|f| &f.rmse_time_avg), "vel_mps"),
+            mc_get(mc_f.map(|f| &f.rmse_final), "vel_mps"),
+        ),
+        (
+            "onboard pos σ [m]",
+            l.time_avg(|e| e.pos_sigma_m),
+            l.final_value(|e| e.pos_sigma_m),
+            None,
+            None,
+        ),
+        (
+            "onboard vel σ [m/s]",
+            l.time_avg(|e| e.vel_sigma_mps),
+            l.final_value(|e| e.vel_sigma_mps),
+            None,
+            None,
+        ),
+        (
+            "NEES / dof",
+            l.nees_ratio_time_avg(),
+            l.final_value(EntryLinCovEpoch::nees_per_dof),
+            mc_f.and_then(|f| {
+                let c = &f.consistency;
+                c.anees.map(|a| a / c.nees_dof.max(1) as f64)
+            }),
+            None,
+        ),
+        (
+            "  of it, the mean error",
+            bias.0,
+            bias.1,
+            mc_bias.map(|b| b.0),
+            mc_bias.map(|b| b.1),
+        ),
+    ]
 }

@@ -136,15 +136,7 @@ impl TradeArgs {
 
     /// The truth atmosphere file and how to read it.
     pub fn truth_atmosphere(&self) -> TruthAtmosphere {
-        let a = &self.atmosphere;
-        TruthAtmosphere {
-            file: a.atmosphere_file.clone(),
-            height_column: a.atmosphere_height_column.clone(),
-            density_column: a.atmosphere_density_column.clone(),
-            datum: a.atmosphere_datum,
-            profile: a.atmosphere_profile,
-            perturb_profiles: a.perturb_profiles,
-        }
+        self.atmosphere.to_study()
     }
 }
 

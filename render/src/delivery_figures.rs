@@ -5,8 +5,8 @@
 use crate::chart::Frame;
 use crate::chart::scatter::{Cloud, ellipse, scatter_chart};
 use crate::error::Result;
+use crate::figure::{Figure, Kind};
 use crate::report::html::{Cell, figures, note, table};
-use crate::trade_figures::{Figure, Kind};
 use entrynav::sim::guided::delivery::{DeliveryReport, DeliveryRow};
 
 /// Most runs drawn per row (the ellipse and the statistics are over every run).

@@ -13,6 +13,7 @@ pub mod chart;
 pub mod delivery_figures;
 pub mod density_figure;
 pub mod error;
+pub mod figure;
 pub mod grid_figures;
 pub mod observe_figure;
 pub mod report;

@@ -5,7 +5,7 @@
 
 use super::html::{self, Cell, escape, figures, note, section};
 use super::summary;
-use crate::trade_figures::{Figure, Kind};
+use crate::figure::{Figure, Kind};
 use entrynav::sim::TradeReport;
 use entrynav_studies::provenance::{Provenance, Timing};
 

@@ -7,7 +7,7 @@ use crate::scenario::input::ScenarioInput;
 use entrynav::atmosphere::{
     AtmosphereConfig, AtmosphereError, Datum, Placement, TableColumns, TableFormat, parse_profiles,
 };
-use entrynav::scenario::Scenario;
+use entrynav::scenario::{Scenario, ScenarioConfig};
 use std::path::{Path, PathBuf};
 
 /// The truth atmosphere file and how to read it.
@@ -38,74 +38,91 @@ impl TruthAtmosphere {
     }
 }
 
-impl ScenarioInput {
-    /// Make `atmosphere.file` the truth mean atmosphere (format from its header line, height unit
-    /// from a unit-declaring header), drop the per-run perturbation when asked
+impl TruthAtmosphere {
+    /// `cfg` with `self.file` as its truth mean atmosphere (format from its header line, height
+    /// unit from a unit-declaring header), without the per-run perturbation when asked
     /// (`no_perturbation`) or when the file holds several stacked profiles (unless
-    /// `perturb_profiles`). Parse errors name the file and line.
+    /// `perturb_profiles`), validated. Parse errors name the file and line.
+    pub fn apply(
+        &self,
+        mut cfg: ScenarioConfig,
+        no_perturbation: bool,
+    ) -> StudyResult<ScenarioConfig> {
+        if let Some(path) = &self.file {
+            replace_truth_atmosphere(&mut cfg, path, self)?;
+        }
+        if no_perturbation {
+            cfg.truth.perturbation = None;
+        }
+        cfg.validate()?;
+        Ok(cfg)
+    }
+}
+
+impl ScenarioInput {
+    /// This scenario with the truth atmosphere of `atmosphere` ([`TruthAtmosphere::apply`]).
     pub fn with_truth_atmosphere(
         mut self,
         atmosphere: &TruthAtmosphere,
         no_perturbation: bool,
     ) -> StudyResult<ScenarioInput> {
+        self.config = atmosphere.apply(self.config, no_perturbation)?;
         if let Some(path) = &atmosphere.file {
-            self.replace_truth_atmosphere(path, atmosphere)?;
             self.atmosphere_file = Some(path.clone());
         }
-        if no_perturbation {
-            self.config.truth.perturbation = None;
-        }
-        self.config.validate()?;
         Ok(self)
     }
+}
 
-    fn replace_truth_atmosphere(&mut self, path: &Path, a: &TruthAtmosphere) -> StudyResult<()> {
-        let cfg = &mut self.config;
-        let text = entrynav_loader::read_text(path).map_err(|e| {
-            StudyError::Refused(format!(
-                "cannot read atmosphere file {}: {e}",
-                path.display()
-            ))
-        })?;
-        let format = TableFormat::detect(&text);
-        let abs = std::fs::canonicalize(path).map_err(|e| {
-            StudyError::Refused(format!(
-                "cannot resolve atmosphere file {}: {e}",
-                path.display()
-            ))
-        })?;
-        let name = abs.display().to_string();
-        let mut columns = TableColumns::named(
-            a.height_column.as_deref(),
-            a.density_column.as_deref(),
-            None,
-        );
-        let placement = Placement {
-            datum: a.datum,
-            sphere_radius_m: cfg.planet.resolve().radius,
-            latitude_rad: 0.0,
-        };
-        let parse = |c: &TableColumns| parse_profiles(&text, &name, format, c, &placement);
-        // A header that declares its height unit (e.g. `Height(m)`) sets it.
-        if let Err(AtmosphereError::HeightUnitMismatch { declared, .. }) = parse(&columns) {
-            columns.height_unit = declared;
-        }
-        let set = parse(&columns).map_err(|e| StudyError::Refused(e.to_string()))?;
-        let count = set.profiles.len();
-        cfg.truth.atmosphere = AtmosphereConfig::Table {
-            file: name,
-            format,
-            height_column: a.height_column.clone(),
-            density_column: a.density_column.clone(),
-            height_unit: Some(columns.height_unit),
-            datum: a.datum,
-            profile: a.profile,
-        };
-        if count > 1 && !a.perturb_profiles {
-            cfg.truth.perturbation = None;
-        }
-        Ok(())
+fn replace_truth_atmosphere(
+    cfg: &mut ScenarioConfig,
+    path: &Path,
+    a: &TruthAtmosphere,
+) -> StudyResult<()> {
+    let text = entrynav_loader::read_text(path).map_err(|e| {
+        StudyError::Refused(format!(
+            "cannot read atmosphere file {}: {e}",
+            path.display()
+        ))
+    })?;
+    let format = TableFormat::detect(&text);
+    let abs = std::fs::canonicalize(path).map_err(|e| {
+        StudyError::Refused(format!(
+            "cannot resolve atmosphere file {}: {e}",
+            path.display()
+        ))
+    })?;
+    let name = abs.display().to_string();
+    let mut columns = TableColumns::named(
+        a.height_column.as_deref(),
+        a.density_column.as_deref(),
+        None,
+    );
+    let placement = Placement {
+        datum: a.datum,
+        sphere_radius_m: cfg.planet.resolve().radius,
+        latitude_rad: 0.0,
+    };
+    let parse = |c: &TableColumns| parse_profiles(&text, &name, format, c, &placement);
+    // A header that declares its height unit (e.g. `Height(m)`) sets it.
+    if let Err(AtmosphereError::HeightUnitMismatch { declared, .. }) = parse(&columns) {
+        columns.height_unit = declared;
     }
+    let set = parse(&columns).map_err(|e| StudyError::Refused(e.to_string()))?;
+    let count = set.profiles.len();
+    cfg.truth.atmosphere = AtmosphereConfig::Table {
+        file: name,
+        format,
+        height_column: a.height_column.clone(),
+        density_column: a.density_column.clone(),
+        height_unit: Some(columns.height_unit),
+        datum: a.datum,
+        profile: a.profile,
+    };
+    if count > 1 && !a.perturb_profiles {
+        cfg.truth.perturbation = None;
+    }
+    Ok(())
 }
 
 /// What a built scenario's truth table assumed about its heights, and its profiles: the warnings

@@ -486,25 +486,22 @@ def optimize_orbiters(scenario: Union[Scenario, str], **options: Any) -> DesignR
 
 
 def fmu_pack(out: Union[str, Path], scenario: Optional[Union[Scenario, str]] = None, filter: Optional[str] = None,
-             fmi: int = 2, library: Optional[Union[str, Path]] = None) -> List[Path]:
-    """`entrynav fmu pack`: the FMUs into `out` (FMI 2.0, or 3.0 with `fmi=3`); with `scenario`
-    the combined FMU specific to it. `library` is the FMU shared library
-    (target/release/libentrynav_fmu.so; default $ENTRYNAV_FMU_LIB). Returns the .fmu paths."""
-    import time
-
-    out = Path(out)
-    start = time.time() - 1.0
-    args: List[Any] = ["fmu", "pack", "--out", out, "--fmi", fmi]
+             fmi: int = 2, library: Optional[Union[str, Path]] = None, ssp: bool = False,
+             keep_symbols: bool = False) -> List[Path]:
+    """`entrynav fmu pack`: the FMUs into `out` (FMI 2.0, or 3.0 with `fmi=3`; with `ssp` also the
+    SSP packages); with `scenario` the combined FMU specific to it, `filter` its default filter.
+    `library` is the FMU shared library (target/release/libentrynav_fmu.so; default
+    $ENTRYNAV_FMU_LIB). Returns the paths written, sorted."""
     lib = library or os.environ.get("ENTRYNAV_FMU_LIB")
     if lib is None:
         raise ValueError("fmu_pack needs library= (target/release/libentrynav_fmu.so) or $ENTRYNAV_FMU_LIB")
-    args += ["--lib", lib]
+    builtin = toml = folder = None
     if scenario is not None:
-        with _ScenarioFile(scenario) as sc:
-            args += ["--scenario", sc] + (["--filter", filter] if filter else [])
-            _cli(args, "fmu pack")
-    else:
-        _cli(args, "fmu pack")
-    # The files this call wrote (the CLI replaces each atomically).
-    return sorted(p for p in out.glob("*.fmu")
-                  if p.stat().st_mtime >= start and (fmi == 3) == p.name.endswith("-fmi3.fmu"))
+        sc = _scenario(scenario)
+        # An unchanged built-in is packed from its own text (comments kept), as the CLI does.
+        if sc.name in builtin_scenarios() and Scenario.builtin(sc.name) == sc:
+            builtin = sc.name
+        else:
+            toml, folder = sc.to_toml(), sc.folder
+    options = _options(filter=filter, fmi=fmi, ssp=ssp, keep_symbols=keep_symbols)
+    return sorted(Path(p) for p in _entrynav.fmu_pack(str(out), str(lib), builtin, toml, folder, options))

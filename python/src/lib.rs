@@ -42,6 +42,7 @@ fn _entrynav(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(studies::optimize_ground, m)?)?;
     m.add_function(wrap_pyfunction!(studies::optimize_select, m)?)?;
     m.add_function(wrap_pyfunction!(studies::optimize_orbiters, m)?)?;
+    m.add_function(wrap_pyfunction!(studies::fmu_pack, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())
 }

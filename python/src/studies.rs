@@ -10,6 +10,7 @@ use entrynav_studies::design::{
     GroundOptions, OrbiterOptions, SelectOptions, run_ground_design, run_orbiter_design,
     run_site_selection,
 };
+use entrynav_studies::fmu_pack::{PackOptions, pack_fmus};
 use entrynav_studies::guidance::{DeliverOptions, run_deliver};
 use entrynav_studies::observe::{ObserveOptions, run_observe};
 use entrynav_studies::progress::silent;
@@ -185,4 +186,33 @@ pub fn optimize_orbiters(
         |i| run_orbiter_design(i, &opts, &silent),
         |d| (d.to_json(), d.design_toml.clone(), d.verdict()),
     )
+}
+
+/// `entrynav fmu pack`: the FMUs into `out` with the library `library`; with a scenario (a
+/// built-in's name, or TOML text and its folder) the combined model specific to it. The paths of
+/// the `.fmu` (and `.ssp`) files written.
+#[pyfunction]
+#[pyo3(signature = (out, library, builtin=None, toml=None, dir=None, kwargs=None))]
+pub fn fmu_pack(
+    py: Python<'_>,
+    out: &str,
+    library: &str,
+    builtin: Option<&str>,
+    toml: Option<&str>,
+    dir: Option<&str>,
+    kwargs: Option<Bound<'_, PyDict>>,
+) -> PyResult<Vec<String>> {
+    let opts: PackOptions = options("fmu_pack", kwargs.as_ref(), PackOptions::validate)?;
+    let scenario = match (builtin, toml) {
+        (Some(name), _) => Some(ScenarioInput::resolve(name, &[]).map_err(study_err)?),
+        (None, Some(text)) => Some(input(text, dir.unwrap_or("."))?),
+        (None, None) => None,
+    };
+    let packed = py
+        .detach(|| pack_fmus(Path::new(library), Path::new(out), scenario.as_ref(), &opts))
+        .map_err(study_err)?;
+    let fmus = packed.fmus.iter().map(|f| f.path.display().to_string());
+    Ok(fmus
+        .chain(packed.ssps.iter().map(|p| p.display().to_string()))
+        .collect())
 }

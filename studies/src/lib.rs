@@ -18,6 +18,7 @@
 pub mod compare;
 pub mod design;
 pub mod error;
+pub mod fmu_pack;
 pub mod grid;
 pub mod guidance;
 pub mod lincov;

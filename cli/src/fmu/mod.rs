@@ -7,9 +7,7 @@
 //! libraries with libloading, which this command does not ship. Users check an FMU with the FMI
 //! tools (fmpy, fmusim, fmuCheck).
 
-mod library;
 mod pack;
-mod ssp;
 
 use anyhow::Result;
 use clap::{Args, Subcommand};

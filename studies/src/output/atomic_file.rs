@@ -9,7 +9,9 @@
 //! * two processes writing one path each rename a whole file of their own: the last one stays,
 //!   never one summary followed by the other's tail;
 //! * a temporary file that is not committed (an error, a panic) is removed when dropped; one left
-//!   by a killed process keeps its `.tmp` name beside the target and is never mistaken for it.
+//!   by a killed process keeps its `.tmp` name beside the target and is never mistaken for it;
+//! * a character device (`--out /dev/null`, a terminal) is written in place: a rename over it
+//!   would replace the device with a regular file (as root, `/dev/null` itself).
 //!
 //! `tempfile` replaces the hand-written exclusive creation, naming and clean-up this file had; it
 //! is a well-kept crate already in the build (criterion, proptest). What stays ours: the sync of
@@ -35,7 +37,20 @@ pub struct OutputError {
 /// renames it into place, dropping it uncommitted removes it.
 pub struct AtomicFile {
     path: PathBuf,
-    out: Option<BufWriter<NamedTempFile>>,
+    out: Option<Sink>,
+}
+
+/// Where the bytes go: a temporary file renamed over the target, or a character device
+/// (`/dev/null`, a terminal) written in place — renaming over a device would replace it.
+enum Sink {
+    Temp(BufWriter<NamedTempFile>),
+    Device(BufWriter<std::fs::File>),
+}
+
+/// Whether `path` is a character device (`/dev/null`, `/dev/stdout`, a terminal).
+fn is_char_device(path: &Path) -> bool {
+    use std::os::unix::fs::FileTypeExt;
+    std::fs::metadata(path).is_ok_and(|m| m.file_type().is_char_device())
 }
 
 impl AtomicFile {
@@ -46,6 +61,16 @@ impl AtomicFile {
             action,
             source,
         };
+        if is_char_device(path) {
+            let device = std::fs::OpenOptions::new()
+                .write(true)
+                .open(path)
+                .map_err(|e| fail("cannot open", e))?;
+            return Ok(AtomicFile {
+                path: path.to_path_buf(),
+                out: Some(Sink::Device(BufWriter::new(device))),
+            });
+        }
         let parent = path
             .parent()
             .filter(|p| !p.as_os_str().is_empty())
@@ -61,7 +86,7 @@ impl AtomicFile {
             .map_err(|e| fail("cannot create", e))?;
         Ok(AtomicFile {
             path: path.to_path_buf(),
-            out: Some(BufWriter::new(temp)),
+            out: Some(Sink::Temp(BufWriter::new(temp))),
         })
     }
 
@@ -76,7 +101,12 @@ impl AtomicFile {
     /// Flush, sync and rename into place. On error the target is untouched and the temporary
     /// file is removed.
     pub fn commit(mut self) -> Result<(), OutputError> {
-        let out = self.out.take().expect("an AtomicFile is committed once");
+        let out = match self.out.take().expect("an AtomicFile is committed once") {
+            Sink::Temp(out) => out,
+            Sink::Device(mut device) => {
+                return device.flush().map_err(|e| self.fail("writing", e));
+            }
+        };
         let temp = out
             .into_inner()
             .map_err(|e| self.fail("writing", e.into_error()))?;
@@ -93,7 +123,7 @@ impl AtomicFile {
         Ok(())
     }
 
-    fn writer(&mut self) -> &mut BufWriter<NamedTempFile> {
+    fn sink(&mut self) -> &mut Sink {
         self.out
             .as_mut()
             .expect("an AtomicFile is written before commit")
@@ -102,17 +132,26 @@ impl AtomicFile {
 
 impl Write for AtomicFile {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        self.writer().write(buf)
+        match self.sink() {
+            Sink::Temp(w) => w.write(buf),
+            Sink::Device(w) => w.write(buf),
+        }
     }
 
     fn flush(&mut self) -> std::io::Result<()> {
-        self.writer().flush()
+        match self.sink() {
+            Sink::Temp(w) => w.flush(),
+            Sink::Device(w) => w.flush(),
+        }
     }
 }
 
 impl Seek for AtomicFile {
     fn seek(&mut self, pos: SeekFrom) -> std::io::Result<u64> {
-        self.writer().seek(pos)
+        match self.sink() {
+            Sink::Temp(w) => w.seek(pos),
+            Sink::Device(w) => w.seek(pos),
+        }
     }
 }
 
@@ -216,5 +255,13 @@ mod tests {
             text.len()
         );
         assert_eq!(entries(&d), ["o.txt"]);
+    }
+
+    #[test]
+    fn a_character_device_is_written_in_place_not_replaced() {
+        use std::os::unix::fs::FileTypeExt;
+        write(Path::new("/dev/null"), "discarded").unwrap();
+        let kind = std::fs::metadata("/dev/null").unwrap().file_type();
+        assert!(kind.is_char_device(), "/dev/null is no longer a device");
     }
 }

@@ -1,4 +1,4 @@
-//! Where `entrynav fmu pack` finds the FMU shared library (`libentrynav_fmu.so`, the cdylib of
+//! Where the FMU packer finds the FMU shared library (`libentrynav_fmu.so`, the cdylib of
 //! the `entrynav-fmu` crate). `cargo install --path cli` installs only the `entrynav` binary, so
 //! the library is looked for, in this order:
 //!
@@ -11,17 +11,17 @@
 //!
 //! When nothing is found the error lists every place looked and how to build the library.
 
-use anyhow::Result;
+use crate::error::{StudyError, StudyResult};
 use std::path::{Path, PathBuf};
 
 /// File name of the FMU library.
-pub(super) const LIB_NAME: &str = "libentrynav_fmu.so";
+pub const LIB_NAME: &str = "libentrynav_fmu.so";
 
 /// Environment variable naming the FMU library.
-pub(super) const LIB_ENV: &str = "ENTRYNAV_FMU_LIB";
+pub const LIB_ENV: &str = "ENTRYNAV_FMU_LIB";
 
 /// What the search starts from.
-pub(super) struct Search {
+pub struct Search {
     /// `--lib PATH`.
     pub flag: Option<PathBuf>,
     /// The value of `ENTRYNAV_FMU_LIB`.
@@ -33,7 +33,8 @@ pub(super) struct Search {
 }
 
 impl Search {
-    /// The search of this process: its flag, environment, executable and build folder.
+    /// The search of this process: its flag, environment, executable and the target folder the
+    /// study layer was built in.
     pub fn of_process(flag: Option<&Path>) -> Search {
         Search {
             flag: flag.map(Path::to_path_buf),
@@ -46,18 +47,18 @@ impl Search {
     }
 
     /// The library: the first candidate that is a file.
-    pub fn find(&self) -> Result<PathBuf> {
-        let usage = |m: String| crate::exit::Usage(m);
+    pub fn find(&self) -> StudyResult<PathBuf> {
+        let usage = StudyError::Refused;
         if let Some(p) = &self.flag {
             return match p.is_file() {
                 true => Ok(p.clone()),
-                false => Err(usage(format!("--lib {}: no such file", p.display())).into()),
+                false => Err(usage(format!("--lib {}: no such file", p.display()))),
             };
         }
         if let Some(p) = &self.env {
             return match p.is_file() {
                 true => Ok(p.clone()),
-                false => Err(usage(format!("{LIB_ENV}={}: no such file", p.display())).into()),
+                false => Err(usage(format!("{LIB_ENV}={}: no such file", p.display()))),
             };
         }
         let candidates = self.candidates();
@@ -71,8 +72,7 @@ impl Search {
         Err(usage(format!(
             "cannot find the FMU library {LIB_NAME}; looked in:\n{}\nbuild it with `cargo build --release -p entrynav-fmu` (it lands in target/release/), then copy it next to the entrynav executable or into ../lib of its folder, set {LIB_ENV}=PATH, or pass --lib PATH",
             looked.join("\n")
-        ))
-        .into())
+        )))
     }
 
     /// The places searched after `--lib` and `ENTRYNAV_FMU_LIB`, in order, without repeats.
@@ -158,7 +158,10 @@ mod tests {
         };
         let e = missing.find().unwrap_err().to_string();
         assert!(e.contains(LIB_ENV) && e.contains("nope.so"), "{e}");
-        assert_eq!(crate::exit::code(&missing.find().unwrap_err()), 2);
+        assert_eq!(
+            missing.find().unwrap_err().kind(),
+            crate::ErrorKind::Refused
+        );
     }
 
     #[test]
@@ -180,6 +183,6 @@ mod tests {
             msg.contains("cargo build --release -p entrynav-fmu"),
             "{msg}"
         );
-        assert_eq!(crate::exit::code(&e), 2);
+        assert_eq!(e.kind(), crate::ErrorKind::Refused);
     }
 }

@@ -17,7 +17,8 @@
 //! level with names `<component>.<variable>`, so a user sets a study in one file. The truth and the
 //! filter must share seed and dispersion (the filter's start is drawn from the truth's seed).
 
-use anyhow::{Context, Result, bail};
+use crate::error::{StudyError, StudyResult};
+use crate::output::atomic_file::AtomicFile;
 use entrynav_fmu::vars::{Causality, MAX_BEACONS, Model, Type, Value, Var, variables};
 use std::fmt::Write as _;
 use std::io::Write;
@@ -140,7 +141,7 @@ const GUIDANCE: &str = "guidance";
 /// split pair, the filter's estimate (kinematic states, 1σ, epoch, status) and the truth's
 /// accelerometer triad into the guidance FMU, whose limited bank drives the truth. Every
 /// transfer is one step late; the filter is the EKF (the default dcifaif needs beacons).
-fn guided_system() -> Result<SystemSpec> {
+fn guided_system() -> StudyResult<SystemSpec> {
     let guidance = variables(Model::Guidance);
     let filter = variables(Model::Filter);
     let truth = variables(Model::Truth);
@@ -159,10 +160,10 @@ fn guided_system() -> Result<SystemSpec> {
         } else if from(&truth) {
             "truth"
         } else {
-            bail!(
+            return Err(StudyError::Failed(format!(
                 "no FMU of the guided loop outputs the guidance input {}",
                 v.name
-            )
+            )));
         };
         connections.push((Some(source), v.name.clone(), Some(GUIDANCE), v.name.clone()));
     }
@@ -345,29 +346,68 @@ fn ssv(sys: &SystemSpec) -> String {
 
 /// Write `<out>/<system>.ssp` for the split pair and the combined FMU from the packed `.fmu`
 /// files in `out`; `stop` is the default experiment's stop time.
-pub(super) fn write_ssps(out: &Path, stop: f64) -> Result<Vec<PathBuf>> {
+pub fn write_ssps(out: &Path, stop: f64) -> StudyResult<Vec<PathBuf>> {
     let mut written = Vec::new();
     for sys in [split_system(stop), combined_system(stop), guided_system()?] {
         let path = out.join(format!("{}.ssp", sys.name));
-        let file = entrynav_studies::output::atomic_file::AtomicFile::create(&path)?;
-        let mut zip = zip::ZipWriter::new(file);
-        let opts = zip::write::SimpleFileOptions::default()
-            .compression_method(zip::CompressionMethod::Deflated)
-            .unix_permissions(0o644);
-        zip.start_file("SystemStructure.ssd", opts)?;
-        zip.write_all(ssd(&sys).as_bytes())?;
-        zip.add_directory("resources/", opts)?;
-        zip.start_file(format!("resources/{}.ssv", sys.name), opts)?;
-        zip.write_all(ssv(&sys).as_bytes())?;
-        for e in &sys.elements {
-            let fmu = out.join(format!("{}.fmu", e.model.identifier()));
-            let bytes =
-                std::fs::read(&fmu).with_context(|| format!("cannot read {}", fmu.display()))?;
-            zip.start_file(format!("resources/{}.fmu", e.model.identifier()), opts)?;
-            zip.write_all(&bytes)?;
-        }
-        zip.finish()?.commit()?;
+        write_ssp(out, &sys, &path).map_err(|e| match e {
+            ZipOrStudy::Study(e) => e,
+            ZipOrStudy::Zip(e) => StudyError::Failed(format!("writing {}: {e}", path.display())),
+        })?;
         written.push(path);
     }
     Ok(written)
+}
+
+/// A failure while writing an archive: the archive's own, or one the study layer names.
+pub(super) enum ZipOrStudy {
+    Zip(zip::result::ZipError),
+    Study(StudyError),
+}
+
+impl From<zip::result::ZipError> for ZipOrStudy {
+    fn from(e: zip::result::ZipError) -> Self {
+        ZipOrStudy::Zip(e)
+    }
+}
+
+impl From<std::io::Error> for ZipOrStudy {
+    fn from(e: std::io::Error) -> Self {
+        ZipOrStudy::Zip(e.into())
+    }
+}
+
+impl From<StudyError> for ZipOrStudy {
+    fn from(e: StudyError) -> Self {
+        ZipOrStudy::Study(e)
+    }
+}
+
+impl From<crate::output::OutputError> for ZipOrStudy {
+    fn from(e: crate::output::OutputError) -> Self {
+        ZipOrStudy::Study(e.into())
+    }
+}
+
+/// The system structure, its parameters and its FMUs (read from `out`) as the archive `path`.
+fn write_ssp(out: &Path, sys: &SystemSpec, path: &Path) -> Result<(), ZipOrStudy> {
+    let file = AtomicFile::create(path)?;
+    let mut zip = zip::ZipWriter::new(file);
+    let opts = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated)
+        .unix_permissions(0o644);
+    zip.start_file("SystemStructure.ssd", opts)?;
+    zip.write_all(ssd(sys).as_bytes())?;
+    zip.add_directory("resources/", opts)?;
+    zip.start_file(format!("resources/{}.ssv", sys.name), opts)?;
+    zip.write_all(ssv(sys).as_bytes())?;
+    for e in &sys.elements {
+        let fmu = out.join(format!("{}.fmu", e.model.identifier()));
+        let bytes = std::fs::read(&fmu)
+            .map_err(|err| StudyError::Failed(format!("cannot read {}: {err}", fmu.display())))?;
+        zip.start_file(format!("resources/{}.fmu", e.model.identifier()), opts)?;
+        zip.write_all(&bytes)?;
+    }
+    zip.finish()?.commit()?;
+    Ok(())
 }

@@ -1,0 +1,11 @@
+//! The FMU packages: the co-simulation FMUs (FMI 2.0 and 3.0) of the `entrynav-fmu` library,
+//! generic or specific to one scenario ([`pack`]), where the library is found ([`library`]), and
+//! the SSP 1.0 systems of the generic FMUs ([`ssp`]). Every packed FMU is read back without
+//! loading its library (`entrynav-fmu-archive`).
+
+pub mod library;
+pub mod pack;
+pub mod ssp;
+
+pub use library::{LIB_ENV, LIB_NAME, Search};
+pub use pack::{PackOptions, Packed, PackedFmu, pack_fmus};

@@ -196,12 +196,44 @@ fn workspace_crates_depend_downward_only() {
         ("fmu-archive", &["entrynav", "entrynav-fmu"]),
         ("fmi-host", &["entrynav-fmu", "entrynav-fmu-archive"]),
         (
+            "studies",
+            &[
+                "entrynav",
+                "entrynav-loader",
+                "entrynav-optimizer",
+                "entrynav-fmu",
+                "entrynav-fmu-archive",
+            ],
+        ),
+        ("render", &["entrynav", "entrynav-studies"]),
+        // The front ends: the study layer and what its results are made of, never each other.
+        (
+            "cli",
+            &[
+                "entrynav",
+                "entrynav-loader",
+                "entrynav-optimizer",
+                "entrynav-studies",
+                "entrynav-render",
+            ],
+        ),
+        (
+            "python",
+            &[
+                "entrynav",
+                "entrynav-loader",
+                "entrynav-studies",
+                "entrynav-render",
+            ],
+        ),
+        (
             "devtools",
             &[
                 "entrynav",
                 "entrynav-loader",
                 "entrynav-fmu",
                 "entrynav-fmi-host",
+                "entrynav-studies",
             ],
         ),
     ];
@@ -211,6 +243,8 @@ fn workspace_crates_depend_downward_only() {
         "entrynav-optimizer",
         "entrynav-fmu",
         "entrynav-fmu-archive",
+        "entrynav-studies",
+        "entrynav-render",
         "entrynav-cli",
         "entrynav-fmi-host",
         "entrynav-devtools",

@@ -3,7 +3,7 @@
 //! Carlo interval (the study: `entrynav_studies::compare`). This file reads the inputs, prints
 //! the table (`compare_table.rs`) and writes the JSON.
 
-use crate::exit::{check_output_file, is_stdout};
+use crate::preflight::{check_output_file, is_stdout};
 use anyhow::{Context, Result};
 use entrynav_studies::compare::input::SummaryIn;
 use entrynav_studies::compare::paired::FinalErrors;

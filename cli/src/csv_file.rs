@@ -31,7 +31,7 @@ pub fn write_with_comment(
     body: impl FnOnce(&mut FileWriter) -> Result<Option<String>>,
 ) -> Result<()> {
     let runtime = |e: &dyn std::fmt::Display| {
-        crate::exit::Runtime(format!("writing {}: {e:#}", path.display()))
+        crate::exit_code::Runtime(format!("writing {}: {e:#}", path.display()))
     };
     let mut w = writer(AtomicFile::create(path)?);
     let comment = body(&mut w).map_err(|e| runtime(&format!("{e:#}")))?;

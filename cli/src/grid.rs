@@ -4,7 +4,7 @@
 //! and the HTML page of `--report`. All are rewritten after every finished cell, so an
 //! interrupted grid keeps its cells.
 
-use crate::exit::check_output_dir;
+use crate::preflight::check_output_dir;
 use anyhow::{Context, Result};
 use entrynav_studies::grid::documents::{markdown, to_json, write_csv};
 use entrynav_studies::grid::run::{GridOptions, GridResults, GridStudy, run_grid};

@@ -4,7 +4,7 @@
 //! reference bank on the same dispersion draws; its table (also printed by `trade`), JSON and
 //! footprint plots.
 
-use crate::exit::{check_output_file, is_stdout};
+use crate::preflight::{check_output_file, is_stdout};
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
 use entrynav::sim::guided::delivery::{DeliveryReport, DeliveryRow};
@@ -83,7 +83,7 @@ fn deliver(args: &DeliverArgs) -> Result<()> {
         check_output_file(p, "--json")?;
     }
     let input = ScenarioInput::resolve(&args.scenario, &args.sets)?;
-    crate::exit::warn_implausible(&input.config);
+    crate::preflight::warn_implausible(&input.config);
     let scenario = input.build()?;
     let options = DeliverOptions {
         filters: args.filters.clone(),

@@ -29,10 +29,10 @@ pub struct ReferenceArgs {
 /// Run `entrynav guidance reference`.
 pub fn run(args: &ReferenceArgs) -> Result<()> {
     if let Some(p) = &args.csv {
-        crate::exit::check_output_file(p, "--csv")?;
+        crate::preflight::check_output_file(p, "--csv")?;
     }
     if let Some(p) = &args.json {
-        crate::exit::check_output_file(p, "--json")?;
+        crate::preflight::check_output_file(p, "--json")?;
     }
     let scenario = ScenarioInput::resolve(&args.scenario, &args.sets)?.build()?;
     let r = run_reference(&scenario)?;

@@ -9,7 +9,7 @@ mod atmosphere_inspect;
 mod compare;
 mod compare_table;
 mod csv_file;
-mod exit;
+mod exit_code;
 mod figures;
 mod fmu;
 mod grid;
@@ -19,6 +19,7 @@ mod interrupt;
 mod lincov;
 mod observe;
 mod optimize;
+mod preflight;
 mod progress;
 mod replay;
 mod report;
@@ -28,8 +29,8 @@ mod threads;
 mod trade;
 mod trade_args;
 mod trade_checkpoint;
-mod trade_files;
 mod trade_lincov;
+mod trade_outputs;
 mod trade_tables;
 mod train;
 mod tune;
@@ -129,7 +130,7 @@ pub fn cli_main() {
     interrupt::die_on_broken_pipe();
     let cli = Cli::parse();
     if let Err(e) = run(cli) {
-        let code = exit::code(&e);
+        let code = exit_code::code(&e);
         if code == interrupt::EXIT_INTERRUPTED {
             eprintln!("{e}");
         } else {
@@ -180,7 +181,7 @@ pub fn run_args(args: Vec<String>) -> (i32, String) {
     match run(cli) {
         Ok(()) => (0, String::new()),
         Err(e) => {
-            let code = exit::code(&e);
+            let code = exit_code::code(&e);
             (code, format!("{e:#}"))
         }
     }

@@ -60,7 +60,7 @@ pub struct ObserveArgs {
 /// Run the command.
 pub fn run(args: &ObserveArgs) -> Result<()> {
     let input = ScenarioInput::resolve(&args.scenario, &[])?;
-    crate::exit::warn_implausible(&input.config);
+    crate::preflight::warn_implausible(&input.config);
     let scenario = input.build()?;
     let options = ObserveOptions {
         method: args.method,

@@ -38,10 +38,11 @@ pub fn write_trade(
 /// file).
 pub fn check_path(path: Option<&Path>) -> Result<()> {
     let Some(p) = path else { return Ok(()) };
-    if crate::exit::is_stdout(p) {
-        return Err(
-            crate::exit::Usage("--report -: the report is a file; give a path".into()).into(),
-        );
+    if crate::preflight::is_stdout(p) {
+        return Err(crate::exit_code::Usage(
+            "--report -: the report is a file; give a path".into(),
+        )
+        .into());
     }
-    crate::exit::check_output_file(p, "--report")
+    crate::preflight::check_output_file(p, "--report")
 }

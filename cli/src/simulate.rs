@@ -32,7 +32,7 @@ pub struct SimulateArgs {
 /// Run the command.
 pub fn run(args: &SimulateArgs) -> Result<()> {
     let input = ScenarioInput::resolve(&args.scenario.scenario, &args.scenario.sets)?;
-    crate::exit::warn_implausible(&input.config);
+    crate::preflight::warn_implausible(&input.config);
     let scenario = input.build()?;
     let options = SimulateOptions {
         seed: args.seed,
@@ -40,7 +40,11 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     };
     let sim = run_simulate(&scenario, &options)?;
     let run = &sim.run;
-    if let Some(path) = args.out.as_deref().filter(|p| crate::exit::is_stdout(p)) {
+    if let Some(path) = args
+        .out
+        .as_deref()
+        .filter(|p| crate::preflight::is_stdout(p))
+    {
         let mut w = crate::csv_file::writer(std::io::stdout().lock());
         write_csv(&mut w, &scenario, run)
             .and_then(|()| Ok(w.flush()?))

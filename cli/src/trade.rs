@@ -3,15 +3,15 @@
 //! One invocation does one of six things, decided once from its arguments ([`Mode`]): compare two
 //! summaries, merge shard files, run a grid, replay one run, run one shard, or run (or resume) a
 //! study. The study layer (`entrynav_studies::trade`) does the work; this file loads the
-//! scenario, prints what the study says and writes its files (`trade_files.rs`); the tables are
+//! scenario, prints what the study says and writes its files (`trade_outputs.rs`); the tables are
 //! in `trade_tables.rs`.
 
-use crate::exit::is_stdout;
+use crate::preflight::is_stdout;
 use crate::progress::RunProgress;
 pub use crate::trade_args::{Method, TradeAction, TradeArgs};
 use crate::trade_checkpoint::SummaryCheckpoints;
-use crate::trade_files::{check_outputs, read_resume_file, write_csv_dir, write_text};
 use crate::trade_lincov::{curves, print_comparison};
+use crate::trade_outputs::{check_outputs, read_resume_file, write_csv_dir, write_text};
 use crate::trade_tables::print_tables;
 use anyhow::{Context, Result};
 use entrynav::sim::{Checkpoint, NoCheckpoint, Shard};
@@ -167,7 +167,7 @@ fn load(args: &TradeArgs, options: &TradeOptions) -> Result<TradeSetup> {
     crate::report::check_path(args.report.as_deref())?;
     let scenario_name = args.scenario.as_deref().context("--scenario is required")?;
     let input = ScenarioInput::resolve(scenario_name, &args.sets)?;
-    crate::exit::warn_implausible(&input.config);
+    crate::preflight::warn_implausible(&input.config);
     let input = input.with_truth_atmosphere(&args.truth_atmosphere(), args.no_perturbation)?;
     let built = TradeScenario::build(&input)?;
     print_warnings(&built.warnings);
@@ -336,10 +336,10 @@ impl Outputs {
         match failures.len() {
             0 => Ok(()),
             // The work is done: a failure to write it is a runtime failure (exit code 1).
-            1 if crate::exit::code(&failures[0]) == 1 => Err(failures.remove(0)),
+            1 if crate::exit_code::code(&failures[0]) == 1 => Err(failures.remove(0)),
             _ => {
                 let all: Vec<String> = failures.iter().map(|e| format!("{e:#}")).collect();
-                Err(crate::exit::Runtime(all.join("; also: ")).into())
+                Err(crate::exit_code::Runtime(all.join("; also: ")).into())
             }
         }
     }

@@ -88,9 +88,9 @@ pub struct TradeArgs {
     #[arg(long)]
     pub no_pcrlb: bool,
     /// How the statistics are computed: mc (Monte Carlo of --runs runs), lincov (LinCov of each
-    /// filter along the nominal trajectory, one pass; ekf, and ukf as its EKF equivalent), or both (the Monte Carlo with
-    /// LinCov / MC for every headline figure and a warning where they differ beyond the Monte
-    /// Carlo's 95 % interval).
+    /// filter along the nominal trajectory, one pass; ekf, ukf as its EKF equivalent, ci and
+    /// dcifaif), or both (the Monte Carlo with LinCov / MC for every headline figure and a warning
+    /// where they differ beyond the Monte Carlo's 95 % interval).
     #[arg(long, value_enum, default_value_t = Method::Mc)]
     pub method: Method,
 }

@@ -6,7 +6,7 @@
 //! current: an old `complete: true` summary at the path is replaced before the first run. The
 //! interval's bounds and default are the study's (`entrynav_studies::trade::options`).
 
-use crate::trade_files::write_text;
+use crate::trade_outputs::write_text;
 use entrynav::sim::{Checkpoint, ShardResult};
 use entrynav_studies::provenance::Provenance;
 use entrynav_studies::trade::study::partial_summary;

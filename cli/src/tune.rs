@@ -81,7 +81,7 @@ pub fn run(args: &TuneArgs) -> Result<()> {
             .with_context(|| format!("cannot create {}", parent.display()))?;
     }
     let input = ScenarioInput::resolve(&args.scenario, &args.sets)?;
-    crate::exit::warn_implausible(&input.config);
+    crate::preflight::warn_implausible(&input.config);
     let bar = Bars::default();
     let progress = |step: Step<'_>| bar.show(step, args.quiet);
     let study = run_tune(&input, &options, &progress);

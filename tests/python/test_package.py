@@ -49,9 +49,9 @@ def test_a_python_trade_equals_the_cli_json_bit_for_bit(name):
     res = entrynav.trade(entrynav.Scenario.builtin(name), ["ekf"], runs=4, seed=3)
     assert res.complete
     cli = _cli_summary(name, "ekf", 4, 3)
-    # A scenario with [guidance]: the CLI's trade adds the delivery Monte Carlo, which the package
-    # gives through entrynav.deliver (test_deliver_equals_the_cli...), equal to it here.
-    delivery = cli.pop("delivery", None)
+    # A scenario with [guidance]: both add the delivery Monte Carlo, the same study as
+    # entrynav.deliver's (test_deliver_equals_the_cli...).
+    delivery = cli.get("delivery")
     assert (delivery is not None) == ("guidance" in res.scenario.to_dict())
     if delivery is not None:
         assert entrynav.deliver(name, ["ekf"], runs=4, seed=3)["delivery"] == delivery
@@ -242,11 +242,13 @@ def test_observe_and_tune_and_a_refused_design_raise_or_return_like_the_cli(tmp_
     assert entrynav.trade(tuned, ["ekf"], runs=4).complete
     # With sites only 2 deg apart the certified logdet selection is worse than the hand-placed sites
     # on this scenario: the CLI's check refuses it (exit 1), which the package raises.
-    with pytest.raises(RuntimeError, match="worse than the input design"):
-        entrynav.optimize_select("ground-beacons-3", k=3, grid_deg=1.0, exact=True,
-                                 extra_args=["--min-separation-deg", "2"])
-    with pytest.raises(ValueError):
-        entrynav.optimize_ground("ground-beacons-3", extra_args=["--beacons", "-3"])
+    with pytest.raises(RuntimeError, match="worse than the input design") as refused:
+        entrynav.optimize_select("ground-beacons-3", k=3, grid_deg=1.0, exact=True, min_separation_deg=2.0)
+    assert "check" in refused.value.result.summary
+    with pytest.raises(ValueError, match=r"beacons = -3 is out of range: must be from 1 to 100"):
+        entrynav.optimize_ground("ground-beacons-3", beacons=-3)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'min_seperation_deg'"):
+        entrynav.optimize_ground("ground-beacons-3", min_seperation_deg=2.0)
 
 
 def test_fmu_pack_from_python(tmp_path):
@@ -297,3 +299,58 @@ def test_a_package_shard_of_a_guided_study_merges_with_a_cli_shard_into_the_deli
     assert r.returncode == 0, r.stderr
     whole = _cli_summary("msl-guided", "ekf", 300, 5)
     assert json.loads(merged.read_text())["delivery"] == whole["delivery"]
+
+
+# The same out-of-range option, refused by the study layer before any work, with one message in
+# both front ends: (Python call, the CLI's arguments, the message).
+REFUSALS = [
+    (lambda: entrynav.trade("orbiters-3", ["ekf"], runs=2, threads=10**6),
+     ["trade", "--scenario", "orbiters-3", "--runs", "2", "--threads", "1000000"],
+     "threads = 1000000 is out of range: must be from 1 to 1024"),
+    (lambda: entrynav.trade("orbiters-3", ["ekf"], runs=2, threads=-1),
+     ["trade", "--scenario", "orbiters-3", "--runs", "2", "--threads", "-1"],
+     "threads = -1 is out of range: must be from 1 to 1024"),
+    (lambda: entrynav.trade("orbiters-3", ["ekf"], runs=0),
+     ["trade", "--scenario", "orbiters-3", "--runs", "0"],
+     "runs = 0 is out of range: must be from 1 to 10000000"),
+    (lambda: entrynav.trade_shard("orbiters-3", ["ekf"], 10**13, 1, 0, 2),
+     ["trade", "--scenario", "orbiters-3", "--runs", "10000000000000", "--shard", "0/2", "--json", "/tmp/never.json"],
+     "runs = 10000000000000 is out of range: must be from 1 to 10000000"),
+    (lambda: entrynav.tune("orbiters-3", ["ekf"], runs=200000),
+     ["tune", "--scenario", "orbiters-3", "--runs", "200000", "--out", "/tmp/never.toml"],
+     "runs = 200000 is out of range: must be from 1 to 100000"),
+    (lambda: entrynav.deliver("msl-guided", runs=0),
+     ["guidance", "deliver", "--scenario", "msl-guided", "--runs", "0"],
+     "runs = 0 is out of range: must be from 1 to 10000000"),
+    (lambda: entrynav.optimize_ground("ground-beacons-3", beacons=10**13),
+     ["optimize", "ground", "--scenario", "ground-beacons-3", "--beacons", "10000000000000"],
+     "beacons = 10000000000000 is out of range: must be from 1 to 100"),
+    (lambda: entrynav.optimize_select("ground-beacons-3", k=10**13),
+     ["optimize", "select", "--scenario", "ground-beacons-3", "--k", "10000000000000"],
+     "k = 10000000000000 is out of range: must be from 1 to 100"),
+    (lambda: entrynav.optimize_orbiters("orbiters-3", particles=1),
+     ["optimize", "orbiters", "--scenario", "orbiters-3", "--particles", "1"],
+     "particles = 1 is out of range: must be from 2 to 10000"),
+]
+
+
+@pytest.mark.parametrize("python,cli,message", REFUSALS, ids=[" ".join(c[:2]) + " " + c[-1] for _, c, _ in REFUSALS])
+def test_an_out_of_range_option_is_refused_with_one_message_by_both_front_ends(python, cli, message):
+    start = time.monotonic()
+    with pytest.raises(ValueError) as refused:
+        python()
+    assert str(refused.value) == message
+    r = run([ENTRYNAV, *cli], timeout=60)
+    assert r.returncode == 2 and message in r.stderr, r.stderr
+    # Refused before any work: well under the time of the work itself.
+    assert time.monotonic() - start < 30
+
+
+def test_the_package_links_neither_the_command_line_nor_an_fmi_host():
+    manifest = (ROOT / "python" / "Cargo.toml").read_text()
+    assert "entrynav-cli" not in manifest and "fmi-host" not in manifest
+    tree = run(["cargo", "tree", "-p", "entrynav-python", "-e", "normal", "--prefix", "none"], timeout=600)
+    assert tree.returncode == 0, tree.stderr
+    names = {line.split()[0] for line in tree.stdout.splitlines() if line.strip()}
+    assert "entrynav-studies" in names
+    assert not names & {"entrynav-cli", "entrynav-fmi-host", "libloading"}, names

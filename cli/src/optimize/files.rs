@@ -10,7 +10,7 @@ use std::path::Path;
 /// The scenario with its overrides, warning on standard error about implausible values.
 pub fn load_input(s: &ScenarioArgs) -> Result<ScenarioInput> {
     let input = ScenarioInput::resolve(&s.scenario, &s.sets)?;
-    crate::exit::warn_implausible(&input.config);
+    crate::preflight::warn_implausible(&input.config);
     Ok(input)
 }
 

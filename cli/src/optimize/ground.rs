@@ -35,7 +35,7 @@ pub fn run(a: &GroundArgs) -> Result<()> {
         }
     }
     if !failures.is_empty() {
-        return Err(crate::exit::Runtime(failures.join("; also: ")).into());
+        return Err(crate::exit_code::Runtime(failures.join("; also: ")).into());
     }
     Ok(d.verdict()?)
 }

@@ -6,6 +6,11 @@
 //! fraction by the modified Lentz method); ln Γ by the Lanczos approximation (g = 7, n = 9).
 //! The quantile inverts the CDF by bisection, which is slow but exact to the last bit that
 //! matters for a gate and needs no starting guess; gates compute it once per filter.
+//!
+//! Why not `statrs`: its `ChiSquared::inverse_cdf` (0.18) differs from this quantile in all 112
+//! cases compared (dof 1 to 110 000, p 0.0005 to 0.9995; up to 1.1e-5 relative at dof 110 000,
+//! where its quantile sits at a CDF of 0.50001 for p = 0.5 and this one at 0.5 + 7e-13), so every
+//! published NEES/NIS band would move in its last digits for no gain in accuracy.
 
 use std::f64::consts::PI;
 

@@ -1,5 +1,5 @@
-//! Exit codes and the checks that run before any work, so a study never fails at its end on
-//! something it could have refused at its start.
+//! The exit code of a failed command, and the CLI's own two kinds of error (a study's error says
+//! its kind itself: `entrynav_studies::ErrorKind`).
 //!
 //! | code | meaning |
 //! |---|---|
@@ -10,7 +10,6 @@
 
 use crate::interrupt::{EXIT_INTERRUPTED, Interrupted};
 use entrynav_studies::{ErrorKind, StudyError};
-use std::path::Path;
 
 /// A usage or configuration error found by the CLI itself (exit code 2).
 #[derive(Debug)]
@@ -65,25 +64,4 @@ pub fn code(e: &anyhow::Error) -> i32 {
             )
     });
     if runtime { 1 } else { 2 }
-}
-
-/// Warn on standard error about every value of `cfg` that passes validation but no Mars entry has
-/// (a speed in km/s, a flight-path angle in radians: `ScenarioConfig::implausible`).
-pub fn warn_implausible(cfg: &entrynav::scenario::ScenarioConfig) {
-    for w in cfg.implausible() {
-        eprintln!("warning: {w}");
-    }
-}
-
-pub use entrynav_studies::output::is_stdout;
-
-/// Refuse, before any run, an output file that cannot be written (the study layer's check, which
-/// Python shares).
-pub fn check_output_file(path: &Path, flag: &str) -> anyhow::Result<()> {
-    Ok(entrynav_studies::output::check_output_file(path, flag)?)
-}
-
-/// Refuse, before any run, an output directory that cannot be created or written into.
-pub fn check_output_dir(dir: &Path, flag: &str) -> anyhow::Result<()> {
-    Ok(entrynav_studies::output::check_output_dir(dir, flag)?)
 }

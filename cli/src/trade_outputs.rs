@@ -2,7 +2,7 @@
 //! shard file written (or sent to standard output), the `resume` block read back, and the CSV
 //! series of `--csv-dir` (their rows are the study layer's, `entrynav_studies::trade::csv_series`).
 
-use crate::exit::{check_output_dir, check_output_file, is_stdout};
+use crate::preflight::{check_output_dir, check_output_file, is_stdout};
 use anyhow::{Context, Result};
 use entrynav::sim::{ShardResult, TradeReport};
 use entrynav_studies::trade::csv_series::series_files;
@@ -52,7 +52,7 @@ pub fn write_file(path: &Path, body: impl FnOnce(&mut dyn Write) -> Result<()>) 
     let mut w = entrynav_studies::output::atomic_file::AtomicFile::create(path)?;
     body(&mut w)
         .and_then(|()| Ok(w.flush()?))
-        .map_err(|e| crate::exit::Runtime(format!("writing {}: {e:#}", path.display())))?;
+        .map_err(|e| crate::exit_code::Runtime(format!("writing {}: {e:#}", path.display())))?;
     Ok(w.commit()?)
 }
 

@@ -1,0 +1,26 @@
+//! The checks a command runs before any work, so a study never fails at its end on something it
+//! could have refused at its start: output paths (the study layer's checks, which Python shares)
+//! and the warnings for values no Mars entry has.
+
+use std::path::Path;
+
+/// Warn on standard error about every value of `cfg` that passes validation but no Mars entry has
+/// (a speed in km/s, a flight-path angle in radians: `ScenarioConfig::implausible`).
+pub fn warn_implausible(cfg: &entrynav::scenario::ScenarioConfig) {
+    for w in cfg.implausible() {
+        eprintln!("warning: {w}");
+    }
+}
+
+pub use entrynav_studies::output::is_stdout;
+
+/// Refuse, before any run, an output file that cannot be written (the study layer's check, which
+/// Python shares).
+pub fn check_output_file(path: &Path, flag: &str) -> anyhow::Result<()> {
+    Ok(entrynav_studies::output::check_output_file(path, flag)?)
+}
+
+/// Refuse, before any run, an output directory that cannot be created or written into.
+pub fn check_output_dir(dir: &Path, flag: &str) -> anyhow::Result<()> {
+    Ok(entrynav_studies::output::check_output_dir(dir, flag)?)
+}

@@ -14,7 +14,7 @@ echo "== cargo clippy (all targets, warnings are errors)"
 cargo clippy --workspace --all-targets --release -- -D warnings
 
 echo "== rustdoc of the library crates (broken links are errors)"
-RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -p entrynav -p entrynav-loader -p entrynav-fmu -p entrynav-fmu-archive -p entrynav-fmi-host -p entrynav-devtools -p entrynav-optimizer
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -p entrynav -p entrynav-loader -p entrynav-fmu -p entrynav-fmu-archive -p entrynav-fmi-host -p entrynav-devtools -p entrynav-optimizer -p entrynav-studies -p entrynav-render
 
 echo "== cargo test"
 # Release profile: the Monte Carlo and property tests are numerical and run much faster optimised.

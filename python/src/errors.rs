@@ -9,7 +9,9 @@ use pyo3::exceptions::{PyFileNotFoundError, PyKeyboardInterrupt, PyRuntimeError,
 
 /// A study's error as the Python exception of its kind.
 pub fn study_err(e: StudyError) -> PyErr {
-    if let StudyError::Scenario(LoadError::NotFound { .. }) = &e {
+    if let StudyError::Scenario(load) = &e
+        && matches!(**load, LoadError::NotFound { .. })
+    {
         return PyFileNotFoundError::new_err(e.to_string());
     }
     match e.kind() {
@@ -21,7 +23,7 @@ pub fn study_err(e: StudyError) -> PyErr {
 
 /// A scenario that does not load.
 pub fn load_err(e: LoadError) -> PyErr {
-    study_err(StudyError::Scenario(e))
+    study_err(e.into())
 }
 
 /// A JSON document that does not serialise (a bug, not the user's).

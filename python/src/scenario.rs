@@ -5,12 +5,12 @@
 use crate::errors::{json_err, load_err, study_err};
 use entrynav::scenario::{BUILTIN_NAMES, Scenario, ScenarioConfig};
 use entrynav_loader as load;
-use entrynav_studies::{ScenarioInput, StudyError};
+use entrynav_studies::ScenarioInput;
 use pyo3::prelude::*;
 use std::path::Path;
 
 fn config_of(toml: &str) -> PyResult<ScenarioConfig> {
-    ScenarioConfig::from_toml_str(toml, "scenario").map_err(|e| study_err(StudyError::Config(e)))
+    ScenarioConfig::from_toml_str(toml, "scenario").map_err(|e| study_err(e.into()))
 }
 
 /// The scenario `toml` (relative file names against `dir`) as a study's input.

@@ -33,9 +33,7 @@ pub fn tune(
 ) -> PyResult<String> {
     let opts: TuneStudyOptions = options("tune", kwargs.as_ref(), TuneStudyOptions::validate)?;
     let input = input(toml, dir)?;
-    let study = py
-        .detach(|| run_tune(&input, &opts, &silent))
-        .map_err(study_err)?;
+    let study = py.detach(|| run_tune(&input, &opts, &silent).map_err(study_err))?;
     if let Some(e) = study.refusal(Path::new("the tuned scenario")) {
         return Err(study_err(e));
     }
@@ -54,9 +52,7 @@ pub fn observe(
 ) -> PyResult<String> {
     let opts: ObserveOptions = options("observe", kwargs.as_ref(), ObserveOptions::validate)?;
     let scenario = input(toml, dir)?.build().map_err(study_err)?;
-    let study = py
-        .detach(|| run_observe(&scenario, &opts))
-        .map_err(study_err)?;
+    let study = py.detach(|| run_observe(&scenario, &opts).map_err(study_err))?;
     serde_json::to_string(&study.to_json(&scenario)).map_err(json_err)
 }
 
@@ -72,9 +68,7 @@ pub fn deliver(
 ) -> PyResult<String> {
     let opts: DeliverOptions = options("deliver", kwargs.as_ref(), DeliverOptions::validate)?;
     let scenario = input(toml, dir)?.build().map_err(study_err)?;
-    let study = py
-        .detach(|| run_deliver(&scenario, &opts, &silent))
-        .map_err(study_err)?;
+    let study = py.detach(|| run_deliver(&scenario, &opts, &silent).map_err(study_err))?;
     serde_json::to_string(&study.document()).map_err(json_err)
 }
 
@@ -90,9 +84,7 @@ pub fn simulate(
 ) -> PyResult<String> {
     let opts: SimulateOptions = options("simulate", kwargs.as_ref(), SimulateOptions::validate)?;
     let scenario = input(toml, dir)?.build().map_err(study_err)?;
-    let sim = py
-        .detach(|| run_simulate(&scenario, &opts))
-        .map_err(study_err)?;
+    let sim = py.detach(|| run_simulate(&scenario, &opts).map_err(study_err))?;
     let (columns, rows) = sim.truth_table(&scenario);
     let stop = match sim.run.stop {
         entrynav::sim::StopReason::Duration => "duration",
@@ -121,10 +113,10 @@ type DesignOut = (String, String, Option<String>);
 fn design<R: Send>(
     py: Python<'_>,
     input: &ScenarioInput,
-    run: impl FnOnce(&ScenarioInput) -> StudyResult<R> + Send,
+    run: impl FnOnce(&ScenarioInput) -> PyResult<R> + Send,
     parts: impl FnOnce(&R) -> (serde_json::Value, String, StudyResult<()>),
 ) -> PyResult<DesignOut> {
-    let result = py.detach(|| run(input)).map_err(study_err)?;
+    let result = py.detach(|| run(input))?;
     let (json, toml, verdict) = parts(&result);
     let text = serde_json::to_string(&json).map_err(json_err)?;
     Ok((text, toml, verdict.err().map(|e| e.to_string())))
@@ -143,7 +135,7 @@ pub fn optimize_ground(
     design(
         py,
         &input(toml, dir)?,
-        |i| run_ground_design(i, &opts, &silent),
+        |i| run_ground_design(i, &opts, &silent).map_err(study_err),
         |d| (d.to_json(), d.design_toml.clone(), d.verdict()),
     )
 }
@@ -161,7 +153,7 @@ pub fn optimize_select(
     design(
         py,
         &input(toml, dir)?,
-        |i| run_site_selection(i, &opts, &silent),
+        |i| run_site_selection(i, &opts, &silent).map_err(study_err),
         |d| (d.to_json(), d.design_toml.clone(), d.verdict()),
     )
 }
@@ -183,7 +175,7 @@ pub fn optimize_orbiters(
     design(
         py,
         &input(toml, dir)?,
-        |i| run_orbiter_design(i, &opts, &silent),
+        |i| run_orbiter_design(i, &opts, &silent).map_err(study_err),
         |d| (d.to_json(), d.design_toml.clone(), d.verdict()),
     )
 }
@@ -208,9 +200,9 @@ pub fn fmu_pack(
         (None, Some(text)) => Some(input(text, dir.unwrap_or("."))?),
         (None, None) => None,
     };
-    let packed = py
-        .detach(|| pack_fmus(Path::new(library), Path::new(out), scenario.as_ref(), &opts))
-        .map_err(study_err)?;
+    let packed = py.detach(|| {
+        pack_fmus(Path::new(library), Path::new(out), scenario.as_ref(), &opts).map_err(study_err)
+    })?;
     let fmus = packed.fmus.iter().map(|f| f.path.display().to_string());
     Ok(fmus
         .chain(packed.ssps.iter().map(|p| p.display().to_string()))

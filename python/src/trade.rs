@@ -103,9 +103,10 @@ pub fn trade(
             Some(watch.cancel),
             &|step| watch.record(step),
         )
+        .map_err(study_err)
     })?;
     let native = NativeTrade {
-        outcome: outcome.map_err(study_err)?,
+        outcome: outcome?,
         setup,
         options,
     };
@@ -142,8 +143,7 @@ pub fn trade_shard(
     input.overrides = overrides;
     let built = TradeScenario::build(&input).map_err(study_err)?;
     let setup = TradeSetup::new(built, &options).map_err(study_err)?;
-    let shard =
-        Shard::parse(&format!("{index}/{count}")).map_err(|e| study_err(StudyError::Trade(e)))?;
+    let shard = Shard::parse(&format!("{index}/{count}")).map_err(|e| study_err(e.into()))?;
     let file = py.detach(|| run_trade_shard(&setup, &options, shard, None).map_err(study_err))?;
     // A delivery that cannot be flown is an error here (the CLI warns and writes the sums).
     if let Some(w) = file.warnings.first() {

@@ -76,7 +76,7 @@ pub fn trade_figures(report: &TradeReport, names: &WeightNames) -> Result<Vec<Fi
 /// `pos_m`, `vel_mps`): LinCov's predictions of `trade --method both`.
 pub type ExtraCurves = std::collections::BTreeMap<String, Vec<Curve>>;
 
-/// [`trade_figures`] with `extra` curves in the RMSE charts.
+/// Every figure of a trade, with `extra` curves in the RMSE charts.
 pub fn trade_figures_with(
     report: &TradeReport,
     names: &WeightNames,
@@ -344,7 +344,7 @@ pub fn trade_plots(
     Ok(figs)
 }
 
-/// LinCov's RMSE curves of `trade --method both`, dashed and named "<filter> LinCov", per metric
+/// LinCov's RMSE curves of `trade --method both`, dashed and named "`<filter> LinCov`", per metric
 /// (every state, `pos_m`, `vel_mps`), for the RMSE charts.
 pub fn lincov_curves(
     c: &entrynav_studies::trade::lincov_comparison::LinCovComparison,

@@ -15,10 +15,10 @@ pub enum StudyError {
     Option(#[from] OptionError),
     /// The scenario does not load or validate (refused before any work).
     #[error(transparent)]
-    Scenario(#[from] LoadError),
+    Scenario(Box<LoadError>),
     /// The scenario's configuration is invalid (refused before any work).
     #[error(transparent)]
-    Config(#[from] entrynav::scenario::ScenarioError),
+    Config(Box<entrynav::scenario::ScenarioError>),
     /// Anything else refused before the work starts: a combination of options, an input file
     /// that is not what it should be.
     #[error("{0}")]
@@ -28,17 +28,37 @@ pub enum StudyError {
     Failed(String),
     /// An output could not be written (the work itself is done).
     #[error(transparent)]
-    Output(#[from] OutputError),
+    Output(Box<OutputError>),
     /// The Monte Carlo engine.
     #[error(transparent)]
-    Trade(#[from] TradeError),
+    Trade(Box<TradeError>),
     /// A truth simulation.
     #[error(transparent)]
-    Sim(#[from] SimError),
+    Sim(Box<SimError>),
     /// Stopped by the caller (Ctrl-C): what was finished is kept where the study supports it.
     #[error("interrupted: {0}")]
     Interrupted(String),
 }
+
+/// The errors of the libraries below, boxed: a `StudyError` stays a few words wide however large
+/// the error it carries.
+macro_rules! boxed_from {
+    ($($variant:ident($source:ty)),*) => {$(
+        impl From<$source> for StudyError {
+            fn from(e: $source) -> Self {
+                StudyError::$variant(Box::new(e))
+            }
+        }
+    )*};
+}
+
+boxed_from!(
+    Scenario(LoadError),
+    Config(entrynav::scenario::ScenarioError),
+    Output(OutputError),
+    Trade(TradeError),
+    Sim(SimError)
+);
 
 /// The three ways a study ends without its result.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -59,7 +79,7 @@ impl StudyError {
             | StudyError::Scenario(_)
             | StudyError::Config(_)
             | StudyError::Refused(_) => ErrorKind::Refused,
-            StudyError::Trade(TradeError::Truth(_)) => ErrorKind::Failed,
+            StudyError::Trade(e) if matches!(**e, TradeError::Truth(_)) => ErrorKind::Failed,
             StudyError::Trade(_) => ErrorKind::Refused,
             StudyError::Failed(_) | StudyError::Output(_) | StudyError::Sim(_) => ErrorKind::Failed,
             StudyError::Interrupted(_) => ErrorKind::Interrupted,

@@ -2,11 +2,11 @@
 //! category labelled with its name, one marker colour per series, no line between categories.
 
 use super::axis::Axis;
-use super::chart::{Chart, y_axis};
-use super::chart::{
+use super::legend::{self, Entry, Mark};
+use super::line::{Chart, y_axis};
+use super::line::{
     Frame, bounds, caption_size, draw_mesh, plot_err, render, split_legend, y_range,
 };
-use super::legend::{self, Entry, Mark};
 use super::ticks::{self, Ticks};
 use crate::error::Result;
 use plotters::prelude::*;
@@ -64,7 +64,7 @@ pub fn category_chart(
         let mut builder = ChartBuilder::on(&plot);
         builder
             .caption(frame.title, ("sans-serif", caption_size(frame.size.0)))
-            .margin(super::chart::MARGIN)
+            .margin(super::line::MARGIN)
             .x_label_area_size(48)
             .y_label_area_size(86);
         let x = Axis::linear(-0.5, n as f64 - 0.5, &xt.values);

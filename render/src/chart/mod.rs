@@ -4,9 +4,9 @@
 
 pub mod axis;
 pub mod categorical;
-pub mod chart;
 pub mod labels;
 pub mod legend;
+pub mod line;
 pub mod scatter;
 #[cfg(test)]
 pub mod svg_text;
@@ -14,7 +14,7 @@ pub mod svg_text;
 mod tests;
 pub mod ticks;
 
-pub use chart::{Curve, Frame, line_chart};
+pub use line::{Curve, Frame, line_chart};
 
 /// A line chart of `curves` in the standard 960 × 540 frame (`None` when no curve has a
 /// drawable point).

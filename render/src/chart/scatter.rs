@@ -2,8 +2,8 @@
 //! equal spans on both axes so an ellipse keeps its shape.
 
 use super::axis::Axis;
-use super::chart::{Frame, bounds, caption_size, draw_mesh, plot_err, render, split_legend};
 use super::legend::{self, Entry, Mark};
+use super::line::{Frame, bounds, caption_size, draw_mesh, plot_err, render, split_legend};
 use super::ticks;
 use crate::error::Result;
 use plotters::prelude::*;
@@ -53,7 +53,7 @@ pub fn scatter_chart(frame: &Frame, clouds: &[Cloud]) -> Result<Option<String>> 
         let (plot, side) = split_legend(root, &names);
         let mut chart = ChartBuilder::on(&plot)
             .caption(frame.title, ("sans-serif", caption_size(frame.size.0)))
-            .margin(super::chart::MARGIN)
+            .margin(super::line::MARGIN)
             .x_label_area_size(48)
             .y_label_area_size(86)
             .build_cartesian_2d(

@@ -3,6 +3,7 @@
 //! the SSP 1.0 systems of the generic FMUs ([`ssp`]). Every packed FMU is read back without
 //! loading its library (`entrynav-fmu-archive`).
 
+pub mod archive_error;
 pub mod library;
 pub mod pack;
 pub mod ssp;

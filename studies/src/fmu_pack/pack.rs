@@ -4,7 +4,8 @@
 //! (and the files it refers to) in `resources/` and names its state outputs after its states.
 
 use crate::error::{StudyError, StudyResult};
-use crate::fmu_pack::ssp::{ZipOrStudy, write_ssps};
+use crate::fmu_pack::archive_error::ZipOrStudy;
+use crate::fmu_pack::ssp::write_ssps;
 use crate::options::check_count;
 use crate::output::atomic_file::AtomicFile;
 use crate::scenario::ScenarioInput;
@@ -241,10 +242,7 @@ fn write_fmu(
         library: &bound,
         resources,
     };
-    archive.write(&path).map_err(|e| match e {
-        ZipOrStudy::Study(e) => e,
-        ZipOrStudy::Zip(e) => StudyError::Failed(format!("writing {}: {e}", path.display())),
-    })?;
+    archive.write(&path).map_err(|e| e.at(&path))?;
     Ok(path)
 }
 

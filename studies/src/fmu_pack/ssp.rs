@@ -18,6 +18,7 @@
 //! filter must share seed and dispersion (the filter's start is drawn from the truth's seed).
 
 use crate::error::{StudyError, StudyResult};
+use crate::fmu_pack::archive_error::ZipOrStudy;
 use crate::output::atomic_file::AtomicFile;
 use entrynav_fmu::vars::{Causality, MAX_BEACONS, Model, Type, Value, Var, variables};
 use std::fmt::Write as _;
@@ -350,43 +351,10 @@ pub fn write_ssps(out: &Path, stop: f64) -> StudyResult<Vec<PathBuf>> {
     let mut written = Vec::new();
     for sys in [split_system(stop), combined_system(stop), guided_system()?] {
         let path = out.join(format!("{}.ssp", sys.name));
-        write_ssp(out, &sys, &path).map_err(|e| match e {
-            ZipOrStudy::Study(e) => e,
-            ZipOrStudy::Zip(e) => StudyError::Failed(format!("writing {}: {e}", path.display())),
-        })?;
+        write_ssp(out, &sys, &path).map_err(|e| e.at(&path))?;
         written.push(path);
     }
     Ok(written)
-}
-
-/// A failure while writing an archive: the archive's own, or one the study layer names.
-pub(super) enum ZipOrStudy {
-    Zip(zip::result::ZipError),
-    Study(StudyError),
-}
-
-impl From<zip::result::ZipError> for ZipOrStudy {
-    fn from(e: zip::result::ZipError) -> Self {
-        ZipOrStudy::Zip(e)
-    }
-}
-
-impl From<std::io::Error> for ZipOrStudy {
-    fn from(e: std::io::Error) -> Self {
-        ZipOrStudy::Zip(e.into())
-    }
-}
-
-impl From<StudyError> for ZipOrStudy {
-    fn from(e: StudyError) -> Self {
-        ZipOrStudy::Study(e)
-    }
-}
-
-impl From<crate::output::OutputError> for ZipOrStudy {
-    fn from(e: crate::output::OutputError) -> Self {
-        ZipOrStudy::Study(e.into())
-    }
 }
 
 /// The system structure, its parameters and its FMUs (read from `out`) as the archive `path`.

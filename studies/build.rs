@@ -1,4 +1,4 @@
-//! Records the git commit of the build (`git rev-parse HEAD`) for the `provenance` block of the
+//! Records the git commit of the build (`git rev-parse HEAD`) for the `provenance` block of a
 //! trade JSON, and the build's target folder, where `fmu pack` looks for the FMU library. Outside a git checkout, or without git, the commit is simply unknown: the build
 //! never fails because of it.
 

@@ -58,7 +58,7 @@ pub struct DeliverArgs {
     #[arg(long, default_value_t = 1, allow_hyphen_values = true, value_parser = crate::args::seed)]
     pub seed: u64,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = crate::args::threads)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::threads)]
     pub threads: Option<usize>,
     /// Write the result as JSON (`-`: to standard output, and no table): the rows under
     /// `delivery`, and every run's deliveries under `runs`. Checked before the first run.

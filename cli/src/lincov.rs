@@ -37,10 +37,10 @@ pub struct LinCovArgs {
     #[arg(long, value_name = "RUNS")]
     compare_mc: Option<usize>,
     /// Master seed of the `--compare-mc` Monte Carlo.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true, value_parser = crate::args::seed)]
     seed: u64,
     /// Worker threads of the `--compare-mc` Monte Carlo (default: all cores).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::threads)]
     threads: Option<usize>,
     /// Carry the second-order mean drift of every filter's time update (the bias a curved model
     /// gives a large error, e.g. a CI local's drag at a km-sized altitude error); 2N more time

@@ -30,7 +30,7 @@ pub struct TradeArgs {
     #[arg(long, default_value_t = 1, allow_hyphen_values = true, value_parser = crate::args::seed)]
     pub seed: u64,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = crate::args::threads)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::threads)]
     pub threads: Option<usize>,
     /// Write the summary as JSON (`-`: to standard output, and no tables). Every output path is
     /// checked before the first run.

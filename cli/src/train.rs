@@ -43,7 +43,7 @@ pub struct TrainArgs {
     #[arg(long)]
     pub bands_km: Option<String>,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = crate::args::threads)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::threads)]
     pub threads: Option<usize>,
     #[arg(long, help = crate::args::QUIET_HELP)]
     pub quiet: bool,

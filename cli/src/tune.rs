@@ -52,7 +52,7 @@ pub struct TuneArgs {
     #[arg(long, default_value_t = 150)]
     max_evaluations: usize,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = crate::args::threads)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::threads)]
     threads: Option<usize>,
     /// Write the tuned file even when it makes a filter worse than the input on the fresh
     /// validation runs (band fraction or position RMSE by more than 10 %).

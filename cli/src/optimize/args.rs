@@ -96,7 +96,7 @@ pub struct CommonArgs {
     #[arg(long)]
     pub polish_iterations: Option<usize>,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = crate::args::threads)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::threads)]
     pub threads: Option<usize>,
     /// Write the result as JSON to this file.
     #[arg(long)]
@@ -290,7 +290,7 @@ pub struct SelectArgs {
     #[arg(long, default_value_t = 8, requires = "exact")]
     batch: usize,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = crate::args::threads)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::threads)]
     threads: Option<usize>,
     #[arg(long, help = QUIET_HELP)]
     pub quiet: bool,

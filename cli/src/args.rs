@@ -11,16 +11,24 @@ pub const QUIET_HELP: &str = "Print no progress (bars, per-run, per-epoch and pe
 (tables, `wrote FILE` lines) still print on standard output, unchanged, and warnings, notes and \
 errors on standard error";
 
+/// `--set PATH=VALUE`: the overrides of a scenario field, the same in every command.
+#[derive(Args, Clone, Debug, Default)]
+pub struct SetArgs {
+    /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable), e.g.
+    /// `--set truth.density_bias=0.095`.
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub sets: Vec<String>,
+}
+
 /// `--scenario NAME|FILE` and its `--set PATH=VALUE` overrides.
 #[derive(Args, Clone, Debug)]
 pub struct ScenarioArgs {
     /// Built-in scenario name or path to a scenario TOML file.
     #[arg(long)]
     pub scenario: String,
-    /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable), e.g.
-    /// `--set truth.density_bias=0.095`.
-    #[arg(long = "set", value_name = "PATH=VALUE")]
-    pub sets: Vec<String>,
+    /// The overrides.
+    #[command(flatten)]
+    pub overrides: SetArgs,
 }
 
 /// A whole number as typed (a negative or huge one included), or the message of the bound it

@@ -43,9 +43,9 @@ pub struct DeliverArgs {
     /// one given by --set).
     #[arg(long)]
     pub scenario: String,
-    /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable).
-    #[arg(long = "set", value_name = "PATH=VALUE")]
-    pub sets: Vec<String>,
+    /// The `--set` overrides.
+    #[command(flatten)]
+    pub overrides: crate::args::SetArgs,
     /// Comma-separated filters flown in the loop: ekf, ukf, ci, dcifaif, mmae, mmae-moe, ukf-cm,
     /// ukf-ac, uskf-nn.
     #[arg(long, default_value = "ekf")]
@@ -82,7 +82,7 @@ fn deliver(args: &DeliverArgs) -> Result<()> {
     if let Some(p) = &args.json {
         check_output_file(p, "--json")?;
     }
-    let input = ScenarioInput::resolve(&args.scenario, &args.sets)?;
+    let input = ScenarioInput::resolve(&args.scenario, &args.overrides.sets)?;
     crate::preflight::warn_implausible(&input.config);
     let scenario = input.build()?;
     let options = DeliverOptions {

@@ -15,9 +15,9 @@ pub struct ReferenceArgs {
     /// one given by --set).
     #[arg(long)]
     pub scenario: String,
-    /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable).
-    #[arg(long = "set", value_name = "PATH=VALUE")]
-    pub sets: Vec<String>,
+    /// The `--set` overrides.
+    #[command(flatten)]
+    pub overrides: crate::args::SetArgs,
     /// Write the tabulated reference as CSV (one row per point, speed decreasing).
     #[arg(long)]
     pub csv: Option<PathBuf>,
@@ -34,7 +34,7 @@ pub fn run(args: &ReferenceArgs) -> Result<()> {
     if let Some(p) = &args.json {
         crate::preflight::check_output_file(p, "--json")?;
     }
-    let scenario = ScenarioInput::resolve(&args.scenario, &args.sets)?.build()?;
+    let scenario = ScenarioInput::resolve(&args.scenario, &args.overrides.sets)?.build()?;
     let r = run_reference(&scenario)?;
     let mut notes = Vec::new();
     if let Some(path) = &args.csv {

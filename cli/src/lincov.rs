@@ -20,9 +20,9 @@ pub struct LinCovArgs {
     /// Built-in scenario name or path to a scenario TOML file.
     #[arg(long)]
     scenario: String,
-    /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable).
-    #[arg(long = "set", value_name = "PATH=VALUE")]
-    sets: Vec<String>,
+    /// The `--set` overrides.
+    #[command(flatten)]
+    overrides: crate::args::SetArgs,
     /// Comma-separated filters to analyse (LinCov supports: ekf, the consider EKF included, ukf as its EKF equivalent, and the fusion filters ci and dcifaif).
     #[arg(long, default_value = "ekf")]
     filter: String,
@@ -51,7 +51,7 @@ pub struct LinCovArgs {
 
 /// Run the command.
 pub fn run(args: &LinCovArgs) -> Result<()> {
-    let scenario = ScenarioInput::resolve(&args.scenario, &args.sets)?.build()?;
+    let scenario = ScenarioInput::resolve(&args.scenario, &args.overrides.sets)?.build()?;
     let options = LinCovStudyOptions {
         filters: args.filter.clone(),
         compare_mc: args.compare_mc,

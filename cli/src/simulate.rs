@@ -31,7 +31,7 @@ pub struct SimulateArgs {
 
 /// Run the command.
 pub fn run(args: &SimulateArgs) -> Result<()> {
-    let input = ScenarioInput::resolve(&args.scenario.scenario, &args.scenario.sets)?;
+    let input = ScenarioInput::resolve(&args.scenario.scenario, &args.scenario.overrides.sets)?;
     crate::preflight::warn_implausible(&input.config);
     let scenario = input.build()?;
     let options = SimulateOptions {

@@ -166,7 +166,7 @@ fn load(args: &TradeArgs, options: &TradeOptions) -> Result<TradeSetup> {
     )?;
     crate::report::check_path(args.report.as_deref())?;
     let scenario_name = args.scenario.as_deref().context("--scenario is required")?;
-    let input = ScenarioInput::resolve(scenario_name, &args.sets)?;
+    let input = ScenarioInput::resolve(scenario_name, &args.overrides.sets)?;
     crate::preflight::warn_implausible(&input.config);
     let input = input.with_truth_atmosphere(&args.truth_atmosphere(), args.no_perturbation)?;
     let built = TradeScenario::build(&input)?;

@@ -16,10 +16,9 @@ pub struct TradeArgs {
     /// Built-in scenario name or path to a scenario TOML file.
     #[arg(long, required_unless_present = "grid")]
     pub scenario: Option<String>,
-    /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable), e.g.
-    /// `--set truth.density_bias=0.095`.
-    #[arg(long = "set", value_name = "PATH=VALUE")]
-    pub sets: Vec<String>,
+    /// The `--set` overrides.
+    #[command(flatten)]
+    pub overrides: crate::args::SetArgs,
     /// Comma-separated filters: ekf, ukf, ci, dcifaif, mmae, mmae-moe, ukf-cm, ukf-ac, uskf-nn.
     #[arg(long, default_value = "ekf")]
     pub filters: String,

@@ -18,10 +18,9 @@ pub struct TrainArgs {
     /// (or the seed-001 defaults) sets the training.
     #[arg(long, default_value = "msl-airdata")]
     pub scenario: String,
-    /// Override a scenario field: PATH=VALUE in TOML syntax (repeatable), e.g.
-    /// `--set filter.density.training.epochs=200`.
-    #[arg(long = "set", value_name = "PATH=VALUE")]
-    pub sets: Vec<String>,
+    /// The `--set` overrides.
+    #[command(flatten)]
+    pub overrides: crate::args::SetArgs,
     /// Network file to write (TOML), e.g. core/scenarios/msl-airdata-density-nn.toml. Without it
     /// nothing is trained and `--evaluate` uses the scenario's built-in network.
     #[arg(long)]
@@ -88,7 +87,7 @@ pub fn run(args: &TrainArgs) -> Result<()> {
         bail!("nothing to do: give --out FILE to train, --evaluate RUNS to evaluate, or both");
     }
     let (cfg, dir) = load::resolve(&args.scenario, load::Base::CurrentDir)?.into_parts();
-    let cfg = load::apply_overrides(cfg, &args.sets)?;
+    let cfg = load::apply_overrides(cfg, &args.overrides.sets)?;
     let cfg =
         crate::atmosphere_file::truth_atmosphere(cfg, &args.atmosphere, args.no_perturbation)?;
     let scenario = load::build(cfg, &dir)?;

@@ -22,9 +22,9 @@ pub struct TuneArgs {
     /// Built-in scenario name or path to a scenario TOML file.
     #[arg(long)]
     scenario: String,
-    /// Override a scenario field before tuning: PATH=VALUE in TOML syntax (repeatable).
-    #[arg(long = "set", value_name = "PATH=VALUE")]
-    sets: Vec<String>,
+    /// The `--set` overrides.
+    #[command(flatten)]
+    overrides: crate::args::SetArgs,
     /// Filter(s) to make consistent, comma-separated: each is tuned on its own and gets its own
     /// `[filter.tuned.<name>]` in the written file.
     #[arg(long, visible_alias = "filters", default_value = "ekf")]
@@ -80,7 +80,7 @@ pub fn run(args: &TuneArgs) -> Result<()> {
         std::fs::create_dir_all(parent)
             .with_context(|| format!("cannot create {}", parent.display()))?;
     }
-    let input = ScenarioInput::resolve(&args.scenario, &args.sets)?;
+    let input = ScenarioInput::resolve(&args.scenario, &args.overrides.sets)?;
     crate::preflight::warn_implausible(&input.config);
     let bar = Bars::default();
     let progress = |step: Step<'_>| bar.show(step, args.quiet);

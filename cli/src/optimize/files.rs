@@ -9,7 +9,7 @@ use std::path::Path;
 
 /// The scenario with its overrides, warning on standard error about implausible values.
 pub fn load_input(s: &ScenarioArgs) -> Result<ScenarioInput> {
-    let input = ScenarioInput::resolve(&s.scenario, &s.sets)?;
+    let input = ScenarioInput::resolve(&s.scenario, &s.overrides.sets)?;
     crate::preflight::warn_implausible(&input.config);
     Ok(input)
 }

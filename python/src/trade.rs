@@ -94,7 +94,8 @@ pub fn trade(
 ) -> PyResult<TradeOut> {
     let options: TradeOptions = options("trade", kwargs.as_ref(), TradeOptions::validate)?;
     let setup = setup(toml, dir, &options)?;
-    let (outcome, stopped) = run_watched(py, progress.as_ref(), |watch| {
+    let total = setup.runs as u64;
+    let (outcome, stopped) = run_watched(py, progress.as_ref(), total, |watch| {
         run_trade_study(
             &setup,
             &options,

@@ -26,16 +26,18 @@ impl Watch {
     }
 }
 
-/// Run `job` watched; returns its result and the Python error that stopped it early (Ctrl-C,
-/// or the callback's own exception), if any. A panic in `job` is a `RuntimeError`.
+/// Run `job` watched, `total` steps to do (the callback's second argument until the study says
+/// otherwise); returns its result and the Python error that stopped it early (Ctrl-C, or the
+/// callback's own exception), if any. A panic in `job` is a `RuntimeError`.
 pub fn run_watched<R: Send>(
     py: Python<'_>,
     progress: Option<&Py<PyAny>>,
+    total: u64,
     job: impl FnOnce(&Watch) -> R + Send,
 ) -> PyResult<(R, Option<PyErr>)> {
     let watch = Watch {
         done: AtomicU64::new(0),
-        total: AtomicU64::new(0),
+        total: AtomicU64::new(total),
         cancel: Box::leak(Box::new(AtomicBool::new(false))),
     };
     let mut stopped: Option<PyErr> = None;

@@ -31,6 +31,14 @@ pub struct ScenarioArgs {
     pub overrides: SetArgs,
 }
 
+/// `--threads N`: the worker pool of a study (its results never depend on it).
+#[derive(Args, Clone, Copy, Debug, Default)]
+pub struct ThreadsArg {
+    /// Worker threads (default: all cores).
+    #[arg(long, allow_hyphen_values = true, value_parser = threads)]
+    pub threads: Option<usize>,
+}
+
 /// A whole number as typed (a negative or huge one included), or the message of the bound it
 /// would be checked against (`check` with an out-of-range value), so a non-number gets the same
 /// range as any other bad value.

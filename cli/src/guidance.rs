@@ -57,9 +57,9 @@ pub struct DeliverArgs {
     /// seed gives the same statistics on any thread count.
     #[arg(long, default_value_t = 1, allow_hyphen_values = true, value_parser = crate::args::seed)]
     pub seed: u64,
-    /// Worker threads (default: all cores).
-    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::threads)]
-    pub threads: Option<usize>,
+    /// The worker pool.
+    #[command(flatten)]
+    pub workers: crate::args::ThreadsArg,
     /// Write the result as JSON (`-`: to standard output, and no table): the rows under
     /// `delivery`, and every run's deliveries under `runs`. Checked before the first run.
     #[arg(long)]
@@ -89,7 +89,7 @@ fn deliver(args: &DeliverArgs) -> Result<()> {
         filters: args.filters.clone(),
         runs: args.runs,
         seed: args.seed,
-        threads: args.threads,
+        threads: args.workers.threads,
     };
     let study = run_deliver(&scenario, &options, &silent)?;
     let to_stdout = args.json.as_deref().is_some_and(is_stdout);

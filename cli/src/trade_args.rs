@@ -28,9 +28,9 @@ pub struct TradeArgs {
     /// Master seed; the same seed gives the same statistics on any thread count.
     #[arg(long, default_value_t = 1, allow_hyphen_values = true, value_parser = crate::args::seed)]
     pub seed: u64,
-    /// Worker threads (default: all cores).
-    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::threads)]
-    pub threads: Option<usize>,
+    /// The worker pool.
+    #[command(flatten)]
+    pub workers: crate::args::ThreadsArg,
     /// Write the summary as JSON (`-`: to standard output, and no tables). Every output path is
     /// checked before the first run.
     #[arg(long)]
@@ -122,7 +122,7 @@ impl TradeArgs {
             filters: self.filters.clone(),
             runs: self.runs,
             seed: self.seed,
-            threads: self.threads,
+            threads: self.workers.threads,
             pcrlb: !self.no_pcrlb,
             method: match self.method {
                 Method::Mc => trade_options::Method::Mc,

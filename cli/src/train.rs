@@ -41,9 +41,9 @@ pub struct TrainArgs {
     /// filter.density.training.bands_km; `none` for a single network).
     #[arg(long)]
     pub bands_km: Option<String>,
-    /// Worker threads (default: all cores).
-    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::threads)]
-    pub threads: Option<usize>,
+    /// The worker pool.
+    #[command(flatten)]
+    pub workers: crate::args::ThreadsArg,
     #[arg(long, help = crate::args::QUIET_HELP)]
     pub quiet: bool,
     /// Evaluate the density estimates of `--filters` over this many Monte Carlo runs (the runs of
@@ -97,7 +97,8 @@ pub fn run(args: &TrainArgs) -> Result<()> {
     }
     let trained = match &args.out {
         Some(out) => {
-            let file = crate::threads::with_threads(args.threads, || train(args, &scenario))?;
+            let file =
+                crate::threads::with_threads(args.workers.threads, || train(args, &scenario))?;
             let text = file.to_toml_string();
             NetworkFile::from_toml_str(&text, "written network").map_err(|e| anyhow::anyhow!(e))?;
             if let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
@@ -111,7 +112,7 @@ pub fn run(args: &TrainArgs) -> Result<()> {
         None => None,
     };
     if let Some(runs) = args.evaluate {
-        crate::threads::with_threads(args.threads, || {
+        crate::threads::with_threads(args.workers.threads, || {
             evaluate(args, scenario, trained.as_ref(), runs)
         })?;
     }

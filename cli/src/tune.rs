@@ -51,9 +51,9 @@ pub struct TuneArgs {
     /// Evaluation budget of the search.
     #[arg(long, default_value_t = 150)]
     max_evaluations: usize,
-    /// Worker threads (default: all cores).
-    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::threads)]
-    threads: Option<usize>,
+    /// The worker pool.
+    #[command(flatten)]
+    workers: crate::args::ThreadsArg,
     /// Write the tuned file even when it makes a filter worse than the input on the fresh
     /// validation runs (band fraction or position RMSE by more than 10 %).
     #[arg(long)]
@@ -72,7 +72,7 @@ pub fn run(args: &TuneArgs) -> Result<()> {
         nis_only: args.nis_only,
         tune_noise: args.tune_noise,
         max_evaluations: args.max_evaluations,
-        threads: args.threads,
+        threads: args.workers.threads,
         force: args.force,
     };
     options.validate()?;

@@ -95,9 +95,9 @@ pub struct CommonArgs {
     /// Nelder-Mead iterations per polish round (default: per problem).
     #[arg(long)]
     pub polish_iterations: Option<usize>,
-    /// Worker threads (default: all cores).
-    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::threads)]
-    pub threads: Option<usize>,
+    /// The worker pool.
+    #[command(flatten)]
+    pub workers: crate::args::ThreadsArg,
     /// Write the result as JSON to this file.
     #[arg(long)]
     pub json: Option<PathBuf>,
@@ -289,9 +289,9 @@ pub struct SelectArgs {
     /// thread count).
     #[arg(long, default_value_t = 8, requires = "exact")]
     batch: usize,
-    /// Worker threads (default: all cores).
-    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::threads)]
-    threads: Option<usize>,
+    /// The worker pool.
+    #[command(flatten)]
+    workers: crate::args::ThreadsArg,
     #[arg(long, help = QUIET_HELP)]
     pub quiet: bool,
     #[command(flatten)]
@@ -313,7 +313,8 @@ impl GroundArgs {
         options!(GroundOptions {
             from self => beacons, objective, lincov_filter, method, scaled, search_step, step,
                 min_elevation_deg, partial_visibility, min_separation_deg, elevation_mask_deg;
-            from c => seed, starts, particles, iterations, polish_iterations, threads;
+            from c => seed, starts, particles, iterations, polish_iterations;
+            from c.workers => threads;
             from k => check_runs, check_filter, check_seed, no_check;
             set scenario_name = stem(c.write_scenario.as_deref());
         })
@@ -326,7 +327,8 @@ impl OrbitersArgs {
         let (c, k) = (&self.common, &self.check);
         options!(OrbiterOptions {
             from self => orbiters, altitude_km, objective, lincov_filter, step;
-            from c => seed, starts, particles, iterations, polish_iterations, threads;
+            from c => seed, starts, particles, iterations, polish_iterations;
+            from c.workers => threads;
             from k => check_runs, check_filter, check_seed, no_check;
             set scenario_name = stem(c.write_scenario.as_deref());
         })
@@ -339,7 +341,8 @@ impl SelectArgs {
         options!(SelectOptions {
             from self => k, grid_deg, criterion, objective, lincov_filter, eig_epochs, step,
                 min_elevation_deg, brute_force_limit, compare, solver_verbose, min_separation_deg,
-                region, exact, time_limit, gap, node_limit, batch, threads;
+                region, exact, time_limit, gap, node_limit, batch;
+            from self.workers => threads;
             from self.check => check_runs, check_filter, check_seed, no_check;
             set scenario_name = stem(self.write_scenario.as_deref());
         })

@@ -10,8 +10,10 @@
 //!   never one summary followed by the other's tail;
 //! * a temporary file that is not committed (an error, a panic) is removed when dropped; one left
 //!   by a killed process keeps its `.tmp` name beside the target and is never mistaken for it;
-//! * a character device (`--out /dev/null`, a terminal) is written in place: a rename over it
-//!   would replace the device with a regular file (as root, `/dev/null` itself).
+//! * the null device (`--out /dev/null`) is written in place: a rename over it would replace
+//!   the device with a regular file (as root, `/dev/null` itself); any other special file (a
+//!   FIFO, a folder, another device) and an over-long path are refused before anything is
+//!   opened ([`super::target::refusal`]).
 //!
 //! `tempfile` replaces the hand-written exclusive creation, naming and clean-up this file had; it
 //! is a well-kept crate already in the build (criterion, proptest). What stays ours: the sync of
@@ -40,17 +42,11 @@ pub struct AtomicFile {
     out: Option<Sink>,
 }
 
-/// Where the bytes go: a temporary file renamed over the target, or a character device
-/// (`/dev/null`, a terminal) written in place — renaming over a device would replace it.
+/// Where the bytes go: a temporary file renamed over the target, or the null device written in
+/// place — renaming over a device would replace it.
 enum Sink {
     Temp(BufWriter<NamedTempFile>),
     Device(BufWriter<std::fs::File>),
-}
-
-/// Whether `path` is a character device (`/dev/null`, `/dev/stdout`, a terminal).
-fn is_char_device(path: &Path) -> bool {
-    use std::os::unix::fs::FileTypeExt;
-    std::fs::metadata(path).is_ok_and(|m| m.file_type().is_char_device())
 }
 
 impl AtomicFile {
@@ -61,7 +57,14 @@ impl AtomicFile {
             action,
             source,
         };
-        if is_char_device(path) {
+        if let Some(why) = super::target::refusal(path) {
+            return Err(OutputError {
+                path: PathBuf::from(super::target::shown(path)),
+                action: "cannot write",
+                source: std::io::Error::new(std::io::ErrorKind::InvalidInput, why),
+            });
+        }
+        if super::target::is_null(path) {
             let device = std::fs::OpenOptions::new()
                 .write(true)
                 .open(path)
@@ -258,7 +261,18 @@ mod tests {
     }
 
     #[test]
-    fn a_character_device_is_written_in_place_not_replaced() {
+    fn a_fifo_is_refused_before_it_is_opened() {
+        let d = folder("fifo");
+        let p = d.join("pipe.json");
+        let made = std::process::Command::new("mkfifo").arg(&p).status();
+        if made.is_ok_and(|s| s.success()) {
+            let err = write(&p, "x").unwrap_err().to_string();
+            assert!(err.contains("pipe.json") && err.contains("FIFO"), "{err}");
+        }
+    }
+
+    #[test]
+    fn the_null_device_is_written_in_place_not_replaced() {
         use std::os::unix::fs::FileTypeExt;
         write(Path::new("/dev/null"), "discarded").unwrap();
         let kind = std::fs::metadata("/dev/null").unwrap().file_type();

@@ -4,6 +4,7 @@
 
 pub mod atomic_file;
 pub mod paths;
+pub mod target;
 
 pub use atomic_file::{AtomicFile, OutputError, write};
 pub use paths::{check_output_dir, check_output_file, is_stdout};

@@ -1,7 +1,10 @@
 //! Output paths checked before any work, so a study never fails at its end on something it could
-//! have refused at its start: the folder is created and the file opened for appending (which
-//! leaves an existing file's content alone); a file this check created is removed again.
+//! have refused at its start: a path that is too long, a folder, a FIFO or a device other than
+//! `/dev/null` is refused by name before anything opens it ([`super::target`]); then the folder
+//! is created and the file opened for appending (which leaves an existing file's content alone);
+//! a file this check created is removed again.
 
+use super::target::{refusal, shown, too_long};
 use crate::error::StudyError;
 use std::path::Path;
 
@@ -17,20 +20,20 @@ pub fn check_output_file(path: &Path, option: &str) -> Result<(), StudyError> {
         return Ok(());
     }
     let fail = |e: std::io::Error| {
-        StudyError::Refused(format!(
-            "{option} {}: cannot write there: {e}",
-            path.display()
-        ))
+        StudyError::Refused(format!("{option} {}: cannot write there: {e}", shown(path)))
     };
+    if let Some(why) = refusal(path) {
+        return Err(StudyError::Refused(format!(
+            "{option} {}: {why}",
+            shown(path)
+        )));
+    }
     if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
         std::fs::create_dir_all(parent).map_err(fail)?;
     }
     let existed = path.exists();
-    if path.is_dir() {
-        return Err(StudyError::Refused(format!(
-            "{option} {}: is a directory, not a file",
-            path.display()
-        )));
+    if super::target::is_null(path) {
+        return Ok(());
     }
     std::fs::OpenOptions::new()
         .append(true)
@@ -46,11 +49,20 @@ pub fn check_output_file(path: &Path, option: &str) -> Result<(), StudyError> {
 /// Refuse an output folder that cannot be created or written into.
 pub fn check_output_dir(dir: &Path, option: &str) -> Result<(), StudyError> {
     let fail = |e: std::io::Error| {
-        StudyError::Refused(format!(
-            "{option} {}: cannot write there: {e}",
-            dir.display()
-        ))
+        StudyError::Refused(format!("{option} {}: cannot write there: {e}", shown(dir)))
     };
+    if let Some(why) = too_long(dir) {
+        return Err(StudyError::Refused(format!(
+            "{option} {}: {why}",
+            shown(dir)
+        )));
+    }
+    if dir.exists() && !dir.is_dir() {
+        return Err(StudyError::Refused(format!(
+            "{option} {}: it is not a folder",
+            shown(dir)
+        )));
+    }
     std::fs::create_dir_all(dir).map_err(fail)?;
     let probe = dir.join(format!(".entrynav-write-check-{}", std::process::id()));
     std::fs::File::create(&probe).map_err(fail)?;

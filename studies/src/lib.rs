@@ -18,9 +18,11 @@
 pub mod compare;
 pub mod design;
 pub mod error;
+pub mod filters;
 pub mod fmu_pack;
 pub mod grid;
 pub mod guidance;
+pub mod input;
 pub mod lincov;
 pub mod observe;
 pub mod options;

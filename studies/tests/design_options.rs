@@ -113,18 +113,18 @@ fn selection_sizes_and_intervals_are_bounded_and_named() {
     assert!(s(|o| o.brute_force_limit = HUGE).starts_with("brute_force_limit = 10000000000000"));
     assert_eq!(
         s(|o| o.region = Some(vec![1.0, 0.0, 0.0, 1.0])),
-        "--region needs LAT_MIN,LAT_MAX,LON_MIN,LON_MAX with min <= max (deg), got [1.0, 0.0, 0.0, 1.0]"
+        "region = 1 0 0 1 is out of range: must be LAT_MIN <= LAT_MAX in [-90, 90] and LON_MIN <= LON_MAX in [-360, 360] [deg]"
     );
     assert_eq!(
         s(|o| o.eig_epochs = Some(10.0)),
-        "--eig-epochs applies to --criterion min-eig only"
+        "eig_epochs applies to criterion min-eig only"
     );
     assert!(
         s(|o| {
             o.objective = Some(SelectObjectiveName::Nav);
             o.exact = true;
         })
-        .starts_with("--exact certifies the convex criteria")
+        .starts_with("exact certifies the convex criteria")
     );
     assert!(SelectOptions::default().validate().is_ok());
 }

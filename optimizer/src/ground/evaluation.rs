@@ -261,7 +261,17 @@ impl GroundProblem {
             .collect();
         let evaluation = self.evaluate(&sites)?;
         if !evaluation.feasible {
-            return Err(self.no_site_error());
+            // Feasible sites exist (`bounds` found them): the search was too small to reach one.
+            return Err(OptimizerError::Infeasible(format!(
+                "the search ended on an infeasible design of scenario '{}' after {} start(s) of \
+                 {} particle(s), {} iteration(s) and {} polish iteration(s); feasible sites \
+                 exist, so give it more (starts, particles, iterations, polish_iterations)",
+                self.scenario.config.name,
+                opts.starts,
+                opts.particles,
+                opts.iterations,
+                opts.polish_iterations
+            )));
         }
         Ok(GroundSolution {
             sites,

@@ -10,11 +10,9 @@
 //! and the objective that produced the design, and [`verdict`] turns it into the error a front
 //! end ends with (the command line: exit code 1, after writing its files).
 
-use crate::design::failure::study_error;
 use crate::error::{StudyError, StudyResult};
 use crate::options::check_count;
 use crate::statistics::{Difference, Estimate, se_anees, se_rmse_bound};
-use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::{Scenario, ScenarioConfig};
 use entrynav::sim::{FilterReport, McOptions, TradeReport, run_trade};
 use serde_json::{Value, json};
@@ -151,7 +149,7 @@ pub fn check_designs(
 ) -> StudyResult<DesignCheck> {
     validate_check(settings.runs, false)?;
     let trade = |s: &Scenario| -> StudyResult<TradeReport> {
-        let filters = FilterKind::parse_list(settings.filter, &s.onboard).map_err(study_error)?;
+        let filters = crate::filters::fitting_filters("check_filter", settings.filter, &s.onboard)?;
         let opts = McOptions::new(settings.runs, settings.seed);
         Ok(run_trade(s, &filters[..1], &opts, &|_| {})?)
     };

@@ -28,6 +28,7 @@ pub fn run_ground_design(
     progress: Progress<'_>,
 ) -> StudyResult<GroundDesign> {
     options.validate()?;
+    options.validate_steps(input.config.timing.duration_s)?;
     with_threads(options.threads, || design(input, options, progress))
 }
 

@@ -4,7 +4,7 @@ use crate::design::check::{CheckSettings, validate_check};
 use crate::design::choices::{DeltaMethod, GroundObjectiveName};
 use crate::design::search::SearchCounts;
 use crate::error::StudyResult;
-use crate::options::{check_count, check_threads};
+use crate::options::{self, check_count, check_threads};
 use entrynav_optimizer::ground::default_search;
 
 /// Most ground beacons of a design: a search over 2 × 100 coordinates whose every evaluation
@@ -12,6 +12,10 @@ use entrynav_optimizer::ground::default_search;
 /// places 3; the built-in scenarios at most a handful), and a count that no longer sizes an
 /// allocation out of reach.
 pub const MAX_BEACONS: usize = 100;
+
+/// Highest elevation requirement or mask \[deg\]: a vehicle must be seen above it, so 90 (the
+/// zenith alone) leaves no site.
+pub const MAX_ELEVATION_DEG: f64 = 89.0;
 
 /// The options of a ground-site design.
 #[derive(Debug, Clone, serde::Deserialize)]
@@ -103,7 +107,32 @@ impl GroundOptions {
         }
         self.search().validate(default_search(self.seed))?;
         check_threads(self.threads)?;
+        options::filter("lincov_filter", &self.lincov_filter)?;
+        options::filter("check_filter", &self.check_filter)?;
+        if let Some(n) = &self.scenario_name {
+            options::name("scenario_name", n)?;
+        }
+        options::degrees(
+            "min_elevation_deg",
+            self.min_elevation_deg,
+            0.0,
+            MAX_ELEVATION_DEG,
+        )?;
+        options::degrees(
+            "elevation_mask_deg",
+            self.elevation_mask_deg,
+            0.0,
+            MAX_ELEVATION_DEG,
+        )?;
+        options::degrees("min_separation_deg", self.min_separation_deg, 0.0, 90.0)?;
         validate_check(self.check_runs, self.no_check)
+    }
+
+    /// Refuse a trajectory step that gives fewer than two samples of the entry (or too many).
+    pub fn validate_steps(&self, duration_s: f64) -> StudyResult<()> {
+        options::sample_step("search_step", self.search_step, duration_s)?;
+        options::sample_step("step", self.step, duration_s)?;
+        Ok(())
     }
 
     /// The search's seed and counts.

@@ -32,6 +32,7 @@ pub fn run_orbiter_design(
     progress: Progress<'_>,
 ) -> StudyResult<OrbiterDesign> {
     options.validate()?;
+    options.validate_steps(input.config.timing.duration_s)?;
     with_threads(options.threads, || {
         let wall = Instant::now();
         let mut d = solve(input, options, progress)?;

@@ -4,7 +4,7 @@ use crate::design::check::{CheckSettings, validate_check};
 use crate::design::choices::OrbiterObjectiveName;
 use crate::design::search::SearchCounts;
 use crate::error::StudyResult;
-use crate::options::{check_count, check_threads};
+use crate::options::{self, check_count, check_threads};
 use entrynav_optimizer::orbiters::default_search;
 
 /// Most orbiters of a design: a search over 3 × 100 elements, each evaluation propagating every
@@ -12,6 +12,13 @@ use entrynav_optimizer::orbiters::default_search;
 /// that no longer sizes an allocation out of reach. Fewer than 3 are refused by the problem
 /// itself, which says why (the position FIM is singular).
 pub const MAX_ORBITERS: usize = 100;
+
+/// Lowest circular-orbit altitude \[km\]: below about 80 km the orbit is inside the atmosphere
+/// the vehicle enters.
+pub const MIN_ALTITUDE_KM: f64 = 80.0;
+/// Highest circular-orbit altitude \[km\]: 100 000 km is four times Deimos' orbit and still
+/// well inside Mars' sphere of influence (about 577 000 km).
+pub const MAX_ALTITUDE_KM: f64 = 100_000.0;
 
 /// The options of an orbiter design.
 #[derive(Debug, Clone, serde::Deserialize)]
@@ -87,7 +94,21 @@ impl OrbiterOptions {
         }
         self.search().validate(default_search(self.seed))?;
         check_threads(self.threads)?;
+        options::filter("lincov_filter", &self.lincov_filter)?;
+        options::filter("check_filter", &self.check_filter)?;
+        if let Some(n) = &self.scenario_name {
+            options::name("scenario_name", n)?;
+        }
+        if let Some(h) = self.altitude_km {
+            options::real("altitude_km", h, MIN_ALTITUDE_KM, MAX_ALTITUDE_KM)?;
+        }
         validate_check(self.check_runs, self.no_check)
+    }
+
+    /// Refuse a trajectory step that gives fewer than two samples of the entry (or too many).
+    pub fn validate_steps(&self, duration_s: f64) -> StudyResult<()> {
+        options::sample_step("step", self.step, duration_s)?;
+        Ok(())
     }
 
     /// The search's seed and counts.

@@ -27,6 +27,7 @@ pub fn run_site_selection(
     progress: Progress<'_>,
 ) -> StudyResult<SiteSelection> {
     options.validate()?;
+    options.validate_steps(input.config.timing.duration_s)?;
     with_threads(options.threads, || {
         let wall = Instant::now();
         let mut s = match options.objective {

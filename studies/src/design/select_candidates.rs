@@ -85,8 +85,7 @@ pub fn load_candidates(
 /// The `sites` (`lat_deg`, `lon_deg`) of an `optimize ground` JSON file.
 fn compare_sites(path: &Path) -> StudyResult<Vec<Site>> {
     let shown = path.display();
-    let text = entrynav_loader::read_text(path)
-        .map_err(|e| study_error(e).context(format!("cannot read {shown}")))?;
+    let text = crate::input::read_text(path, "compare")?;
     let v: Value = serde_json::from_str(&text)
         .map_err(|e| study_error(e).context(format!("{shown} is not JSON")))?;
     let refuse = |what: &str| StudyError::Refused(format!("{shown}{what}"));

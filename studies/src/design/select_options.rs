@@ -4,8 +4,9 @@
 use crate::design::check::{CheckSettings, validate_check};
 use crate::design::choices::{Choice, Criterion, SelectObjectiveName};
 use crate::design::ground_options::MAX_BEACONS;
+use crate::design::ground_options::MAX_ELEVATION_DEG;
 use crate::error::{StudyError, StudyResult};
-use crate::options::{check_count, check_threads, real};
+use crate::options::{self, OptionError, check_count, check_threads, real};
 use std::path::PathBuf;
 
 /// Finest candidate grid \[deg\]: the grid is scanned over the whole visible cap, and at 0.05 deg
@@ -29,6 +30,9 @@ pub const MAX_GAP: f64 = 1e6;
 /// Most nodes per parallel round of the branch and bound: each holds a relaxation in memory,
 /// and more than 1024 (the most worker threads) gain nothing.
 pub const MAX_BATCH: usize = 1024;
+/// Most nodes of the branch and bound (each a relaxation solved in milliseconds to seconds:
+/// 10^8 is days; a longer proof belongs to `time_limit`).
+pub const MAX_NODES: usize = 100_000_000;
 
 /// The options of a site selection.
 #[derive(Debug, Clone, serde::Deserialize)]
@@ -133,33 +137,81 @@ impl SelectOptions {
         }
         real("gap", self.gap, 0.0, MAX_GAP)?;
         check_count("batch", self.batch, 1, MAX_BATCH)?;
+        if let Some(n) = self.node_limit {
+            check_count("node_limit", n, 1, MAX_NODES)?;
+        }
         check_threads(self.threads)?;
+        options::filter("lincov_filter", &self.lincov_filter)?;
+        options::filter("check_filter", &self.check_filter)?;
+        if let Some(n) = &self.scenario_name {
+            options::name("scenario_name", n)?;
+        }
+        options::degrees(
+            "min_elevation_deg",
+            self.min_elevation_deg,
+            0.0,
+            MAX_ELEVATION_DEG,
+        )?;
+        options::degrees("min_separation_deg", self.min_separation_deg, 0.0, 90.0)?;
         validate_check(self.check_runs, self.no_check)?;
         self.region_box()?;
         match self.objective {
             Some(o) if self.exact => Err(StudyError::Refused(format!(
-                "--exact certifies the convex criteria (logdet, min-eig) only; --objective {} has \
+                "exact certifies the convex criteria (logdet, min-eig) only; objective {} has \
                  no relaxation bound",
                 o.name()
             ))),
             None if self.eig_epochs.is_some() && self.criterion != Criterion::MinEig => Err(
-                StudyError::Refused("--eig-epochs applies to --criterion min-eig only".into()),
+                StudyError::Refused("eig_epochs applies to criterion min-eig only".into()),
             ),
             _ => Ok(()),
         }
     }
 
-    /// `region` as `[lat_min, lat_max, lon_min, lon_max]` \[deg\], if given.
-    pub fn region_box(&self) -> StudyResult<Option<[f64; 4]>> {
-        match self.region.as_deref() {
-            None => Ok(None),
-            Some(&[lat0, lat1, lon0, lon1]) if lat0 <= lat1 && lon0 <= lon1 => {
-                Ok(Some([lat0, lat1, lon0, lon1]))
-            }
-            Some(v) => Err(StudyError::Refused(format!(
-                "--region needs LAT_MIN,LAT_MAX,LON_MIN,LON_MAX with min <= max (deg), got {v:?}"
-            ))),
+    /// Refuse a trajectory step that gives fewer than two samples of the entry (or too many),
+    /// and an epoch spacing longer than the entry.
+    pub fn validate_steps(&self, duration_s: f64) -> StudyResult<()> {
+        options::sample_step("step", self.step, duration_s)?;
+        if let Some(e) = self.eig_epochs {
+            options::real("eig_epochs", e, options::MIN_SAMPLE_STEP_S, duration_s)?;
         }
+        Ok(())
+    }
+
+    /// `region` as `[lat_min, lat_max, lon_min, lon_max]` \[deg\], if given: latitudes in
+    /// \[-90, 90\], longitudes in \[-360, 360\], each minimum at most its maximum.
+    pub fn region_box(&self) -> StudyResult<Option<[f64; 4]>> {
+        let Some(v) = self.region.as_deref() else {
+            return Ok(None);
+        };
+        let shown = || {
+            v.iter()
+                .map(|x| options::number(*x))
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        let &[lat0, lat1, lon0, lon1] = v else {
+            return Err(OptionError::new(
+                "region",
+                shown(),
+                "four numbers LAT_MIN LAT_MAX LON_MIN LON_MAX [deg], e.g. -34 -18 -84 -74",
+            )
+            .into());
+        };
+        let lat_ok = |x: f64| (-90.0..=90.0).contains(&x);
+        let lon_ok = |x: f64| (-360.0..=360.0).contains(&x);
+        if !(lat_ok(lat0) && lat_ok(lat1) && lon_ok(lon0) && lon_ok(lon1))
+            || lat0 > lat1
+            || lon0 > lon1
+        {
+            return Err(OptionError::new(
+                "region",
+                shown(),
+                "LAT_MIN <= LAT_MAX in [-90, 90] and LON_MIN <= LON_MAX in [-360, 360] [deg]",
+            )
+            .into());
+        }
+        Ok(Some([lat0, lat1, lon0, lon1]))
     }
 
     /// The check's settings (`None` with `no_check`).

@@ -52,9 +52,12 @@ impl PackOptions {
     /// Refuse an FMI version other than 2 or 3, and SSP packages of FMI 3.0 FMUs.
     pub fn validate(&self) -> StudyResult<()> {
         check_count("fmi", self.fmi as usize, 2, 3)?;
+        if let Some(f) = &self.filter {
+            crate::options::filter("filter", f)?;
+        }
         if self.ssp && self.fmi == 3 {
             return Err(StudyError::Refused(
-                "--ssp systems hold the FMI 2.0 FMUs (OMSimulator and SSP 1.0 tools import those); pack them without --fmi 3".into(),
+                "ssp systems hold the FMI 2.0 FMUs (OMSimulator and SSP 1.0 tools import those); pack them with fmi 2".into(),
             ));
         }
         Ok(())
@@ -97,11 +100,17 @@ fn library(lib: &Path, keep: bool, out: &Path) -> StudyResult<Vec<u8>> {
         return Ok(so);
     }
     let tmp = out.join(format!(".stripped-{}.so", std::process::id()));
+    // `./-1`, not `-1`: a relative name starting with `-` would be read as an option of strip.
+    let lib_arg = if lib.is_relative() {
+        Path::new(".").join(lib)
+    } else {
+        lib.to_path_buf()
+    };
     let status = Command::new("strip")
         .arg("--strip-all")
         .arg("-o")
         .arg(&tmp)
-        .arg(lib)
+        .arg(&lib_arg)
         .status()
         .map_err(|e| {
             StudyError::Refused(format!(
@@ -258,11 +267,11 @@ pub fn pack_fmus(
     options.validate()?;
     if options.ssp && scenario.is_some() {
         return Err(StudyError::Refused(
-            "--ssp packs the generic FMUs: give no --scenario".into(),
+            "ssp packs the generic FMUs: give no scenario".into(),
         ));
     }
-    std::fs::create_dir_all(out)
-        .map_err(|e| StudyError::Refused(format!("cannot create {}: {e}", out.display())))?;
+    crate::input::check_file(library_path, "library")?;
+    crate::output::check_output_dir(out, "out")?;
     let so = library(library_path, options.keep_symbols, out)?;
     let models: Vec<(ModelSpec, Resources)> = match scenario {
         Some(s) => vec![specific(s, options.filter.as_deref())?],

@@ -46,6 +46,7 @@ impl DeliverOptions {
             check_count("runs", runs, 1, MAX_RUNS)?;
         }
         check_threads(self.threads)?;
+        crate::options::filter_list("filters", &self.filters)?;
         Ok(())
     }
 }
@@ -113,8 +114,7 @@ pub fn run_deliver(
     progress: Progress<'_>,
 ) -> StudyResult<DeliveryStudy> {
     options.validate()?;
-    let filters = FilterKind::parse_list(&options.filters, &scenario.onboard)
-        .map_err(|e| StudyError::Refused(e.to_string()))?;
+    let filters = crate::filters::fitting_filters("filters", &options.filters, &scenario.onboard)?;
     let runs = options.runs.unwrap_or(scenario.config.monte_carlo.runs);
     let report = with_threads(options.threads, || {
         let progress = |done: usize| progress(Step::of("runs", "", done as u64, runs as u64));

@@ -42,8 +42,7 @@ pub fn analyse(
 
 /// The filters of `list` (comma-separated) for LinCov: at least one.
 pub fn parse_filters(list: &str, scenario: &Scenario) -> StudyResult<Vec<FilterKind>> {
-    let kinds = FilterKind::parse_list(list, &scenario.onboard)
-        .map_err(|e| StudyError::Refused(format!("--filter '{list}': {e}")))?;
+    let kinds = crate::filters::fitting_filters("filters", list, &scenario.onboard)?;
     if kinds.is_empty() {
         return Err(StudyError::Refused(format!(
             "--filter '{list}': name at least one filter (LinCov supports: ekf, ukf, ci, dcifaif)"

@@ -49,6 +49,7 @@ impl LinCovStudyOptions {
             check_count("compare_mc", runs, 1, MAX_COMPARE_RUNS)?;
         }
         check_threads(self.threads)?;
+        crate::options::filter_list("filters", &self.filters)?;
         Ok(())
     }
 }

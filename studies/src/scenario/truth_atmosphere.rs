@@ -79,12 +79,7 @@ fn replace_truth_atmosphere(
     path: &Path,
     a: &TruthAtmosphere,
 ) -> StudyResult<()> {
-    let text = entrynav_loader::read_text(path).map_err(|e| {
-        StudyError::Refused(format!(
-            "cannot read atmosphere file {}: {e}",
-            path.display()
-        ))
-    })?;
+    let text = crate::input::read_text(path, "atmosphere_file")?;
     let format = TableFormat::detect(&text);
     let abs = std::fs::canonicalize(path).map_err(|e| {
         StudyError::Refused(format!(
@@ -108,8 +103,26 @@ fn replace_truth_atmosphere(
     if let Err(AtmosphereError::HeightUnitMismatch { declared, .. }) = parse(&columns) {
         columns.height_unit = declared;
     }
-    let set = parse(&columns).map_err(|e| StudyError::Refused(e.to_string()))?;
+    let set = parse(&columns).map_err(|e| match e {
+        // A column the user named that the header lacks: name the option that asked for it.
+        AtmosphereError::MissingColumn { role, .. } => {
+            StudyError::Refused(format!("atmosphere_{role}_column: {e}"))
+        }
+        e => StudyError::Refused(e.to_string()),
+    })?;
     let count = set.profiles.len();
+    if let Some(p) = a.profile.filter(|&p| p >= count) {
+        return Err(crate::options::OptionError::new(
+            "atmosphere_profile",
+            p,
+            format!(
+                "from 0 to {} (the profiles of {})",
+                count - 1,
+                path.display()
+            ),
+        )
+        .into());
+    }
     cfg.truth.atmosphere = AtmosphereConfig::Table {
         file: name,
         format,

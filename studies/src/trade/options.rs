@@ -108,6 +108,7 @@ impl TradeOptions {
             check_count("runs", runs, 1, MAX_RUNS)?;
         }
         check_threads(self.threads)?;
+        crate::options::filter_list("filters", &self.filters)?;
         if let Some(s) = self.checkpoint_every {
             check_checkpoint_every(s)?;
         }

@@ -2,7 +2,7 @@
 //! ([`TradeScenario`]), then the checked truth profiles, the filters and the run count
 //! ([`TradeSetup`]).
 
-use crate::error::{StudyError, StudyResult};
+use crate::error::StudyResult;
 use crate::options::{MAX_RUNS, check_count};
 use crate::provenance::Provenance;
 use crate::scenario::input::ScenarioInput;
@@ -69,8 +69,8 @@ impl TradeSetup {
         if let Some(file) = &atmosphere_file {
             check_profile_covers(&scenario, file)?;
         }
-        let filters = FilterKind::parse_list(&options.filters, &scenario.onboard)
-            .map_err(|e| StudyError::Refused(e.to_string()))?;
+        let filters =
+            crate::filters::fitting_filters("filters", &options.filters, &scenario.onboard)?;
         let runs = options.runs.unwrap_or(scenario.config.monte_carlo.runs);
         check_count("runs", runs, 1, MAX_RUNS)?;
         Ok(TradeSetup {

@@ -62,6 +62,7 @@ impl TuneStudyOptions {
         check_count("validation_runs", self.validation_runs, 1, MAX_TUNING_RUNS)?;
         check_count("max_evaluations", self.max_evaluations, 1, MAX_EVALUATIONS)?;
         check_threads(self.threads)?;
+        crate::options::filter_list("filters", &self.filters)?;
         Ok(())
     }
 

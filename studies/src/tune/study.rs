@@ -12,7 +12,6 @@ use crate::tune::filter::{TunedFilter, tune_filter};
 use crate::tune::options::TuneStudyOptions;
 use crate::tune::tuned_file::{Retune, edit};
 use crate::tune::verdict::worse_figures;
-use entrynav::estimation::nav::FilterKind;
 use entrynav::scenario::ScenarioConfig;
 use entrynav::sim::monte_carlo::report::FilterReport;
 use entrynav::sim::monte_carlo::tuning::TuningRuns;
@@ -80,8 +79,7 @@ fn tune_scenario(
 ) -> StudyResult<TuneStudy> {
     let (cfg, sets) = (&input.config, &input.overrides);
     let scenario = input.build()?;
-    let kinds = FilterKind::parse_list(&options.filters, &scenario.onboard)
-        .map_err(|e| StudyError::Refused(e.to_string()))?;
+    let kinds = crate::filters::fitting_filters("filters", &options.filters, &scenario.onboard)?;
     let clock = Instant::now();
     let runs = TuningRuns::record(&scenario, options.seed, options.runs)?;
     let fresh = TuningRuns::record(

@@ -11,6 +11,19 @@ pub const QUIET_HELP: &str = "Print no progress (bars, per-run, per-epoch and pe
 (tables, `wrote FILE` lines) still print on standard output, unchanged, and warnings, notes and \
 errors on standard error";
 
+/// `cmd` with every option that takes a value accepting a negative number after a space
+/// (clap otherwise reads `-34` as an unknown flag); in every subcommand.
+pub fn negative_numbers_everywhere(cmd: clap::Command) -> clap::Command {
+    cmd.mut_args(|a| {
+        if a.get_action().takes_values() {
+            a.allow_negative_numbers(true)
+        } else {
+            a
+        }
+    })
+    .mut_subcommands(negative_numbers_everywhere)
+}
+
 /// `--set PATH=VALUE`: the overrides of a scenario field, the same in every command.
 #[derive(Args, Clone, Debug, Default)]
 pub struct SetArgs {
@@ -82,4 +95,4 @@ macro_rules! run_count {
     )*};
 }
 
-run_count!(runs, validation_runs, check_runs);
+run_count!(runs, validation_runs, check_runs, evaluate);

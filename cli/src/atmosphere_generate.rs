@@ -8,6 +8,7 @@ use entrynav::atmosphere::{
     synthetic_set_gram_text,
 };
 use entrynav::planet::Planet;
+use entrynav_studies::options;
 use std::path::PathBuf;
 
 /// Arguments of `entrynav atmosphere generate`.
@@ -49,18 +50,29 @@ pub enum Preset {
 }
 
 fn list(text: &Option<String>, flag: &str) -> Result<Option<Vec<f64>>> {
-    text.as_ref()
-        .map(|t| {
-            t.split(',')
-                .map(|v| v.trim().parse::<f64>())
-                .collect::<Result<Vec<_>, _>>()
-                .with_context(|| format!("{flag} '{t}': expected numbers, e.g. 0.5,1,2"))
-        })
-        .transpose()
+    let option = flag.trim_start_matches('-').replace('-', "_");
+    let Some(t) = text else { return Ok(None) };
+    let values = t
+        .split(',')
+        .map(|v| v.trim().parse::<f64>())
+        .collect::<Result<Vec<_>, _>>()
+        .with_context(|| format!("{flag} '{t}': expected numbers, e.g. 0.5,1,2"))?;
+    options::count(&option, values.len() as i128, 1, MAX_FACTORS)?;
+    for v in &values {
+        options::real(&option, *v, MIN_FACTOR, MAX_FACTOR)?;
+    }
+    Ok(Some(values))
 }
+
+/// Most factors in one list (the cases are every pair of the two lists: 10 000 profiles at most).
+const MAX_FACTORS: usize = 100;
+/// Smallest and largest density factor of a case (the synthetic set's own bounds).
+const MIN_FACTOR: f64 = 0.01;
+const MAX_FACTOR: f64 = 100.0;
 
 /// Run the command.
 pub fn run(args: &GenerateArgs) -> Result<()> {
+    crate::preflight::check_output_file(&args.out, "--out")?;
     let base = match args.preset {
         Preset::Standard => SyntheticSetSpec::default(),
         Preset::HighLatitude => SyntheticSetSpec::high_latitude(),

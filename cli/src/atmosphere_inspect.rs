@@ -55,6 +55,8 @@ pub fn run(action: &AtmosphereAction) -> Result<()> {
         AtmosphereAction::Inspect(args) => args,
         AtmosphereAction::Generate(args) => return crate::atmosphere_generate::run(args),
     };
+    crate::preflight::check_output_files(&[(args.svg.as_deref(), "--svg")])?;
+    entrynav_studies::input::check_file(&args.file, "FILE")?;
     let file_args = AtmosphereFileArgs {
         atmosphere_height_column: args.atmosphere_height_column.clone(),
         atmosphere_density_column: args.atmosphere_density_column.clone(),

@@ -36,8 +36,8 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     if let Some(p) = &args.json {
         check_output_file(p, "--json")?;
     }
-    let a = read(&args.a)?;
-    let b = read(&args.b)?;
+    let a = read(&args.a, "A")?;
+    let b = read(&args.b, "B")?;
     let finals = match args.final_errors.as_slice() {
         [fa, fb] => Some([read_final_errors(fa)?, read_final_errors(fb)?]),
         _ => None,
@@ -69,10 +69,10 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     Ok(())
 }
 
-/// Read the trade summary `path`; anything else is a usage error (exit code 2) naming it.
-fn read(path: &Path) -> Result<SummaryIn> {
-    let text = entrynav_loader::read_text(path)
-        .with_context(|| format!("{}: cannot read", path.display()))?;
+/// Read the trade summary `path` (argument `name`, A or B); anything else is a usage error (exit
+/// code 2) naming it.
+fn read(path: &Path, name: &str) -> Result<SummaryIn> {
+    let text = entrynav_studies::input::read_text(path, &format!("summary {name}"))?;
     Ok(SummaryIn::parse(&text).map_err(|e| e.context(path.display()))?)
 }
 

@@ -82,6 +82,9 @@ fn deliver(args: &DeliverArgs) -> Result<()> {
     if let Some(p) = &args.json {
         check_output_file(p, "--json")?;
     }
+    if let Some(d) = &args.plots {
+        crate::preflight::check_output_dir(d, "--plots")?;
+    }
     let input = ScenarioInput::resolve(&args.scenario, &args.overrides.sets)?;
     crate::preflight::warn_implausible(&input.config);
     let scenario = input.build()?;

@@ -1,6 +1,6 @@
-//! `entrynav`: Mars entry navigation from the command line. The commands live in this library
-//! (`entrynav_cli`) so that the Python package can run them in process; `src/main.rs` is the
-//! binary.
+//! `entrynav`: Mars entry navigation from the command line: argument parsing, printing and the
+//! files of each command over the study layer (`entrynav-studies`). `src/main.rs` is the binary;
+//! [`command`] is its clap command tree, which `tests/option_walk.rs` walks.
 
 mod args;
 mod atmosphere_file;
@@ -36,7 +36,7 @@ mod train;
 mod tune;
 
 use anyhow::{Context, Result};
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use entrynav_loader as load;
 
 /// Mars atmospheric-entry navigation: scenarios, truth simulation, navigation filters and
@@ -113,7 +113,7 @@ enum ScenarioAction {
     /// validating it; the output is a file to copy and edit.
     Show {
         /// Built-in name or path to a scenario TOML file.
-        name: String,
+        scenario: String,
         /// Print the validated configuration in canonical TOML instead (every field, defaults
         /// filled in, no comments).
         #[arg(long)]
@@ -124,11 +124,19 @@ enum ScenarioAction {
     Schema,
 }
 
+/// The `entrynav` command tree as the binary parses it: every option that takes a value accepts
+/// a negative number after a space (`--region -34 -18 -84 -74`; `--seed -1` reaches the seed's
+/// range message instead of "unexpected argument").
+pub fn command() -> clap::Command {
+    args::negative_numbers_everywhere(Cli::command())
+}
+
 /// The `entrynav` command: parse the process's arguments, run, print an error and exit with its
 /// code. What the binary's `main` is.
 pub fn cli_main() {
     interrupt::die_on_broken_pipe();
-    let cli = Cli::parse();
+    let matches = command().get_matches();
+    let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
     if let Err(e) = run(cli) {
         let code = exit_code::code(&e);
         if code == interrupt::EXIT_INTERRUPTED {
@@ -137,53 +145,6 @@ pub fn cli_main() {
             eprintln!("error: {e:#}");
         }
         std::process::exit(code);
-    }
-}
-
-/// Write the HTML report of a finished trade `report` of `scenario` to `path` (what `trade
-/// --report` writes; `overrides` are the `--set` strings the scenario was built with, for its
-/// provenance). Returns the seconds it took. For the Python package's `TradeResult.report`.
-pub fn write_trade_report(
-    path: &std::path::Path,
-    report: &entrynav::sim::TradeReport,
-    scenario: &entrynav::scenario::Scenario,
-    overrides: &[String],
-) -> Result<f64> {
-    report::check_path(Some(path))?;
-    let names = entrynav_render::chart::labels::WeightNames::of_scenario(scenario);
-    let provenance =
-        entrynav_studies::provenance::Provenance::new(std::env::args().collect(), overrides)
-            .with_scenario(scenario, None);
-    report::write_trade(
-        path,
-        report,
-        &names,
-        &provenance,
-        0.0,
-        &Default::default(),
-        None,
-    )
-}
-
-/// Run one `entrynav` command line in this process (`args[0]` is the program name) and return
-/// its exit code: 0 success, 1 a failed output or check, 2 a usage error (with clap's message),
-/// 130 interrupted. The error message goes to standard error, as the binary prints it. For the
-/// Python package, which calls the design commands (tune, observe, optimize, fmu pack) without a
-/// subprocess; it installs no signal handler for them.
-pub fn run_args(args: Vec<String>) -> (i32, String) {
-    let cli = match Cli::try_parse_from(args) {
-        Ok(c) => c,
-        Err(e) => {
-            let text = e.render().to_string();
-            return (if e.use_stderr() { 2 } else { 0 }, text);
-        }
-    };
-    match run(cli) {
-        Ok(()) => (0, String::new()),
-        Err(e) => {
-            let code = exit_code::code(&e);
-            (code, format!("{e:#}"))
-        }
     }
 }
 
@@ -197,7 +158,11 @@ fn run(cli: Cli) -> Result<()> {
             Ok(())
         }
         Command::Scenario {
-            action: ScenarioAction::Show { name, resolved },
+            action:
+                ScenarioAction::Show {
+                    scenario: name,
+                    resolved,
+                },
         } => {
             let (cfg, _) = load::resolve(&name, load::Base::CurrentDir)?.into_parts();
             if resolved {

@@ -24,7 +24,7 @@ pub struct LinCovArgs {
     #[command(flatten)]
     overrides: crate::args::SetArgs,
     /// Comma-separated filters to analyse (LinCov supports: ekf, the consider EKF included, ukf as its EKF equivalent, and the fusion filters ci and dcifaif).
-    #[arg(long, default_value = "ekf")]
+    #[arg(long, visible_alias = "filters", default_value = "ekf")]
     filter: String,
     /// Write the result as JSON (`-`: to standard output, and no table).
     #[arg(long)]
@@ -51,6 +51,10 @@ pub struct LinCovArgs {
 
 /// Run the command.
 pub fn run(args: &LinCovArgs) -> Result<()> {
+    crate::preflight::check_output_files(&[(args.json.as_deref(), "--json")])?;
+    if let Some(d) = &args.csv_dir {
+        crate::preflight::check_output_dir(d, "--csv-dir")?;
+    }
     let scenario = ScenarioInput::resolve(&args.scenario, &args.overrides.sets)?.build()?;
     let options = LinCovStudyOptions {
         filters: args.filter.clone(),

@@ -59,6 +59,10 @@ pub struct ObserveArgs {
 
 /// Run the command.
 pub fn run(args: &ObserveArgs) -> Result<()> {
+    crate::preflight::check_output_files(&[
+        (args.json.as_deref(), "--json"),
+        (args.plot.as_deref(), "--plot"),
+    ])?;
     let input = ScenarioInput::resolve(&args.scenario, &[])?;
     crate::preflight::warn_implausible(&input.config);
     let scenario = input.build()?;

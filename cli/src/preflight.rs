@@ -20,6 +20,17 @@ pub fn check_output_file(path: &Path, flag: &str) -> anyhow::Result<()> {
     Ok(entrynav_studies::output::check_output_file(path, flag)?)
 }
 
+/// Refuse, before any run, every output file that is given and cannot be written (`-` is
+/// standard output), naming its flag.
+pub fn check_output_files(files: &[(Option<&Path>, &str)]) -> anyhow::Result<()> {
+    for (path, flag) in files {
+        if let Some(p) = path {
+            check_output_file(p, flag)?;
+        }
+    }
+    Ok(())
+}
+
 /// Refuse, before any run, an output directory that cannot be created or written into.
 pub fn check_output_dir(dir: &Path, flag: &str) -> anyhow::Result<()> {
     Ok(entrynav_studies::output::check_output_dir(dir, flag)?)

@@ -31,6 +31,7 @@ pub struct SimulateArgs {
 
 /// Run the command.
 pub fn run(args: &SimulateArgs) -> Result<()> {
+    crate::preflight::check_output_files(&[(args.out.as_deref(), "--out")])?;
     let input = ScenarioInput::resolve(&args.scenario.scenario, &args.scenario.overrides.sets)?;
     crate::preflight::warn_implausible(&input.config);
     let scenario = input.build()?;

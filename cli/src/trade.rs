@@ -357,8 +357,7 @@ fn merge(
     let texts = shards
         .iter()
         .map(|p| {
-            let text = entrynav_loader::read_text(p)
-                .with_context(|| format!("cannot read shard {}", p.display()))?;
+            let text = entrynav_studies::input::read_text(p, "SHARDS file")?;
             Ok((p.display().to_string(), text))
         })
         .collect::<Result<Vec<_>>>()?;

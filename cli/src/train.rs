@@ -49,7 +49,7 @@ pub struct TrainArgs {
     /// Evaluate the density estimates of `--filters` over this many Monte Carlo runs (the runs of
     /// `entrynav trade --seed MC_SEED`): eq. 70 RMSPE with the filter's density model at the true
     /// altitude (our reading of seed 001 Table 6) and at its own estimate (`trade` reports both as density_rmspe_pct and density_at_estimate_rmspe_pct).
-    #[arg(long, value_name = "RUNS")]
+    #[arg(long, value_name = "RUNS", value_parser = crate::args::evaluate)]
     pub evaluate: Option<usize>,
     /// Filters evaluated by `--evaluate`.
     #[arg(long, default_value = "ukf-cm,ukf-ac,uskf-nn")]
@@ -85,6 +85,13 @@ fn print_fit(e: &Exponential, radius_m: f64, lo: f64, hi: f64) {
 pub fn run(args: &TrainArgs) -> Result<()> {
     if args.out.is_none() && args.evaluate.is_none() {
         bail!("nothing to do: give --out FILE to train, --evaluate RUNS to evaluate, or both");
+    }
+    crate::preflight::check_output_files(&[(args.out.as_deref(), "--out")])?;
+    if args.evaluate.is_some() {
+        entrynav_studies::options::filter_list("filters", &args.filters)?;
+    }
+    if let Some(d) = &args.plots {
+        crate::preflight::check_output_dir(d, "--plots")?;
     }
     let (cfg, dir) = load::resolve(&args.scenario, load::Base::CurrentDir)?.into_parts();
     let cfg = load::apply_overrides(cfg, &args.overrides.sets)?;
@@ -196,9 +203,9 @@ fn evaluate(
     networks: Option<&entrynav::estimation::adaptive::DensityNetworkSet>,
     runs: usize,
 ) -> Result<()> {
-    use entrynav::estimation::nav::FilterKind;
     use entrynav::sim::density::density_eval::{DensityEvalOptions, evaluate_density_filters};
-    let kinds = FilterKind::parse_list(&args.filters, &scenario.onboard)?;
+    let kinds =
+        entrynav_studies::filters::fitting_filters("filters", &args.filters, &scenario.onboard)?;
     let scenario = std::sync::Arc::new(scenario);
     let opts = DensityEvalOptions {
         runs,

@@ -64,6 +64,7 @@ pub struct TuneArgs {
 
 /// Run the command.
 pub fn run(args: &TuneArgs) -> Result<()> {
+    crate::preflight::check_output_file(&args.out, "--out")?;
     let options = TuneStudyOptions {
         filters: args.filter.clone(),
         runs: args.runs,

@@ -692,8 +692,8 @@ fn trade_over_a_gram_profile_set_flies_profile_k_mod_n() {
     ]);
     assert_eq!(code, 2);
     assert!(
-        err.contains("montecarlo-2.txt: profile 2 does not exist")
-            && err.contains("allowed 0 to 1"),
+        err.contains("atmosphere_profile = 2 is out of range: must be from 0 to 1")
+            && err.contains("montecarlo-2.txt"),
         "{err}"
     );
 }

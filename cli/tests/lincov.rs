@@ -84,7 +84,7 @@ fn a_bad_filter_name_is_refused_naming_the_option_and_the_choices() {
     let (code, _, err) = entrynav(&["lincov", "--scenario", "orbiters-3", "--filter", "kalman"]);
     assert_ne!(code, 0);
     assert!(
-        err.contains("--filter 'kalman'") && err.contains("ekf"),
+        err.contains("filters = 'kalman' is unknown") && err.contains("ekf"),
         "{err}"
     );
 }

@@ -62,7 +62,10 @@ fn generated_set_is_read_back_as_18_covering_profiles_and_flown_by_the_trade() {
         "0",
     ]);
     assert_ne!(code, 0);
-    assert!(err.contains("factor_above"), "{err}");
+    assert!(
+        err.contains("factors_above = 0 is out of range: must be a number from 0.01 to 100"),
+        "{err}"
+    );
 
     // The extended set: the 18 standard profiles, unchanged, then 12 high-latitude ones.
     let ext = dir.join("extended.txt");

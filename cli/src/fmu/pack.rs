@@ -53,6 +53,7 @@ pub(super) fn pack(a: &PackArgs) -> Result<()> {
         keep_symbols: a.keep_symbols,
     };
     options.validate()?;
+    crate::preflight::check_output_dir(&a.out, "--out")?;
     let lib = Search::of_process(a.lib.as_deref()).find()?;
     let input = a
         .scenario

@@ -262,12 +262,14 @@ pub struct SelectArgs {
     /// sites see the vehicle along nearly parallel lines).
     #[arg(long, value_name = "DEG", default_value_t = 3.0)]
     min_separation_deg: f64,
-    /// Keep only candidates inside this latitude/longitude box [deg].
+    /// Keep only candidates inside this latitude/longitude box [deg]: four numbers, space- or
+    /// comma-separated, e.g. `--region -34 -18 -84 -74` (latitudes -34 to -18, longitudes -84 to
+    /// -74) or `--region=-34,-18,-84,-74`.
     #[arg(
         long,
         value_delimiter = ',',
-        num_args = 1,
-        allow_hyphen_values = true,
+        num_args = 1..=4,
+        allow_negative_numbers = true,
         value_names = ["LAT_MIN", "LAT_MAX", "LON_MIN", "LON_MAX"]
     )]
     region: Option<Vec<f64>>,

@@ -15,6 +15,11 @@ use std::path::Path;
 
 /// Run the command.
 pub fn run(a: &GroundArgs) -> Result<()> {
+    crate::preflight::check_output_files(&[
+        (a.common.json.as_deref(), "--json"),
+        (a.common.write_scenario.as_deref(), "--write-scenario"),
+        (a.plot.as_deref(), "--plot"),
+    ])?;
     let input = load_input(&a.common.scenario)?;
     let d = with_bars(a.common.quiet, run_ground_design, &input, &a.options())?;
     // Files first, each attempted; then the tables and what was written.

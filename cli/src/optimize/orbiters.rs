@@ -13,6 +13,12 @@ use entrynav_studies::design::run_orbiter_design;
 
 /// Run the command.
 pub fn run(a: &OrbitersArgs) -> Result<()> {
+    crate::preflight::check_output_files(&[
+        (a.common.json.as_deref(), "--json"),
+        (a.common.write_scenario.as_deref(), "--write-scenario"),
+        (a.plot.as_deref(), "--plot"),
+        (a.export_trajectory.as_deref(), "--export-trajectory"),
+    ])?;
     let (c, input) = (&a.common, load_input(&a.common.scenario)?);
     let d = with_bars(c.quiet, run_orbiter_design, &input, &a.options())?;
     print_orbiters(&d);

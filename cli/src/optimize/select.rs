@@ -15,6 +15,10 @@ use entrynav_studies::design::{Choice, SelectionAnswer, SiteSelection, run_site_
 
 /// Run the command.
 pub fn run(a: &SelectArgs) -> Result<()> {
+    crate::preflight::check_output_files(&[
+        (a.json.as_deref(), "--json"),
+        (a.write_scenario.as_deref(), "--write-scenario"),
+    ])?;
     let input = load_input(&a.scenario)?;
     let s = with_bars(a.quiet, run_site_selection, &input, &a.options())?;
     for n in &s.notes {

@@ -1,0 +1,287 @@
+//! Every option of every `entrynav` subcommand, walked from clap's own command tree with extreme
+//! and malformed values (issue 53): no hang, no crash, and every refusal names the option.
+//!
+//! Each command gets a small valid command line (below); each of its options in turn gets every
+//! value of [`walker::extreme_values`] (negative, zero, 10^13, ±1e300, 1e-9, NaN, infinity, empty,
+//! a 10 240-character name, a 300-byte file name, a FIFO, a folder, `/dev/zero`). A command
+//! added without a base line here fails [`every_command_has_a_base_line`].
+
+#[path = "option_walk/walker.rs"]
+mod walker;
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::process::Command;
+
+fn entrynav() -> &'static Path {
+    Path::new(env!("CARGO_BIN_EXE_entrynav"))
+}
+
+/// The valid, quick command line of each command, by option id (`[]` for a flag).
+fn base_lines(dir: &Path) -> BTreeMap<String, Vec<(&'static str, Vec<String>)>> {
+    let p = |f: &str| dir.join(f).display().to_string();
+    let s = |v: &str| vec![v.to_string()];
+    let lib = entrynav()
+        .parent()
+        .unwrap()
+        .join("libentrynav_fmu.so")
+        .display()
+        .to_string();
+    let scenario = |name: &str| ("scenario", s(name));
+    let check = vec![("check_runs", s("10")), ("check_filter", s("ekf"))];
+    let search = vec![("starts", s("1")), ("iterations", s("5"))];
+    let mut b: BTreeMap<String, Vec<(&'static str, Vec<String>)>> = BTreeMap::new();
+    let mut add = |path: &str, args: Vec<(&'static str, Vec<String>)>| {
+        b.insert(path.to_string(), args);
+    };
+    add("scenarios", vec![]);
+    add("scenario show", vec![("scenario", s("ground-beacons-3"))]);
+    add("scenario schema", vec![]);
+    add(
+        "atmosphere inspect",
+        vec![("file", vec![p("gram.txt")]), scenario("msl-airdata")],
+    );
+    add(
+        "atmosphere generate",
+        vec![("out", vec![p("generated.txt")])],
+    );
+    add(
+        "simulate",
+        vec![scenario("ground-beacons-3"), ("out", vec![p("sim.csv")])],
+    );
+    add(
+        "trade",
+        vec![
+            scenario("ground-beacons-3"),
+            ("runs", s("2")),
+            ("filters", s("ekf")),
+        ],
+    );
+    add(
+        "trade compare",
+        vec![("a", vec![p("a.json")]), ("b", vec![p("b.json")])],
+    );
+    add("trade merge", vec![("shards", vec![p("shard.json")])]);
+    add(
+        "tune",
+        vec![
+            scenario("ground-beacons-3"),
+            ("filter", s("ekf")),
+            ("runs", s("2")),
+            ("validation_runs", s("2")),
+            ("max_evaluations", s("6")),
+            ("out", vec![p("tuned.toml")]),
+        ],
+    );
+    add(
+        "observe",
+        vec![scenario("ground-beacons-3"), ("runs", s("2"))],
+    );
+    add(
+        "lincov",
+        vec![scenario("ground-beacons-3"), ("filter", s("ekf"))],
+    );
+    add(
+        "train-density",
+        vec![
+            ("out", vec![p("net.toml")]),
+            ("trajectories", s("2")),
+            ("epochs", s("1")),
+        ],
+    );
+    add(
+        "fmu pack",
+        vec![("out", vec![p("fmus")]), ("lib", vec![lib])],
+    );
+    let mut orbiters = vec![scenario("orbiters-3")];
+    orbiters.extend(search.clone());
+    orbiters.extend(check.clone());
+    add("optimize orbiters", orbiters);
+    let mut ground = vec![scenario("ground-beacons-3"), ("beacons", s("3"))];
+    ground.extend(search);
+    ground.extend(check.clone());
+    add("optimize ground", ground);
+    let mut select = vec![
+        scenario("ground-beacons-3"),
+        ("k", s("3")),
+        ("grid_deg", s("5")),
+    ];
+    select.extend(check);
+    add("optimize select", select);
+    add(
+        "guidance deliver",
+        vec![
+            scenario("msl-guided"),
+            ("runs", s("1")),
+            ("filters", s("ekf")),
+        ],
+    );
+    add("guidance reference", vec![scenario("msl-guided")]);
+    b
+}
+
+/// The files the base lines read: a density table, two trade summaries and a shard.
+fn make_inputs(dir: &Path) {
+    let run = |args: &[&str]| {
+        let out = Command::new(entrynav())
+            .args(args)
+            .current_dir(dir)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "entrynav {args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
+    run(&["atmosphere", "generate", "--out", "gram.txt"]);
+    let trade = ["trade", "--scenario", "ground-beacons-3", "--runs", "2"];
+    run(&[
+        &trade[..],
+        &["--filters", "ekf", "--json", "a.json", "--quiet"],
+    ]
+    .concat());
+    run(&[
+        &trade[..],
+        &[
+            "--filters",
+            "ekf",
+            "--seed",
+            "2",
+            "--json",
+            "b.json",
+            "--quiet",
+        ],
+    ]
+    .concat());
+    run(&[
+        &trade[..],
+        &[
+            "--filters",
+            "ekf",
+            "--shard",
+            "0/1",
+            "--json",
+            "shard.json",
+            "--quiet",
+        ],
+    ]
+    .concat());
+}
+
+/// Every command with its base line, each checked to run cleanly (exit 0) so that what a probe
+/// changes is the probed value alone.
+fn commands(dir: &Path) -> Vec<(walker::Leaf, BTreeMap<String, Vec<String>>)> {
+    let bases = base_lines(dir);
+    let mut out = Vec::new();
+    for leaf in walker::leaves(&entrynav_cli::command()) {
+        let key = leaf.path.join(" ");
+        let base: BTreeMap<String, Vec<String>> = bases
+            .get(&key)
+            .unwrap_or_else(|| panic!("no base line for `entrynav {key}`"))
+            .iter()
+            .map(|(id, v)| (id.to_string(), v.clone()))
+            .collect();
+        out.push((leaf, base));
+    }
+    out
+}
+
+#[test]
+fn a_region_at_negative_coordinates_is_read_after_a_space_and_with_commas() {
+    let dir = walker::scratch("region");
+    for (i, region) in [
+        &["--region", "-34", "-18", "-84", "-74"][..],
+        &["--region=-34,-18,-84,-74"][..],
+    ]
+    .iter()
+    .enumerate()
+    {
+        let json = dir.join(format!("r{i}.json"));
+        let mut args: Vec<String> = [
+            "optimize",
+            "select",
+            "--scenario",
+            "ground-beacons-3",
+            "--k",
+            "3",
+            "--grid-deg",
+            "2",
+            "--no-check",
+            "--quiet",
+            "--json",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        args.push(json.display().to_string());
+        args.extend(region.iter().map(|s| s.to_string()));
+        let out = walker::run(entrynav(), &args, &dir, i);
+        assert_eq!(out.code, Some(0), "{region:?}: {}", out.stderr);
+        let doc: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        assert_eq!(
+            doc["constraints"]["region_deg"],
+            serde_json::json!([-34.0, -18.0, -84.0, -74.0]),
+            "{region:?}"
+        );
+    }
+}
+
+#[test]
+fn every_command_has_a_base_line() {
+    let bases = base_lines(Path::new("/tmp"));
+    for leaf in walker::leaves(&entrynav_cli::command()) {
+        let key = leaf.path.join(" ");
+        let base = bases
+            .get(&key)
+            .unwrap_or_else(|| panic!("no base line for `entrynav {key}`"));
+        for (id, _) in base {
+            assert!(
+                leaf.options.iter().any(|o| o.id == *id),
+                "the base line of `entrynav {key}` sets `{id}`, which it does not have"
+            );
+        }
+    }
+}
+
+#[test]
+fn every_option_of_every_command_refuses_extreme_values_by_name_and_in_time() {
+    let dir = walker::scratch("cli");
+    make_inputs(&dir);
+    let commands = commands(&dir);
+    for (i, (leaf, base)) in commands.iter().enumerate() {
+        let args = walker::line(leaf, base, None);
+        let out = walker::run(entrynav(), &args, &dir, 100_000 + i);
+        assert_eq!(
+            out.code,
+            Some(0),
+            "the base line `entrynav {}` does not run cleanly ({:.1} s): {}",
+            args.join(" "),
+            out.seconds,
+            out.stderr
+        );
+    }
+    let values = walker::extreme_values(&dir);
+    let probes: Vec<walker::Probe> = commands
+        .iter()
+        .flat_map(|(leaf, base)| walker::probes(leaf, base, &values))
+        .collect();
+    assert!(probes.len() > 1500, "only {} probes", probes.len());
+    let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
+    let clock = std::time::Instant::now();
+    let failures = walker::run_all(entrynav(), &probes, &dir, threads);
+    eprintln!(
+        "{} probes of {} options in {:.1} s",
+        probes.len(),
+        probes.len() / walker::extreme_values(&dir).len(),
+        clock.elapsed().as_secs_f64()
+    );
+    assert!(
+        failures.is_empty(),
+        "{} of {} probes failed:\n{}",
+        failures.len(),
+        probes.len(),
+        failures.join("\n")
+    );
+}

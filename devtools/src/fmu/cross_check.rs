@@ -189,6 +189,10 @@ fn write_limited(path: &Path, text: &str) -> Result<()> {
 
 pub(super) fn cross_check(a: &CrossCheckArgs) -> Result<()> {
     for fmu in &a.fmus {
+        super::bounds::input(fmu, "FMUS")?;
+    }
+    entrynav_studies::output::check_output_dir(&a.out, "--out")?;
+    for fmu in &a.fmus {
         let u = unpack(fmu)?;
         let spec = Arc::clone(&u.spec);
         let id = spec.identifier();

@@ -2,6 +2,7 @@
 //! loads `binaries/<platform>/<modelIdentifier>.so` with libloading): `check` (with `--bench`),
 //! `fuzz`, `run` and `cross-check`. The FMUs themselves are packed by `entrynav fmu pack`.
 
+mod bounds;
 mod check;
 mod cross_check;
 mod defaults;

@@ -113,6 +113,12 @@ pub(super) fn run_in_process(
 }
 
 pub(super) fn run_reference(a: &RunArgs) -> Result<()> {
+    let stop = super::bounds::stop(a.stop)?;
+    super::bounds::step(a.step, stop)?;
+    if let Some(p) = &a.fmu {
+        super::bounds::input(p, "--fmu")?;
+    }
+    entrynav_studies::output::check_output_file(&a.out, "--out")?;
     let unpacked = a.fmu.as_deref().map(unpack).transpose()?;
     let (spec, resources) = match &unpacked {
         Some(u) => (Arc::clone(&u.spec), Some(u.dir.join("resources"))),
@@ -137,11 +143,7 @@ pub(super) fn run_reference(a: &RunArgs) -> Result<()> {
         sets.push((v.clone(), parse_value(v, value)?));
     }
     let table = match &a.input {
-        Some(p) => Table::parse(
-            &entrynav_loader::read_text(p)
-                .with_context(|| format!("cannot read {}", p.display()))?,
-            vars,
-        )?,
+        Some(p) => Table::parse(&entrynav_studies::input::read_text(p, "--input")?, vars)?,
         None => Table::default(),
     };
     let outputs: Vec<Var> = vars

@@ -66,6 +66,7 @@ fn plan(u: &Unpacked, a: &CheckArgs) -> Result<Plan> {
         _ => scenario_timing(&scenario),
     };
     let h = a.step.unwrap_or(default_step);
+    super::bounds::step(h, duration)?;
     let n_steps = (duration / h).round() as usize;
     let guided = match m {
         Model::Guidance => guided_rows(&scenario, a.seed as u64, h, n_steps)?,
@@ -239,6 +240,8 @@ fn run_steps(u: &Unpacked, p: &Plan, slave: &Slave, inst: &mut Instance) -> Resu
 }
 
 pub(super) fn check(a: &CheckArgs) -> Result<()> {
+    super::bounds::input(&a.file, "FILE")?;
+    super::bounds::count("reps", a.reps, super::bounds::MAX_REPS)?;
     let u = unpack(&a.file)?;
     let p = plan(&u, a)?;
     let (slave, mut inst) = start(&u, &p)?;

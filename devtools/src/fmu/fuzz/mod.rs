@@ -79,6 +79,9 @@ fn run<V: Version>(f: &mut Fuzzer<V>, calls: usize, max_sequence: usize) -> Resu
 }
 
 pub(super) fn fuzz(a: &FuzzArgs) -> Result<()> {
+    super::bounds::input(&a.file, "FILE")?;
+    super::bounds::count("calls", a.calls, super::bounds::MAX_CALLS)?;
+    super::bounds::count("max_sequence", a.max_sequence, super::bounds::MAX_SEQUENCE)?;
     let u = unpack(&a.file)?;
     ensure!(
         u.model != Model::Guidance,

@@ -72,6 +72,42 @@ def _toml_value(value: Any) -> str:
         raise TypeError(f"cannot write a {type(value).__name__} as a scenario value") from None
 
 
+def _shown(value: Any) -> str:
+    """A value as a message quotes it: its repr, at most 60 characters."""
+    text = repr(value)
+    return text if len(text) <= 60 else f"{text[:50]}… ({len(text)} characters)"
+
+
+def _text(key: str, value: Any, what: str = "a string") -> str:
+    """`value` of keyword `key` as a string (a path-like object too), else TypeError naming it."""
+    if isinstance(value, os.PathLike):
+        value = os.fspath(value)
+    if not isinstance(value, str):
+        raise TypeError(f"{key} = {_shown(value)} has the wrong type: must be {what}, not {type(value).__name__}")
+    return value
+
+
+def _whole(key: str, value: Any, lo: int, hi: int) -> int:
+    """A whole number of keyword `key` in `lo..=hi`: TypeError for another type, ValueError out of range."""
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise TypeError(f"{key} = {_shown(value)} has the wrong type: must be a whole number (an int)")
+    if not lo <= value <= hi:
+        raise ValueError(f"{key} = {value} is out of range: must be from {lo} to {hi}")
+    return value
+
+
+def _filter_names(value: Any, key: str = "filters") -> List[str]:
+    """A filter name or a list of them (the study layer checks the names)."""
+    if isinstance(value, str):
+        return [value]
+    if isinstance(value, (list, tuple)) and all(isinstance(v, str) for v in value):
+        if not value:
+            raise ValueError(f"{key} = []: name at least one filter (ekf, ukf, ci, dcifaif, ...)")
+        return list(value)
+    raise TypeError(f"{key} = {_shown(value)} has the wrong type: must be a filter name or a list of them "
+                    "(ekf, ukf, ci, dcifaif, ...)")
+
+
 class Scenario:
     """A validated scenario: its TOML text and the folder its relative file names resolve against.
 
@@ -86,21 +122,31 @@ class Scenario:
     @classmethod
     def builtin(cls, name: str) -> "Scenario":
         """A built-in scenario by name (see `builtin_scenarios()`)."""
+        name = _text("name", name)
         if name not in builtin_scenarios():
-            raise ValueError(f"'{name}' is not a built-in scenario (built-ins: {', '.join(builtin_scenarios())})")
+            raise ValueError(f"name = {_shown(name)} is not a built-in scenario: must be one of "
+                             f"{', '.join(builtin_scenarios())}")
         toml, folder = _entrynav.resolve_scenario(name)
         return cls(toml, folder)
 
     @classmethod
     def from_file(cls, path: Union[str, Path]) -> "Scenario":
         """A scenario TOML file; files it names are read relative to its folder."""
-        toml, folder = _entrynav.resolve_scenario(str(path))
+        text = _text("path", path, "a file path")
+        try:
+            toml, folder = _entrynav.resolve_scenario(text)
+        except (FileNotFoundError, ValueError) as e:
+            raise type(e)(f"path = {_shown(text)}: {e}") from None
         return cls(toml, folder)
 
     def set(self, path: str, value: Any) -> "Scenario":
         """A copy with field `path` (dotted, numeric keys index arrays: `beacons.0.lat_deg`) set
         to `value`, validated as `--set path=value` is; `ValueError` names a bad field or value."""
-        toml = _entrynav.apply_sets(self._toml, [f"{path}={_toml_value(value)}"])
+        field = _text("path", path, "a dotted field name")
+        try:
+            toml = _entrynav.apply_sets(self._toml, [f"{field}={_toml_value(value)}"])
+        except ValueError as e:
+            raise ValueError(f"set(path={_shown(field)}, value={_shown(value)}): {e}") from None
         return Scenario(toml, self._folder)
 
     def with_sets(self, sets: Iterable[str]) -> "Scenario":
@@ -250,13 +296,13 @@ class TradeResult:
     def report(self, path: Union[str, Path]) -> Path:
         """Write the self-contained HTML report (`entrynav trade --report PATH`): recommendation,
         verdicts, RMSE against the PCRLB, errors and ±3σ, NEES/NIS, dispersion. Returns the path."""
-        self._native.write_report(str(path))
+        self._native.write_report(_text("path", path, "a file path"))
         return Path(path)
 
     def to_json(self, path: Union[str, Path]) -> None:
         """Write the summary as the CLI writes `--json` (with its `provenance`, which names the
         Python call, and `timing`), whole or not at all."""
-        self._native.write_json(str(path))
+        self._native.write_json(_text("path", path, "a file path"))
 
     def __repr__(self) -> str:
         state = "complete" if self.complete else f"interrupted after {self.summary['runs_completed']} runs"
@@ -305,11 +351,8 @@ def trade(
 
     `progress`: a callable `(done, total)`, or True / "tqdm" for a tqdm bar.
     """
-    if isinstance(scenario, str):
-        scenario = Scenario.builtin(scenario)
-    names = [filters] if isinstance(filters, str) else list(filters)
-    if not names:
-        raise ValueError("filters is empty: name at least one filter (ekf, ukf, ci, dcifaif, ...)")
+    scenario = _scenario(scenario)
+    names = _filter_names(filters)
     summary, details, interrupted, native = _entrynav.trade(
         scenario.to_toml(),
         scenario.folder,
@@ -341,9 +384,12 @@ def trade_shard(
     FILE` writes: `entrynav trade merge` combines shards from either into exactly the
     single-process result. `overrides` are the `--set` strings already applied to `scenario`
     (recorded in the shard's provenance, which merge checks across shards)."""
-    if isinstance(scenario, str):
-        scenario = Scenario.builtin(scenario) if scenario in builtin_scenarios() else Scenario.from_file(scenario)
-    names = [filters] if isinstance(filters, str) else list(filters)
+    scenario = _scenario(scenario)
+    names = _filter_names(filters)
+    if not isinstance(overrides, (list, tuple)) or not all(isinstance(o, str) for o in overrides):
+        raise TypeError(f"overrides = {_shown(overrides)} has the wrong type: must be a list of PATH=VALUE strings")
+    count = _whole("count", count, 1, 1_000_000)
+    index = _whole("index", index, 0, count - 1)
     return _entrynav.trade_shard(
         scenario.to_toml(), scenario.folder, index, count, list(overrides),
         _options(filters=",".join(names), runs=runs, seed=seed, threads=threads),
@@ -359,8 +405,7 @@ def simulate(scenario: Union[Scenario, str], seed: int = 1, dispersed: bool = Fa
     heating over every integration step)."""
     import pandas as pd
 
-    if isinstance(scenario, str):
-        scenario = Scenario.builtin(scenario)
+    scenario = _scenario(scenario)
     doc = json.loads(_entrynav.simulate(scenario.to_toml(), scenario.folder, _options(seed=seed, dispersed=dispersed)))
     df = pd.DataFrame(doc["rows"], columns=doc["columns"], dtype=float)
     df.attrs["stop"] = doc["stop"]
@@ -374,9 +419,16 @@ def _options(**options: Any) -> Dict[str, Any]:
 
 
 def _scenario(scenario: Union[Scenario, str]) -> Scenario:
+    """A Scenario, a built-in's name or a scenario file's path, as a Scenario."""
     if isinstance(scenario, Scenario):
         return scenario
-    return Scenario.builtin(scenario) if scenario in builtin_scenarios() else Scenario.from_file(scenario)
+    name = _text("scenario", scenario, "a Scenario, a built-in name or a scenario file path")
+    if name in builtin_scenarios():
+        return Scenario.builtin(name)
+    try:
+        return Scenario.from_file(name)
+    except (FileNotFoundError, ValueError) as e:
+        raise type(e)(f"scenario = {_shown(name)}: {e}") from None
 
 
 # ---------------------------------------------------------------------------------------------
@@ -403,7 +455,7 @@ def tune(
     `[filter.tuned.<name>]` table per filter). A tuning that makes a filter worse on the fresh
     runs is refused with RuntimeError naming the filter and figure, unless `force`."""
     sc = _scenario(scenario)
-    names = [filters] if isinstance(filters, str) else list(filters)
+    names = _filter_names(filters)
     text = _entrynav.tune(sc.to_toml(), sc.folder, _options(
         filters=",".join(names), runs=runs, seed=seed, validation_runs=validation_runs, tune_noise=tune_noise,
         nis_only=nis_only, max_evaluations=max_evaluations, threads=threads, force=force))
@@ -433,7 +485,7 @@ def deliver(
     rms_nav_position_error_m, ...}]}, "runs": [...]}` (docs/guidance.md). A scenario without
     `[guidance]` raises ValueError."""
     sc = _scenario(scenario)
-    names = [filters] if isinstance(filters, str) else list(filters)
+    names = _filter_names(filters)
     text = _entrynav.deliver(sc.to_toml(), sc.folder, _options(filters=",".join(names), runs=runs, seed=seed,
                                                                threads=threads))
     return json.loads(text)
@@ -492,9 +544,12 @@ def fmu_pack(out: Union[str, Path], scenario: Optional[Union[Scenario, str]] = N
     SSP packages); with `scenario` the combined FMU specific to it, `filter` its default filter.
     `library` is the FMU shared library (target/release/libentrynav_fmu.so; default
     $ENTRYNAV_FMU_LIB). Returns the paths written, sorted."""
-    lib = library or os.environ.get("ENTRYNAV_FMU_LIB")
+    out = _text("out", out, "a folder path")
+    lib = library if library is not None else os.environ.get("ENTRYNAV_FMU_LIB")
     if lib is None:
-        raise ValueError("fmu_pack needs library= (target/release/libentrynav_fmu.so) or $ENTRYNAV_FMU_LIB")
+        raise ValueError("library = None: fmu_pack needs library= (target/release/libentrynav_fmu.so) or "
+                         "$ENTRYNAV_FMU_LIB")
+    lib = _text("library", lib, "a file path")
     builtin = toml = folder = None
     if scenario is not None:
         sc = _scenario(scenario)

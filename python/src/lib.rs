@@ -10,6 +10,7 @@
 //! `RuntimeError`. This crate links neither the command line nor an FMI host.
 
 mod errors;
+mod keywords;
 mod options;
 mod scenario;
 mod series;
@@ -43,6 +44,7 @@ fn _entrynav(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(studies::optimize_select, m)?)?;
     m.add_function(wrap_pyfunction!(studies::optimize_orbiters, m)?)?;
     m.add_function(wrap_pyfunction!(studies::fmu_pack, m)?)?;
+    m.add_function(wrap_pyfunction!(keywords::keywords, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())
 }

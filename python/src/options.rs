@@ -153,10 +153,29 @@ fn parse<T: DeserializeOwned>(
                     .iter()
                     .find(|(o, _, _)| *o == k)
                     .map_or_else(|| map[&k].to_string(), |(_, t, _)| t.clone());
-                PyTypeError::new_err(format!("{what}(): {k} = {given}: {text}"))
+                match expected_in_words(&text) {
+                    Some(kind) => PyTypeError::new_err(format!(
+                        "{what}(): {k} = {given} has the wrong type: must be {kind}"
+                    )),
+                    None => PyTypeError::new_err(format!("{what}(): {k} = {given}: {text}")),
+                }
             }
             None => PyTypeError::new_err(format!("{what}(): {text}")),
         }
+    })
+}
+
+/// What serde's "invalid type: …, expected T" asks for, in a Python user's words.
+fn expected_in_words(serde_text: &str) -> Option<&'static str> {
+    let expected = serde_text.split("expected ").nth(1)?;
+    let t = expected.split([' ', ',']).next().unwrap_or(expected);
+    Some(match t {
+        "u8" | "u16" | "u32" | "u64" | "usize" | "i32" | "i64" => "a whole number (an int)",
+        "f32" | "f64" => "a number (an int or a float)",
+        "a" if expected.starts_with("a string") => "a string",
+        "a" if expected.starts_with("a boolean") => "True or False",
+        "a" if expected.starts_with("a sequence") => "a list",
+        _ => return None,
     })
 }
 

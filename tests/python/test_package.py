@@ -331,6 +331,32 @@ REFUSALS = [
     (lambda: entrynav.optimize_orbiters("orbiters-3", particles=1),
      ["optimize", "orbiters", "--scenario", "orbiters-3", "--particles", "1"],
      "particles = 1 is out of range: must be from 2 to 10000"),
+    # Issue 53's reproducers.
+    (lambda: entrynav.trade("orbiters-3", ["0"], runs=2),
+     ["trade", "--scenario", "orbiters-3", "--runs", "2", "--filters", "0"],
+     "filters = '0' is unknown: must be one of ekf, ukf, ci, dcifaif, mmae, mmae-moe, ukf-cm, ukf-ac, uskf-nn"),
+    (lambda: entrynav.trade("orbiters-3", ["ekf"], runs=2, seed=-1),
+     ["trade", "--scenario", "orbiters-3", "--runs", "2", "--seed", "-1"],
+     "seed = -1 is out of range: must be from 0 to 18446744073709551615"),
+    (lambda: entrynav.optimize_select("ground-beacons-3", k=3, exact=True, time_limit=1e300),
+     ["optimize", "select", "--scenario", "ground-beacons-3", "--k", "3", "--exact", "--time-limit", "1e300"],
+     "time_limit = 1e300 is out of range: must be a number from 0 to 1000000"),
+    (lambda: entrynav.optimize_select("ground-beacons-3", k=3, grid_deg=1e-9),
+     ["optimize", "select", "--scenario", "ground-beacons-3", "--k", "3", "--grid-deg", "1e-9"],
+     "grid_deg = 1e-9 is out of range: must be a number from 0.05 to 30"),
+    (lambda: entrynav.optimize_select("ground-beacons-3", k=3, region=[-34, -18, -84]),
+     ["optimize", "select", "--scenario", "ground-beacons-3", "--k", "3", "--region", "-34", "-18", "-84"],
+     "region = -34 -18 -84 is out of range: must be four numbers LAT_MIN LAT_MAX LON_MIN LON_MAX [deg], "
+     "e.g. -34 -18 -84 -74"),
+    (lambda: entrynav.optimize_ground("ground-beacons-3", step=1e300),
+     ["optimize", "ground", "--scenario", "ground-beacons-3", "--step", "1e300"],
+     "step = 1e300 is out of range: must be a number from 0.01 to 120"),
+    (lambda: entrynav.optimize_ground("ground-beacons-3", iterations=10**13),
+     ["optimize", "ground", "--scenario", "ground-beacons-3", "--iterations", "10000000000000"],
+     "iterations = 10000000000000 is out of range: must be from 0 to 1000000"),
+    (lambda: entrynav.optimize_orbiters("orbiters-3", altitude_km=0),
+     ["optimize", "orbiters", "--scenario", "orbiters-3", "--altitude-km", "0"],
+     "altitude_km = 0 is out of range: must be a number from 80 to 100000"),
 ]
 
 

@@ -48,7 +48,7 @@ pub struct DeliverArgs {
     pub overrides: crate::args::SetArgs,
     /// Comma-separated filters flown in the loop: ekf, ukf, ci, dcifaif, mmae, mmae-moe, ukf-cm,
     /// ukf-ac, uskf-nn.
-    #[arg(long, default_value = "ekf")]
+    #[arg(long, visible_alias = "filter", default_value = "ekf")]
     pub filters: String,
     /// Monte Carlo runs (default: the scenario's monte_carlo.runs).
     #[arg(long, allow_hyphen_values = true, value_parser = crate::args::runs)]

@@ -52,7 +52,11 @@ pub struct TrainArgs {
     #[arg(long, value_name = "RUNS", value_parser = crate::args::evaluate)]
     pub evaluate: Option<usize>,
     /// Filters evaluated by `--evaluate`.
-    #[arg(long, default_value = "ukf-cm,ukf-ac,uskf-nn")]
+    #[arg(
+        long,
+        visible_alias = "filter",
+        default_value = "ukf-cm,ukf-ac,uskf-nn"
+    )]
     pub filters: String,
     /// Master seed of the `--evaluate` Monte Carlo runs.
     #[arg(long, default_value_t = 1)]

@@ -64,6 +64,25 @@ fn default_ground_optimum_navigates_better_than_the_hand_placed_sites() {
     let v = read_json(&j);
     assert_eq!(v["objective"], "nav");
     assert_eq!(v["check"]["verdict"], "not worse", "{}", v["check"]);
+    // The figures docs/optimizer.md quotes (rounded as there): a change of the optimum or of
+    // the check must update the page.
+    let quoted = [
+        ("input", "pcrlb_time_avg_pos_m", 113.9),
+        ("input", "pcrlb_final_pos_m", 21.2),
+        ("input", "rmse_time_avg_pos_m", 124.6),
+        ("input", "rmse_final_pos_m", 22.4),
+        ("optimum", "pcrlb_time_avg_pos_m", 95.5),
+        ("optimum", "pcrlb_final_pos_m", 17.6),
+        ("optimum", "rmse_time_avg_pos_m", 104.2),
+        ("optimum", "rmse_final_pos_m", 17.9),
+    ];
+    for (design, key, docs) in quoted {
+        let x = v["check"][design][key].as_f64().unwrap();
+        assert!(
+            ((x * 10.0).round() / 10.0 - docs).abs() < 1e-9,
+            "check.{design}.{key} = {x}, docs/optimizer.md says {docs}"
+        );
+    }
     assert!(v["closest_pair_deg"].as_f64().unwrap() >= 3.0 - 1e-9);
     assert!(out.contains("at least 3 deg apart"), "{out}");
     // An independent trade of the written scenario against the input.

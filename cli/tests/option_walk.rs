@@ -285,3 +285,24 @@ fn every_option_of_every_command_refuses_extreme_values_by_name_and_in_time() {
         failures.join("\n")
     );
 }
+
+/// Issue 52: `--filter` and `--filters` are both accepted wherever filters are named.
+#[test]
+fn filter_and_filters_are_both_accepted_everywhere() {
+    let cases: [&[&str]; 5] = [
+        &["trade", "--scenario", "x"],
+        &["tune", "--scenario", "x", "--out", "t.toml"],
+        &["lincov", "--scenario", "x"],
+        &["guidance", "deliver", "--scenario", "x"],
+        &["train-density", "--evaluate", "2"],
+    ];
+    for case in cases {
+        for flag in ["--filter", "--filters"] {
+            let mut args = vec!["entrynav"];
+            args.extend_from_slice(case);
+            args.extend_from_slice(&[flag, "ekf"]);
+            let parsed = entrynav_cli::command().try_get_matches_from(&args);
+            assert!(parsed.is_ok(), "{args:?}: {}", parsed.unwrap_err());
+        }
+    }
+}

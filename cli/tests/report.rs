@@ -96,7 +96,8 @@ fn trade_report_is_one_self_contained_page_with_every_section() {
         .and_then(|s| s.split("</p>").next())
         .expect("no recommendation line");
     assert!(
-        rec.contains("ekf: consistent, lowest position RMSE") && rec.contains("dcifaif consistent"),
+        rec.contains("ekf: consistent, lowest position RMSE among the consistent filters")
+            && rec.contains("dcifaif consistent"),
         "{rec}"
     );
     assert!(
@@ -300,5 +301,37 @@ fn a_diverged_filter_is_marked_diverged_and_never_recommended() {
         html.matches("diverged in 6/6 runs</td>").count(),
         3,
         "CI's three verdict cells"
+    );
+}
+
+/// Issue 52: a filter with a lower RMSE whose σ does not describe its errors is not what the
+/// recommendation picks, and the line says why (the tutorial's msl-pressure case).
+#[test]
+fn a_lower_rmse_from_an_inconsistent_filter_is_named_as_such() {
+    let (code, out, err) = common::entrynav(&[
+        "trade",
+        "--scenario",
+        "msl-pressure",
+        "--set",
+        "dispersions.density_bias=0.05",
+        "--filters",
+        "ekf,mmae",
+        "--runs",
+        "50",
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let rec = out
+        .lines()
+        .find(|l| l.starts_with("recommendation:"))
+        .unwrap_or_else(|| panic!("no recommendation line in\n{out}"));
+    assert!(
+        rec.contains("ekf: consistent, lowest position RMSE among the consistent filters"),
+        "{rec}"
+    );
+    assert!(
+        rec.contains("mmae optimistic (errors exceed σ)")
+            && rec.contains("(lower, but its σ does not describe its errors)"),
+        "{rec}"
     );
 }

@@ -9,12 +9,14 @@ use thiserror::Error;
 pub enum LoadError {
     /// Neither a built-in nor a readable file.
     #[error(
-        "scenario '{name}' is neither a built-in ({builtins}) nor a readable file ({})",
+        "scenario '{name}' is neither a built-in ({builtins}) nor a readable file ({}){suggestion}",
         path.display()
     )]
     NotFound {
         /// What was asked for.
         name: String,
+        /// `; did you mean 'msl-airdata'?` for a near miss of a built-in's name, else empty.
+        suggestion: String,
         /// Where it was looked for.
         path: PathBuf,
         /// Comma-separated built-in names.
@@ -25,11 +27,13 @@ pub enum LoadError {
     },
     /// A relative file name with no folder to resolve it against.
     #[error(
-        "scenario '{name}' is not a built-in ({builtins}) and there is no folder to find it in"
+        "scenario '{name}' is not a built-in ({builtins}) and there is no folder to find it in{suggestion}"
     )]
     NoFolder {
         /// What was asked for.
         name: String,
+        /// `; did you mean 'msl-airdata'?` for a near miss of a built-in's name, else empty.
+        suggestion: String,
         /// Comma-separated built-in names.
         builtins: String,
     },

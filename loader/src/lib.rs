@@ -21,5 +21,5 @@ pub use error::LoadError;
 pub use load::{build, file_loader, load};
 pub use overrides::apply_overrides;
 pub use read::{MAX_FILE_BYTES, read_bytes, read_text};
-pub use resolve::resolve;
+pub use resolve::{resolve, suggestion};
 pub use source::{Base, Origin, ScenarioSource};

@@ -14,6 +14,19 @@ pub(super) fn builtins() -> String {
     BUILTIN_NAMES.join(", ")
 }
 
+/// `; did you mean 'NAME'?` when `name` is a near miss of a built-in's name (at most a quarter
+/// of its letters, and at least 2, edited: `msl-airdta`, `ground-beacon-3`), else empty.
+pub fn suggestion(name: &str) -> String {
+    let lower = name.to_lowercase();
+    BUILTIN_NAMES
+        .iter()
+        .map(|b| (strsim::damerau_levenshtein(&lower, b), *b))
+        .filter(|(d, b)| *d > 0 || lower != *b)
+        .min()
+        .filter(|(d, b)| *d <= (b.len() / 4).max(2))
+        .map_or_else(String::new, |(_, b)| format!("; did you mean '{b}'?"))
+}
+
 /// Resolve `name_or_file`: a built-in name, else a TOML file, absolute or relative to `base`.
 pub fn resolve(name_or_file: &str, base: Base<'_>) -> Result<ScenarioSource, LoadError> {
     let name = name_or_file.trim();
@@ -33,12 +46,18 @@ pub fn resolve(name_or_file: &str, base: Base<'_>) -> Result<ScenarioSource, Loa
         Base::Folder(dir) => dir.join(name),
         Base::Nowhere => {
             return Err(LoadError::NoFolder {
+                suggestion: suggestion(name),
                 name: name.to_string(),
                 builtins: builtins(),
             });
         }
     };
     let text = read_text(&path).map_err(|source| LoadError::NotFound {
+        suggestion: if path.exists() {
+            String::new()
+        } else {
+            suggestion(name)
+        },
         name: name.to_string(),
         path: path.clone(),
         builtins: builtins(),

@@ -76,3 +76,24 @@ fn numeric_keys_index_arrays() {
         "{err}"
     );
 }
+
+#[test]
+fn a_near_miss_of_a_builtin_name_gets_did_you_mean() {
+    let err = crate::resolve("msl-airdta", crate::Base::CurrentDir)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(err.ends_with("; did you mean 'msl-airdata'?"), "{err}");
+    let err = crate::resolve("Ground-Beacon-3", crate::Base::Nowhere)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(err.ends_with("; did you mean 'ground-beacons-3'?"), "{err}");
+    // Far from every name: no guess.
+    let err = crate::resolve("my-entry.toml", crate::Base::CurrentDir)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(!err.contains("did you mean"), "{err}");
+    assert_eq!(crate::suggestion("orbiters-3"), "");
+}

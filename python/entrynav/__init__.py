@@ -124,8 +124,12 @@ class Scenario:
         """A built-in scenario by name (see `builtin_scenarios()`)."""
         name = _text("name", name)
         if name not in builtin_scenarios():
+            import difflib
+
+            near = difflib.get_close_matches(name.lower(), list(builtin_scenarios()), n=1, cutoff=0.8)
+            hint = f"; did you mean {near[0]!r}?" if near else ""
             raise ValueError(f"name = {_shown(name)} is not a built-in scenario: must be one of "
-                             f"{', '.join(builtin_scenarios())}")
+                             f"{', '.join(builtin_scenarios())}{hint}")
         toml, folder = _entrynav.resolve_scenario(name)
         return cls(toml, folder)
 
@@ -425,10 +429,9 @@ def _scenario(scenario: Union[Scenario, str]) -> Scenario:
     name = _text("scenario", scenario, "a Scenario, a built-in name or a scenario file path")
     if name in builtin_scenarios():
         return Scenario.builtin(name)
-    try:
-        return Scenario.from_file(name)
-    except (FileNotFoundError, ValueError) as e:
-        raise type(e)(f"scenario = {_shown(name)}: {e}") from None
+    # The loader's message names the scenario (and the nearest built-in for a near miss).
+    toml, folder = _entrynav.resolve_scenario(name)
+    return Scenario(toml, folder)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -137,6 +137,11 @@ def test_bad_input_raises_python_exceptions_naming_the_field():
         entrynav.Scenario.from_file("/no/such/scenario.toml")
     with pytest.raises(ValueError, match="not a built-in"):
         entrynav.Scenario.builtin("mars-2099")
+    # A near miss gets the nearest name, from the package and from the loader alike.
+    with pytest.raises(ValueError, match="did you mean 'msl-airdata'"):
+        entrynav.Scenario.builtin("msl-airdta")
+    with pytest.raises(FileNotFoundError, match="did you mean 'msl-airdata'"):
+        entrynav.trade("msl-airdta", ["ekf"], runs=2)
     with pytest.raises(ValueError, match="runs = 0 is out of range"):
         entrynav.trade(sc, ["ekf"], runs=0)
     with pytest.raises(ValueError, match="wiener"):

@@ -60,8 +60,9 @@ pub struct ScenarioConfig {
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub faults: Vec<FaultConfig>,
     /// Entry guidance (issue 28): the algorithm, target, rate, bank limits and deployment
-    /// trigger. Absent: the constant `truth.bank_deg`. The simulation engine does not fly it yet
-    /// (trades still fly `truth.bank_deg`); `sim::guided_flight` flies it with perfect navigation.
+    /// trigger. Absent: the constant `truth.bank_deg`. A trade's navigation Monte Carlo still
+    /// flies `truth.bank_deg`; its delivery table (`sim::guided::delivery`), `guidance deliver`
+    /// and `sim::guided_flight` fly the guidance.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub guidance: Option<GuidanceConfig>,
 }

@@ -158,12 +158,22 @@ fn locate(
     path: &Path,
     dir: Option<&Path>,
 ) -> Result<(PathBuf, bool), ScenarioFileError> {
-    let canonical = path
-        .canonicalize()
-        .map_err(|e| ScenarioFileError::Unreadable {
+    let canonical = path.canonicalize().map_err(|e| {
+        let reason = if e.kind() == std::io::ErrorKind::NotFound {
+            // Most often a mistyped built-in: list them, and the nearest one.
+            format!(
+                "no such file, and no built-in of that name ({}){}",
+                builtins(),
+                entrynav_loader::suggestion(name)
+            )
+        } else {
+            io_reason(&e)
+        };
+        ScenarioFileError::Unreadable {
             name: name.to_string(),
-            reason: io_reason(&e),
-        })?;
+            reason,
+        }
+    })?;
     let inside = dir
         .and_then(|d| d.canonicalize().ok())
         .is_some_and(|d| canonical.starts_with(d));

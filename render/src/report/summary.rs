@@ -106,6 +106,15 @@ pub fn recommendation(report: &TradeReport) -> String {
         Some(b) => {
             let (avg, fin) = pos(b);
             let c = &b.consistency;
+            let among = if report.filters.len() > 1 {
+                if consistent.is_some() {
+                    " among the consistent filters"
+                } else {
+                    " among the conservative filters"
+                }
+            } else {
+                ""
+            };
             let how = if consistent.is_some() {
                 "consistent".to_string()
             } else {
@@ -116,7 +125,7 @@ pub fn recommendation(report: &TradeReport) -> String {
                 )
             };
             parts.push(format!(
-                "{}: {how}, lowest position RMSE ({} time-averaged, {} final)",
+                "{}: {how}, lowest position RMSE{among} ({} time-averaged, {} final)",
                 b.name,
                 m(avg),
                 m(fin)
@@ -141,6 +150,14 @@ pub fn recommendation(report: &TradeReport) -> String {
                 Verdict::Unknown => "no NEES",
             };
             match (best.and_then(|b| pos(b).0), pos(f).0) {
+                // A lower RMSE from a filter whose σ does not describe its errors is not a reason
+                // to fly it: say so where it happens.
+                (Some(b), Some(x)) if b > 0.0 && x < b && best.is_some() => format!(
+                    "{} {verdict}, {:.2}× the position RMSE (lower, but its σ does not describe \
+                     its errors)",
+                    f.name,
+                    x / b
+                ),
                 (Some(b), Some(x)) if b > 0.0 => {
                     format!("{} {verdict}, {:.2}× the position RMSE", f.name, x / b)
                 }

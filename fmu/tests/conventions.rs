@@ -310,11 +310,13 @@ fn the_scenario_parameter_cannot_read_or_disclose_host_files() {
     .unwrap();
     let uri = format!("file://{}", res.display());
     let secret_path = secret.display().to_string();
-    let cases: [(&str, bool, &str); 7] = [
+    let cases: [(&str, bool, &str); 8] = [
         (&secret_path, false, "allow_external_files = true"),
         ("../secret.txt", false, "allow_external_files = true"),
         ("link.toml", false, "allow_external_files = true"),
         ("missing.toml", false, "cannot be read"),
+        // A mistyped built-in gets the list and the nearest name.
+        ("msl-airdta", false, "did you mean 'msl-airdata'?"),
         ("broken.toml", false, "line 2"),
         (&secret_path, true, "TOML parse error at line 1"),
         ("/dev/zero", true, "not a regular file"),

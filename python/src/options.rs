@@ -50,7 +50,16 @@ fn convert(v: &Bound<'_, PyAny>) -> PyResult<Converted> {
     if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
         let mut items = Vec::new();
         for item in v.try_iter()? {
-            match convert(&item?)? {
+            let item = item?;
+            // A negative whole number is a fine list entry (a region's -34 deg).
+            if item.is_instance_of::<PyInt>()
+                && !item.is_instance_of::<PyBool>()
+                && let Ok(n) = item.extract::<i64>()
+            {
+                items.push(json!(n));
+                continue;
+            }
+            match convert(&item)? {
                 Json(j) => items.push(j),
                 OutOfType(text, _) => {
                     return Err(PyValueError::new_err(format!(

@@ -16,6 +16,9 @@ cargo clippy --workspace --all-targets --release -- -D warnings
 echo "== rustdoc of the library crates (broken links are errors)"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -p entrynav -p entrynav-loader -p entrynav-fmu -p entrynav-fmu-archive -p entrynav-fmi-host -p entrynav-devtools -p entrynav-optimizer -p entrynav-studies -p entrynav-render
 
+echo "== cargo build (the binaries and the FMU library the option walks and the FMU tests run)"
+cargo build --release --workspace
+
 echo "== cargo test"
 # Release profile: the Monte Carlo and property tests are numerical and run much faster optimised.
 cargo test --workspace --release
@@ -37,8 +40,8 @@ echo "== HTML report: a small trade's --report renders in headless Chromium (no 
 bash scripts/check_report.sh
 
 echo "== FMU: shared library, packed FMUs (MarsEntryNav, MarsEntryNavFilter, MarsEntryTruth, MarsEntryGuidance, MarsEntryNavGuided; FMI 2.0 and 3.0)"
-# Before the Dask and tutorial steps: both load the packed MarsEntryNav.fmu.
-cargo build --release --workspace
+# Before the Dask and tutorial steps: both load the packed MarsEntryNav.fmu (the library was built
+# before the tests).
 target/release/entrynav fmu pack --out target/fmu
 target/release/entrynav fmu pack --out target/fmu --fmi 3
 

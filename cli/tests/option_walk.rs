@@ -248,6 +248,13 @@ fn every_command_has_a_base_line() {
 #[test]
 fn every_option_of_every_command_refuses_extreme_values_by_name_and_in_time() {
     let dir = walker::scratch("cli");
+    let lib = entrynav().parent().unwrap().join("libentrynav_fmu.so");
+    assert!(
+        lib.is_file(),
+        "{} missing: `fmu pack`'s base line needs it; build the workspace first \
+         (cargo build --release --workspace, as scripts/test.sh does)",
+        lib.display()
+    );
     make_inputs(&dir);
     let commands = commands(&dir);
     for (i, (leaf, base)) in commands.iter().enumerate() {

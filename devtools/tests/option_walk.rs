@@ -47,7 +47,8 @@ fn every_option_of_every_developer_tool_refuses_extreme_values_by_name_and_in_ti
     let lib = tool().parent().unwrap().join("libentrynav_fmu.so");
     assert!(
         lib.is_file(),
-        "{} missing: cargo build --release --workspace",
+        "{} missing: build the workspace first (cargo build --release --workspace, as \
+         scripts/test.sh does)",
         lib.display()
     );
     let options = PackOptions {

@@ -150,7 +150,14 @@ class Scenario:
         try:
             toml = _entrynav.apply_sets(self._toml, [f"{field}={_toml_value(value)}"])
         except ValueError as e:
-            raise ValueError(f"set(path={_shown(field)}, value={_shown(value)}): {e}") from None
+            # An override that cannot be applied (no such field, a value of the wrong type) is
+            # said in the call's terms; a value out of its range keeps the field's own message
+            # (`beacons[0].lat_deg = 123.0 is invalid: allowed [-90, 90] deg`).
+            text = str(e)
+            if text.startswith("--set '") and "': " in text:
+                reason = text.split("': ", 1)[1]
+                raise ValueError(f"set(path={_shown(field)}, value={_shown(value)}): {reason}") from None
+            raise
         return Scenario(toml, self._folder)
 
     def with_sets(self, sets: Iterable[str]) -> "Scenario":

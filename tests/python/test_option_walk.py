@@ -151,7 +151,11 @@ def names_word(text, word):
     return re.search(rf"(?<![\w-]){re.escape(word)}(?![\w-])", text) is not None
 
 
-def verdict(key, value, out):
+# What else names an argument: `Scenario.set`'s value is named by the field it is set on.
+ALSO_NAMED = {("Scenario.set", "value"): BASE["Scenario.set"]["path"]}
+
+
+def verdict(key, value, out, name=""):
     if out.get("hang"):
         return f"hang (no answer after {TIMEOUT_S:.0f} s)"
     if "crash" in out:
@@ -163,7 +167,8 @@ def verdict(key, value, out):
         return None  # a design's verdict on a value it accepted
     if kind not in ("ValueError", "TypeError", "FileNotFoundError"):
         return f"{kind} (not ValueError or TypeError): {message[:200]}"
-    if not names_word(message, key):
+    also = ALSO_NAMED.get((name, key))
+    if not names_word(message, key) and not (also and also in message):
         return f"{kind} without naming {key}: {message[:200]}"
     return None
 
@@ -198,7 +203,7 @@ def test_every_keyword_of_the_python_api_refuses_extreme_values_by_name_and_in_t
     failures = []
     for (name, key), results in outcomes:
         for value, out in results:
-            why = verdict(key, value, out)
+            why = verdict(key, value, out, name)
             if why:
                 failures.append(f"{name}({key}={str(value)[:40]!s}): {why}")
     probes = sum(len(r) for _, r in outcomes)

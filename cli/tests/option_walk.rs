@@ -9,7 +9,6 @@
 #[path = "option_walk/walker.rs"]
 mod walker;
 
-use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;
 
@@ -18,7 +17,7 @@ fn entrynav() -> &'static Path {
 }
 
 /// The valid, quick command line of each command, by option id (`[]` for a flag).
-fn base_lines(dir: &Path) -> BTreeMap<String, Vec<(&'static str, Vec<String>)>> {
+fn base_lines(dir: &Path) -> walker::BaseLines {
     let p = |f: &str| dir.join(f).display().to_string();
     let s = |v: &str| vec![v.to_string()];
     let lib = entrynav()
@@ -30,7 +29,7 @@ fn base_lines(dir: &Path) -> BTreeMap<String, Vec<(&'static str, Vec<String>)>> 
     let scenario = |name: &str| ("scenario", s(name));
     let check = vec![("check_runs", s("10")), ("check_filter", s("ekf"))];
     let search = vec![("starts", s("1")), ("iterations", s("5"))];
-    let mut b: BTreeMap<String, Vec<(&'static str, Vec<String>)>> = BTreeMap::new();
+    let mut b = walker::BaseLines::new();
     let mut add = |path: &str, args: Vec<(&'static str, Vec<String>)>| {
         b.insert(path.to_string(), args);
     };
@@ -169,24 +168,6 @@ fn make_inputs(dir: &Path) {
     .concat());
 }
 
-/// Every command with its base line, each checked to run cleanly (exit 0) so that what a probe
-/// changes is the probed value alone.
-fn commands(dir: &Path) -> Vec<(walker::Leaf, BTreeMap<String, Vec<String>>)> {
-    let bases = base_lines(dir);
-    let mut out = Vec::new();
-    for leaf in walker::leaves(&entrynav_cli::command()) {
-        let key = leaf.path.join(" ");
-        let base: BTreeMap<String, Vec<String>> = bases
-            .get(&key)
-            .unwrap_or_else(|| panic!("no base line for `entrynav {key}`"))
-            .iter()
-            .map(|(id, v)| (id.to_string(), v.clone()))
-            .collect();
-        out.push((leaf, base));
-    }
-    out
-}
-
 #[test]
 fn a_region_at_negative_coordinates_is_read_after_a_space_and_with_commas() {
     let dir = walker::scratch("region");
@@ -230,19 +211,9 @@ fn a_region_at_negative_coordinates_is_read_after_a_space_and_with_commas() {
 
 #[test]
 fn every_command_has_a_base_line() {
-    let bases = base_lines(Path::new("/tmp"));
-    for leaf in walker::leaves(&entrynav_cli::command()) {
-        let key = leaf.path.join(" ");
-        let base = bases
-            .get(&key)
-            .unwrap_or_else(|| panic!("no base line for `entrynav {key}`"));
-        for (id, _) in base {
-            assert!(
-                leaf.options.iter().any(|o| o.id == *id),
-                "the base line of `entrynav {key}` sets `{id}`, which it does not have"
-            );
-        }
-    }
+    // Panics naming a command without one, or a base line with an option its command lacks.
+    let commands = walker::commands(&entrynav_cli::command(), &base_lines(Path::new("/tmp")));
+    assert!(commands.len() > 15, "{} commands", commands.len());
 }
 
 #[test]
@@ -256,41 +227,10 @@ fn every_option_of_every_command_refuses_extreme_values_by_name_and_in_time() {
         lib.display()
     );
     make_inputs(&dir);
-    let commands = commands(&dir);
-    for (i, (leaf, base)) in commands.iter().enumerate() {
-        let args = walker::line(leaf, base, None);
-        let out = walker::run(entrynav(), &args, &dir, 100_000 + i);
-        assert_eq!(
-            out.code,
-            Some(0),
-            "the base line `entrynav {}` does not run cleanly ({:.1} s): {}",
-            args.join(" "),
-            out.seconds,
-            out.stderr
-        );
-    }
-    let values = walker::extreme_values(&dir);
-    let probes: Vec<walker::Probe> = commands
-        .iter()
-        .flat_map(|(leaf, base)| walker::probes(leaf, base, &values))
-        .collect();
+    let commands = walker::commands(&entrynav_cli::command(), &base_lines(&dir));
+    let probes = walker::checked_probes(entrynav(), &commands, &dir);
     assert!(probes.len() > 1500, "only {} probes", probes.len());
-    let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
-    let clock = std::time::Instant::now();
-    let failures = walker::run_all(entrynav(), &probes, &dir, threads);
-    eprintln!(
-        "{} probes of {} options in {:.1} s",
-        probes.len(),
-        probes.len() / walker::extreme_values(&dir).len(),
-        clock.elapsed().as_secs_f64()
-    );
-    assert!(
-        failures.is_empty(),
-        "{} of {} probes failed:\n{}",
-        failures.len(),
-        probes.len(),
-        failures.join("\n")
-    );
+    walker::assert_all_pass(entrynav(), &probes, &dir);
 }
 
 /// Issue 52: `--filter` and `--filters` are both accepted wherever filters are named.

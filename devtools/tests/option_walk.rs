@@ -6,7 +6,6 @@
 mod walker;
 
 use entrynav_studies::fmu_pack::{PackOptions, pack_fmus};
-use std::collections::BTreeMap;
 use std::path::Path;
 
 fn tool() -> &'static Path {
@@ -14,10 +13,10 @@ fn tool() -> &'static Path {
 }
 
 /// The valid, quick command line of each command, by option id.
-fn base_lines(dir: &Path) -> BTreeMap<String, Vec<(&'static str, Vec<String>)>> {
+fn base_lines(dir: &Path) -> walker::BaseLines {
     let p = |f: &str| vec![dir.join(f).display().to_string()];
     let s = |v: &str| vec![v.to_string()];
-    let mut b = BTreeMap::new();
+    let mut b = walker::BaseLines::new();
     b.insert(
         "fmu check".to_string(),
         vec![("file", p("fmus/MarsEntryTruth.fmu")), ("step", s("1"))],
@@ -56,46 +55,8 @@ fn every_option_of_every_developer_tool_refuses_extreme_values_by_name_and_in_ti
         ..PackOptions::default()
     };
     pack_fmus(&lib, &dir.join("fmus"), None, &options).expect("pack the FMUs");
-    let bases = base_lines(&dir);
-    let values = walker::extreme_values(&dir);
-    let mut probes = Vec::new();
-    for (i, leaf) in walker::leaves(&entrynav_devtools::command())
-        .into_iter()
-        .enumerate()
-    {
-        let key = leaf.path.join(" ");
-        let base: BTreeMap<String, Vec<String>> = bases
-            .get(&key)
-            .unwrap_or_else(|| panic!("no base line for `entrynav-dev {key}`"))
-            .iter()
-            .map(|(id, v)| (id.to_string(), v.clone()))
-            .collect();
-        for id in base.keys() {
-            assert!(
-                leaf.options.iter().any(|o| o.id == *id),
-                "`entrynav-dev {key}` has no option `{id}`"
-            );
-        }
-        let args = walker::line(&leaf, &base, None);
-        let out = walker::run(tool(), &args, &dir, 100_000 + i);
-        assert_eq!(
-            out.code,
-            Some(0),
-            "the base line `entrynav-dev {}` does not run cleanly ({:.1} s): {}",
-            args.join(" "),
-            out.seconds,
-            out.stderr
-        );
-        probes.extend(walker::probes(&leaf, &base, &values));
-    }
+    let commands = walker::commands(&entrynav_devtools::command(), &base_lines(&dir));
+    let probes = walker::checked_probes(tool(), &commands, &dir);
     assert!(probes.len() > 100, "only {} probes", probes.len());
-    let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
-    let failures = walker::run_all(tool(), &probes, &dir, threads);
-    assert!(
-        failures.is_empty(),
-        "{} of {} probes failed:\n{}",
-        failures.len(),
-        probes.len(),
-        failures.join("\n")
-    );
+    walker::assert_all_pass(tool(), &probes, &dir);
 }

@@ -215,6 +215,82 @@ pub fn probes(leaf: &Leaf, base: &BTreeMap<String, Vec<String>>, values: &[Strin
     out
 }
 
+/// The valid command line of each command (by path, `optimize select`) as option ids and values.
+pub type BaseLines = BTreeMap<String, Vec<(&'static str, Vec<String>)>>;
+
+/// Every command under `tree` paired with its base line; panics naming a command without one,
+/// or a base line that sets an option its command does not have.
+pub fn commands(
+    tree: &clap::Command,
+    bases: &BaseLines,
+) -> Vec<(Leaf, BTreeMap<String, Vec<String>>)> {
+    let name = tree.get_name().to_string();
+    leaves(tree)
+        .into_iter()
+        .map(|leaf| {
+            let key = leaf.path.join(" ");
+            let base: BTreeMap<String, Vec<String>> = bases
+                .get(&key)
+                .unwrap_or_else(|| panic!("no base line for `{name} {key}`"))
+                .iter()
+                .map(|(id, v)| (id.to_string(), v.clone()))
+                .collect();
+            for id in base.keys() {
+                assert!(
+                    leaf.options.iter().any(|o| o.id == *id),
+                    "the base line of `{name} {key}` sets `{id}`, which it does not have"
+                );
+            }
+            (leaf, base)
+        })
+        .collect()
+}
+
+/// The probes of every command of `commands`, after checking that each base line runs cleanly
+/// (exit 0), so that what a probe changes is the probed value alone.
+pub fn checked_probes(
+    program: &Path,
+    commands: &[(Leaf, BTreeMap<String, Vec<String>>)],
+    dir: &Path,
+) -> Vec<Probe> {
+    let values = extreme_values(dir);
+    let mut probes = Vec::new();
+    for (i, (leaf, base)) in commands.iter().enumerate() {
+        let args = line(leaf, base, None);
+        let out = run(program, &args, dir, 100_000 + i);
+        assert_eq!(
+            out.code,
+            Some(0),
+            "the base line `{} {}` does not run cleanly ({:.1} s): {}",
+            program.display(),
+            args.join(" "),
+            out.seconds,
+            out.stderr
+        );
+        probes.extend(self::probes(leaf, base, &values));
+    }
+    probes
+}
+
+/// Run `probes` on every core and fail the test with every failure, one line each.
+pub fn assert_all_pass(program: &Path, probes: &[Probe], dir: &Path) {
+    let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
+    let clock = Instant::now();
+    let failures = run_all(program, probes, dir, threads);
+    eprintln!(
+        "{} probes in {:.1} s",
+        probes.len(),
+        clock.elapsed().as_secs_f64()
+    );
+    assert!(
+        failures.is_empty(),
+        "{} of {} probes failed:\n{}",
+        failures.len(),
+        probes.len(),
+        failures.join("\n")
+    );
+}
+
 /// How a probe ended.
 #[derive(Debug)]
 pub struct Outcome {

@@ -47,6 +47,21 @@ pub fn validate_check(check_runs: usize, no_check: bool) -> StudyResult<()> {
     Ok(())
 }
 
+/// The options every design shares, refused by name: the filter its LinCov objectives score,
+/// the filter and run count of its check, and the name of the scenario it writes.
+pub fn validate_shared(
+    lincov_filter: &str,
+    (check_filter, check_runs, no_check): (&str, usize, bool),
+    scenario_name: Option<&str>,
+) -> StudyResult<()> {
+    crate::options::filter("lincov_filter", lincov_filter)?;
+    crate::options::filter("check_filter", check_filter)?;
+    if let Some(n) = scenario_name {
+        crate::options::name("scenario_name", n)?;
+    }
+    validate_check(check_runs, no_check)
+}
+
 /// The headline figures of one design.
 #[derive(Debug, Clone)]
 pub struct Figures {

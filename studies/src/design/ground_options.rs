@@ -1,6 +1,6 @@
 //! The options of the ground-site design (`entrynav optimize ground`), with their bounds.
 
-use crate::design::check::{CheckSettings, validate_check};
+use crate::design::check::{CheckSettings, validate_shared};
 use crate::design::choices::{DeltaMethod, GroundObjectiveName};
 use crate::design::search::SearchCounts;
 use crate::error::StudyResult;
@@ -16,6 +16,20 @@ pub const MAX_BEACONS: usize = 100;
 /// Highest elevation requirement or mask \[deg\]: a vehicle must be seen above it, so 90 (the
 /// zenith alone) leaves no site.
 pub const MAX_ELEVATION_DEG: f64 = 89.0;
+
+/// Refuse a site requirement no site can meet, naming it: the vehicle's smallest elevation
+/// above every site's horizon (0 to [`MAX_ELEVATION_DEG`]) and the sites' smallest separation
+/// (0 to 90 deg).
+pub fn validate_site_angles(min_elevation_deg: f64, min_separation_deg: f64) -> StudyResult<()> {
+    options::degrees(
+        "min_elevation_deg",
+        min_elevation_deg,
+        0.0,
+        MAX_ELEVATION_DEG,
+    )?;
+    options::degrees("min_separation_deg", min_separation_deg, 0.0, 90.0)?;
+    Ok(())
+}
 
 /// The options of a ground-site design.
 #[derive(Debug, Clone, serde::Deserialize)]
@@ -107,25 +121,18 @@ impl GroundOptions {
         }
         self.search().validate(default_search(self.seed))?;
         check_threads(self.threads)?;
-        options::filter("lincov_filter", &self.lincov_filter)?;
-        options::filter("check_filter", &self.check_filter)?;
-        if let Some(n) = &self.scenario_name {
-            options::name("scenario_name", n)?;
-        }
-        options::degrees(
-            "min_elevation_deg",
-            self.min_elevation_deg,
-            0.0,
-            MAX_ELEVATION_DEG,
-        )?;
+        validate_site_angles(self.min_elevation_deg, self.min_separation_deg)?;
         options::degrees(
             "elevation_mask_deg",
             self.elevation_mask_deg,
             0.0,
             MAX_ELEVATION_DEG,
         )?;
-        options::degrees("min_separation_deg", self.min_separation_deg, 0.0, 90.0)?;
-        validate_check(self.check_runs, self.no_check)
+        validate_shared(
+            &self.lincov_filter,
+            (&self.check_filter, self.check_runs, self.no_check),
+            self.scenario_name.as_deref(),
+        )
     }
 
     /// Refuse a trajectory step that gives fewer than two samples of the entry (or too many).

@@ -1,6 +1,6 @@
 //! The options of the orbiter design (`entrynav optimize orbiters`), with their bounds.
 
-use crate::design::check::{CheckSettings, validate_check};
+use crate::design::check::{CheckSettings, validate_shared};
 use crate::design::choices::OrbiterObjectiveName;
 use crate::design::search::SearchCounts;
 use crate::error::StudyResult;
@@ -94,15 +94,14 @@ impl OrbiterOptions {
         }
         self.search().validate(default_search(self.seed))?;
         check_threads(self.threads)?;
-        options::filter("lincov_filter", &self.lincov_filter)?;
-        options::filter("check_filter", &self.check_filter)?;
-        if let Some(n) = &self.scenario_name {
-            options::name("scenario_name", n)?;
-        }
         if let Some(h) = self.altitude_km {
             options::real("altitude_km", h, MIN_ALTITUDE_KM, MAX_ALTITUDE_KM)?;
         }
-        validate_check(self.check_runs, self.no_check)
+        validate_shared(
+            &self.lincov_filter,
+            (&self.check_filter, self.check_runs, self.no_check),
+            self.scenario_name.as_deref(),
+        )
     }
 
     /// Refuse a trajectory step that gives fewer than two samples of the entry (or too many).

@@ -1,10 +1,10 @@
 //! The options of the site selection on a candidate grid (`entrynav optimize select`), with their
 //! bounds.
 
-use crate::design::check::{CheckSettings, validate_check};
+use crate::design::check::{CheckSettings, validate_shared};
 use crate::design::choices::{Choice, Criterion, SelectObjectiveName};
 use crate::design::ground_options::MAX_BEACONS;
-use crate::design::ground_options::MAX_ELEVATION_DEG;
+use crate::design::ground_options::validate_site_angles;
 use crate::error::{StudyError, StudyResult};
 use crate::options::{self, OptionError, check_count, check_threads, real};
 use std::path::PathBuf;
@@ -141,19 +141,12 @@ impl SelectOptions {
             check_count("node_limit", n, 1, MAX_NODES)?;
         }
         check_threads(self.threads)?;
-        options::filter("lincov_filter", &self.lincov_filter)?;
-        options::filter("check_filter", &self.check_filter)?;
-        if let Some(n) = &self.scenario_name {
-            options::name("scenario_name", n)?;
-        }
-        options::degrees(
-            "min_elevation_deg",
-            self.min_elevation_deg,
-            0.0,
-            MAX_ELEVATION_DEG,
+        validate_site_angles(self.min_elevation_deg, self.min_separation_deg)?;
+        validate_shared(
+            &self.lincov_filter,
+            (&self.check_filter, self.check_runs, self.no_check),
+            self.scenario_name.as_deref(),
         )?;
-        options::degrees("min_separation_deg", self.min_separation_deg, 0.0, 90.0)?;
-        validate_check(self.check_runs, self.no_check)?;
         self.region_box()?;
         match self.objective {
             Some(o) if self.exact => Err(StudyError::Refused(format!(

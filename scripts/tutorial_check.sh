@@ -5,6 +5,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH="$PWD/target/release:$PATH"
 mkdir -p out/tutorial
+# Start without the Python package, as a clean clone does: the tutorial must build what it uses.
+if .venv/bin/python -c "import entrynav" >/dev/null 2>&1; then
+  .venv/bin/pip uninstall --quiet --yes entrynav
+  echo "tutorial: uninstalled the Python package first (a clean clone has none)"
+fi
 n=0
 while IFS= read -r line; do
   n=$((n + 1))

@@ -1,6 +1,6 @@
 //! Tests of the loader: built-ins, files, overrides and the files a scenario refers to.
 
-use super::*;
+use crate::{Base, Origin, apply_overrides, load, resolve, suggestion};
 use entrynav::scenario::ScenarioConfig;
 
 #[test]
@@ -79,21 +79,21 @@ fn numeric_keys_index_arrays() {
 
 #[test]
 fn a_near_miss_of_a_builtin_name_gets_did_you_mean() {
-    let err = crate::resolve("msl-airdta", crate::Base::CurrentDir)
+    let err = resolve("msl-airdta", Base::CurrentDir)
         .err()
         .unwrap()
         .to_string();
     assert!(err.ends_with("; did you mean 'msl-airdata'?"), "{err}");
-    let err = crate::resolve("Ground-Beacon-3", crate::Base::Nowhere)
+    let err = resolve("Ground-Beacon-3", Base::Nowhere)
         .err()
         .unwrap()
         .to_string();
     assert!(err.ends_with("; did you mean 'ground-beacons-3'?"), "{err}");
     // Far from every name: no guess.
-    let err = crate::resolve("my-entry.toml", crate::Base::CurrentDir)
+    let err = resolve("my-entry.toml", Base::CurrentDir)
         .err()
         .unwrap()
         .to_string();
     assert!(!err.contains("did you mean"), "{err}");
-    assert_eq!(crate::suggestion("orbiters-3"), "");
+    assert_eq!(suggestion("orbiters-3"), "");
 }

@@ -105,7 +105,7 @@ fn beacon_noise_outside_its_envelope_is_refused_naming_the_field() {
 }
 
 #[test]
-fn implausible_entry_values_are_warned_with_the_likely_slip() {
+fn implausible_entry_values_are_refused_with_the_likely_slip_unless_allowed() {
     let base = [
         "simulate",
         "--scenario",
@@ -117,25 +117,42 @@ fn implausible_entry_values_are_warned_with_the_likely_slip() {
     let (code, _, err) = entrynav(&base);
     assert_eq!(code, 0, "{err}");
     assert!(!err.contains("warning:"), "{err}");
-    // A speed in km/s and a flight-path angle in radians: accepted (a study may mean them), but
-    // each named with its plausible range and the slip.
+    // A speed in km/s: refused (exit 2) with its plausible range, the likely unit and the way to
+    // insist.
     let mut args = base.to_vec();
+    args.extend(["--set", "truth.initial.speed_mps=5.515"]);
+    let (code, _, err) = entrynav(&args);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("truth.initial.speed_mps = 5.515 is outside what a Mars entry plausibly has")
+            && err.contains("km/s? 5.515 km/s = 5515 m/s")
+            && err.contains("--set allow_implausible=true"),
+        "{err}"
+    );
+    // A flight-path angle in radians, likewise.
+    let mut args = base.to_vec();
+    args.extend(["--set", "filter.initial.fpa_deg=-0.21"]);
+    let (code, _, err) = entrynav(&args);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("filter.initial.fpa_deg = -0.21")
+            && err.contains("radians? -0.21 rad = -12.0°"),
+        "{err}"
+    );
+    // Insisted on: the study runs, and says on standard error what it runs with.
     args.extend([
         "--set",
         "truth.initial.speed_mps=5.6",
         "--set",
-        "filter.initial.fpa_deg=-0.21",
+        "allow_implausible=true",
     ]);
-    let (_, _, err) = entrynav(&args);
+    let (code, _, err) = entrynav(&args);
+    assert_eq!(code, 0, "{err}");
     assert!(
         err.contains(
             "warning: truth.initial.speed_mps = 5.6 is outside what a Mars entry plausibly has"
-        ) && err.contains("km/s? 5.6 km/s = 5600 m/s"),
-        "{err}"
-    );
-    assert!(
-        err.contains("warning: filter.initial.fpa_deg = -0.21")
-            && err.contains("radians? -0.21 rad = -12.0°"),
+        ) && err.contains("km/s? 5.6 km/s = 5600 m/s")
+            && err.contains("warning: filter.initial.fpa_deg = -0.21"),
         "{err}"
     );
 }

@@ -148,6 +148,27 @@ def test_bad_input_raises_python_exceptions_naming_the_field():
         entrynav.trade(sc, ["wiener"], runs=2)
 
 
+def test_an_implausible_entry_value_is_refused_with_its_likely_unit_unless_allowed():
+    sc = entrynav.Scenario.builtin("four-beacon-fusion")
+    # A speed in km/s: ValueError naming the field, the plausible range and the likely unit, and
+    # how to insist; the same message the CLI gives for --set.
+    with pytest.raises(ValueError) as refused:
+        sc.set("truth.initial.speed_mps", 5.515)
+    message = str(refused.value)
+    assert "truth.initial.speed_mps = 5.515 is outside what a Mars entry plausibly has" in message
+    assert "plausible 3000–8000 m/s (km/s? 5.515 km/s = 5515 m/s)" in message
+    assert 'Scenario.set("allow_implausible", True)' in message
+    r = run([ENTRYNAV, "trade", "--scenario", "four-beacon-fusion", "--runs", "2",
+             "--set", "truth.initial.speed_mps=5.515"], timeout=60)
+    assert r.returncode == 2 and "km/s? 5.515 km/s = 5515 m/s" in r.stderr, r.stderr
+    with pytest.raises(ValueError, match=r"radians\? -0.21 rad"):
+        sc.set("filter.initial.fpa_deg", -0.21)
+    # Insisted on: the value is kept and a study runs on it.
+    meant = sc.set("allow_implausible", True).set("truth.initial.speed_mps", 5.515)
+    assert meant.to_dict()["truth"]["initial"]["speed_mps"] == 5.515
+    assert entrynav.trade(meant, ["ekf"], runs=1).summary["runs"] == 1
+
+
 def test_progress_callback_sees_every_run_and_can_stop_the_trade():
     seen = []
     entrynav.trade("orbiters-3", ["ekf"], runs=40, seed=1, progress=lambda d, n: seen.append((d, n)))

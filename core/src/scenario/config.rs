@@ -49,6 +49,12 @@ pub struct ScenarioConfig {
     /// docs/references.md).
     #[serde(default)]
     pub ignore_visibility: bool,
+    /// Run although an initial state lies outside what a Mars entry plausibly has (entry
+    /// interface 80–250 km, speed 3–8 km/s, flight-path angle −30° to −5°; see
+    /// `scenario::plausibility`). Without it such a value is refused, most are a unit slip
+    /// (a speed in km/s, an angle in radians).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub allow_implausible: bool,
     /// Monte Carlo dispersions of the truth (1σ).
     #[serde(default)]
     pub dispersions: DispersionConfig,

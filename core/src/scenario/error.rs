@@ -35,6 +35,13 @@ pub enum ScenarioError {
         /// What is wrong and what is expected.
         message: String,
     },
+    /// An initial state no Mars entry has (most likely a unit slip), without
+    /// `allow_implausible = true`.
+    #[error(
+        "{0}; if you mean it, set allow_implausible = true (--set allow_implausible=true, \
+         Scenario.set(\"allow_implausible\", True))"
+    )]
+    Implausible(super::plausibility::Implausible),
     /// No built-in scenario by that name.
     #[error("unknown scenario '{name}': not a built-in ({known}) and not a file")]
     UnknownBuiltin {

@@ -166,4 +166,22 @@ mod tests {
             "{w:?}"
         );
     }
+
+    #[test]
+    fn validation_refuses_an_implausible_value_unless_allowed() {
+        let mut cfg = ScenarioConfig::builtin("four-beacon-fusion").unwrap();
+        cfg.truth.initial.speed_mps = Some(5.515);
+        let e = cfg.validate().unwrap_err().to_string();
+        assert!(
+            e.starts_with("truth.initial.speed_mps = 5.515 is outside what a Mars entry")
+                && e.contains("km/s? 5.515 km/s = 5515 m/s")
+                && e.contains("allow_implausible = true"),
+            "{e}"
+        );
+        cfg.allow_implausible = true;
+        cfg.validate().unwrap();
+        // The allowance does not lift a range check: a negative speed stays refused.
+        cfg.truth.initial.speed_mps = Some(-1.0);
+        assert!(cfg.validate().is_err());
+    }
 }

@@ -93,7 +93,17 @@ impl TimingConfig {
 impl ScenarioConfig {
     /// Check every field; the first problem found is returned.
     pub fn validate(&self) -> R {
-        self.check(&mut Checker::new())
+        self.check(&mut Checker::new())?;
+        self.refuse_implausible()
+    }
+
+    /// The first implausible initial-state value ([`ScenarioConfig::implausible`]) as an error,
+    /// unless `allow_implausible` is set.
+    pub fn refuse_implausible(&self) -> R {
+        match self.implausible().into_iter().next() {
+            Some(w) if !self.allow_implausible => Err(ScenarioError::Implausible(w)),
+            _ => Ok(()),
+        }
     }
 
     /// Validate as [`ScenarioConfig::validate`] does and list every range check made, in order

@@ -173,6 +173,7 @@ fn plot(
             name: format!("profile {k}"),
             points: knots(p),
             dashed: false,
+            color: None,
         })
         .collect();
     let (lo, hi) = set
@@ -203,6 +204,7 @@ fn plot(
                 name: format!("{name} over {n} profiles"),
                 points,
                 dashed: true,
+                color: None,
             });
         }
     }
@@ -213,6 +215,7 @@ fn plot(
             .map(|&h| (h / 1e3, onboard.density(h)))
             .collect(),
         dashed: true,
+        color: None,
     });
     line_plot(
         path,

@@ -3,8 +3,8 @@
 
 use anyhow::Result;
 use entrynav_render::chart::labels::WeightNames;
-use entrynav_render::trade_figures::ExtraCurves;
 use entrynav_studies::provenance::Provenance;
+use entrynav_studies::trade::lincov_comparison::LinCovComparison;
 use std::path::Path;
 
 /// Write `html` to `path` (creating its directory) and return the seconds spent on `make`
@@ -23,12 +23,12 @@ pub fn write_trade(
     names: &WeightNames,
     provenance: &Provenance,
     wall_s: f64,
-    extra: &ExtraCurves,
+    lincov: Option<&LinCovComparison>,
     delivery: Option<&entrynav::sim::guided::delivery::DeliveryReport>,
 ) -> Result<f64> {
     write(path, || {
         let page = entrynav_render::report::trade_report(
-            report, names, provenance, wall_s, extra, delivery,
+            report, names, provenance, wall_s, lincov, delivery,
         )?;
         Ok(page)
     })

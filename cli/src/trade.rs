@@ -37,6 +37,7 @@ enum Mode<'a> {
         json: Option<&'a Path>,
         csv_dir: Option<&'a Path>,
         plots: Option<&'a Path>,
+        list_runs: bool,
     },
     /// `--grid FILE`: scenarios × variations × filters.
     Grid(&'a Path),
@@ -58,12 +59,14 @@ impl<'a> Mode<'a> {
                 csv_dir,
                 plots,
                 quiet: _,
+                list_runs,
             }) => {
                 return Ok(Mode::Merge {
                     shards,
                     json: json.as_deref(),
                     csv_dir: csv_dir.as_deref(),
                     plots: plots.as_deref(),
+                    list_runs: *list_runs,
                 });
             }
             None => {}
@@ -106,7 +109,8 @@ pub fn run(args: &TradeArgs) -> Result<()> {
             json,
             csv_dir,
             plots,
-        } => merge(shards, json, csv_dir, plots),
+            list_runs,
+        } => merge(shards, json, csv_dir, plots, list_runs),
         Mode::Grid(grid) => {
             let html = args.report.as_deref();
             crate::grid::run(grid, options.method, &args.out_dir, html, args.quiet)
@@ -283,19 +287,34 @@ fn write_results(
         outputs.record(done.map(|()| Some(format!("wrote CSV series to {}", dir.display()))));
     }
     let names = WeightNames::of_scenario(&setup.scenario);
-    let extra = outcome.lincov.as_ref().map(curves).unwrap_or_default();
+    let extra = outcome
+        .lincov
+        .as_ref()
+        .map(|c| curves(c, report))
+        .unwrap_or_default();
     if let Some(dir) = &args.plots {
         let done = crate::figures::trade_plots(dir, report, &names, &extra, delivery);
         outputs.record(done.map(|()| Some(format!("wrote plots to {}", dir.display()))));
     }
     if let Some(path) = &args.report {
         let elapsed = outcome.wall_s;
-        let done =
-            crate::report::write_trade(path, report, &names, provenance, elapsed, &extra, delivery);
+        let done = crate::report::write_trade(
+            path,
+            report,
+            &names,
+            provenance,
+            elapsed,
+            outcome.lincov.as_ref(),
+            delivery,
+        );
         outputs.record(done.map(|s| Some(format!("wrote report {} in {s:.3} s", path.display()))));
     }
     if !to_stdout {
-        print_tables(report, &format!("{:.2} s wall", outcome.wall_s));
+        print_tables(
+            report,
+            &format!("{:.2} s wall", outcome.wall_s),
+            args.list_runs,
+        );
         if let Some(c) = &outcome.lincov {
             print_comparison(c, report);
         }
@@ -352,6 +371,7 @@ fn merge(
     json: Option<&Path>,
     csv_dir: Option<&Path>,
     plots: Option<&Path>,
+    list_runs: bool,
 ) -> Result<()> {
     check_outputs(json, csv_dir, plots)?;
     let texts = shards
@@ -388,7 +408,7 @@ fn merge(
             "{:.2} s wall summed over the {} shards",
             merged.wall_s, merged.shards
         );
-        print_tables(report, &wall);
+        print_tables(report, &wall, list_runs);
         if let Some(d) = delivery {
             crate::guidance::print_table(d);
         }

@@ -48,6 +48,10 @@ pub struct TradeArgs {
     pub report: Option<PathBuf>,
     #[arg(long, help = crate::args::QUIET_HELP)]
     pub quiet: bool,
+    /// List every failed or diverged run (run, time, reason) under its filter's table; without
+    /// it the tables give the counts only (the runs are in --json's `failures` either way).
+    #[arg(long)]
+    pub list_runs: bool,
     /// The truth atmosphere file and how to read it.
     #[command(flatten)]
     pub atmosphere: crate::atmosphere_file::AtmosphereFileArgs,
@@ -143,7 +147,7 @@ impl TradeArgs {
 #[derive(clap::Subcommand)]
 pub enum TradeAction {
     /// Compare two trade summaries (`trade --json`): per filter in both, B − A of every RMSE and
-    /// ANEES with a 95 % Monte Carlo interval; refuses different scenarios.
+    /// ANEES with a 95 % Monte Carlo interval; of two different scenarios it lists what differs.
     Compare(crate::compare::CompareArgs),
     /// Combine shard files written by `trade --shard I/N --json FILE` into the study's report.
     Merge {
@@ -162,5 +166,8 @@ pub enum TradeAction {
         /// Accepted as `trade` accepts it (a merge shows no progress to silence).
         #[arg(long, help = crate::args::QUIET_HELP)]
         quiet: bool,
+        /// List every failed or diverged run under its filter's table, as `trade --list-runs`.
+        #[arg(long)]
+        list_runs: bool,
     },
 }

@@ -56,8 +56,11 @@ pub fn run_lincov(
 }
 
 /// LinCov's RMSE curves, dashed, for the RMSE charts of `--plots` and `--report`.
-pub fn curves(c: &LinCovComparison) -> entrynav_render::trade_figures::ExtraCurves {
-    entrynav_render::trade_figures::lincov_curves(c)
+pub fn curves(
+    c: &LinCovComparison,
+    report: &TradeReport,
+) -> entrynav_render::trade_figures::ExtraCurves {
+    entrynav_render::trade_figures::lincov_curves(c, report)
 }
 
 /// Print LinCov / Monte Carlo per filter, flagging figures outside the Monte Carlo's interval.
@@ -96,14 +99,8 @@ pub fn print_comparison(c: &LinCovComparison, report: &TradeReport) {
             .map(|r| r.figure.as_str())
             .collect();
         if !off.is_empty() {
-            println!(
-                "  warning: LinCov and the Monte Carlo disagree beyond the sampling interval on \
-                 {} of {} figures ({}): the dispersed runs leave the region where the \
-                 first-order (linear) prediction holds",
-                off.len(),
-                rows.len(),
-                off.join(", ")
-            );
+            let why = entrynav_studies::trade::expected::lincov_disagreement(f, &off, rows.len());
+            println!("  warning: {why}");
         }
     }
 }

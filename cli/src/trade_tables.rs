@@ -13,8 +13,9 @@ fn fmt(v: Option<f64>) -> String {
     }
 }
 
-/// Print the tables of `report` (`elapsed`: the study's wall time in seconds).
-pub fn print_tables(report: &TradeReport, wall: &str) {
+/// Print the tables of `report` (`wall`: the study's wall time, in words); `list_runs`: every
+/// failed or diverged run under its filter's table, not only their counts.
+pub fn print_tables(report: &TradeReport, wall: &str, list_runs: bool) {
     let partial = if report.complete {
         String::new()
     } else {
@@ -50,6 +51,7 @@ pub fn print_tables(report: &TradeReport, wall: &str) {
             );
         }
         print_consistency(f);
+        print_bad_runs(f, list_runs);
     }
     print_pcrlb(report);
     println!();
@@ -158,25 +160,34 @@ fn print_consistency(f: &FilterReport) {
         "  failed {} of {} runs (numerical), diverged {} (final NEES > 100 x dof); {:.2} µs per filter step",
         f.failed, f.runs, f.diverged, f.us_per_step
     );
-    for p in &f.failures {
-        println!(
-            "    run {} at t = {} s ({}): {}",
-            p.run,
-            p.t_s,
-            match p.kind {
-                entrynav::sim::monte_carlo::metrics::ProblemKind::Numerical => "numerical",
-                entrynav::sim::monte_carlo::metrics::ProblemKind::Nees => "NEES",
-            },
-            p.reason
-        );
+}
+
+/// The failed and diverged runs of `f`, one line each when `list` (the first 20 of each kind: the
+/// report keeps those), and the line for more than 1 % of them: a WARNING, or what the paper
+/// that predicts it says (`entrynav_studies::trade::expected`).
+fn print_bad_runs(f: &FilterReport, list: bool) {
+    if list {
+        for p in &f.failures {
+            println!(
+                "    run {} at t = {} s ({}): {}",
+                p.run,
+                p.t_s,
+                match p.kind {
+                    entrynav::sim::monte_carlo::metrics::ProblemKind::Numerical => "numerical",
+                    entrynav::sim::monte_carlo::metrics::ProblemKind::Nees => "NEES",
+                },
+                p.reason
+            );
+        }
     }
-    let bad = f.failed + f.diverged;
-    if bad * 100 > f.runs {
-        println!(
-            "  WARNING: {bad} of {} runs ({:.1}%) failed or diverged; replay one with --replay-run RUN --csv-dir DIR",
-            f.runs,
-            100.0 * bad as f64 / f.runs.max(1) as f64
-        );
+    let replay = "replay one with --replay-run RUN --csv-dir DIR";
+    match entrynav_studies::trade::expected::bad_runs_line(f) {
+        Some(line) if list => println!("  {line}; {replay}"),
+        Some(line) => println!("  {line}; list them with --list-runs, {replay}"),
+        None if !list && !f.failures.is_empty() => {
+            println!("  list the failed or diverged runs with --list-runs, {replay}")
+        }
+        None => {}
     }
 }
 

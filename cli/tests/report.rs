@@ -335,3 +335,114 @@ fn a_lower_rmse_from_an_inconsistent_filter_is_named_as_such() {
         "{rec}"
     );
 }
+
+/// The stroke colours of the first SVG after the anchor `id` but black (axes, text).
+fn stroke_colours(html: &str, id: &str) -> std::collections::BTreeSet<String> {
+    let at = html.find(&format!("id=\"{id}\"")).expect("no such section");
+    let start = at + html[at..].find("<svg").expect("no figure");
+    let end = start + html[start..].find("</svg>").unwrap();
+    html[start..end]
+        .match_indices("stroke=\"#")
+        .map(|(i, _)| html[start + i + 8..start + i + 15].to_string())
+        .filter(|c| c != "#000000")
+        .collect()
+}
+
+#[test]
+fn a_method_both_report_has_contents_the_lincov_table_and_lincov_in_its_filters_colours() {
+    let dir = tmpdir("both");
+    let html_path = dir.join("r.html");
+    let (code, out, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "four-beacon-fusion",
+        "--filters",
+        "ekf,ci",
+        "--runs",
+        "6",
+        "--quiet",
+        "--method",
+        "both",
+        "--report",
+        html_path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let html = std::fs::read_to_string(&html_path).unwrap();
+    // A table of contents linking every section (and each filter's error grid).
+    let toc = &html[html.find("<nav class=\"toc\">").expect("no contents")..];
+    let toc = &toc[..toc.find("</nav>").unwrap()];
+    for id in [
+        "summary",
+        "rmse",
+        "lincov",
+        "errors",
+        "errors-ekf",
+        "errors-ci",
+        "provenance",
+    ] {
+        assert!(
+            toc.contains(&format!("href=\"#{id}\"")),
+            "contents lack {id}"
+        );
+        assert!(html.contains(&format!("id=\"{id}\"")), "no anchor {id}");
+    }
+    // The LinCov / Monte Carlo table the terminal prints, per filter, with CI's disagreement
+    // blamed on its expected divergence, as in the terminal.
+    let lincov = &html[html.find("id=\"lincov\"").unwrap()..html.find("id=\"errors\"").unwrap()];
+    assert!(lincov.contains("rmse_time_avg.pos_m") && lincov.contains("anees_per_dof"));
+    assert_eq!(lincov.matches("<table").count(), 2, "one table per filter");
+    let warning = "6 of 6 Monte Carlo runs failed or diverged, which a first-order prediction \
+                   about the nominal cannot show; expected: seed 000 §4.1";
+    assert!(lincov.contains(warning), "{lincov}");
+    assert!(out.contains(warning), "{out}");
+    assert!(
+        !out.contains("first-order (linear) prediction holds"),
+        "{out}"
+    );
+    // RMSE charts: LinCov dashed in its filter's colour, so two filters and the PCRLB give three
+    // colours, not five.
+    let colours = stroke_colours(&html, "rmse");
+    assert_eq!(
+        colours.len(),
+        3,
+        "ekf, ci (each with LinCov), PCRLB: {colours:?}"
+    );
+}
+
+#[test]
+fn failed_runs_are_counted_and_listed_only_on_request_with_the_papers_explanation() {
+    let args = [
+        "trade",
+        "--scenario",
+        "four-beacon-fusion",
+        "--filters",
+        "ci",
+        "--runs",
+        "4",
+        "--quiet",
+    ];
+    let (code, out, err) = entrynav(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(!out.contains("    run 0 at t = "), "{out}");
+    let line = out
+        .lines()
+        .find(|l| l.contains("4 of 4 runs (100.0%) failed or diverged"))
+        .expect("no line for the diverged runs");
+    assert!(
+        line.contains("expected: seed 000 §4.1 ([P0], the DCIFAIF paper)")
+            && line.contains("list them with --list-runs")
+            && !line.contains("WARNING"),
+        "{line}"
+    );
+    assert_eq!(
+        out.matches("expected: seed 000 §4.1").count(),
+        2,
+        "the line and the recommendation: {out}"
+    );
+    let mut listed = args.to_vec();
+    listed.push("--list-runs");
+    let (code, out, err) = entrynav(&listed);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out.matches("\n    run ").count(), 4, "{out}");
+    assert!(!out.contains("list them with --list-runs"), "{out}");
+}

@@ -206,17 +206,12 @@ impl NativeTrade {
             let clock = std::time::Instant::now();
             let o = &self.outcome;
             let names = WeightNames::of_scenario(&self.setup.scenario);
-            let extra = o
-                .lincov
-                .as_ref()
-                .map(entrynav_render::trade_figures::lincov_curves)
-                .unwrap_or_default();
             let page = entrynav_render::report::trade_report(
                 &o.report,
                 &names,
                 &self.provenance(),
                 0.0,
-                &extra,
+                o.lincov.as_ref(),
                 o.delivery.as_ref(),
             )
             .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;

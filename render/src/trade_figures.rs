@@ -28,6 +28,7 @@ fn curve(name: impl Into<String>, points: Vec<(f64, f64)>, dashed: bool) -> Curv
         name: name.into(),
         points,
         dashed,
+        color: None,
     }
 }
 
@@ -345,16 +346,25 @@ pub fn trade_plots(
 }
 
 /// LinCov's RMSE curves of `trade --method both`, dashed and named "`<filter> LinCov`", per metric
-/// (every state, `pos_m`, `vel_mps`), for the RMSE charts.
+/// (every state, `pos_m`, `vel_mps`), for the RMSE charts, each in the colour of its filter's
+/// Monte Carlo curve (the filters are the charts' first curves, in `report`'s order).
 pub fn lincov_curves(
     c: &entrynav_studies::trade::lincov_comparison::LinCovComparison,
+    report: &TradeReport,
 ) -> ExtraCurves {
+    let color_of = |name: &str| {
+        report
+            .filters
+            .iter()
+            .position(|f| name.strip_suffix(" LinCov") == Some(f.name.as_str()))
+    };
     c.curves()
         .into_iter()
         .map(|(metric, curves)| {
             let curves = curves
                 .into_iter()
                 .map(|(name, points)| Curve {
+                    color: color_of(&name),
                     name,
                     points,
                     dashed: true,

@@ -132,6 +132,7 @@ fn plot(path: &Path, d: &GroundDesign) -> Result<()> {
         name,
         points: s.times().into_iter().zip(s.deltas(false)).collect(),
         dashed,
+        color: None,
     };
     let mut curves = vec![curve(
         format!("optimum (min {:.3e})", delta_range(&d.delta, false).0),

@@ -129,6 +129,7 @@ fn plot(path: &std::path::Path, d: &OrbiterDesign) -> Result<()> {
         name,
         points: t.iter().copied().zip(integrand.iter().copied()).collect(),
         dashed,
+        color: None,
     };
     let mut curves = vec![curve(
         format!("optimum ({:.3})", ev.value),

@@ -17,6 +17,9 @@ pub struct Curve {
     pub points: Vec<(f64, f64)>,
     /// Draw dashed.
     pub dashed: bool,
+    /// Palette index ([`super::legend::PALETTE`]); `None`: the curve's position in the chart.
+    /// A prediction drawn beside what it predicts takes its colour (LinCov beside its filter).
+    pub color: Option<usize>,
 }
 
 /// Title, axis labels, scale and pixel size of a figure.
@@ -143,7 +146,7 @@ pub fn line_chart(frame: &Frame, curves: &[Curve]) -> Result<Option<String>> {
             .enumerate()
             .map(|(i, c)| Entry {
                 name: &c.name,
-                color: i,
+                color: c.color.unwrap_or(i),
                 mark: if c.dashed { Mark::Dashed } else { Mark::Line },
             })
             .collect();
@@ -191,7 +194,7 @@ fn draw_lines(
 ) -> Result<()> {
     draw_mesh(&mut chart, frame, xt, yt)?;
     for (i, (c, pts)) in curves.iter().zip(data).enumerate() {
-        let style = legend::color(i).stroke_width(2);
+        let style = legend::color(c.color.unwrap_or(i)).stroke_width(2);
         if c.dashed {
             chart
                 .draw_series(DashedLineSeries::new(pts.clone(), 6, 4, style))

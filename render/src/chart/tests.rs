@@ -87,6 +87,7 @@ fn a_log_axis_within_one_decade_gets_tick_labels() {
         name: "ekf".into(),
         points,
         dashed: false,
+        color: None,
     }];
     let svg = line_chart(&frame(true), &curves).unwrap().unwrap();
     assert_eq!(check_readable("narrow log", &svg, true), ["ekf"]);
@@ -107,11 +108,13 @@ fn noisy_and_tiny_values_get_clean_labels() {
             name: "mean error".into(),
             points: points.clone(),
             dashed: false,
+            color: None,
         },
         Curve {
             name: "+3σ".into(),
             points: points.iter().map(|(x, y)| (*x, -y)).collect(),
             dashed: true,
+            color: None,
         },
     ];
     let svg = line_chart(&frame(false), &curves).unwrap().unwrap();

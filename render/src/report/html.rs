@@ -35,6 +35,10 @@ td.l, th.l { text-align: left; }
 .figs { display: grid; grid-template-columns: repeat(auto-fill, minmax(540px, 1fr)); gap: 10px; }
 .fig svg { width: 100%; height: auto; border: 1px solid #eee; }
 .fig.wide { grid-column: 1 / -1; max-width: 1000px; }
+nav.toc { background: #f7f7f7; padding: 8px 16px; border: 1px solid #ddd; }
+nav.toc ol { margin: 4px 0; }
+p.bad { color: #c62828; }
+p.warn { color: #b26a00; }
 pre { background: #f7f7f7; padding: 10px; overflow-x: auto; font-size: 0.85em; }
 ";
 
@@ -55,6 +59,29 @@ pub fn section(id: &str, heading: &str, content: &str) -> String {
         escape(id),
         escape(heading)
     )
+}
+
+/// The table of contents: a link to each `(anchor, heading)` of `entries`, and under the entry
+/// whose anchor is `nested_under` a link to each of `nested` (a section's subsections).
+pub fn toc(
+    entries: &[(String, String)],
+    nested_under: &str,
+    nested: &[(String, String)],
+) -> String {
+    let link = |(id, heading): &(String, String)| {
+        format!("<a href=\"#{}\">{}</a>", escape(id), escape(heading))
+    };
+    let mut s = String::from("<nav class=\"toc\">\n<b>Contents</b>\n<ol>\n");
+    for e in entries {
+        s += &format!("<li>{}", link(e));
+        if e.0 == nested_under && !nested.is_empty() {
+            let inner: Vec<String> = nested.iter().map(link).collect();
+            s += &format!(": {}", inner.join(", "));
+        }
+        s += "</li>\n";
+    }
+    s += "</ol>\n</nav>\n";
+    s
 }
 
 /// A paragraph of escaped text.
@@ -189,6 +216,7 @@ mod tests {
                 name: "ekf".into(),
                 points: vec![(0.0, 1.0), (10.0, 2.0)],
                 dashed: false,
+                color: None,
             };
             line_chart(&frame, &[curve]).unwrap().unwrap()
         };

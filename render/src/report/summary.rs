@@ -141,7 +141,14 @@ pub fn recommendation(report: &TradeReport) -> String {
         }
         let bad = f.failed + f.diverged;
         let text = if bad > 0 {
-            format!("{} diverged in {bad}/{} runs", f.name, f.runs)
+            // Where a paper predicts the divergence, its section in short (the tables carry the
+            // whole sentence).
+            let expected = entrynav_studies::trade::expected::expected_divergence(&f.name)
+                .filter(|_| f.failed == 0)
+                .map_or(String::new(), |_| {
+                    " (expected: seed 000 §4.1, [P0] the DCIFAIF paper)".to_string()
+                });
+            format!("{} diverged in {bad}/{} runs{expected}", f.name, f.runs)
         } else {
             let verdict = match Verdict::of(f.consistency.anees, f.consistency.nees_bounds_95) {
                 Verdict::Consistent => "consistent",

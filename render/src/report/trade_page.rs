@@ -1,13 +1,16 @@
 //! The HTML report of one trade study (`trade --report FILE.html`): summary and consistency
 //! verdicts, RMSE beside the PCRLB, per-state errors with ±3σ, NEES/NIS with χ² bands, fusion
 //! weights and model probabilities, the deployment dispersion, the delivery at deployment with
-//! guidance in the loop (a scenario with `[guidance]`), provenance.
+//! guidance in the loop (a scenario with `[guidance]`), LinCov beside the Monte Carlo
+//! (`--method both`), provenance; a table of contents first.
 
 use super::html::{self, Cell, escape, figures, note, section};
 use super::summary;
 use crate::figure::{Figure, Kind};
 use entrynav::sim::TradeReport;
 use entrynav_studies::provenance::{Provenance, Timing};
+use entrynav_studies::trade::expected::bad_runs_line;
+use entrynav_studies::trade::lincov_comparison::{LinCovComparison, figures as compared};
 
 /// What a trade report shows besides the statistics.
 pub struct TradePage<'a> {
@@ -19,6 +22,8 @@ pub struct TradePage<'a> {
     pub provenance: &'a Provenance,
     /// Wall time of the study (s).
     pub wall_s: f64,
+    /// LinCov beside the Monte Carlo (`trade --method both`).
+    pub lincov: Option<&'a LinCovComparison>,
     /// Delivery at deployment with guidance in the loop (a scenario with `[guidance]`).
     pub delivery: Option<&'a entrynav::sim::guided::delivery::DeliveryReport>,
 }
@@ -60,6 +65,99 @@ impl TradePage<'_> {
              optimistic (its σ is too small for its errors), below it pessimistic.",
         );
         s += &summary::consistency_table(r);
+        for f in &r.filters {
+            if let Some(line) = bad_runs_line(f) {
+                let class = if line.starts_with("WARNING") {
+                    "bad"
+                } else {
+                    "note"
+                };
+                s += &format!(
+                    "<p class=\"{class}\">{}: {}</p>\n",
+                    escape(&f.name),
+                    escape(&line)
+                );
+            }
+        }
+        s
+    }
+
+    /// LinCov's prediction beside the Monte Carlo, per filter and figure, with the Monte
+    /// Carlo's 95 % interval and, where LinCov falls outside it, the reason (the CLI's table).
+    fn lincov(&self, c: &LinCovComparison) -> String {
+        let mut s = note(
+            "Per filter: LinCov's first-order prediction along the nominal trajectory beside the \
+             Monte Carlo, their ratio and the Monte Carlo's 95 % sampling interval; ! marks a \
+             figure outside it. LinCov's RMSE curves are drawn dashed in the RMSE charts, in \
+             their filter's colour.",
+        );
+        for a in &c.analysed {
+            let Some(f) = self
+                .report
+                .filters
+                .iter()
+                .find(|f| f.name == a.lincov.filter)
+            else {
+                continue;
+            };
+            s += &format!(
+                "<h3 id=\"lincov-{}\">{} ({} runs; LinCov {:.3} s)</h3>\n",
+                escape(&f.name),
+                escape(&f.name),
+                f.runs,
+                a.seconds
+            );
+            for n in &a.lincov.notes {
+                s += &note(n);
+            }
+            let rows = compared(a, f);
+            let cells: Vec<Vec<Cell>> = rows
+                .iter()
+                .map(|r| {
+                    let flag = if r.disagrees() {
+                        Cell {
+                            text: "!".into(),
+                            class: "warn",
+                        }
+                    } else {
+                        Cell::text("")
+                    };
+                    vec![
+                        Cell::text(r.figure.clone()),
+                        Cell::num(html::num(Some(r.lincov))),
+                        Cell::num(html::num(Some(r.mc))),
+                        Cell::num(format!("{:.3}", r.ratio())),
+                        Cell::num(format!(
+                            "{} .. {}",
+                            html::num(Some(r.mc - r.half)),
+                            html::num(Some(r.mc + r.half))
+                        )),
+                        flag,
+                    ]
+                })
+                .collect();
+            s += &html::table(
+                &[
+                    "figure",
+                    "LinCov",
+                    "Monte Carlo",
+                    "ratio",
+                    "MC 95 % interval",
+                    "",
+                ],
+                &cells,
+            );
+            let off: Vec<&str> = rows
+                .iter()
+                .filter(|r| r.disagrees())
+                .map(|r| r.figure.as_str())
+                .collect();
+            if !off.is_empty() {
+                let why =
+                    entrynav_studies::trade::expected::lincov_disagreement(f, &off, rows.len());
+                s += &format!("<p class=\"warn\">Warning: {}</p>\n", escape(&why));
+            }
+        }
         s
     }
 
@@ -87,7 +185,11 @@ impl TradePage<'_> {
              ±3σ envelope.",
         );
         for f in &self.report.filters {
-            s += &format!("<h3>{}</h3>\n", escape(&f.name));
+            s += &format!(
+                "<h3 id=\"errors-{}\">{}</h3>\n",
+                escape(&f.name),
+                escape(&f.name)
+            );
             s += &summary::state_table(self.report, f);
             s += &figures(svgs(
                 self.figures,
@@ -209,39 +311,57 @@ impl TradePage<'_> {
         html::json_block(&v)
     }
 
-    /// The page.
+    /// The page: a table of contents, then the sections.
     pub fn html(&self) -> String {
         let r = self.report;
-        let mut body = String::new();
-        body += &section("summary", "Summary and consistency", &self.summary());
-        body += &section("rmse", "RMSE and the PCRLB", &self.rmse());
-        body += &section("errors", "Errors and ±3σ per state", &self.errors());
-        body += &section(
+        // (anchor, heading, content), in page order.
+        let mut parts: Vec<(&str, &str, String)> = vec![
+            ("summary", "Summary and consistency", self.summary()),
+            ("rmse", "RMSE and the PCRLB", self.rmse()),
+        ];
+        if let Some(c) = self.lincov {
+            parts.push(("lincov", "LinCov beside the Monte Carlo", self.lincov(c)));
+        }
+        parts.push(("errors", "Errors and ±3σ per state", self.errors()));
+        parts.push((
             "nees-nis",
             "NEES and NIS with χ² bands",
-            &figures(svgs(self.figures, |k| matches!(k, Kind::Nees | Kind::Nis))),
-        );
+            figures(svgs(self.figures, |k| matches!(k, Kind::Nees | Kind::Nis))),
+        ));
         let dens = svgs(self.figures, |k| *k == Kind::Density);
         if !dens.is_empty() {
-            body += &section("density", "Density error", &figures(dens));
+            parts.push(("density", "Density error", figures(dens)));
         }
-        body += &section(
+        parts.push((
             "weights",
             "Fusion weights and model probabilities",
-            &self.weights(),
-        );
+            self.weights(),
+        ));
         if let Some(g) = self.gating() {
-            body += &section("gating", "Innovation gate and beacon exclusion", &g);
+            parts.push(("gating", "Innovation gate and beacon exclusion", g));
         }
-        body += &section("dispersion", "Deployment dispersion", &self.dispersion());
+        parts.push(("dispersion", "Deployment dispersion", self.dispersion()));
         if let Some(d) = self.delivery {
-            body += &section(
+            parts.push((
                 "delivery",
                 "Delivery at deployment (guidance in the loop)",
-                &crate::delivery_figures::delivery_section(d, self.figures),
-            );
+                crate::delivery_figures::delivery_section(d, self.figures),
+            ));
         }
-        body += &section("provenance", "Provenance", &self.provenance());
+        parts.push(("provenance", "Provenance", self.provenance()));
+        let entries: Vec<(String, String)> = parts
+            .iter()
+            .map(|(id, heading, _)| (id.to_string(), heading.to_string()))
+            .collect();
+        let filters: Vec<(String, String)> = r
+            .filters
+            .iter()
+            .map(|f| (format!("errors-{}", f.name), f.name.clone()))
+            .collect();
+        let mut body = html::toc(&entries, "errors", &filters);
+        for (id, heading, content) in &parts {
+            body += &section(id, heading, content);
+        }
         html::page(&format!("entrynav trade report: {}", r.scenario), &body)
     }
 }

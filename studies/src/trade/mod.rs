@@ -2,11 +2,13 @@
 //! scenario, filters and runs it starts from ([`setup`]), the study itself, new or resumed, with
 //! checkpoints and cancellation ([`study`]), its summary's `resume` block ([`resume`]), shards
 //! and their merge ([`shard`], [`merge`]), LinCov beside it ([`lincov_comparison`]), delivery
-//! at deployment for a scenario with `[guidance]` ([`delivery`]), the CSV series
+//! at deployment for a scenario with `[guidance]` ([`delivery`]), what the papers predict a filter
+//! does ([`expected`]), the CSV series
 //! ([`csv_series`]) and one run replayed in full ([`replay`]).
 
 pub mod csv_series;
 pub mod delivery;
+pub mod expected;
 pub mod lincov_comparison;
 pub mod merge;
 pub mod options;

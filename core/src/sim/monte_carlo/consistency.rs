@@ -227,7 +227,7 @@ pub struct ChannelNis {
 }
 
 /// The consistency summary of one filter (part of its trade report).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct Consistency {
     /// Average NEES over epochs (of the per-epoch mean over runs), every state with a truth.
     pub anees: Option<f64>,

@@ -87,8 +87,8 @@ pub struct Series {
     pub weights_mean: Vec<Vec<f64>>,
 }
 
-/// Monte Carlo summary of one filter.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// Monte Carlo summary of one filter (`Default`: no runs, for building one in a test).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct FilterReport {
     /// Filter name.
     pub name: String,

@@ -35,7 +35,12 @@ fn the_estimate_starts_at_the_default_scenarios_nominal_entry_at_nav_time_0() {
     let entry = &s.onboard.initial_estimate;
     assert_eq!(&entry_estimate()[..], &entry[..6]);
     for k in 0..6 {
-        assert_eq!(start(Key::EstX(k)), Some(Value::Real(entry[k])), "est_x_{}", k + 1);
+        assert_eq!(
+            start(Key::EstX(k)),
+            Some(Value::Real(entry[k])),
+            "est_x_{}",
+            k + 1
+        );
     }
     assert_eq!(start(Key::NavTime), Some(Value::Real(0.0)));
     assert_eq!(start(Key::NavStatusCode), Some(Value::Integer(0)));
@@ -43,7 +48,11 @@ fn the_estimate_starts_at_the_default_scenarios_nominal_entry_at_nav_time_0() {
     // planet and within the bounds guidance accepts.
     let radius = s.guidance_model().unwrap().planet.radius;
     assert!(!s.onboard.model.kind.is_cartesian());
-    assert!(entry[0] > radius && entry[0] < 1.1 * radius, "r = {}", entry[0]);
+    assert!(
+        entry[0] > radius && entry[0] < 1.1 * radius,
+        "r = {}",
+        entry[0]
+    );
     assert!(entry[3] > 5000.0, "v = {}", entry[3]);
 }
 

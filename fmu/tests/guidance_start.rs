@@ -34,10 +34,10 @@ fn the_estimate_starts_at_the_default_scenarios_nominal_entry_at_nav_time_0() {
     let s = guided_scenario().unwrap();
     let entry = &s.onboard.initial_estimate;
     assert_eq!(&entry_estimate()[..], &entry[..6]);
-    for k in 0..6 {
+    for (k, x) in entry.iter().take(6).enumerate() {
         assert_eq!(
             start(Key::EstX(k)),
-            Some(Value::Real(entry[k])),
+            Some(Value::Real(*x)),
             "est_x_{}",
             k + 1
         );

@@ -115,10 +115,15 @@ fn after_the_trigger_on_the_estimate_the_bank_settles_and_holds() {
     let (steps, dt) = core_run(28);
     let i = guidance("deploy");
     assert_eq!(i.init(), [0, 0, 0]);
+    // guidance_status: waiting before the first cycle, flying until the trigger, then deployed.
+    assert_eq!(i.int(Key::GuidanceStatus), 0);
     let mut at = None;
     for s in &steps {
         set_inputs(&i, s);
         assert_eq!(i.step(s.t, dt), 0, "{:?}", i.messages());
+        let status = i.int(Key::GuidanceStatus);
+        assert_eq!(i.int(Key::GuidanceStatusCode), status);
+        assert_eq!(status, if i.boolean(Key::Deployed) { 2 } else { 1 });
         if at.is_none() && i.boolean(Key::Deployed) {
             at = Some((
                 s.t,
@@ -176,7 +181,7 @@ fn every_input_is_checked_and_a_refused_step_changes_nothing() {
         "{}",
         i.last()
     );
-    // An estimate guidance cannot fly (the start values: all zero) is refused at the step.
+    // An estimate guidance cannot fly (all zero) is refused at the step.
     let zero = GuidedStep {
         est_x: vec![0.0; 6],
         ..steps[0].clone()

@@ -29,7 +29,10 @@ pub(super) struct PackArgs {
     /// Also write SSP 1.0 packages of the generic FMUs: `MarsEntrySplit.ssp` (truth -> filter,
     /// the filter one step late), `MarsEntryNav.ssp` (the combined FMU) and `MarsEntryGuided.ssp`
     /// (truth -> filter -> guidance -> truth bank on msl-guided.toml), each with its parameters
-    /// in an .ssv.
+    /// in an .ssv. FMI 2.0 only (refused with `--fmi 3`): the packages are SSP 1.0, whose
+    /// connector types (Real, Integer, Boolean, String, Enumeration, Binary) describe FMI 1.0/2.0
+    /// variables only; FMI 3.0 components (Float64, Int64, UInt64, arrays, structural parameters)
+    /// need SSP 2.0, which OMSimulator 3 does not read.
     #[arg(long, conflicts_with = "scenario")]
     ssp: bool,
     /// FMI version of the packed FMUs: 2 (FMI 2.0, `<id>.fmu`) or 3 (FMI 3.0, `<id>-fmi3.fmu`:

@@ -95,6 +95,8 @@ fn reference_outputs(spec: &ModelSpec) -> Vec<String> {
             "crossrange",
             "deploy_trigger",
             "deployed",
+            "guidance_status",
+            "guidance_status_code",
         ]
         .map(String::from)
         .to_vec(),

@@ -377,4 +377,16 @@ impl GuidanceEngine {
     pub fn deployed(&self) -> bool {
         self.deployed
     }
+
+    /// The item of the Enumeration `GuidanceStatus` ([`crate::vars::GUIDANCE_STATUS`]):
+    /// 0 waiting (no cycle yet), 1 flying, 2 deployed.
+    pub fn status(&self) -> i32 {
+        if self.deployed {
+            2
+        } else if self.cycles > 0 {
+            1
+        } else {
+            0
+        }
+    }
 }

@@ -152,6 +152,7 @@ fn guidance_output(g: &GuidanceEngine, key: Key) -> Option<Value> {
         Key::Crossrange => real(g.range().1),
         Key::DeployTrigger => real(g.trigger_value()),
         Key::Deployed => Value::Boolean(g.deployed()),
+        Key::GuidanceStatus | Key::GuidanceStatusCode => Value::Integer(g.status()),
         _ => return None,
     })
 }

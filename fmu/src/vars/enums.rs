@@ -1,4 +1,4 @@
-//! The Enumeration types of the tables (`nav_status`, `truth_stop`).
+//! The Enumeration types of the tables (`nav_status`, `truth_stop`, `guidance_status`).
 
 /// An FMI Enumeration type (`TypeDefinitions/SimpleType`): item `k` has the value `k`.
 #[derive(Debug, PartialEq, Eq, Hash)]
@@ -40,5 +40,23 @@ pub static TRUTH_STOP: EnumType = EnumType {
     ],
 };
 
+/// `guidance_status`: how the guidance FMU stands
+/// ([`GuidanceEngine::status`](crate::instance::GuidanceEngine::status)).
+pub static GUIDANCE_STATUS: EnumType = EnumType {
+    name: "GuidanceStatus",
+    description: "Entry guidance state",
+    items: &[
+        (
+            "waiting",
+            "No guidance cycle run yet: the bank is the reference bank",
+        ),
+        ("flying", "Guidance cycles fly the navigation estimate"),
+        (
+            "deployed",
+            "The trigger was reached on the estimate: cycles stopped, the actuator holds the last command",
+        ),
+    ],
+};
+
 /// Every Enumeration type a table may use.
-pub static ENUM_TYPES: [&EnumType; 2] = [&NAV_STATUS, &TRUTH_STOP];
+pub static ENUM_TYPES: [&EnumType; 3] = [&NAV_STATUS, &TRUTH_STOP, &GUIDANCE_STATUS];

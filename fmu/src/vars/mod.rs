@@ -27,14 +27,14 @@ mod var;
 pub use defaults::{
     DEFAULT_FILTER, DEFAULT_SCENARIO, DEFAULT_SEED, GUIDED_FILTER, GUIDED_SCENARIO_FILE,
 };
-pub use enums::{ENUM_TYPES, EnumType, NAV_STATUS, TRUTH_STOP};
+pub use enums::{ENUM_TYPES, EnumType, GUIDANCE_STATUS, NAV_STATUS, TRUTH_STOP};
 pub use guid::{TABLE_DATE, TABLE_VERSION, fnv1a64};
 pub use model::Model;
 pub use sizes::{MAX_BEACONS, MAX_STATES, MAX_WEIGHTS};
 pub use slot::{Key, Slot};
 pub use spec::{ModelSpec, SpecError, guid_of};
 pub use specific::{Specific, StateVar, specific_identifier};
-pub use table::guidance::{guided_scenario, guided_scenario_toml};
+pub use table::guidance::{entry_estimate, guided_scenario, guided_scenario_toml};
 pub use table::variables;
 pub use units::{UNITS, UnitDef};
 pub use var::{Causality, Type, Value, Var, Variability};

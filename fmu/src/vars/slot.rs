@@ -188,6 +188,10 @@ pub enum Key {
     DeployTrigger,
     /// Guidance: the trigger was reached.
     Deployed,
+    /// Guidance FMU: waiting, flying or deployed (the Enumeration `GuidanceStatus`).
+    GuidanceStatus,
+    /// Guidance FMU: `GuidanceStatus` as an Integer.
+    GuidanceStatusCode,
     /// Guided FMU: the Monte Carlo run index whose dispersed truth it flies.
     Run,
     /// Guided FMU: how the guided flight stands (flying, deployed, ended without deployment).

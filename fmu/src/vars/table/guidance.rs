@@ -8,9 +8,11 @@
 use super::builder::{Builder, SPH};
 use super::params::allow_external_files;
 use crate::vars::defaults::GUIDED_SCENARIO_FILE;
+use crate::vars::enums::GUIDANCE_STATUS;
 use crate::vars::slot::{Key, Slot};
 use crate::vars::var::{Causality, Type, Value};
 use entrynav::scenario::{Scenario, ScenarioConfig};
+use std::sync::OnceLock;
 
 /// The text of [`GUIDED_SCENARIO_FILE`]: the built-in `msl-guided`.
 pub fn guided_scenario_toml() -> String {
@@ -23,6 +25,27 @@ pub fn guided_scenario_toml() -> String {
 pub fn guided_scenario() -> Result<Scenario, entrynav::scenario::ScenarioError> {
     let cfg = ScenarioConfig::from_toml_str(&guided_scenario_toml(), GUIDED_SCENARIO_FILE)?;
     Scenario::build(cfg, &entrynav::files::no_files)
+}
+
+/// The start values of `est_x_1..6`: the kinematic states of the default scenario's onboard
+/// nominal entry (`msl-guided`'s filter start, `Onboard::initial_estimate`, in the filter
+/// model's coordinates), the state [`Scenario::build_guidance`] builds the guidance from and the
+/// navigation FMUs' `est_x_1..6` before their first measurement epoch. With these start values
+/// (and `nav_time` = 0, `nav_status_code` = 0) the FMU simulates alone: every cycle flies the
+/// entry state, a valid operating point, instead of refusing the radius 0 of all-zero inputs.
+///
+/// The guided scenario builds (tested in `vars::spec`), so the all-zero fallback is never taken.
+pub fn entry_estimate() -> [f64; 6] {
+    static ENTRY: OnceLock<[f64; 6]> = OnceLock::new();
+    *ENTRY.get_or_init(|| {
+        let mut x = [0.0; 6];
+        if let Ok(s) = guided_scenario() {
+            for (xi, e) in x.iter_mut().zip(&s.onboard.initial_estimate) {
+                *xi = *e;
+            }
+        }
+        x
+    })
 }
 
 /// The `scenario` parameter of the guidance FMU and of the guided FMU `MarsEntryNavGuided`: a
@@ -60,7 +83,7 @@ fn guidance_inputs(b: &mut Builder) {
         Input,
         Some("s"),
         Some(Value::Real(0.0)),
-        "Epoch of the navigation estimate (connect the navigation FMU's nav_time)",
+        "Epoch of the navigation estimate (connect the navigation FMU's nav_time); starts at 0, the epoch of the entry state est_x_1..6 start at",
         Key::NavTime,
     );
     b.add(
@@ -72,15 +95,16 @@ fn guidance_inputs(b: &mut Builder) {
         "Navigation filter status, 0 initial, 1 running, 2 failed (connect nav_status_code); guidance refuses to fly a failed filter's estimate",
         Key::NavStatusCode,
     );
+    let entry = entry_estimate();
     for (i, (n, _, _)) in SPH.iter().enumerate() {
         b.add(
             format!("est_x_{}", i + 1),
             Real,
             Input,
             None,
-            Some(Value::Real(0.0)),
+            Some(Value::Real(entry[i])),
             format!(
-                "Navigation estimate, kinematic filter state {} (connect est_x_{}): spherical {n} when the scenario's filter model is spherical, else inertial Cartesian x y z vx vy vz",
+                "Navigation estimate, kinematic filter state {} (connect est_x_{}): spherical {n} when the scenario's filter model is spherical, else inertial Cartesian x y z vx vy vz; starts at the default scenario's nominal entry (msl-guided's filter start)",
                 i + 1,
                 i + 1
             ),
@@ -204,5 +228,18 @@ fn guidance_outputs(b: &mut Builder) {
         None,
         "The trigger was reached on the navigation estimate (after having been positive): guidance stops cycling and the actuator holds the last command",
         Key::Deployed,
+    );
+    b.enumeration(
+        "guidance_status",
+        &GUIDANCE_STATUS,
+        "Guidance state: waiting (no cycle yet, the reference bank), flying (cycles fly the estimate), deployed (the trigger was reached on the estimate; the actuator holds the last command)",
+        Key::GuidanceStatus,
+    );
+    b.out(
+        "guidance_status_code",
+        Integer,
+        None,
+        "guidance_status as an Integer (0 waiting, 1 flying, 2 deployed), for importers without FMI 2.0 Enumeration support (libcosim ignores Enumeration variables)",
+        Key::GuidanceStatusCode,
     );
 }

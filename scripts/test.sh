@@ -38,6 +38,9 @@ echo "== README main command, and README's sample of its output (\"Reading the d
 # compares its output with README's sample: every character but the wall time and the µs per step.
 bash scripts/readme_sample.sh
 
+echo "== docs: every relative link in README.md, ARCHITECTURE.md and docs/*.md resolves (file and #anchor)"
+python3 scripts/check_doc_links.py
+
 echo "== HTML report: a small trade's --report renders in headless Chromium (no console errors, not blank)"
 bash scripts/check_report.sh
 

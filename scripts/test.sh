@@ -33,8 +33,13 @@ ENTRYNAV_FUZZ_VARIANTS=2000 cargo test --workspace --release --test fuzz_inputs
 echo "== benchmarks compile"
 cargo bench --workspace --no-run
 
-echo "== README main command"
-cargo run --release --quiet --bin entrynav -- trade --scenario four-beacon-fusion --filters ekf,ci,dcifaif --runs 200 --quiet --plots target/ci-demo/plots
+echo "== README main command, and README's sample of its output (\"Reading the demo's output\")"
+# scripts/readme_sample.sh runs the trade command of README's first sh block as written there and
+# compares its output with README's sample: every character but the wall time and the µs per step.
+bash scripts/readme_sample.sh
+
+echo "== docs: every relative link in README.md, ARCHITECTURE.md and docs/*.md resolves (file and #anchor)"
+python3 scripts/check_doc_links.py
 
 echo "== HTML report: a small trade's --report renders in headless Chromium (no console errors, not blank)"
 bash scripts/check_report.sh

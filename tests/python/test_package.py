@@ -6,7 +6,7 @@
   in another Python thread;
 - a bad field raises ValueError naming it, a missing file FileNotFoundError;
 - Ctrl-C during a trade raises KeyboardInterrupt within 1 s with the finished runs attached;
-- the wheel installs into a fresh virtual environment and the README's one-liner runs.
+- the wheel installs into a fresh virtual environment and a one-liner like docs/cli.md's (Python) runs.
 """
 
 import json

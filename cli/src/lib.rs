@@ -30,6 +30,7 @@ mod trade;
 mod trade_args;
 mod trade_checkpoint;
 mod trade_lincov;
+mod trade_merge;
 mod trade_outputs;
 mod trade_tables;
 mod train;

@@ -11,7 +11,10 @@ use crate::progress::RunProgress;
 pub use crate::trade_args::{Method, TradeAction, TradeArgs};
 use crate::trade_checkpoint::SummaryCheckpoints;
 use crate::trade_lincov::{curves, print_comparison};
-use crate::trade_outputs::{check_outputs, read_resume_file, write_csv_dir, write_text};
+use crate::trade_merge::merge;
+use crate::trade_outputs::{
+    Outputs, check_outputs, command_line, read_resume_file, write_csv_dir, write_text,
+};
 use crate::trade_tables::print_tables;
 use anyhow::{Context, Result};
 use entrynav::sim::{Checkpoint, NoCheckpoint, Shard};
@@ -19,7 +22,6 @@ use entrynav_render::chart::labels::WeightNames;
 use entrynav_studies::ScenarioInput;
 use entrynav_studies::progress::Step;
 use entrynav_studies::provenance::Provenance;
-use entrynav_studies::trade::merge::merge_trade_shards;
 use entrynav_studies::trade::options::{TradeMode, TradeOptions};
 use entrynav_studies::trade::setup::{TradeScenario, TradeSetup};
 use entrynav_studies::trade::shard::run_trade_shard;
@@ -187,10 +189,6 @@ fn print_warnings(warnings: &[String]) {
     }
 }
 
-fn command_line() -> Vec<String> {
-    std::env::args().collect()
-}
-
 /// Run shard `shard` of the study and write its block sums to `path`; an interrupted shard is
 /// not written (a shard must be complete to merge).
 fn run_one_shard(
@@ -320,96 +318,6 @@ fn write_results(
         }
         if let Some(d) = delivery {
             println!();
-            crate::guidance::print_table(d);
-        }
-    }
-    outputs.finish(to_stdout)
-}
-
-/// The outputs of a study: what was written (its note) and what failed.
-#[derive(Default)]
-struct Outputs {
-    notes: Vec<String>,
-    failures: Vec<anyhow::Error>,
-}
-
-impl Outputs {
-    fn record(&mut self, done: Result<Option<String>>) {
-        match done {
-            Ok(note) => self.notes.extend(note),
-            Err(e) => self.failures.push(e),
-        }
-    }
-
-    /// Print the notes (to standard error when standard output carries the JSON); fail with
-    /// every failed output named.
-    fn finish(self, to_stdout: bool) -> Result<()> {
-        for n in &self.notes {
-            if to_stdout {
-                eprintln!("{n}");
-            } else {
-                println!("{n}");
-            }
-        }
-        let mut failures = self.failures;
-        match failures.len() {
-            0 => Ok(()),
-            // The work is done: a failure to write it is a runtime failure (exit code 1).
-            1 if crate::exit_code::code(&failures[0]) == 1 => Err(failures.remove(0)),
-            _ => {
-                let all: Vec<String> = failures.iter().map(|e| format!("{e:#}")).collect();
-                Err(crate::exit_code::Runtime(all.join("; also: ")).into())
-            }
-        }
-    }
-}
-
-/// `trade merge`: combine the shard files into the study's report, write the outputs asked for
-/// (first, so a closed standard output never costs one), then print the tables.
-fn merge(
-    shards: &[PathBuf],
-    json: Option<&Path>,
-    csv_dir: Option<&Path>,
-    plots: Option<&Path>,
-    list_runs: bool,
-) -> Result<()> {
-    check_outputs(json, csv_dir, plots)?;
-    let texts = shards
-        .iter()
-        .map(|p| {
-            let text = entrynav_studies::input::read_text(p, "SHARDS file")?;
-            Ok((p.display().to_string(), text))
-        })
-        .collect::<Result<Vec<_>>>()?;
-    let merged = merge_trade_shards(&texts)?;
-    let (report, delivery) = (&merged.report, merged.delivery.as_ref());
-    let to_stdout = json.is_some_and(is_stdout);
-    let mut outputs = Outputs::default();
-    if let Some(path) = json {
-        let provenance = merged.provenance(command_line());
-        let done = merged
-            .to_json(&provenance)
-            .map_err(Into::into)
-            .and_then(|text| write_text(path, &text));
-        let note = (!to_stdout).then(|| format!("wrote {}", path.display()));
-        outputs.record(done.map(|()| note));
-    }
-    if let Some(dir) = csv_dir {
-        let done = write_csv_dir(dir, report);
-        outputs.record(done.map(|()| Some(format!("wrote CSV series to {}", dir.display()))));
-    }
-    let names = WeightNames::of_channels(&report.channels);
-    if let Some(dir) = plots {
-        let done = crate::figures::trade_plots(dir, report, &names, &Default::default(), delivery);
-        outputs.record(done.map(|()| Some(format!("wrote plots to {}", dir.display()))));
-    }
-    if !to_stdout {
-        let wall = format!(
-            "{:.2} s wall summed over the {} shards",
-            merged.wall_s, merged.shards
-        );
-        print_tables(report, &wall, list_runs);
-        if let Some(d) = delivery {
             crate::guidance::print_table(d);
         }
     }

@@ -66,3 +66,46 @@ pub fn write_csv_dir(dir: &Path, report: &TradeReport) -> Result<()> {
     }
     Ok(())
 }
+
+/// The outputs of a study: what was written (its note) and what failed.
+#[derive(Default)]
+pub(crate) struct Outputs {
+    notes: Vec<String>,
+    failures: Vec<anyhow::Error>,
+}
+
+impl Outputs {
+    pub(crate) fn record(&mut self, done: Result<Option<String>>) {
+        match done {
+            Ok(note) => self.notes.extend(note),
+            Err(e) => self.failures.push(e),
+        }
+    }
+
+    /// Print the notes (to standard error when standard output carries the JSON); fail with
+    /// every failed output named.
+    pub(crate) fn finish(self, to_stdout: bool) -> Result<()> {
+        for n in &self.notes {
+            if to_stdout {
+                eprintln!("{n}");
+            } else {
+                println!("{n}");
+            }
+        }
+        let mut failures = self.failures;
+        match failures.len() {
+            0 => Ok(()),
+            // The work is done: a failure to write it is a runtime failure (exit code 1).
+            1 if crate::exit_code::code(&failures[0]) == 1 => Err(failures.remove(0)),
+            _ => {
+                let all: Vec<String> = failures.iter().map(|e| format!("{e:#}")).collect();
+                Err(crate::exit_code::Runtime(all.join("; also: ")).into())
+            }
+        }
+    }
+}
+
+/// The command line as given, for the provenance block.
+pub(crate) fn command_line() -> Vec<String> {
+    std::env::args().collect()
+}

@@ -9,4 +9,5 @@ pub mod pack;
 pub mod ssp;
 
 pub use library::{LIB_ENV, LIB_NAME, Search};
-pub use pack::{PackOptions, Packed, PackedFmu, SSP_FMI3_REFUSAL, pack_fmus};
+pub use pack::{PackOptions, Packed, PackedFmu, pack_fmus};
+pub use ssp::SSP_FMI3_REFUSAL;

@@ -25,6 +25,18 @@ use std::fmt::Write as _;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+/// Why `ssp` needs `fmi` 2. SSP 1.0 (2019-03-05) predates FMI 3.0 (2022-05-10): its connector
+/// types (SSP 1.0, SystemStructureCommon type choice: Real, Integer, Boolean, String, Enumeration,
+/// Binary) and connector kinds cover FMI 1.0/2.0 variables only, and an SSD of `version` 1.0 "must
+/// also conform fully to the 1.0 standard" (SSP 2.0, SSD `version` attribute). FMI 3.0
+/// components came with SSP 2.0 (2024-12-20; modelica/ssp-standard v2.0 release notes: "provides
+/// support for FMI 3.0": Float64, Int32/Int64/UInt64, arrays, structural parameters), and the
+/// FMI 3.0 FMUs with a filter declare exactly those (`n_state_slots`, `est_x`, `est_covariance`).
+/// OMSimulator 3.0.0, the SSP tool the project tests against, implements neither SSP 2.0
+/// (OpenModelica/OMSimulator#1310, open) nor FMI 3.0 structural parameters (its Python layer
+/// refuses `structuralParameter`, tests/python/test_fmu_alone.py).
+pub const SSP_FMI3_REFUSAL: &str = "ssp packages are SSP 1.0, whose components are FMI 1.0/2.0 FMUs: SSP 1.0 has no connector types for FMI 3.0 variables (Float64, Int32/Int64/UInt64, arrays, structural parameters; SSP 1.0 connector types are Real, Integer, Boolean, String, Enumeration, Binary), and FMI 3.0 components need SSP 2.0, which OMSimulator 3 does not read; pack the SSP packages with fmi 2";
+
 const SSD_NS: &str = r#"xmlns:ssc="http://ssp-standard.org/SSP1/SystemStructureCommon" xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription""#;
 const SSV_NS: &str = r#"xmlns:ssv="http://ssp-standard.org/SSP1/SystemStructureParameterValues""#;
 

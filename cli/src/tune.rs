@@ -101,7 +101,12 @@ pub fn run(args: &TuneArgs) -> Result<()> {
     }
     print_summary(&study);
     println!("wrote {}", args.out.display());
-    Ok(())
+    // Written, and said: a tuning still inconsistent ends the command with a failure, as a design
+    // worse than its input does.
+    match study.inconsistency(&args.out) {
+        Some(e) => Err(e.into()),
+        None => Ok(()),
+    }
 }
 
 /// One progress bar per filter tuned, replaced when the next filter starts.

@@ -463,13 +463,21 @@ def tune(
     """`entrynav tune`: each filter's process noise (and with `tune_noise` its assumed measurement
     noise) tuned to consistency, validated on fresh runs; returns the tuned Scenario (one
     `[filter.tuned.<name>]` table per filter). A tuning that makes a filter worse on the fresh
-    runs is refused with RuntimeError naming the filter and figure, unless `force`."""
+    runs (a primary figure worse beyond the Monte Carlo noise) is refused with RuntimeError naming
+    the filter and figure, unless `force`. A tuning that is still inconsistent raises RuntimeError
+    naming the channel, states, epochs and likely cause, with the tuned Scenario on its `result`
+    (the CLI writes the file and exits 1)."""
     sc = _scenario(scenario)
     names = _filter_names(filters)
-    text = _entrynav.tune(sc.to_toml(), sc.folder, _options(
+    text, inconsistent = _entrynav.tune(sc.to_toml(), sc.folder, _options(
         filters=",".join(names), runs=runs, seed=seed, validation_runs=validation_runs, tune_noise=tune_noise,
         nis_only=nis_only, max_evaluations=max_evaluations, threads=threads, force=force))
-    return Scenario(text, sc.folder)
+    result = Scenario(text, sc.folder)
+    if inconsistent is not None:
+        err = RuntimeError(inconsistent)
+        err.result = result  # type: ignore[attr-defined]
+        raise err
+    return result
 
 
 def observe(scenario: Union[Scenario, str], method: str = "lie", step: float = 1.0, fim: bool = False,

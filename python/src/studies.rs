@@ -30,14 +30,17 @@ pub fn tune(
     toml: &str,
     dir: &str,
     kwargs: Option<Bound<'_, PyDict>>,
-) -> PyResult<String> {
+) -> PyResult<(String, Option<String>)> {
     let opts: TuneStudyOptions = options("tune", kwargs.as_ref(), TuneStudyOptions::validate)?;
     let input = input(toml, dir)?;
     let study = py.detach(|| run_tune(&input, &opts, &silent).map_err(study_err))?;
-    if let Some(e) = study.refusal(Path::new("the tuned scenario")) {
+    let out = Path::new("the tuned scenario");
+    if let Some(e) = study.refusal(out) {
         return Err(study_err(e));
     }
-    Ok(study.text.unwrap_or_default())
+    // A tuning still inconsistent: the text and why, for a RuntimeError carrying the scenario.
+    let inconsistent = study.inconsistency(out).map(|e| e.to_string());
+    Ok((study.text.unwrap_or_default(), inconsistent))
 }
 
 /// `entrynav observe --json`: δ(t) along the trajectory (and with `fim` the beacons' Fisher

@@ -266,6 +266,19 @@ def test_observe_and_tune_and_a_refused_design_raise_or_return_like_the_cli(tmp_
     assert r.returncode == 0, r.stderr
     assert tuned == entrynav.Scenario(out.read_text(), tuned.folder)
     assert entrynav.trade(tuned, ["ekf"], runs=4).complete
+    # From a Q 10^8 too large and a budget of 6 evaluations the tuning is better on every primary
+    # figure, so written, but still conservative: RuntimeError naming why, with the tuned scenario
+    # on `result`, as the CLI writes the file and exits 1.
+    big_q = ["filter.q_diag=[1.0e6, 1.0e-6, 1.0e-6, 1.0e4, 1.0e-6, 1.0e-6]"]
+    with pytest.raises(RuntimeError, match=r"still inconsistent on the fresh runs: ANEES/dof 0\.\d+ outside \[0\.7, 1\.5\]") as e:
+        entrynav.tune(entrynav.Scenario.builtin("ground-beacons-3").with_sets(big_q), ["ekf"], runs=4,
+                      validation_runs=8, max_evaluations=6)
+    assert e.value.result.to_dict()["filter"]["tuned"]["ekf"]["q_diag"][0] < 1.0e6
+    r = run([ENTRYNAV, "tune", "--scenario", "ground-beacons-3", "--set", big_q[0], "--filter", "ekf", "--runs", 4,
+             "--validation-runs", 8, "--max-evaluations", 6, "--quiet", "--out", tmp_path / "big.toml"])
+    assert r.returncode == 1 and "written, but not consistent yet" in r.stderr, r.stderr
+    assert "# WARNING: ekf is still inconsistent on the fresh runs" in (tmp_path / "big.toml").read_text()
+    assert entrynav.Scenario((tmp_path / "big.toml").read_text(), tuned.folder) == e.value.result
     # With sites only 2 deg apart the certified logdet selection is worse than the hand-placed sites
     # on this scenario: the CLI's check refuses it (exit 1), which the package raises.
     with pytest.raises(RuntimeError, match="worse than the input design") as refused:

@@ -11,7 +11,7 @@ use crate::tune::comment::{CommentContext, comment_lines};
 use crate::tune::filter::{TunedFilter, tune_filter};
 use crate::tune::options::TuneStudyOptions;
 use crate::tune::tuned_file::{Retune, edit};
-use crate::tune::verdict::worse_figures;
+use crate::tune::verdict::{still_inconsistent, worse_figures};
 use entrynav::scenario::ScenarioConfig;
 use entrynav::sim::monte_carlo::report::FilterReport;
 use entrynav::sim::monte_carlo::tuning::TuningRuns;
@@ -39,12 +39,28 @@ pub struct TuneStudy {
     /// The tuned scenario's text (the input's, comments and layout kept), or `None` when the
     /// verdict refuses it and `force` is not set.
     pub text: Option<String>,
+    /// What the written tuning still gets wrong on the fresh runs, one line per filter
+    /// ([`still_inconsistent`]): the file is written and the front ends end with a failure.
+    pub inconsistent: Vec<String>,
 }
 
 impl TuneStudy {
     /// Seed of the fresh validation runs.
     pub fn validation_seed(&self) -> u64 {
         self.options.validation_seed()
+    }
+
+    /// The error a front end ends with after writing a tuning that is still inconsistent
+    /// (`out`: where it was written); `None` when every filter is consistent or nothing was
+    /// written.
+    pub fn inconsistency(&self, out: &Path) -> Option<StudyError> {
+        (self.text.is_some() && !self.inconsistent.is_empty()).then(|| {
+            StudyError::Failed(format!(
+                "{} written, but not consistent yet: {}",
+                out.display(),
+                self.inconsistent.join("; ")
+            ))
+        })
     }
 
     /// The error a front end ends with when the verdict refuses the tuned file (a filter worse
@@ -105,6 +121,10 @@ fn tune_scenario(
     let wall_s = clock.elapsed().as_secs_f64();
 
     let worse = worse_figures(&before, &after);
+    let inconsistent = still_inconsistent(
+        &after,
+        &entrynav::sim::monte_carlo::state_names::state_names(&tuned_scenario),
+    );
     let text = if worse.is_empty() || options.force {
         let context = CommentContext {
             options,
@@ -113,7 +133,7 @@ fn tune_scenario(
             objective: search.objective,
             validation_seed: options.validation_seed(),
         };
-        let comments = comments(&context, &tuned, (&before, &after), &worse);
+        let comments = comments(&context, &tuned, (&before, &after), &worse, &inconsistent);
         let text = edit(&input.source_text, sets, &retunes(&tuned, Some(&comments)))?;
         if check_written(&text, cfg, &tuned)? != written {
             return Err(StudyError::Refused(
@@ -133,6 +153,7 @@ fn tune_scenario(
         fresh: (before, after),
         worse,
         text,
+        inconsistent,
     })
 }
 
@@ -152,12 +173,13 @@ fn retunes<'a>(tuned: &'a [TunedFilter], comments: Option<&'a [Vec<String>]>) ->
 }
 
 /// The comment lines of every written table, with a note on each figure the verdict found worse
-/// (written anyway with `force`).
+/// (written anyway with `force`) and a warning naming what is still inconsistent.
 fn comments(
     context: &CommentContext<'_>,
     tuned: &[TunedFilter],
     (before, after): (&[FilterReport], &[FilterReport]),
     worse: &[String],
+    inconsistent: &[String],
 ) -> Vec<Vec<String>> {
     tuned
         .iter()
@@ -171,6 +193,13 @@ fn comments(
                     .iter()
                     .filter(|w| w.starts_with(&name))
                     .map(|w| format!("NOTE: written with --force although worse: {w}")),
+            );
+            let still = format!("{} is still inconsistent", t.kind.name());
+            lines.extend(
+                inconsistent
+                    .iter()
+                    .filter(|w| w.starts_with(&still))
+                    .map(|w| format!("WARNING: {w}")),
             );
             lines
         })

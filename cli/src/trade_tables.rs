@@ -51,6 +51,13 @@ pub fn print_tables(report: &TradeReport, wall: &str, list_runs: bool) {
             );
         }
         print_consistency(f);
+        // Where and why a filter that ran is inconsistent (a diverging one has its own line).
+        if !entrynav_studies::trade::expected::mostly_bad(f) {
+            let problems = entrynav_studies::diagnosis::diagnose(f, &report.states);
+            if !problems.is_empty() {
+                println!("  diagnosis: {}", problems.join("; "));
+            }
+        }
         print_bad_runs(f, list_runs);
     }
     print_pcrlb(report);

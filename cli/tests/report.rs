@@ -446,3 +446,49 @@ fn failed_runs_are_counted_and_listed_only_on_request_with_the_papers_explanatio
     assert_eq!(out.matches("\n    run ").count(), 4, "{out}");
     assert!(!out.contains("list them with --list-runs"), "{out}");
 }
+
+#[test]
+fn an_inconsistent_filter_is_diagnosed_by_epochs_in_the_tables_and_the_report() {
+    // msl-pressure-orbiter's EKF is consistent on average but above its NEES band around peak
+    // deceleration and below it late in the flight: the tables and the report say where.
+    let dir = tmpdir("diagnosis");
+    let html_path = dir.join("r.html");
+    let (code, out, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "msl-pressure-orbiter",
+        "--filters",
+        "ekf",
+        "--runs",
+        "30",
+        "--quiet",
+        "--report",
+        html_path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let line = out
+        .lines()
+        .find(|l| l.starts_with("  diagnosis: "))
+        .unwrap_or_else(|| panic!("no diagnosis in {out}"));
+    assert!(
+        line.contains("% of epochs inside the NEES band (at least 50 % wanted)")
+            && line.contains("longest above the band: ")
+            && line.contains("longest below: "),
+        "{line}"
+    );
+    let html = std::fs::read_to_string(&html_path).unwrap();
+    assert!(html.contains("ekf: ") && html.contains("longest above the band: "));
+    // A consistent filter gets none: the demo's EKF.
+    let (code, out, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        "four-beacon-fusion",
+        "--filters",
+        "ekf",
+        "--runs",
+        "20",
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!out.contains("diagnosis:"), "{out}");
+}

@@ -17,6 +17,7 @@
 
 pub mod compare;
 pub mod design;
+pub mod diagnosis;
 pub mod error;
 pub mod filters;
 pub mod fmu_pack;

@@ -66,6 +66,14 @@ impl TradePage<'_> {
         );
         s += &summary::consistency_table(r);
         for f in &r.filters {
+            let problems = entrynav_studies::diagnosis::diagnose(f, &r.states);
+            if !problems.is_empty() && !entrynav_studies::trade::expected::mostly_bad(f) {
+                s += &format!(
+                    "<p class=\"warn\">{}: {}</p>\n",
+                    escape(&f.name),
+                    escape(&problems.join("; "))
+                );
+            }
             if let Some(line) = bad_runs_line(f) {
                 let class = if line.starts_with("WARNING") {
                     "bad"

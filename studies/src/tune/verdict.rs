@@ -6,9 +6,10 @@
 //!   position RMSE, the number of failed or diverged runs, |ln ANEES/dof|, |ln ANIS/dof|. A file
 //!   better on every primary figure is never refused; the share of epochs inside the NEES band is
 //!   reported, not a reason to refuse.
-//! * [`still_inconsistent`]: a written tuning that is still inconsistent (ANEES/dof or ANIS/dof
-//!   outside [0.7, 1.5], a channel's NIS/dof outside [0.5, 2], under half the epochs inside the
-//!   NEES band) is named with the channel, the states, the epochs and the likely cause; the front
+//! * [`still_inconsistent`]: a written tuning that is still inconsistent (`crate::diagnosis`:
+//!   ANEES/dof or ANIS/dof outside [0.7, 1.5], a channel's NIS/dof outside [0.5, 2], under half the
+//!   epochs inside the NEES band) is named with the channel, the states, the epochs and the likely
+//!   cause; the front
 //!   ends write it and end with exit code 1 (Python: RuntimeError carrying the scenario), as the
 //!   designs do for an optimum worse than the input.
 //!
@@ -17,15 +18,9 @@
 //! bad runs (the sign test of the runs that changed); two evaluations on the same runs are taken
 //! as independent, which widens the interval (a paired difference is less noisy).
 
+use crate::diagnosis::diagnose;
 use crate::statistics::{Z95, se_rmse_bound};
 use entrynav::sim::monte_carlo::report::FilterReport;
-
-/// ANEES/dof and ANIS/dof a written tuning should reach.
-pub const CONSISTENT: (f64, f64) = (0.7, 1.5);
-/// NIS/dof of one measurement channel a written tuning should reach.
-pub const CHANNEL_CONSISTENT: (f64, f64) = (0.5, 2.0);
-/// Share of epochs inside the NEES band below which a written tuning is flagged.
-pub const MIN_IN_BAND: f64 = 0.5;
 
 /// Every primary figure on which a filter is worse after the tuning than before (fresh runs),
 /// beyond the Monte Carlo noise; empty when the tuning may be written.
@@ -89,7 +84,7 @@ pub fn still_inconsistent(after: &[FilterReport], states: &[String]) -> Vec<Stri
     after
         .iter()
         .filter_map(|f| {
-            let problems = problems(f, states);
+            let problems = diagnose(f, states);
             (!problems.is_empty()).then(|| {
                 format!(
                     "{} is still inconsistent on the fresh runs: {}",
@@ -99,155 +94,6 @@ pub fn still_inconsistent(after: &[FilterReport], states: &[String]) -> Vec<Stri
             })
         })
         .collect()
-}
-
-fn problems(f: &FilterReport, states: &[String]) -> Vec<String> {
-    let mut out = Vec::new();
-    let outside = |v: f64, (lo, hi): (f64, f64)| !(lo..=hi).contains(&v);
-    let nees = per_dof_nees(f);
-    let channels_off: Vec<(&String, f64)> = f
-        .consistency
-        .nis_per_channel
-        .iter()
-        .map(|(name, c)| (name, c.anis_per_dof))
-        .filter(|(_, v)| v.is_finite() && outside(*v, CHANNEL_CONSISTENT))
-        .collect();
-    if let Some(v) = nees.filter(|v| outside(*v, CONSISTENT)) {
-        let cause = if v > CONSISTENT.1 && channels_off.is_empty() {
-            "its innovations are consistent, so the errors the measurements do not see are larger \
-             than its process noise says: an unestimated parameter (L/D, β, density) or too \
-             small a Q on the states named"
-        } else if v > CONSISTENT.1 {
-            "the channels below"
-        } else {
-            "σ larger than the errors: process noise or P0 too large, conservative"
-        };
-        out.push(format!(
-            "ANEES/dof {v:.3} outside [{}, {}]{} ({cause})",
-            CONSISTENT.0,
-            CONSISTENT.1,
-            worst_states(f, states)
-        ));
-    }
-    if let Some(v) = f
-        .consistency
-        .anis_per_dof
-        .filter(|v| outside(*v, CONSISTENT))
-    {
-        out.push(format!(
-            "ANIS/dof {v:.3} outside [{}, {}]",
-            CONSISTENT.0, CONSISTENT.1
-        ));
-    }
-    for (name, v) in channels_off {
-        out.push(format!(
-            "{name} innovations {} their predicted variance (NIS/dof {v:.3}, outside [{}, {}]): {}",
-            times(v),
-            CHANNEL_CONSISTENT.0,
-            CHANNEL_CONSISTENT.1,
-            channel_cause(name, v)
-        ));
-    }
-    if let Some(frac) = f
-        .consistency
-        .nees_in_bounds_frac
-        .filter(|v| *v < MIN_IN_BAND)
-    {
-        out.push(format!(
-            "{:.0} % of epochs inside the NEES band (at least {:.0} % wanted){}",
-            100.0 * frac,
-            100.0 * MIN_IN_BAND,
-            epochs_outside(f)
-        ));
-    }
-    out
-}
-
-/// "2700×" or "0.31×".
-fn times(v: f64) -> String {
-    if v >= 10.0 {
-        format!("{v:.0}×")
-    } else {
-        format!("{v:.2}×")
-    }
-}
-
-/// The likely cause of channel `name`'s NIS/dof `v` outside its band.
-fn channel_cause(name: &str, v: f64) -> &'static str {
-    let high = v > 1.0;
-    match (name, high) {
-        (n, true) if n.starts_with("accel") => {
-            "an unmodelled lift or density error (L/D, β or density not estimated and not in Q)"
-        }
-        (n, false) if n.starts_with("accel") => {
-            "the assumed accelerometer noise, or the filter's σ (Q, P0), too large"
-        }
-        (n, true) if n.starts_with("range") => {
-            "a beacon position, clock or range error larger than the assumed noise"
-        }
-        (n, false) if n.starts_with("range") => {
-            "the assumed range noise, or the filter's σ (Q, P0), too large"
-        }
-        (_, true) => "an airdata or density error larger than the assumed noise",
-        (_, false) => "the assumed measurement noise, or the filter's σ (Q, P0), too large",
-    }
-}
-
-/// ", worst: r_m 61 % inside 3σ, …": up to three states with the lowest share of samples inside
-/// their ±3σ, where under 95 %.
-fn worst_states(f: &FilterReport, states: &[String]) -> String {
-    let mut inside: Vec<(&String, f64)> = states
-        .iter()
-        .filter_map(|s| Some((s, f.within_3sigma_frac.get(s).copied().flatten()?)))
-        .filter(|(_, v)| *v < 0.95)
-        .collect();
-    inside.sort_by(|a, b| a.1.total_cmp(&b.1));
-    if inside.is_empty() {
-        return String::new();
-    }
-    let named: Vec<String> = inside
-        .iter()
-        .take(3)
-        .map(|(s, v)| format!("{s} {:.0} % inside 3σ", 100.0 * v))
-        .collect();
-    format!(", worst: {}", named.join(", "))
-}
-
-/// " (above it over 52–110 s, below it over …)": the longest stretch of epochs above and below
-/// the band.
-fn epochs_outside(f: &FilterReport) -> String {
-    let (t, nees) = (&f.series.times_s, &f.series.nees_mean);
-    let [lo, hi] = f.consistency.nees_bounds_95;
-    let longest = |pred: &dyn Fn(f64) -> bool| {
-        let (mut best, mut start) = (None::<(usize, usize)>, None::<usize>);
-        for k in 0..=nees.len() {
-            let on = k < nees.len() && nees[k].is_some_and(pred);
-            match (on, start) {
-                (true, None) => start = Some(k),
-                (false, Some(s)) => {
-                    if best.is_none_or(|(a, b)| k - s > b - a) {
-                        best = Some((s, k));
-                    }
-                    start = None;
-                }
-                _ => {}
-            }
-        }
-        best.filter(|(s, e)| *e > *s && *e <= t.len())
-            .map(|(s, e)| format!("{:.0}–{:.0} s", t[s], t[e - 1]))
-    };
-    let mut parts = Vec::new();
-    if let Some(span) = longest(&|v| v > hi) {
-        parts.push(format!("longest above the band: {span}"));
-    }
-    if let Some(span) = longest(&|v| v < lo) {
-        parts.push(format!("longest below: {span}"));
-    }
-    if parts.is_empty() {
-        String::new()
-    } else {
-        format!(" ({})", parts.join(", "))
-    }
 }
 
 /// Time-averaged position RMSE \[m\].

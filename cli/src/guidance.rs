@@ -151,11 +151,21 @@ pub(crate) fn print_table(r: &DeliveryReport) {
     }
     for row in r.rows.iter().filter(|x| x.failures > 0) {
         if let Some((run, why)) = &row.first_failure {
+            let causes: Vec<String> = row
+                .failures_by_cause
+                .iter()
+                .map(|(cause, n)| format!("{n} {cause}"))
+                .collect();
             println!(
-                "{}: {} failed run(s); first: run {run}: {why}",
-                row.name, row.failures
+                "{}: {} failed run(s): {}; first: run {run}: {why}",
+                row.name,
+                row.failures,
+                causes.join(", ")
             );
         }
+    }
+    for w in entrynav_studies::guidance::delivery_warnings::delivery_warnings(r) {
+        println!("WARNING: {w}");
     }
     if r.rows.iter().any(|x| !x.rate_limit_held) {
         println!("WARNING: the bank rate exceeded its limit in some run");

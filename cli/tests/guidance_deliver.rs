@@ -308,3 +308,69 @@ fn a_guided_trade_plots_and_reports_the_delivery_footprint() {
             .unwrap();
     assert_eq!(again, footprint);
 }
+
+#[test]
+fn deliver_names_failures_by_cause_and_warns_of_an_inconsistent_navigation_limited_filter() {
+    // msl-guided with the EKF in the loop (40 runs, seed 1): two runs reach the ground before the
+    // speed trigger, and the EKF's σ at deployment is far below its 4 km error.
+    let (code, out, err) = entrynav(&[
+        "guidance",
+        "deliver",
+        "--scenario",
+        "msl-guided",
+        "--filters",
+        "ekf",
+        "--runs",
+        "40",
+        "--json",
+        "-",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: Value = serde_json::from_str(&out).unwrap();
+    let ekf = &v["delivery"]["rows"][2];
+    assert_eq!(ekf["name"], "ekf");
+    assert_eq!(
+        ekf["failures_by_cause"]["ground impact before the trigger"]
+            .as_u64()
+            .unwrap(),
+        ekf["failures"].as_u64().unwrap()
+    );
+    assert!(ekf["mean_nees_kinematic"].as_f64().unwrap() > 6.0 * 100.0);
+    let warnings: Vec<&str> = v["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w.as_str().unwrap())
+        .collect();
+    assert!(
+        warnings.iter().any(|w| w
+            .starts_with("ekf in the loop is inconsistent at deployment: mean kinematic NEES/dof")),
+        "{warnings:?}"
+    );
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.starts_with("ekf's miss is navigation-limited: RMS miss")),
+        "{warnings:?}"
+    );
+    // The table says the same.
+    let (code, out, err) = entrynav(&[
+        "guidance",
+        "deliver",
+        "--scenario",
+        "msl-guided",
+        "--filters",
+        "ekf",
+        "--runs",
+        "40",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("failed run(s): 2 ground impact before the trigger; first: run"),
+        "{out}"
+    );
+    assert!(
+        out.contains("WARNING: ekf's miss is navigation-limited"),
+        "{out}"
+    );
+}

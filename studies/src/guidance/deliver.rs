@@ -81,6 +81,9 @@ pub struct DeliveryDocument<'a> {
     pub delivery: &'a DeliveryReport,
     /// Each run's row of each row, run by run.
     pub runs: Vec<RunRow<'a>>,
+    /// What the table must say beside its numbers
+    /// ([`delivery_warnings`](super::delivery_warnings::delivery_warnings)).
+    pub warnings: Vec<String>,
 }
 
 impl DeliveryStudy {
@@ -103,6 +106,7 @@ impl DeliveryStudy {
                     })
                 })
                 .collect(),
+            warnings: super::delivery_warnings::delivery_warnings(report),
         }
     }
 }

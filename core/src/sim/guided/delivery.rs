@@ -100,6 +100,11 @@ pub struct DeliveryRow {
     pub rate_limit_held: bool,
     /// RMS of the position error at deployment over the runs (filters only) \[m\].
     pub rms_nav_position_error_m: Option<f64>,
+    /// Mean over the deployed runs of the kinematic NEES at deployment (filters only; 6 for a
+    /// consistent filter).
+    pub mean_nees_kinematic: Option<f64>,
+    /// The failed runs by cause (`GuidedRunError::cause`), in name order.
+    pub failures_by_cause: std::collections::BTreeMap<String, usize>,
 }
 
 /// A delivery study's results.
@@ -280,12 +285,14 @@ fn row_stats<'a>(
     let mut ok = Vec::new();
     let mut failures = 0;
     let mut first_failure = None;
+    let mut failures_by_cause = std::collections::BTreeMap::new();
     for (run, r) in results.enumerate() {
         match r {
             Ok(d) => ok.push(*d),
             Err(e) => {
                 failures += 1;
                 first_failure.get_or_insert_with(|| (run, e.to_string()));
+                *failures_by_cause.entry(e.cause().to_string()).or_insert(0) += 1;
             }
         }
     }
@@ -320,6 +327,11 @@ fn row_stats<'a>(
         .iter()
         .filter_map(|d| d.nav_error.map(|e| e.position_m))
         .collect();
+    let nees: Vec<f64> = ok
+        .iter()
+        .filter_map(|d| d.nav_error.and_then(|e| e.nees_kinematic))
+        .filter(|v| v.is_finite())
+        .collect();
     DeliveryRow {
         name,
         deployed: n,
@@ -336,6 +348,9 @@ fn row_stats<'a>(
         rate_limit_held: ok.iter().all(|d| within_rate_limit(d, limits)),
         rms_nav_position_error_m: (!nav.is_empty())
             .then(|| (nav.iter().map(|e| e * e).sum::<f64>() / nav.len() as f64).sqrt()),
+        mean_nees_kinematic: (!nees.is_empty())
+            .then(|| nees.iter().sum::<f64>() / nees.len() as f64),
+        failures_by_cause,
     }
 }
 

@@ -19,6 +19,11 @@ pub struct DeployNavError {
     pub downrange_m: f64,
     /// Crossrange position error \[m\].
     pub crossrange_m: f64,
+    /// NEES of the six kinematic states there, eᵀP⁻¹e with the filter's own covariance (χ² with
+    /// 6 degrees of freedom for a consistent filter); `None` where it is not defined. Absent in
+    /// shards written before it was recorded.
+    #[serde(default)]
+    pub nees_kinematic: Option<f64>,
 }
 
 /// Where one flight deployed and how far from the target.

@@ -251,6 +251,7 @@ impl GuidedLoop {
                 velocity_mps: j.pos_vel_err.1,
                 downrange_m: j.downrange_crossrange.0,
                 crossrange_m: j.downrange_crossrange.1,
+                nees_kinematic: j.nees_kinematic,
             });
             self.end = Some(Ok(d));
         } else if report.truth_steps == 0 || self.cosim.truth().stop().is_some() {

@@ -12,7 +12,6 @@ use crate::vars::enums::GUIDANCE_STATUS;
 use crate::vars::slot::{Key, Slot};
 use crate::vars::var::{Causality, Type, Value};
 use entrynav::scenario::{Scenario, ScenarioConfig};
-use std::sync::OnceLock;
 
 /// The text of [`GUIDED_SCENARIO_FILE`]: the built-in `msl-guided`.
 pub fn guided_scenario_toml() -> String {
@@ -35,17 +34,16 @@ pub fn guided_scenario() -> Result<Scenario, entrynav::scenario::ScenarioError> 
 /// entry state, a valid operating point, instead of refusing the radius 0 of all-zero inputs.
 ///
 /// The guided scenario builds (tested in `vars::spec`), so the all-zero fallback is never taken.
+/// Computed on each call (a built-in's parse, well under a millisecond), not cached: the library
+/// keeps no global state.
 pub fn entry_estimate() -> [f64; 6] {
-    static ENTRY: OnceLock<[f64; 6]> = OnceLock::new();
-    *ENTRY.get_or_init(|| {
-        let mut x = [0.0; 6];
-        if let Ok(s) = guided_scenario() {
-            for (xi, e) in x.iter_mut().zip(&s.onboard.initial_estimate) {
-                *xi = *e;
-            }
+    let mut x = [0.0; 6];
+    if let Ok(s) = guided_scenario() {
+        for (xi, e) in x.iter_mut().zip(&s.onboard.initial_estimate) {
+            *xi = *e;
         }
-        x
-    })
+    }
+    x
 }
 
 /// The `scenario` parameter of the guidance FMU and of the guided FMU `MarsEntryNavGuided`: a

@@ -1,11 +1,12 @@
 //! The checks a command runs before any work, so a study never fails at its end on something it
 //! could have refused at its start: output paths (the study layer's checks, which Python shares)
-//! and the warnings for values no Mars entry has.
+//! and the warnings for values no Mars entry has (allowed with `allow_implausible`).
 
 use std::path::Path;
 
-/// Warn on standard error about every value of `cfg` that passes validation but no Mars entry has
-/// (a speed in km/s, a flight-path angle in radians: `ScenarioConfig::implausible`).
+/// Warn on standard error about every value of `cfg` no Mars entry has (a speed in km/s, a
+/// flight-path angle in radians: `ScenarioConfig::implausible`); validation refuses them unless
+/// the scenario sets `allow_implausible = true`, so this speaks only for an allowed one.
 pub fn warn_implausible(cfg: &entrynav::scenario::ScenarioConfig) {
     for w in cfg.implausible() {
         eprintln!("warning: {w}");

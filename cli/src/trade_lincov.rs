@@ -93,13 +93,7 @@ pub fn print_comparison(c: &LinCovComparison, report: &TradeReport) {
                 if r.disagrees() { " !" } else { "" }
             );
         }
-        let off: Vec<&str> = rows
-            .iter()
-            .filter(|r| r.disagrees())
-            .map(|r| r.figure.as_str())
-            .collect();
-        if !off.is_empty() {
-            let why = entrynav_studies::trade::expected::lincov_disagreement(f, &off, rows.len());
+        if let Some(why) = entrynav_studies::trade::expected::lincov_disagreement(f, &rows) {
             println!("  warning: {why}");
         }
     }

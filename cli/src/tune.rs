@@ -54,8 +54,9 @@ pub struct TuneArgs {
     /// The worker pool.
     #[command(flatten)]
     workers: crate::args::ThreadsArg,
-    /// Write the tuned file even when it makes a filter worse than the input on the fresh
-    /// validation runs (band fraction or position RMSE by more than 10 %).
+    /// Write the tuned file even when a primary figure is worse than the input's on the fresh
+    /// validation runs beyond the Monte Carlo noise (position RMSE, failed or diverged runs,
+    /// |ln ANEES/dof|, |ln ANIS/dof|).
     #[arg(long)]
     force: bool,
     #[arg(long, help = crate::args::QUIET_HELP)]

@@ -155,14 +155,7 @@ impl TradePage<'_> {
                 ],
                 &cells,
             );
-            let off: Vec<&str> = rows
-                .iter()
-                .filter(|r| r.disagrees())
-                .map(|r| r.figure.as_str())
-                .collect();
-            if !off.is_empty() {
-                let why =
-                    entrynav_studies::trade::expected::lincov_disagreement(f, &off, rows.len());
+            if let Some(why) = entrynav_studies::trade::expected::lincov_disagreement(f, &rows) {
                 s += &format!("<p class=\"warn\">Warning: {}</p>\n", escape(&why));
             }
         }

@@ -9,6 +9,7 @@
 //! §4.1 ("the navigation accuracy of the CI is the worst in three methods because four subsystems
 //! are all unobservable") and motivates its information feedback (§3.4) by it.
 
+use crate::trade::lincov_comparison::ComparedFigure;
 use entrynav::sim::FilterReport;
 
 /// The divergence the papers predict for the filter named `filter`, in words that name the
@@ -48,11 +49,20 @@ pub fn bad_runs_line(f: &FilterReport) -> Option<String> {
     })
 }
 
-/// Why LinCov and the Monte Carlo of `f` disagree on `off` of `of` figures: the Monte Carlo's
-/// runs diverged (which a first-order prediction about the nominal cannot show; with the
+/// Why LinCov and the Monte Carlo of `f` disagree, when some of its compared `rows` lie outside
+/// the Monte Carlo's interval (`None` when none does): the Monte Carlo's runs diverged (which a first-order prediction about the nominal cannot show; with the
 /// paper's explanation where one applies), or, with no run lost, the dispersed runs left the
 /// region where the linear prediction holds.
-pub fn lincov_disagreement(f: &FilterReport, off: &[&str], of: usize) -> String {
+pub fn lincov_disagreement(f: &FilterReport, rows: &[ComparedFigure]) -> Option<String> {
+    let off: Vec<&str> = rows
+        .iter()
+        .filter(|r| r.disagrees())
+        .map(|r| r.figure.as_str())
+        .collect();
+    if off.is_empty() {
+        return None;
+    }
+    let of = rows.len();
     let head = format!(
         "LinCov and the Monte Carlo disagree beyond the sampling interval on {} of {of} figures ({})",
         off.len(),
@@ -60,20 +70,20 @@ pub fn lincov_disagreement(f: &FilterReport, off: &[&str], of: usize) -> String 
     );
     let bad = f.failed + f.diverged;
     if bad == 0 {
-        return format!(
+        return Some(format!(
             "{head}: the dispersed runs leave the region where the first-order (linear) \
              prediction holds"
-        );
+        ));
     }
     let lost = format!(
         "{bad} of {} Monte Carlo runs failed or diverged, which a first-order prediction about \
          the nominal cannot show",
         f.runs
     );
-    match expected_divergence(&f.name) {
+    Some(match expected_divergence(&f.name) {
         Some(why) if mostly_bad(f) && f.failed == 0 => format!("{head}: {lost}; {why}"),
         _ => format!("{head}: {lost}"),
-    }
+    })
 }
 
 #[cfg(test)]
@@ -116,7 +126,22 @@ mod tests {
         // 1 % or less: nothing to say beyond the counts.
         assert_eq!(bad_runs_line(&report("ekf", 200, 0, 2)), None);
         // --method both: the disagreement is blamed on the divergence, not on nonlinearity.
-        let why = lincov_disagreement(&ci, &["anees_per_dof"], 17);
+        let rows = [
+            ComparedFigure {
+                figure: "anees_per_dof".into(),
+                lincov: 0.7,
+                mc: 1.1e7,
+                half: 2.0e6,
+            },
+            ComparedFigure {
+                figure: "rmse_time_avg.lift_to_drag".into(),
+                lincov: 1.49e-3,
+                mc: 1.65e-3,
+                half: 5.0e-4,
+            },
+        ];
+        let why = lincov_disagreement(&ci, &rows).unwrap();
+        assert!(why.contains("on 1 of 2 figures (anees_per_dof)"), "{why}");
         assert!(
             why.contains("200 of 200 Monte Carlo runs failed or diverged"),
             "{why}"
@@ -127,10 +152,12 @@ mod tests {
             "{why}"
         );
         let ok = report("ekf", 200, 0, 0);
-        let why = lincov_disagreement(&ok, &["anees_per_dof"], 17);
+        let why = lincov_disagreement(&ok, &rows).unwrap();
         assert!(
             why.ends_with("first-order (linear) prediction holds"),
             "{why}"
         );
+        // No figure outside the interval: nothing to say.
+        assert_eq!(lincov_disagreement(&ok, &rows[1..]), None);
     }
 }

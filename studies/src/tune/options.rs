@@ -34,8 +34,9 @@ pub struct TuneStudyOptions {
     pub max_evaluations: usize,
     /// Worker threads (`None`: all cores).
     pub threads: Option<usize>,
-    /// Give the tuned file even when it makes a filter worse than the input on the fresh
-    /// validation runs (band fraction or position RMSE by more than 10 %).
+    /// Give the tuned file even when a primary figure is worse than the input's on the fresh
+    /// validation runs beyond the Monte Carlo noise (position RMSE, failed or diverged runs,
+    /// |ln ANEES/dof|, |ln ANIS/dof|).
     pub force: bool,
 }
 

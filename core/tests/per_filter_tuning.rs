@@ -29,6 +29,7 @@ fn a_filter_flies_its_own_tuning_and_the_others_the_shared_one() {
         "ukf".into(),
         FilterRetuneConfig {
             q_diag: Some(own_q.clone()),
+            process_noise: None,
             noise_inflation: Some(NoiseInflation {
                 range: 3.0,
                 ..Default::default()
@@ -76,6 +77,7 @@ fn bad_per_filter_tables_are_refused_naming_the_field() {
             "ekf".into(),
             FilterRetuneConfig {
                 q_diag: Some(vec![1.0; 5]),
+                process_noise: None,
                 noise_inflation: None,
             },
         );
@@ -91,6 +93,7 @@ fn bad_per_filter_tables_are_refused_naming_the_field() {
             "ekf".into(),
             FilterRetuneConfig {
                 q_diag: Some(q),
+                process_noise: None,
                 noise_inflation: None,
             },
         );

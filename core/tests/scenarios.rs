@@ -190,6 +190,33 @@ fn structural_errors_name_the_field() {
         )
     });
     assert!(msg.contains("filter.noise_inflation.range"), "{msg}");
+    let aero = |body: &str| {
+        let body = body.to_string();
+        move |s: String| {
+            s.replace(
+                "[filter.vehicle]",
+                &format!(
+                    "[filter.process_noise]\nmodel = \"aero-scaled\"\n{body}\n\n[filter.vehicle]"
+                ),
+            )
+        }
+    };
+    let msg = error_of(aero("fraction = [0.05, 0.0, 0.0]"));
+    assert!(
+        msg.contains("filter.process_noise") && msg.contains("correlation_time_s"),
+        "{msg}"
+    );
+    let msg = error_of(aero(
+        "fraction = [0.05, 20.0, 0.0]\ncorrelation_time_s = 5.0",
+    ));
+    assert!(msg.contains("filter.process_noise.fraction[1]"), "{msg}");
+    let msg = error_of(aero(
+        "fraction = [0.05, 0.0, 0.0]\ncorrelation_length_m = -8000.0",
+    ));
+    assert!(
+        msg.contains("filter.process_noise.correlation_length_m"),
+        "{msg}"
+    );
     let msg = error_of(|s| s.replacen("heading_deg = 5.156\n", "", 1));
     assert!(
         msg.contains("truth.initial") && msg.contains("heading_deg"),

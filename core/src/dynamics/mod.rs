@@ -13,6 +13,7 @@ pub mod cartesian;
 pub mod entry_model;
 pub mod integrator;
 pub mod kind;
+pub mod noise_map;
 pub mod spherical;
 
 pub use augmented_param::AugmentedParam;
@@ -20,4 +21,5 @@ pub use cartesian::cartesian_rhs;
 pub use entry_model::{EntryModel, Vehicle};
 pub use integrator::{rk4_integrate, rk4_step, rk4_step_generic};
 pub use kind::DynamicsKind;
+pub use noise_map::AeroNoiseMap;
 pub use spherical::spherical_rhs;

@@ -13,6 +13,7 @@
 use super::adaptive::config::DensityFilterConfig;
 use super::adaptive::network::DensityNetworkSet;
 use super::nav::kind::FilterKind;
+use super::process_noise::ProcessNoiseModel;
 use super::unscented::UkfParams;
 use crate::atmosphere::AtmosphereModel;
 use crate::beacons::{Beacon, BeaconState, EphemerisTable};
@@ -63,6 +64,8 @@ pub struct FilterTuning {
     pub p0_diag: Vec<f64>,
     /// Process-noise diagonal per filter step Q_k (SI, rad); missing entries count as 0.
     pub q_diag: Vec<f64>,
+    /// What is added to `q_diag` (`[filter.process_noise]`; the constant model adds nothing).
+    pub process_noise: ProcessNoiseModel,
     /// Number of Schmidt consider parameters: the last `n_consider` states, carried in the
     /// covariance but never updated (`filter.consider`).
     pub n_consider: usize,
@@ -138,6 +141,8 @@ pub struct FilterRetune {
     pub kind: FilterKind,
     /// Its process-noise diagonal per filter step (SI, rad).
     pub q_diag: Vec<f64>,
+    /// Its process-noise model.
+    pub process_noise: ProcessNoiseModel,
     /// Factor on channel `c`'s assumed 1σ noise (missing factors are 1).
     pub noise_factor: Vec<f64>,
 }
@@ -173,7 +178,11 @@ impl Onboard {
     /// (`[filter.tuned.<name>]`) when it has one.
     pub fn for_filter(self: &Arc<Self>, kind: FilterKind) -> Arc<Onboard> {
         match self.per_filter.iter().find(|r| r.kind == kind) {
-            Some(r) => Arc::new(self.with_tuning(&r.q_diag, &r.noise_factor)),
+            Some(r) => {
+                let mut out = self.with_tuning(&r.q_diag, &r.noise_factor);
+                out.tuning.process_noise = r.process_noise;
+                Arc::new(out)
+            }
             None => Arc::clone(self),
         }
     }

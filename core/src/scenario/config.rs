@@ -11,6 +11,7 @@ use crate::dynamics::{AugmentedParam, DynamicsKind};
 pub use crate::estimation::FusionCovariance;
 pub use crate::estimation::adaptive::{DensityFilterConfig, DensityTrainingConfig};
 pub use crate::estimation::gating::GatingConfig;
+pub use crate::estimation::{AeroScaledNoise, MAX_AERO_FRACTION, ProcessNoiseModel};
 use crate::frames::HeadingConvention;
 pub use crate::guidance::GuidanceConfig;
 use crate::sensors::{FaultConfig, SensorsConfig};
@@ -241,6 +242,11 @@ pub struct FilterConfig {
     pub p0_diag: Vec<f64>,
     /// Process-noise covariance diagonal per filter step Q_k (SI, rad).
     pub q_diag: Vec<f64>,
+    /// What is added to `q_diag`: `model = "constant"` (the default, nothing) or
+    /// `model = "aero-scaled"`, state-noise compensation scaled by the aerodynamic load
+    /// (docs/process-noise.md).
+    #[serde(default, skip_serializing_if = "ProcessNoiseModel::is_constant")]
+    pub process_noise: ProcessNoiseModel,
     /// Accelerometer noise 1σ the filter assumes [m/s²] (default: the sensor's own). Set it larger
     /// than the sensor noise to account for errors the filter does not model, e.g. seed 000's
     /// unestimated −0.03 m/s² bias, which is 30σ of the printed R = 1e-6.
@@ -289,6 +295,9 @@ pub struct FilterRetuneConfig {
     /// Process-noise diagonal per filter step Q_k of this filter (SI, rad), in state order.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub q_diag: Option<Vec<f64>>,
+    /// Process-noise model of this filter (in place of `filter.process_noise`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub process_noise: Option<ProcessNoiseModel>,
     /// Factors on the assumed measurement noise of this filter, per channel kind (in place of
     /// `filter.noise_inflation`, not on top of it).
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -58,6 +58,7 @@ pub(super) fn onboard_view(p: OnboardParts<'_>) -> Onboard {
         tuning: FilterTuning {
             p0_diag: f.p0_diag.clone(),
             q_diag: f.q_diag.clone(),
+            process_noise: f.process_noise,
             n_consider: f.consider.len(),
             update_iterations: f.update_iterations,
             ukf: UkfParams::new(f.ukf.alpha, f.ukf.beta, f.ukf.kappa),
@@ -90,6 +91,7 @@ fn per_filter_tuning(config: &ScenarioConfig, channels: &[ChannelSpec]) -> Vec<F
             Some(FilterRetune {
                 kind,
                 q_diag: t.q_diag.clone().unwrap_or_else(|| f.q_diag.clone()),
+                process_noise: t.process_noise.unwrap_or(f.process_noise),
                 noise_factor,
             })
         })

@@ -1,7 +1,7 @@
 //! Checks of the `[filter]` section: its state layout (augmented and consider states, P0, Q and
 //! start values) and its tuning (iterations, noise factors, UKF parameters, model bank).
 
-use super::config::{FilterConfig, NoiseInflation, ScenarioConfig};
+use super::config::{FilterConfig, NoiseInflation, ProcessNoiseModel, ScenarioConfig};
 use super::error::ScenarioError;
 use super::validate_range::{Checker, R, Range};
 use super::validate_state::{cd_s_over_m_range, lift_to_drag_range};
@@ -142,7 +142,8 @@ impl FilterConfig {
             let range = Range::gt(0.0).note("a variance");
             c.range(format!("filter.p0_diag[{k}]"), *p, range)?;
         }
-        check_q_diag("filter.q_diag", &self.q_diag, c)
+        check_q_diag("filter.q_diag", &self.q_diag, c)?;
+        check_process_noise("filter.process_noise", &self.process_noise, c)
     }
 
     /// `[filter.tuned.<name>]`: a known filter name, a full Q diagonal, valid noise factors.
@@ -165,6 +166,9 @@ impl FilterConfig {
                     ));
                 }
                 check_q_diag(&field, q, c)?;
+            }
+            if let Some(m) = &t.process_noise {
+                check_process_noise(&format!("{field}.process_noise"), m, c)?;
             }
             if let Some(inf) = &t.noise_inflation {
                 check_inflation(&format!("{field}.noise_inflation"), inf, c)?;
@@ -229,6 +233,36 @@ fn check_q_diag(field: &str, q: &[f64], c: &mut Checker) -> R {
         c.range(format!("{field}[{k}]"), *v, range)?;
     }
     Ok(())
+}
+
+/// The load-scaled model: fractions in [0, MAX_AERO_FRACTION], a floor in [0, 10] m/s², exactly one positive
+/// correlation (a time up to 1000 s or a length up to 100 km).
+fn check_process_noise(field: &str, m: &ProcessNoiseModel, c: &mut Checker) -> R {
+    let ProcessNoiseModel::AeroScaled(a) = m else {
+        return Ok(());
+    };
+    for (k, f) in a.fraction.iter().enumerate() {
+        let range = Range::ge(0.0)
+            .le(super::config::MAX_AERO_FRACTION)
+            .note("1-sigma of the unmodelled specific force over |a_aero|");
+        c.range(format!("{field}.fraction[{k}]"), *f, range)?;
+    }
+    let range = Range::ge(0.0).le(10.0).unit("m/s²");
+    c.range(format!("{field}.floor_mps2"), a.floor_mps2, range)?;
+    match (a.correlation_time_s, a.correlation_length_m) {
+        (Some(t), None) => {
+            let range = Range::gt(0.0).le(1000.0).unit("s");
+            c.range(format!("{field}.correlation_time_s"), t, range)
+        }
+        (None, Some(l)) => {
+            let range = Range::gt(0.0).le(100e3).unit("m");
+            c.range(format!("{field}.correlation_length_m"), l, range)
+        }
+        _ => Err(ScenarioError::invalid(
+            field,
+            "needs exactly one of correlation_time_s and correlation_length_m",
+        )),
+    }
 }
 
 /// Every factor on an assumed noise lies in (0, 1000].

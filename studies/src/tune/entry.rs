@@ -6,7 +6,9 @@
 //! velocity; then each augmented state), so the search stays small and the tuned Q keeps the
 //! scenario's proportions inside a group. An entry whose base value is zero cannot be scaled
 //! and is not tuned (consider parameters never are). With measurement-noise tuning, one factor
-//! per channel kind multiplies the 1σ the filter assumes (`filter.noise_inflation`).
+//! per channel kind multiplies the 1σ the filter assumes (`filter.noise_inflation`). A filter
+//! with the load-scaled process-noise model (`[filter.process_noise]`, `model = "aero-scaled"`)
+//! has its fractions tuned too: the drag axis and the side/lift axes, one factor each.
 //!
 //! One filter is tuned at a time, from the tuning it flies with now (its own
 //! `[filter.tuned.<name>]` if the scenario has one, else the shared `[filter]` values), and the
@@ -15,8 +17,9 @@
 use crate::error::{StudyError, StudyResult};
 use crate::tune::search::{Measured, THETA_BOUND, TuningProblem};
 use entrynav::estimation::Onboard;
+use entrynav::estimation::ProcessNoiseModel;
 use entrynav::estimation::nav::FilterKind;
-use entrynav::scenario::config::MAX_NOISE_INFLATION;
+use entrynav::scenario::config::{MAX_AERO_FRACTION, MAX_NOISE_INFLATION};
 use entrynav::scenario::{FilterRetuneConfig, ScenarioConfig};
 use entrynav::sensors::Channel;
 use entrynav::sim::monte_carlo::report::FilterReport;
@@ -33,6 +36,14 @@ pub enum ParameterGroup {
         /// State indices.
         states: Vec<usize>,
     },
+    /// Fractions of the aerodynamic-load-scaled process noise (`[filter.process_noise]`,
+    /// `model = "aero-scaled"`) scaled together: the drag axis, or the side and lift axes.
+    Aero {
+        /// Name in reports, e.g. `aero[drag]`.
+        name: String,
+        /// Wind axes (0 drag, 1 side, 2 lift plane).
+        axes: Vec<usize>,
+    },
     /// The assumed noise of every channel of one kind (e.g. all ranges).
     Noise {
         /// Name in reports, e.g. `r[range]`.
@@ -46,7 +57,9 @@ impl ParameterGroup {
     /// Its name in reports.
     pub fn name(&self) -> &str {
         match self {
-            ParameterGroup::Process { name, .. } | ParameterGroup::Noise { name, .. } => name,
+            ParameterGroup::Process { name, .. }
+            | ParameterGroup::Aero { name, .. }
+            | ParameterGroup::Noise { name, .. } => name,
         }
     }
 }
@@ -96,6 +109,17 @@ impl<'a> EntryTuning<'a> {
                 states,
             });
         }
+        if let ProcessNoiseModel::AeroScaled(a) = onboard.tuning.process_noise {
+            for (name, axes) in [("aero[drag]", vec![0]), ("aero[side,lift]", vec![1, 2])] {
+                let axes: Vec<usize> = axes.into_iter().filter(|&k| a.fraction[k] > 0.0).collect();
+                if !axes.is_empty() {
+                    groups.push(ParameterGroup::Aero {
+                        name: name.to_string(),
+                        axes,
+                    });
+                }
+            }
+        }
         if tune_noise {
             let mut kinds_seen: Vec<Channel> = Vec::new();
             for ch in &onboard.channels {
@@ -127,6 +151,17 @@ impl<'a> EntryTuning<'a> {
             .iter()
             .map(|g| match g {
                 ParameterGroup::Process { .. } => (-THETA_BOUND, THETA_BOUND),
+                ParameterGroup::Aero { axes, .. } => {
+                    // A scenario accepts fractions up to MAX_AERO_FRACTION.
+                    let largest = match onboard.tuning.process_noise {
+                        ProcessNoiseModel::AeroScaled(a) => {
+                            axes.iter().map(|&k| a.fraction[k]).fold(0.0, f64::max)
+                        }
+                        ProcessNoiseModel::Constant => 1.0,
+                    };
+                    let room = (MAX_AERO_FRACTION / largest).log10();
+                    (-THETA_BOUND, room.min(THETA_BOUND))
+                }
                 ParameterGroup::Noise { kind, .. } => {
                     let room = (MAX_NOISE_INFLATION / current.factor(*kind)).log10();
                     (-THETA_BOUND, room.min(THETA_BOUND))
@@ -152,10 +187,11 @@ impl<'a> EntryTuning<'a> {
         &self.groups
     }
 
-    /// The process-noise diagonal and per-channel noise factors of θ.
-    fn tuning(&self, theta: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    /// The process-noise diagonal, process-noise model and per-channel noise factors of θ.
+    fn tuning(&self, theta: &[f64]) -> (Vec<f64>, ProcessNoiseModel, Vec<f64>) {
         let onboard = &self.base;
         let mut q = onboard.tuning.q_diag.clone();
+        let mut model = onboard.tuning.process_noise;
         let mut noise = vec![1.0; onboard.channels.len()];
         for (g, t) in self.groups.iter().zip(theta) {
             let f = 10f64.powf(*t);
@@ -163,6 +199,13 @@ impl<'a> EntryTuning<'a> {
                 ParameterGroup::Process { states, .. } => {
                     for &i in states {
                         q[i] *= f;
+                    }
+                }
+                ParameterGroup::Aero { axes, .. } => {
+                    if let ProcessNoiseModel::AeroScaled(a) = &mut model {
+                        for &k in axes {
+                            a.fraction[k] = (a.fraction[k] * f).min(MAX_AERO_FRACTION);
+                        }
                     }
                 }
                 ParameterGroup::Noise { kind, .. } => {
@@ -174,14 +217,16 @@ impl<'a> EntryTuning<'a> {
                 }
             }
         }
-        (q, noise)
+        (q, model, noise)
     }
 
     /// The report of the filter tuned by θ over `runs` (the tuning runs or fresh ones of the
     /// same scenario).
     pub fn report(&self, theta: &[f64], runs: &TuningRuns) -> StudyResult<FilterReport> {
-        let (q, noise) = self.tuning(theta);
-        let onboard = Arc::new(self.base.with_tuning(&q, &noise));
+        let (q, model, noise) = self.tuning(theta);
+        let mut onboard = self.base.with_tuning(&q, &noise);
+        onboard.tuning.process_noise = model;
+        let onboard = Arc::new(onboard);
         let mut reports = runs.evaluate(&onboard, &[self.kind])?;
         reports.pop().ok_or_else(|| {
             StudyError::Refused(format!(
@@ -196,7 +241,7 @@ impl<'a> EntryTuning<'a> {
     /// measurement-noise tuning the noise factors (the filter's current ones times the tuned
     /// factors).
     pub fn retune_config(&self, base: &ScenarioConfig, theta: &[f64]) -> FilterRetuneConfig {
-        let (q, _) = self.tuning(theta);
+        let (q, model, _) = self.tuning(theta);
         let current = base.filter.tuned.get(self.kind.name());
         let mut inflation = current
             .and_then(|c| c.noise_inflation)
@@ -213,6 +258,11 @@ impl<'a> EntryTuning<'a> {
         }
         FilterRetuneConfig {
             q_diag: Some(q),
+            process_noise: if model.is_constant() {
+                current.and_then(|c| c.process_noise)
+            } else {
+                Some(model)
+            },
             noise_inflation: if changed {
                 Some(inflation)
             } else {

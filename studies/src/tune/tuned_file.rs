@@ -5,6 +5,7 @@
 //! its numbers at six significant digits.
 
 use crate::error::{StudyError, StudyResult};
+use entrynav::estimation::{AeroScaledNoise, ProcessNoiseModel};
 use entrynav::scenario::{FilterRetuneConfig, NoiseInflation};
 use toml_edit::{Array, DocumentMut, Item, Table, Value};
 
@@ -65,8 +66,34 @@ pub fn rounded(config: &FilterRetuneConfig) -> FilterRetuneConfig {
             .q_diag
             .as_ref()
             .map(|q| q.iter().copied().map(round6).collect()),
+        process_noise: config.process_noise.map(|m| match m {
+            ProcessNoiseModel::AeroScaled(mut a) => {
+                a.fraction = a.fraction.map(round6);
+                ProcessNoiseModel::AeroScaled(a)
+            }
+            constant => constant,
+        }),
         noise_inflation: config.noise_inflation.as_ref().map(r),
     }
+}
+
+/// `{ model = "aero-scaled", fraction = [..], floor_mps2 = .., correlation_… = .. }`.
+fn aero_inline(a: &AeroScaledNoise) -> StudyResult<toml_edit::InlineTable> {
+    let mut inline = toml_edit::InlineTable::new();
+    inline.insert("model", Value::from("aero-scaled"));
+    let mut fraction = Array::new();
+    for f in a.fraction {
+        fraction.push(number(f)?);
+    }
+    inline.insert("fraction", Value::Array(fraction));
+    inline.insert("floor_mps2", number(a.floor_mps2)?);
+    if let Some(t) = a.correlation_time_s {
+        inline.insert("correlation_time_s", number(t)?);
+    }
+    if let Some(l) = a.correlation_length_m {
+        inline.insert("correlation_length_m", number(l)?);
+    }
+    Ok(inline)
 }
 
 fn number(value: f64) -> StudyResult<Value> {
@@ -111,6 +138,9 @@ pub fn edit(source: &str, sets: &[String], retunes: &[Retune<'_>]) -> StudyResul
             array.set_trailing_comma(true);
             array.set_trailing("\n");
             table.insert("q_diag", toml_edit::value(array));
+        }
+        if let Some(ProcessNoiseModel::AeroScaled(a)) = &r.config.process_noise {
+            table.insert("process_noise", toml_edit::value(aero_inline(a)?));
         }
         match &r.config.noise_inflation {
             Some(n) => {
@@ -262,6 +292,7 @@ mod tests {
         let source = "# my study\nname = \"x\" # keep\n\n[filter]\n# shared Q\nq_diag = [1.0, 2.0]\n\n[truth]\nbank_deg = 30.0 # flown\n";
         let retune = FilterRetuneConfig {
             q_diag: Some(vec![0.1234567891, 2e-14]),
+            process_noise: None,
             noise_inflation: None,
         };
         let comment = vec!["tuned".to_string()];

@@ -11,6 +11,7 @@ use crate::estimation::ekf::Ekf;
 use crate::estimation::error::EstimationError;
 use crate::estimation::linearization::LinearizedMeasurement;
 use crate::estimation::onboard::Onboard;
+use crate::estimation::process_noise::ProcessNoiseModel;
 use crate::math::V3;
 use crate::math::all_finite;
 use crate::sensors::MeasurementEpoch;
@@ -73,7 +74,8 @@ impl<const N: usize> EkfNav<N> {
     }
 
     /// The sub-steps `(n, h, Q_h)` that take the estimate to `t_to` (`n = 0` when `t_to` is not
-    /// later than the filter time); an error past the sub-step limit.
+    /// later than the filter time); an error past the sub-step limit. `Q_h` is the constant part
+    /// of the process noise; [`EkfNav::substep_noise`] adds the state-dependent part.
     pub fn substeps_to(
         &self,
         t_to: f64,
@@ -90,6 +92,23 @@ impl<const N: usize> EkfNav<N> {
     /// One RK4 sub-step of length `h` of the current estimate: `(x_next, Φ)`.
     pub fn substep(&self, h: f64) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
         self.model.step_with_linear_stm(&self.ekf.x, self.bank, h)
+    }
+
+    /// The process noise of one sub-step of length `h` with transition `phi` from the current
+    /// estimate: the constant part `q_h` plus the process-noise model's state-dependent part
+    /// ([`ProcessNoiseModel`]).
+    pub fn substep_noise(
+        &self,
+        h: f64,
+        phi: &SMatrix<f64, N, N>,
+        q_h: &SMatrix<f64, N, N>,
+    ) -> SMatrix<f64, N, N> {
+        match self.onboard.tuning.process_noise {
+            ProcessNoiseModel::Constant => *q_h,
+            ProcessNoiseModel::AeroScaled(a) => {
+                q_h + a.over_substep(&self.model, &self.ekf.x, self.bank, h, phi)
+            }
+        }
     }
 
     /// Apply one sub-step (from [`EkfNav::substep`] of a filter with the same estimate).
@@ -296,7 +315,8 @@ impl<const N: usize> NavFilter<N> for EkfNav<N> {
         let (n, h, q) = self.substeps_to(t_to)?;
         for _ in 0..n {
             let (x_next, phi) = self.substep(h);
-            self.apply_substep(x_next, &phi, &q)?;
+            let q_k = self.substep_noise(h, &phi, &q);
+            self.apply_substep(x_next, &phi, &q_k)?;
         }
         self.finish_prediction(t_to);
         Ok(())

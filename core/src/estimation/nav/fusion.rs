@@ -119,7 +119,10 @@ impl<const N: usize> FusionNav<N> {
         };
         let (n, h, q) = first.substeps_to(t_to)?;
         for _ in 0..n {
-            let Some((x_next, phi)) = self.ens.first().map(|f| f.substep(h)) else {
+            let Some((x_next, phi, q)) = self.ens.first().map(|f| {
+                let (x_next, phi) = f.substep(h);
+                (x_next, phi, f.substep_noise(h, &phi, &q))
+            }) else {
                 break;
             };
             // Locals whose covariance equals an earlier local's (bit for bit: all of them with

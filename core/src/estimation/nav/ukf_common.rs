@@ -8,6 +8,7 @@ use crate::atmosphere::Atmosphere;
 use crate::dynamics::EntryModel;
 use crate::estimation::error::EstimationError;
 use crate::estimation::onboard::Onboard;
+use crate::estimation::process_noise::ProcessNoiseModel;
 use crate::estimation::ukf::{Ukf, UkfUpdate, UkfWorkspace};
 use crate::math::V3;
 use crate::sensors::MeasurementEpoch;
@@ -171,13 +172,19 @@ impl<A: Atmosphere, const L: usize> UkfCore<A, L> {
             return Ok(None);
         };
         let q = q * (h / step);
-        self.propagate(t_to, n, h, &q, |_, _| {})?;
-        Ok(Some(q * n as f64))
+        let added = self.propagate(t_to, n, h, &q, |_, _| {})?;
+        // The constant model's total as it always was (bit for bit): q·n.
+        Ok(Some(if self.onboard.tuning.process_noise.is_constant() {
+            q * n as f64
+        } else {
+            added
+        }))
     }
 
-    /// `n` UKF time updates of length `h` with process noise `q` each (the truth's RK4 step per
-    /// sigma point, the density scaled by the density state if any; `post(x, y)` may then change
-    /// the propagated point y of x), ending at `t_to`.
+    /// `n` UKF time updates of length `h` with process noise `q` each plus the process-noise
+    /// model's state-dependent part at the mean (the truth's RK4 step per sigma point, the
+    /// density scaled by the density state if any; `post(x, y)` may then change the propagated
+    /// point y of x), ending at `t_to`. Returns the noise added in total.
     pub(crate) fn propagate(
         &mut self,
         t_to: f64,
@@ -185,10 +192,23 @@ impl<A: Atmosphere, const L: usize> UkfCore<A, L> {
         h: f64,
         q: &SMatrix<f64, L, L>,
         post: impl Fn(&SVector<f64, L>, &mut SVector<f64, L>),
-    ) -> Result<(), EstimationError> {
+    ) -> Result<SMatrix<f64, L, L>, EstimationError> {
         let (bank, density_state) = (self.bank, self.density_state);
+        let noise_model = self.onboard.tuning.process_noise;
         let model = &mut self.model;
+        let mut added = SMatrix::<f64, L, L>::zeros();
         for _ in 0..n {
+            let q_k = match noise_model {
+                ProcessNoiseModel::Constant => *q,
+                ProcessNoiseModel::AeroScaled(a) => {
+                    let mean = self.ukf.x;
+                    if let Some(i) = density_state {
+                        model.density_factor = mean[i];
+                    }
+                    let phi = model.linear_stm(&mean, bank, h);
+                    q + a.over_substep(model, &mean, bank, h, &phi)
+                }
+            };
             self.ukf.predict_with(
                 &mut self.ws,
                 |x| {
@@ -199,11 +219,12 @@ impl<A: Atmosphere, const L: usize> UkfCore<A, L> {
                     post(x, &mut y);
                     y
                 },
-                q,
+                &q_k,
             )?;
+            added += q_k;
         }
         self.t = t_to;
-        Ok(())
+        Ok(added)
     }
 
     /// UKF measurement update with the channels `slots` (values `z`, noise `r`) of the epoch at

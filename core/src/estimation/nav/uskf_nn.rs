@@ -174,6 +174,7 @@ impl<const N: usize, const L: usize> NavFilter<N> for UskfNnNav<N, L> {
         // eq. 44–45: sigma point i flies the density c⁽ⁱ⁾·NN(r⁽ⁱ⁾, ξ_{k−1}); c decays to 1.
         self.core
             .propagate(t_to, n, h, &q, |x, y| y[N] = 1.0 + phi * (x[N] - 1.0))
+            .map(|_| ())
     }
 
     fn update(

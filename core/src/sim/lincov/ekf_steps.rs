@@ -89,8 +89,9 @@ pub(super) fn time_update<const N: usize>(
     let (steps, h, q) = first.substeps_to(t).map_err(failed)?;
     for _ in 0..steps {
         let (x_next, f) = navs[0].substep(h);
+        let q_k = navs[0].substep_noise(h, &f, &q);
         for nav in navs.iter_mut() {
-            nav.apply_substep(x_next, &f, &q).map_err(failed)?;
+            nav.apply_substep(x_next, &f, &q_k).map_err(failed)?;
         }
         phi = f * phi;
     }

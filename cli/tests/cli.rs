@@ -304,6 +304,7 @@ fn trade_writes_the_documented_json_csv_and_plots() {
         "four-beacon-fusion-fault_rmse_r_m.svg",
         "four-beacon-fusion-fault_nees.svg",
         "four-beacon-fusion-fault_dcifaif_weights.svg",
+        "four-beacon-fusion-fault_ekf_nis_channels.svg",
     ] {
         let svg = std::fs::read_to_string(plots.join(f)).unwrap_or_else(|e| panic!("{f}: {e}"));
         assert!(
@@ -311,6 +312,18 @@ fn trade_writes_the_documented_json_csv_and_plots() {
             "{f} has no curve"
         );
     }
+    // The per-channel NIS figure has a curve per measured channel, named by the channel.
+    let ch = std::fs::read_to_string(plots.join("four-beacon-fusion-fault_ekf_nis_channels.svg"))
+        .unwrap();
+    for name in ["range_surface-1_m", "range_orbiter-2_m", "accel_x_mps2"] {
+        assert!(ch.contains(name), "no {name} curve in the channel figure");
+    }
+    // And the JSON gives each channel's share of epochs inside its band.
+    let band = &filters[0]["nis_per_channel"]["range_surface-1_m"]["epochs_in_band_frac"];
+    assert!(
+        band.as_f64().is_some_and(|b| (0.0..=1.0).contains(&b)),
+        "{band}"
+    );
 }
 
 #[test]

@@ -11,6 +11,8 @@ pub enum Kind {
     Nees,
     /// Mean NIS with its χ² band.
     Nis,
+    /// One filter's NIS per measurement channel over time.
+    ChannelNis(String),
     /// Density errors.
     Density,
     /// One filter's fusion weights or model probabilities.

@@ -10,10 +10,12 @@
 //! * [`report`] — the HTML pages of a trade and of a grid.
 
 pub mod chart;
+mod consistency_figures;
 pub mod delivery_figures;
 pub mod density_figure;
 pub mod error;
 pub mod figure;
+mod figure_parts;
 pub mod grid_figures;
 pub mod observe_figure;
 pub mod report;

@@ -5,32 +5,12 @@
 use crate::chart::labels::{WeightNames, axis, quantity};
 use crate::chart::scatter::{Cloud, ellipse, scatter_chart};
 use crate::chart::{Curve, Frame, line_chart};
+use crate::consistency_figures::{channel_figures, consistency_figures};
 use crate::error::Result;
 use crate::figure::{Figure, Kind};
+use crate::figure_parts::{Out, curve, frame, series_points};
+pub use crate::figure_parts::{SMALL, WIDE};
 use entrynav::sim::{FilterReport, TradeReport};
-
-/// Size of a full-width figure (px).
-pub const WIDE: (u32, u32) = (900, 480);
-/// Size of one subplot of a grid of figures (px).
-pub const SMALL: (u32, u32) = (560, 330);
-
-fn series_points(f: &FilterReport, get: &dyn Fn(usize) -> Option<f64>) -> Vec<(f64, f64)> {
-    f.series
-        .times_s
-        .iter()
-        .enumerate()
-        .filter_map(|(k, t)| get(k).map(|v| (*t, v)))
-        .collect()
-}
-
-fn curve(name: impl Into<String>, points: Vec<(f64, f64)>, dashed: bool) -> Curve {
-    Curve {
-        name: name.into(),
-        points,
-        dashed,
-        color: None,
-    }
-}
 
 /// The scenario's PCRLB 1σ of `name` vs time, dashed, when the trade has one.
 fn pcrlb_curve(report: &TradeReport, name: &str) -> Option<Curve> {
@@ -38,33 +18,6 @@ fn pcrlb_curve(report: &TradeReport, name: &str) -> Option<Curve> {
     let v = b.series.get(name)?;
     let pts = b.times_s.iter().copied().zip(v.iter().copied()).collect();
     Some(curve("PCRLB", pts, true))
-}
-
-struct Out<'a> {
-    sc: &'a str,
-    figures: Vec<Figure>,
-}
-
-impl Out<'_> {
-    fn push(&mut self, file: String, kind: Kind, svg: Option<String>) {
-        if let Some(svg) = svg {
-            self.figures.push(Figure {
-                file: format!("{}_{file}.svg", self.sc),
-                kind,
-                svg,
-            });
-        }
-    }
-}
-
-fn frame<'a>(title: &'a str, y_label: &'a str, log_y: bool, size: (u32, u32)) -> Frame<'a> {
-    Frame {
-        title,
-        x_label: "time (s)",
-        y_label,
-        log_y,
-        size,
-    }
 }
 
 /// Every figure of `report`; `names` names the weights.
@@ -144,71 +97,11 @@ pub fn trade_figures_with(
         }
     }
     consistency_figures(report, &mut out)?;
+    channel_figures(report, &mut out)?;
     density_figures(report, &mut out)?;
     weight_figures(report, names, &mut out)?;
     dispersion_figures(report, &mut out)?;
     Ok(out.figures)
-}
-
-/// Mean NEES and NIS over runs with their two-sided 95 % χ² bands.
-fn consistency_figures(report: &TradeReport, out: &mut Out) -> Result<()> {
-    for (nis, file) in [(false, "nees"), (true, "nis")] {
-        let mut curves: Vec<Curve> = report
-            .filters
-            .iter()
-            .map(|f| {
-                let s = &f.series;
-                let pts = series_points(f, &|k| if nis { s.nis_mean[k] } else { s.nees_mean[k] });
-                curve(f.name.clone(), pts, false)
-            })
-            .collect();
-        // Each filter's own two-sided band: filters with another dof (a fusion filter's NIS sums
-        // its local filters' innovations) get their own pair, named after them.
-        let mut bands: Vec<([f64; 2], String, Vec<&str>, &FilterReport)> = Vec::new();
-        for f in &report.filters {
-            let c = &f.consistency;
-            let (b, dof) = if nis {
-                (
-                    c.nis_bounds_95,
-                    c.nis_dof.map_or("-".into(), |d| format!("{d:.1}")),
-                )
-            } else {
-                (c.nees_bounds_95, c.nees_dof.to_string())
-            };
-            match bands.iter_mut().find(|(bb, d, _, _)| *bb == b && *d == dof) {
-                Some(band) => band.2.push(&f.name),
-                None => bands.push((b, dof, vec![&f.name], f)),
-            }
-        }
-        let several = bands.len() > 1;
-        for (b, dof, names, f) in &bands {
-            let whose = if several {
-                format!(", {}", names.join(", "))
-            } else {
-                String::new()
-            };
-            for (v, side) in [(b[0], "lower"), (b[1], "upper")] {
-                if !v.is_finite() {
-                    continue;
-                }
-                let pts = f.series.times_s.iter().map(|t| (*t, v)).collect();
-                curves.push(curve(
-                    format!("χ² 95 % {side} (dof {dof}{whose})"),
-                    pts,
-                    true,
-                ));
-            }
-        }
-        let (title, y) = if nis {
-            ("mean NIS over runs", "NIS (1)")
-        } else {
-            ("mean NEES over runs", "NEES (1)")
-        };
-        let kind = if nis { Kind::Nis } else { Kind::Nees };
-        let svg = line_chart(&frame(title, y, true, WIDE), &curves)?;
-        out.push(file.into(), kind, svg);
-    }
-    Ok(())
 }
 
 /// Density errors (seed 001 Fig. 10) where a filter estimates the density.

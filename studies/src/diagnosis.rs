@@ -27,12 +27,12 @@ pub fn diagnose(f: &FilterReport, states: &[String]) -> Vec<String> {
         .consistency
         .anees
         .map(|a| a / f.consistency.nees_dof.max(1) as f64);
-    let channels_off: Vec<(&String, f64)> = f
+    let channels_off: Vec<(&String, f64, Option<f64>)> = f
         .consistency
         .nis_per_channel
         .iter()
-        .map(|(name, c)| (name, c.anis_per_dof))
-        .filter(|(_, v)| v.is_finite() && outside(*v, CHANNEL_CONSISTENT))
+        .map(|(name, c)| (name, c.anis_per_dof, c.epochs_in_band_frac))
+        .filter(|(_, v, _)| v.is_finite() && outside(*v, CHANNEL_CONSISTENT))
         .collect();
     if let Some(v) = nees.filter(|v| outside(*v, CONSISTENT)) {
         let cause = if v > CONSISTENT.1 && channels_off.is_empty() {
@@ -61,9 +61,12 @@ pub fn diagnose(f: &FilterReport, states: &[String]) -> Vec<String> {
             CONSISTENT.0, CONSISTENT.1
         ));
     }
-    for (name, v) in channels_off {
+    for (name, v, in_band) in channels_off {
+        let epochs = in_band.map_or(String::new(), |b| {
+            format!("; {:.0} % of its epochs inside its band", 100.0 * b)
+        });
         out.push(format!(
-            "{name} innovations {} their predicted variance (NIS/dof {v:.3}, outside [{}, {}]): {}",
+            "{name} innovations {} their predicted variance (NIS/dof {v:.3}, outside [{}, {}]{epochs}): {}",
             times(v),
             CHANNEL_CONSISTENT.0,
             CHANNEL_CONSISTENT.1,

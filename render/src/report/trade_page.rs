@@ -326,8 +326,10 @@ impl TradePage<'_> {
         parts.push(("errors", "Errors and ±3σ per state", self.errors()));
         parts.push((
             "nees-nis",
-            "NEES and NIS with χ² bands",
-            figures(svgs(self.figures, |k| matches!(k, Kind::Nees | Kind::Nis))),
+            "NEES and NIS with χ² bands, NIS per channel",
+            figures(svgs(self.figures, |k| {
+                matches!(k, Kind::Nees | Kind::Nis | Kind::ChannelNis(_))
+            })),
         ));
         let dens = svgs(self.figures, |k| *k == Kind::Density);
         if !dens.is_empty() {

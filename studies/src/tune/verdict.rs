@@ -197,6 +197,7 @@ mod tests {
                 anis_per_dof: 2700.0,
                 samples: 100,
                 bounds_95: [0.8, 1.2],
+                epochs_in_band_frac: Some(0.0),
             },
         );
         f.within_3sigma_frac

@@ -43,6 +43,11 @@ pub struct ConsistencySums {
     nis_runs: Vec<u64>,
     channel_sum: Vec<f64>,
     channel_n: Vec<u64>,
+    /// Per channel slot, per epoch: the sum of the channel's ν²/s terms and their number.
+    #[serde(default)]
+    channel_epoch_sum: Vec<Vec<f64>>,
+    #[serde(default)]
+    channel_epoch_n: Vec<Vec<u64>>,
 }
 
 fn grow<T: Clone + Default>(v: &mut Vec<T>, n: usize) {
@@ -91,6 +96,12 @@ impl ConsistencySums {
             self.nis_dof[k] += 1;
             self.channel_sum[c] += v;
             self.channel_n[c] += 1;
+            grow(&mut self.channel_epoch_sum, c + 1);
+            grow(&mut self.channel_epoch_n, c + 1);
+            grow(&mut self.channel_epoch_sum[c], k + 1);
+            grow(&mut self.channel_epoch_n[c], k + 1);
+            self.channel_epoch_sum[c][k] += v;
+            self.channel_epoch_n[c][k] += 1;
         }
     }
 
@@ -106,6 +117,45 @@ impl ConsistencySums {
         add(&mut self.nis_runs, &o.nis_runs);
         add(&mut self.channel_sum, &o.channel_sum);
         add(&mut self.channel_n, &o.channel_n);
+        grow(&mut self.channel_epoch_sum, o.channel_epoch_sum.len());
+        grow(&mut self.channel_epoch_n, o.channel_epoch_n.len());
+        for (a, b) in self.channel_epoch_sum.iter_mut().zip(&o.channel_epoch_sum) {
+            add(a, b);
+        }
+        for (a, b) in self.channel_epoch_n.iter_mut().zip(&o.channel_epoch_n) {
+            add(a, b);
+        }
+    }
+
+    /// Per channel slot, the per-epoch mean of its ν²/s terms over the runs (1 for a consistent
+    /// filter).
+    pub(super) fn channel_nis_series(&self) -> Vec<Vec<Option<f64>>> {
+        self.channel_epoch_sum
+            .iter()
+            .zip(&self.channel_epoch_n)
+            .map(|(s, n)| mean_series(s, n))
+            .collect()
+    }
+
+    /// The fraction of channel `c`'s epochs whose mean term lies inside its 95 % band χ²(n)/n.
+    fn channel_in_band(&self, c: usize) -> Option<f64> {
+        let (sum, n) = (self.channel_epoch_sum.get(c)?, self.channel_epoch_n.get(c)?);
+        let epochs: Vec<(f64, u64)> = sum
+            .iter()
+            .zip(n)
+            .filter(|(_, n)| **n > 0)
+            .map(|(s, n)| (*s, *n))
+            .collect();
+        (!epochs.is_empty()).then(|| {
+            let inside = epochs
+                .iter()
+                .filter(|(s, n)| {
+                    let (lo, hi) = nees_bounds_95(1, *n as usize);
+                    (lo..=hi).contains(&(s / *n as f64))
+                })
+                .count();
+            inside as f64 / epochs.len() as f64
+        })
     }
 
     /// Per-epoch mean NEES over runs (all states with truth).
@@ -172,6 +222,7 @@ impl ConsistencySums {
                         anis_per_dof: self.channel_sum[c] / n as f64,
                         samples: n,
                         bounds_95: [lo, hi],
+                        epochs_in_band_frac: self.channel_in_band(c),
                     },
                 )
             })
@@ -224,6 +275,9 @@ pub struct ChannelNis {
     pub samples: u64,
     /// Two-sided 95 % bounds of that mean for a consistent filter, χ²(n)/n.
     pub bounds_95: [f64; 2],
+    /// Fraction of the epochs at which the channel's mean term over the runs lies inside its
+    /// 95 % band χ²(runs)/runs (≈ 0.95 for a consistent filter; `None`: never measured).
+    pub epochs_in_band_frac: Option<f64>,
 }
 
 /// The consistency summary of one filter (part of its trade report).
@@ -260,6 +314,60 @@ pub struct Consistency {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn epoch(terms: &[(usize, f64)]) -> EpochRecord {
+        EpochRecord {
+            err: vec![],
+            sigma: vec![],
+            pos_vel_err: (0.0, 0.0),
+            local_err: [0.0; 3],
+            nees: None,
+            nees_kinematic: None,
+            nis_terms: terms.to_vec(),
+            density_rel_err: None,
+            density_at_estimate_rel_err: None,
+            weights: None,
+            gate: None,
+        }
+    }
+
+    /// Per channel and epoch: the mean term over the runs, the fraction of epochs inside the
+    /// band χ²(runs)/runs, and shards that merge to the sums of one fold.
+    #[test]
+    fn channel_terms_over_time_and_their_band() {
+        // Two runs, three epochs; channel 1 is measured only at epochs 0 and 2.
+        let runs = [
+            [
+                vec![(0, 1.0), (1, 50.0)],
+                vec![(0, 0.5)],
+                vec![(0, 1.5), (1, 0.8)],
+            ],
+            [
+                vec![(0, 1.0), (1, 30.0)],
+                vec![(0, 1.5)],
+                vec![(0, 0.5), (1, 1.2)],
+            ],
+        ];
+        let mut one = ConsistencySums::default();
+        let mut shards = [ConsistencySums::default(), ConsistencySums::default()];
+        for (r, run) in runs.iter().enumerate() {
+            for (k, terms) in run.iter().enumerate() {
+                one.add_epoch(k, &epoch(terms));
+                shards[r].add_epoch(k, &epoch(terms));
+            }
+        }
+        let series = one.channel_nis_series();
+        assert_eq!(series[0], vec![Some(1.0), Some(1.0), Some(1.0)]);
+        assert_eq!(series[1], vec![Some(40.0), None, Some(1.0)]);
+        let (lo, hi) = nees_bounds_95(1, 2);
+        assert!(lo < 1.0 && 1.0 < hi && hi < 40.0, "{lo} {hi}");
+        let report = one.report(&["a".into(), "b".into()]);
+        assert_eq!(report.nis_per_channel["a"].epochs_in_band_frac, Some(1.0));
+        assert_eq!(report.nis_per_channel["b"].epochs_in_band_frac, Some(0.5));
+        let [mut merged, second] = shards;
+        merged.merge(&second);
+        assert_eq!(merged, one);
+    }
 
     #[test]
     fn chi_square_bounds_match_tables() {

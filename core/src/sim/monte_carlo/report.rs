@@ -77,6 +77,9 @@ pub struct Series {
     pub nees_kinematic_mean: Vec<Option<f64>>,
     /// NIS averaged over the runs that measured.
     pub nis_mean: Vec<Option<f64>>,
+    /// Per channel slot (the trade's `channels` order), its ν²/s term averaged over the runs
+    /// at each epoch.
+    pub channel_nis_mean: Vec<Vec<Option<f64>>>,
     /// RMS relative error of the density profile at the true altitude [%] (seed 001 Fig. 10).
     pub density_rms_pct: Vec<Option<f64>>,
     /// Mean relative error of the density profile at the true altitude [%].
@@ -302,6 +305,7 @@ impl FilterAccumulator {
                 nees_mean: self.consistency.nees_series(),
                 nees_kinematic_mean: self.consistency.nees_kinematic_series(),
                 nis_mean: self.consistency.nis_series(),
+                channel_nis_mean: self.consistency.channel_nis_series(),
                 density_rms_pct: per_epoch(&|e| e.density.rms().map(|v| 100.0 * v)),
                 density_mean_pct: per_epoch(&|e| e.density.mean().map(|v| 100.0 * v)),
                 density_at_estimate_rms_pct: per_epoch(&|e| {

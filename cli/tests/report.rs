@@ -85,10 +85,17 @@ fn trade_report_is_one_self_contained_page_with_every_section() {
         html.contains("(dof 7.0, ekf)") && html.contains("(dof 16.0, dcifaif)"),
         "NIS bands are not per filter"
     );
-    // The 900-px NEES/NIS figures take a row each (labels drawn at full size).
+    // The 900-px NEES/NIS figures take a row each (labels drawn at full size): NEES, NIS, and
+    // each filter's NIS per channel.
     let nees_section = html.split("<section id=\"nees-nis\">").nth(1).unwrap();
     let nees_section = nees_section.split("</section>").next().unwrap();
-    assert_eq!(nees_section.matches("<div class=\"fig wide\">").count(), 2);
+    assert_eq!(nees_section.matches("<div class=\"fig wide\">").count(), 4);
+    for f in ["ekf", "dcifaif"] {
+        assert!(
+            nees_section.contains(&format!("{f}: NIS per channel over runs")),
+            "no per-channel NIS figure of {f}"
+        );
+    }
     // A decision at the top: the recommendation names the most accurate consistent filter.
     let rec = html
         .split("<p class=\"recommendation\">")

@@ -74,31 +74,33 @@ impl<A: Atmosphere> EntryModel<A> {
     }
 }
 
+/// A spherical-or-Cartesian MSL-like model with L/D augmented, for the tests of the noise map
+/// and of the process-noise models built on it.
 #[cfg(test)]
-mod tests {
-    use super::*;
+pub(crate) fn test_model(kind: DynamicsKind) -> EntryModel<crate::atmosphere::AtmosphereModel> {
     use crate::atmosphere::{AtmosphereModel, Exponential};
     use crate::dynamics::{AugmentedParam, Vehicle};
     use crate::planet::Planet;
-    use nalgebra::{SVector, Vector3};
-
-    fn model(kind: DynamicsKind) -> EntryModel<AtmosphereModel> {
-        EntryModel {
-            kind,
-            planet: Planet::MARS,
-            atmosphere: AtmosphereModel::Exponential(Exponential::mars_reference(
-                Planet::MARS.radius,
-            )),
-            vehicle: Vehicle {
-                cd_s_over_m: 0.0146,
-                lift_to_drag: 0.24,
-            },
-            augmented: vec![AugmentedParam::LiftToDrag],
-            rho0_model: 1.0,
-            density_factor: 1.0,
-            bias_tau_s: None,
-        }
+    EntryModel {
+        kind,
+        planet: Planet::MARS,
+        atmosphere: AtmosphereModel::Exponential(Exponential::mars_reference(Planet::MARS.radius)),
+        vehicle: Vehicle {
+            cd_s_over_m: 0.0146,
+            lift_to_drag: 0.24,
+        },
+        augmented: vec![AugmentedParam::LiftToDrag],
+        rho0_model: 1.0,
+        density_factor: 1.0,
+        bias_tau_s: None,
     }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::atmosphere::AtmosphereModel;
+    use nalgebra::{SVector, Vector3};
 
     /// ∂ẋ/∂s by central differences of the right-hand side for a parameter `s` set by `set`.
     fn fd(
@@ -133,7 +135,7 @@ mod tests {
             ),
         ];
         for (kind, k) in cases {
-            let m = model(kind);
+            let m = super::test_model(kind);
             let mut x = SVector::<f64, 7>::zeros();
             x.fixed_rows_mut::<6>(0).copy_from_slice(&k);
             x[6] = 0.24;

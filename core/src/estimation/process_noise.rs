@@ -154,24 +154,9 @@ mod tests {
     /// constant model is q_diag·h/step alone.
     #[test]
     fn substep_noise_closed_form_on_a_spherical_state() {
-        use crate::atmosphere::{AtmosphereModel, Exponential};
-        use crate::dynamics::{AugmentedParam, DynamicsKind, Vehicle};
-        use crate::planet::Planet;
-        let model = EntryModel {
-            kind: DynamicsKind::SphericalRotating,
-            planet: Planet::MARS,
-            atmosphere: AtmosphereModel::Exponential(Exponential::mars_reference(
-                Planet::MARS.radius,
-            )),
-            vehicle: Vehicle {
-                cd_s_over_m: 0.0146,
-                lift_to_drag: 0.24,
-            },
-            augmented: vec![AugmentedParam::LiftToDrag],
-            rho0_model: 1.0,
-            density_factor: 1.0,
-            bias_tau_s: None,
-        };
+        let model = crate::dynamics::noise_map::test_model(
+            crate::dynamics::DynamicsKind::SphericalRotating,
+        );
         let x =
             SVector::<f64, 7>::from_column_slice(&[3_440e3, 0.3, -0.4, 5_500.0, -0.2, 1.0, 0.24]);
         let (v, fpa) = (x[3], x[4]);

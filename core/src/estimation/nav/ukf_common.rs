@@ -172,13 +172,7 @@ impl<A: Atmosphere, const L: usize> UkfCore<A, L> {
             return Ok(None);
         };
         let q = q * (h / step);
-        let added = self.propagate(t_to, n, h, &q, |_, _| {})?;
-        // The constant model's total as it always was (bit for bit): q·n.
-        Ok(Some(if self.onboard.tuning.process_noise.is_constant() {
-            q * n as f64
-        } else {
-            added
-        }))
+        self.propagate(t_to, n, h, &q, |_, _| {}).map(Some)
     }
 
     /// `n` UKF time updates of length `h` with process noise `q` each plus the process-noise
@@ -196,6 +190,7 @@ impl<A: Atmosphere, const L: usize> UkfCore<A, L> {
         let (bank, density_state) = (self.bank, self.density_state);
         let noise_model = self.onboard.tuning.process_noise;
         let model = &mut self.model;
+        // The state-dependent part added over the sub-steps (zero for the constant model).
         let mut added = SMatrix::<f64, L, L>::zeros();
         for _ in 0..n {
             let q_k = match noise_model {
@@ -206,7 +201,9 @@ impl<A: Atmosphere, const L: usize> UkfCore<A, L> {
                         model.density_factor = mean[i];
                     }
                     let phi = model.linear_stm(&mean, bank, h);
-                    q + a.over_substep(model, &mean, bank, h, &phi)
+                    let extra = a.over_substep(model, &mean, bank, h, &phi);
+                    added += extra;
+                    q + extra
                 }
             };
             self.ukf.predict_with(
@@ -221,10 +218,9 @@ impl<A: Atmosphere, const L: usize> UkfCore<A, L> {
                 },
                 &q_k,
             )?;
-            added += q_k;
         }
         self.t = t_to;
-        Ok(added)
+        Ok(q * n as f64 + added)
     }
 
     /// UKF measurement update with the channels `slots` (values `z`, noise `r`) of the epoch at

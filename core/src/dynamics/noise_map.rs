@@ -78,8 +78,9 @@ impl<A: Atmosphere> EntryModel<A> {
 /// and of the process-noise models built on it.
 #[cfg(test)]
 pub(crate) fn test_model(kind: DynamicsKind) -> EntryModel<crate::atmosphere::AtmosphereModel> {
+    use super::augmented_param::AugmentedParam;
+    use super::entry_model::Vehicle;
     use crate::atmosphere::{AtmosphereModel, Exponential};
-    use crate::dynamics::{AugmentedParam, Vehicle};
     use crate::planet::Planet;
     EntryModel {
         kind,

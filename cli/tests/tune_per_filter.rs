@@ -120,7 +120,13 @@ fn each_filter_gets_its_own_q_and_the_file_keeps_the_users_text() {
     };
     let (qe, qu) = (q_of("ekf"), q_of("ukf"));
     assert_eq!((qe.len(), qu.len()), (6, 6));
-    assert_ne!(qe, qu, "one Q served both filters\n{stdout}");
+    // Tuned separately: different Q, unless both searches ended at the same search bound
+    // (ground-beacons-3's truth flies no process noise, so Q → 0 is each filter's optimum).
+    let at_bound = stdout
+        .lines()
+        .filter(|l| l.trim_start().starts_with("q["))
+        .all(|l| l.contains("(at the search bound)"));
+    assert!(qe != qu || at_bound, "one Q served both filters\n{stdout}");
     for v in qe.iter().chain(&qu) {
         let mantissa = v.split(['e', 'E']).next().unwrap();
         let digits: String = mantissa.chars().filter(char::is_ascii_digit).collect();

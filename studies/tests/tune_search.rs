@@ -85,6 +85,10 @@ impl TuningProblem for Linear {
             anees_per_dof: Some(nees / count as f64),
             anis_per_dof: Some(nis / count as f64),
             bad_fraction: 0.0,
+            nees_in_band: None,
+            nees_shape: None,
+            nis_in_band: None,
+            channel_spread: 0.0,
         })
     }
 }
@@ -136,4 +140,41 @@ fn a_consistent_filter_is_left_as_it_is() {
     problem.mistune = (1e-2, 10.0);
     let r = tune(&problem, &TuneOptions::default(), &|_, _, _| {}).unwrap();
     assert!(!r.already_consistent && r.evaluations > 10, "{r:?}");
+}
+
+/// The objective sees more than the averages: with ANEES/dof and ANIS/dof both 1, a filter whose
+/// per-epoch NEES swings around 1 (20 % of its epochs inside the band), or has one channel at 3000× its predicted
+/// variance, scores worse than one inside the band 95 % of the time with every channel at 1;
+/// and such a filter is not "already consistent" (tune searches it).
+#[test]
+fn the_objective_sees_the_band_over_time_and_each_channel() {
+    use entrynav_studies::tune::search::{is_consistent, objective};
+    let good = Measured {
+        anees_per_dof: Some(1.0),
+        anis_per_dof: Some(1.0),
+        bad_fraction: 0.0,
+        nees_in_band: Some(0.95),
+        nees_shape: Some(0.0),
+        nis_in_band: Some(0.95),
+        channel_spread: 0.0,
+    };
+    // An optimistic peak and a conservative tail averaging to 1: NEES/dof e^±0.7 over time.
+    let narrow = Measured {
+        nees_in_band: Some(0.2),
+        nees_shape: Some(0.49),
+        ..good
+    };
+    let one_channel = Measured {
+        channel_spread: (3000f64).ln().powi(2) / 6.0,
+        ..good
+    };
+    for mode in [TuneObjective::NeesAndNis, TuneObjective::NisOnly] {
+        assert_eq!(objective(&good, mode), 0.0);
+        assert!(objective(&one_channel, mode) > 5.0);
+        assert!(is_consistent(&good, mode, 0.05));
+    }
+    assert!(objective(&narrow, TuneObjective::NeesAndNis) > 0.4);
+    assert!(!is_consistent(&narrow, TuneObjective::NeesAndNis, 0.05));
+    // NIS-only tuning has no truth: the NEES band does not count.
+    assert_eq!(objective(&narrow, TuneObjective::NisOnly), 0.0);
 }

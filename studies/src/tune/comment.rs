@@ -67,8 +67,9 @@ pub(crate) fn comment_lines(
             "  J = {}",
             match c.objective {
                 TuneObjective::NeesAndNis =>
-                    "ln^2(ANEES/dof) + ln^2(ANIS/dof) + 25 x (failed or diverged fraction)",
-                TuneObjective::NisOnly => "ln^2(ANIS/dof) + 25 x (failed or diverged fraction)",
+                    "ln^2(ANEES/dof) + mean_k ln^2(NEES_k/dof) + ln^2(ANIS/dof) + NIS band shortfall^2 + mean_channels ln^2(NIS/dof) + 25 x (failed or diverged fraction)",
+                TuneObjective::NisOnly =>
+                    "ln^2(ANIS/dof) + NIS band shortfall^2 + mean_channels ln^2(NIS/dof) + 25 x (failed or diverged fraction)",
             }
         ),
         format!("factors: {}", factors.join(", ")),

@@ -302,11 +302,52 @@ pub fn measured(reports: &[FilterReport]) -> Measured {
             .filter_map(|r| r.consistency.anis_per_dof)
             .collect(),
     );
+    let nees_in_band = mean(
+        reports
+            .iter()
+            .filter_map(|r| r.consistency.nees_in_bounds_frac)
+            .collect(),
+    );
+    let shapes: Vec<f64> = reports
+        .iter()
+        .filter_map(|r| {
+            let dof = r.consistency.nees_dof.max(1) as f64;
+            let terms: Vec<f64> = r
+                .series
+                .nees_mean
+                .iter()
+                .flatten()
+                .map(|n| match n / dof {
+                    v if v.is_finite() && v > 0.0 => v.ln().powi(2),
+                    _ => 1e3,
+                })
+                .collect();
+            mean(terms)
+        })
+        .collect();
+    let nis_in_band = mean(
+        reports
+            .iter()
+            .filter_map(|r| r.consistency.nis_in_bounds_frac)
+            .collect(),
+    );
+    let channel_terms: Vec<f64> = reports
+        .iter()
+        .flat_map(|r| r.consistency.nis_per_channel.values())
+        .map(|c| match c.anis_per_dof {
+            v if v.is_finite() && v > 0.0 => v.ln().powi(2),
+            _ => 1e3,
+        })
+        .collect();
     let runs: u64 = reports.iter().map(|r| r.runs).sum();
     let bad: u64 = reports.iter().map(|r| r.failed + r.diverged).sum();
     Measured {
         anees_per_dof: nees,
         anis_per_dof: nis,
+        nees_in_band,
+        nees_shape: mean(shapes),
+        nis_in_band,
+        channel_spread: mean(channel_terms).unwrap_or(0.0),
         bad_fraction: if runs > 0 {
             bad as f64 / runs as f64
         } else {

@@ -23,9 +23,9 @@ pub fn per_dof(r: &FilterReport) -> Option<f64> {
 /// What J = 0 means for the objective (`--nis-only` or not).
 pub fn objective_zero(nis_only: bool) -> &'static str {
     if nis_only {
-        "ANIS/dof 1"
+        "ANIS/dof 1, the NIS inside its band and every channel's NIS/dof 1"
     } else {
-        "ANEES/dof and ANIS/dof both 1"
+        "ANEES/dof and ANIS/dof 1 on average, at every epoch and on every channel"
     }
 }
 

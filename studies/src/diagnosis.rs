@@ -34,13 +34,20 @@ pub fn diagnose(f: &FilterReport, states: &[String]) -> Vec<String> {
         .map(|(name, c)| (name, c.anis_per_dof, c.epochs_in_band_frac))
         .filter(|(_, v, _)| v.is_finite() && outside(*v, CHANNEL_CONSISTENT))
         .collect();
+    let nis_off = f
+        .consistency
+        .anis_per_dof
+        .is_some_and(|v| outside(v, CONSISTENT));
     if let Some(v) = nees.filter(|v| outside(*v, CONSISTENT)) {
-        let cause = if v > CONSISTENT.1 && channels_off.is_empty() {
+        let cause = if v > CONSISTENT.1 && !channels_off.is_empty() {
+            "the channels below"
+        } else if v > CONSISTENT.1 && nis_off {
+            "its innovations are too large as well, on every channel alike: the filter's σ \
+             (Q, P0) or its assumed measurement noise too small"
+        } else if v > CONSISTENT.1 {
             "its innovations are consistent, so the errors the measurements do not see are larger \
              than its process noise says: an unestimated parameter (L/D, β, density) or too \
              small a Q on the states named"
-        } else if v > CONSISTENT.1 {
-            "the channels below"
         } else {
             "σ larger than the errors: process noise or P0 too large, conservative"
         };

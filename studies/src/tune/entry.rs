@@ -16,6 +16,7 @@
 
 use crate::error::{StudyError, StudyResult};
 use crate::tune::search::{Measured, THETA_BOUND, TuningProblem};
+use crate::tune::verdict::{rmse_avg, rmse_final};
 use entrynav::estimation::Onboard;
 use entrynav::estimation::ProcessNoiseModel;
 use entrynav::estimation::nav::FilterKind;
@@ -348,6 +349,11 @@ pub fn measured(reports: &[FilterReport]) -> Measured {
         nees_shape: mean(shapes),
         nis_in_band,
         channel_spread: mean(channel_terms).unwrap_or(0.0),
+        pos_rmse: {
+            let avg = mean(reports.iter().filter_map(rmse_avg).collect());
+            let fin = mean(reports.iter().filter_map(rmse_final).collect());
+            avg.zip(fin).map(|(a, f)| [a, f])
+        },
         bad_fraction: if runs > 0 {
             bad as f64 / runs as f64
         } else {

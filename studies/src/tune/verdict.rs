@@ -226,4 +226,21 @@ mod tests {
         let ok = report(100, (10.0, 5.0), 1.0, 0.9, 0);
         assert!(still_inconsistent(&[ok], &[]).is_empty());
     }
+
+    #[test]
+    fn an_optimistic_filter_is_told_apart_by_its_innovations() {
+        // ANEES/dof 2 with innovations at their predicted size: what the measurements do not see.
+        let quiet = report(40, (10.0, 5.0), 2.0, 0.0, 0);
+        let l = still_inconsistent(&[quiet], &[]).join(" ");
+        assert!(l.contains("its innovations are consistent"), "{l}");
+        // ANEES/dof 2 with ANIS/dof 1.75 on every channel alike: not "innovations consistent".
+        let mut loud = report(40, (10.0, 5.0), 2.0, 0.0, 0);
+        loud.consistency.anis_per_dof = Some(1.75);
+        let l = still_inconsistent(&[loud], &[]).join(" ");
+        assert!(!l.contains("its innovations are consistent"), "{l}");
+        assert!(
+            l.contains("its innovations are too large as well") && l.contains("ANIS/dof 1.750"),
+            "{l}"
+        );
+    }
 }

@@ -1,0 +1,103 @@
+//! `entrynav tune` on an entry nobody tuned by hand (issue "Navigation that holds where nobody
+//! tuned it", case 1): a Pathfinder-like ballistic entry with three ground beacons and one
+//! orbiter, a truth atmosphere (mars-mean, 8 km-correlated perturbations) that the onboard
+//! exponential model with an estimated ρ0 does not follow, and a default-looking constant Q.
+//! As given, both filters diverge in every run. The tuned file is better on every primary figure,
+//! so tune writes it; the test then checks it on 200 runs of a seed the tuning never saw.
+//!
+//! Measured (seed 7, 200 runs): EKF ANEES/dof 37229 -> 0.88, ANIS/dof 4.54 -> 1.02, position
+//! RMSE 669 -> 146 m, divergences 200 -> 0, epochs in the NEES band 0 -> 34 %; UKF 37035 -> 0.80,
+//! 4.67 -> 0.99, 667 -> 201 m, 200 -> 0, 14 -> 13 %. The issue's target of half the epochs in the
+//! band is not reached yet (tune says so and exits 1); the test holds what is.
+
+mod common;
+
+use common::{entrynav, scratch_dir};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+fn input() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/heldout-ballistic-beacons.toml")
+}
+
+/// Both filters' blocks of a 200-run trade on seed 7 (not the tuning's seed).
+fn trade(scenario: &Path, json: &Path) -> Vec<Value> {
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        scenario.to_str().unwrap(),
+        "--filters",
+        "ekf,ukf",
+        "--runs",
+        "200",
+        "--seed",
+        "7",
+        "--no-pcrlb",
+        "--quiet",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
+    v["filters"].as_array().unwrap().clone()
+}
+
+fn num(f: &Value, key: &str) -> f64 {
+    f[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("{key} missing in {f}"))
+}
+
+#[test]
+fn tune_writes_a_tuning_better_on_every_primary_figure_and_it_holds_on_fresh_runs() {
+    let dir = scratch_dir("tune", "heldout");
+    let out = dir.join("tuned.toml");
+    let (code, stdout, err) = entrynav(&[
+        "tune",
+        "--scenario",
+        input().to_str().unwrap(),
+        "--filter",
+        "ekf,ukf",
+        "--threads",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    // Never refused: written, with a warning and exit code 1 while a target is still missed.
+    assert!(!err.contains("not written"), "{err}");
+    assert!(code == 0 || code == 1, "{stdout}\n{err}");
+    if code == 1 {
+        assert!(err.contains("written, but not consistent yet"), "{err}");
+    }
+    let before = trade(&input(), &dir.join("before.json"));
+    let after = trade(&out, &dir.join("after.json"));
+    for (b, a) in before.iter().zip(&after) {
+        let name = a["name"].as_str().unwrap();
+        let per_dof = |f: &Value| num(f, "anees") / num(f, "nees_dof");
+        let anis = |f: &Value| num(f, "anis_per_dof");
+        let rmse = |f: &Value| num(&f["rmse_time_avg"], "pos_m");
+        assert_eq!(
+            num(b, "diverged"),
+            200.0,
+            "{name}: the input no longer diverges"
+        );
+        assert_eq!(num(a, "diverged") + num(a, "failed"), 0.0, "{name}");
+        for (label, v) in [("ANEES/dof", per_dof(a)), ("ANIS/dof", anis(a))] {
+            assert!((0.7..=1.5).contains(&v), "{name}: {label} {v}");
+        }
+        assert!(
+            rmse(a) < 0.5 * rmse(b),
+            "{name}: position RMSE {} -> {}",
+            rmse(b),
+            rmse(a)
+        );
+        let band = |f: &Value| num(f, "nees_in_bounds_frac");
+        assert!(
+            band(a) >= band(b) - 0.05,
+            "{name}: epochs in the NEES band {} -> {}",
+            band(b),
+            band(a)
+        );
+    }
+}

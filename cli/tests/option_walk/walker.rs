@@ -19,6 +19,11 @@ use std::time::{Duration, Instant};
 /// Longest a probe may run: the acceptance bound.
 pub const TIMEOUT: Duration = Duration::from_secs(10);
 
+/// A probe still running after [`TIMEOUT`] while every core runs probes is run again (one retry
+/// at a time) with this much time: one that finishes then was slow under load (`fmu pack` writing
+/// every FMU while the machine also builds), not hung; a real hang still hangs.
+pub const ALONE_TIMEOUT: Duration = Duration::from_secs(60);
+
 /// One leaf command of the tree: its path (`["optimize", "select"]`) and its arguments.
 pub struct Leaf {
     /// Subcommand names from the root.
@@ -307,6 +312,17 @@ pub struct Outcome {
 /// Run `program args` in a fresh folder `dir/run-{index}` (removed afterwards, so no probe sees
 /// another's files) with standard input closed, killed after [`TIMEOUT`].
 pub fn run(program: &Path, args: &[String], dir: &Path, index: usize) -> Outcome {
+    run_for(program, args, dir, index, TIMEOUT)
+}
+
+/// [`run`] with its own timeout.
+fn run_for(
+    program: &Path,
+    args: &[String],
+    dir: &Path,
+    index: usize,
+    timeout: Duration,
+) -> Outcome {
     let start = Instant::now();
     let cwd = dir.join(format!("run-{index}"));
     std::fs::create_dir_all(&cwd).unwrap();
@@ -325,7 +341,7 @@ pub fn run(program: &Path, args: &[String], dir: &Path, index: usize) -> Outcome
         if let Some(status) = child.try_wait().unwrap() {
             break (status.code(), false);
         }
-        if start.elapsed() > TIMEOUT {
+        if start.elapsed() > timeout {
             let _ = child.kill();
             let _ = child.wait();
             break (None, true);
@@ -355,8 +371,9 @@ pub fn verdict(probe: &Probe, out: &Outcome) -> Option<String> {
     let last: String = last.chars().take(300).collect();
     if out.hung {
         return Some(format!(
-            "hang (still running after {} s)",
-            TIMEOUT.as_secs()
+            "hang (still running after {} s, and after {} s when run again)",
+            TIMEOUT.as_secs(),
+            ALONE_TIMEOUT.as_secs()
         ));
     }
     if out.stderr.contains("panicked at") || out.code == Some(101) {
@@ -399,13 +416,19 @@ pub fn names_word(text: &str, word: &str) -> bool {
 pub fn run_all(program: &Path, probes: &[Probe], dir: &Path, threads: usize) -> Vec<String> {
     let next = AtomicUsize::new(0);
     let failures = Mutex::new(Vec::new());
+    let alone = Mutex::new(());
     std::thread::scope(|s| {
         for _ in 0..threads.max(1) {
             s.spawn(|| {
                 loop {
                     let i = next.fetch_add(1, Ordering::Relaxed);
                     let Some(p) = probes.get(i) else { break };
-                    let out = run(program, &p.args, dir, i);
+                    let mut out = run(program, &p.args, dir, i);
+                    if out.hung {
+                        // Again, one retry at a time, with more time.
+                        let _alone = alone.lock().unwrap();
+                        out = run_for(program, &p.args, dir, i, ALONE_TIMEOUT);
+                    }
                     if let Some(why) = verdict(p, &out) {
                         let mut value: String = p.value.chars().take(40).collect();
                         if p.value.chars().count() > 40 {

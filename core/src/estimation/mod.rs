@@ -39,4 +39,4 @@ pub mod unscented;
 pub use covariance::{check_covariance, symmetrize};
 pub use error::EstimationError;
 pub use onboard::{FilterRetune, FilterTuning, FusionCovariance, Onboard, OnboardChannel};
-pub use process_noise::{AeroScaledNoise, MAX_AERO_FRACTION, ProcessNoiseModel};
+pub use process_noise::{AeroScaledNoise, MAX_AERO_FRACTION, MAX_DENSITY_SIGMA, ProcessNoiseModel};

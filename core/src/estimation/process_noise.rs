@@ -28,9 +28,19 @@
 //!
 //! evaluated at the filter's own estimate (never the truth), then added to the constant part
 //! `q_diag · h / filter step`.
+//!
+//! **An estimated density state** (`density-bias`, or `rho0`) may carry the density error
+//! itself: with `density_sigma = σ` (a relative 1σ) the state is driven like a first-order
+//! Gauss–Markov process with the same τ, white noise of intensity `2σ²/τ` (in the state's units:
+//! σ·ρ0_model for ρ0), through the same trapezoid rule (Maybeck, *Stochastic Models, Estimation,
+//! and Control* vol. 1, §4.11, the first-order Gauss–Markov shaping filter). With τ = L/|ḣ| the
+//! density error decorrelates over a length L of altitude, not of time: its noise is largest
+//! where the vehicle descends fastest. The mean reversion −Δ/τ is left out of the dynamics: the
+//! density error of a real atmosphere has a part that spans the whole entry (the profile's
+//! level) beside the km-scale structure, and the measurements bound the random walk's variance.
 
 use crate::atmosphere::Atmosphere;
-use crate::dynamics::EntryModel;
+use crate::dynamics::{AugmentedParam, EntryModel};
 use nalgebra::{SMatrix, SVector};
 use serde::{Deserialize, Serialize};
 
@@ -73,7 +83,20 @@ pub struct AeroScaledNoise {
     /// Correlation length of the error in altitude \[m\]: τ = L/|ḣ| (capped at 100 s).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub correlation_length_m: Option<f64>,
+    /// 1σ of the relative density error that an estimated density state (`density-bias`, or
+    /// `rho0` scaled by the model's ρ0) follows as a first-order Gauss–Markov process with the
+    /// correlation above: the state diffuses at 2σ²/τ per second (0, the default: a random
+    /// constant with `q_diag`'s noise alone). See the module documentation.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub density_sigma: f64,
 }
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+/// Largest `density_sigma` a scenario accepts (a 1σ density error of 100 %).
+pub const MAX_DENSITY_SIGMA: f64 = 1.0;
 
 impl AeroScaledNoise {
     /// The correlation time at altitude rate `altitude_rate_mps`.
@@ -103,9 +126,30 @@ impl AeroScaledNoise {
             let sigma = self.fraction[k] * map.aero_accel_mps2 + self.floor_mps2;
             2.0 * sigma * sigma * tau
         }));
-        let m = map.g * q * map.g.transpose();
+        let mut m = map.g * q * map.g.transpose();
+        if self.density_sigma > 0.0
+            && let Some((i, scale)) = density_state(model)
+            && i < N
+        {
+            let sigma = self.density_sigma * scale;
+            m[(i, i)] += 2.0 * sigma * sigma / tau.max(f64::MIN_POSITIVE);
+        }
         (m + phi * m * phi.transpose()) * (0.5 * h)
     }
+}
+
+/// The state index of a filter's density state and the size of a unit relative error in its
+/// units: 1 for the density bias Δ (ρ = ρ_model·(1 + Δ)), the model's ρ0 for an estimated ρ0.
+fn density_state<A>(model: &EntryModel<A>) -> Option<(usize, f64)> {
+    model
+        .augmented
+        .iter()
+        .enumerate()
+        .find_map(|(k, a)| match a {
+            AugmentedParam::DensityBias => Some((6 + k, 1.0)),
+            AugmentedParam::Rho0 => Some((6 + k, model.rho0_model)),
+            _ => None,
+        })
 }
 
 impl ProcessNoiseModel {
@@ -146,6 +190,7 @@ mod tests {
             floor_mps2: 0.0,
             correlation_time_s: tau,
             correlation_length_m: length,
+            density_sigma: 0.0,
         }
     }
 
@@ -167,6 +212,7 @@ mod tests {
             floor_mps2: floor,
             correlation_time_s: Some(tau),
             correlation_length_m: None,
+            density_sigma: 0.0,
         };
         let q_step = SMatrix::<f64, 7, 7>::from_diagonal_element(3.0);
         let eye = SMatrix::<f64, 7, 7>::identity();
@@ -184,6 +230,48 @@ mod tests {
         let constant =
             ProcessNoiseModel::Constant.over_substep(&q_step, 2.0, &model, &x, 0.3, h, &eye);
         assert_eq!(constant, q_step * 0.25);
+    }
+
+    /// An estimated density bias gets 2σ²/τ·h on its own diagonal (Φ = I), with τ = L/|ḣ|; the
+    /// rest of the matrix is the load-scaled part as without it.
+    #[test]
+    fn a_density_state_diffuses_at_the_gauss_markov_rate_in_altitude() {
+        let mut model = crate::dynamics::noise_map::test_model(
+            crate::dynamics::DynamicsKind::SphericalRotating,
+        );
+        model.augmented = vec![AugmentedParam::DensityBias];
+        let x =
+            SVector::<f64, 7>::from_column_slice(&[3_440e3, 0.3, -0.4, 5_500.0, -0.2, 1.0, 0.02]);
+        let hdot = x[3] * x[4].sin();
+        let (h, length, sigma) = (0.5, 8e3, 0.05);
+        let mut cfg = noise(None, Some(length));
+        let zero = SMatrix::<f64, 7, 7>::zeros();
+        let eye = SMatrix::<f64, 7, 7>::identity();
+        let without =
+            ProcessNoiseModel::AeroScaled(cfg).over_substep(&zero, 1.0, &model, &x, 0.0, h, &eye);
+        cfg.density_sigma = sigma;
+        let with =
+            ProcessNoiseModel::AeroScaled(cfg).over_substep(&zero, 1.0, &model, &x, 0.0, h, &eye);
+        let tau = length / hdot.abs();
+        let want = 2.0 * sigma * sigma / tau * h;
+        assert!(
+            (with[(6, 6)] - want).abs() < 1e-15,
+            "{} vs {want}",
+            with[(6, 6)]
+        );
+        let mut rest = with;
+        rest[(6, 6)] = without[(6, 6)];
+        assert_eq!(rest, without);
+        // An estimated ρ0 gets the same relative noise, in kg/m³.
+        model.augmented = vec![AugmentedParam::Rho0];
+        let rho0 =
+            ProcessNoiseModel::AeroScaled(cfg).over_substep(&zero, 1.0, &model, &x, 0.0, h, &eye);
+        let want = want * model.rho0_model.powi(2);
+        assert!(
+            (rho0[(6, 6)] - want).abs() < 1e-12 * want,
+            "{}",
+            rho0[(6, 6)]
+        );
     }
 
     #[test]

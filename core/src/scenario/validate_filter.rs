@@ -143,7 +143,16 @@ impl FilterConfig {
             c.range(format!("filter.p0_diag[{k}]"), *p, range)?;
         }
         check_q_diag("filter.q_diag", &self.q_diag, c)?;
-        check_process_noise("filter.process_noise", &self.process_noise, c)
+        check_process_noise("filter.process_noise", &self.process_noise, self, c)
+    }
+
+    /// Whether the filter carries a density state (`density-bias` or `rho0`, augmented or
+    /// consider) that a process-noise model's `density_sigma` can drive.
+    fn has_density_state(&self) -> bool {
+        self.augment
+            .iter()
+            .chain(&self.consider)
+            .any(|a| matches!(a, AugmentedParam::DensityBias | AugmentedParam::Rho0))
     }
 
     /// `[filter.tuned.<name>]`: a known filter name, a full Q diagonal, valid noise factors.
@@ -168,7 +177,7 @@ impl FilterConfig {
                 check_q_diag(&field, q, c)?;
             }
             if let Some(m) = &t.process_noise {
-                check_process_noise(&format!("{field}.process_noise"), m, c)?;
+                check_process_noise(&format!("{field}.process_noise"), m, self, c)?;
             }
             if let Some(inf) = &t.noise_inflation {
                 check_inflation(&format!("{field}.noise_inflation"), inf, c)?;
@@ -237,10 +246,25 @@ fn check_q_diag(field: &str, q: &[f64], c: &mut Checker) -> R {
 
 /// The load-scaled model: fractions in [0, MAX_AERO_FRACTION], a floor in [0, 10] m/s², exactly one positive
 /// correlation (a time up to 1000 s or a length up to 100 km).
-fn check_process_noise(field: &str, m: &ProcessNoiseModel, c: &mut Checker) -> R {
+fn check_process_noise(
+    field: &str,
+    m: &ProcessNoiseModel,
+    filter: &FilterConfig,
+    c: &mut Checker,
+) -> R {
     let ProcessNoiseModel::AeroScaled(a) = m else {
         return Ok(());
     };
+    if a.density_sigma > 0.0 && !filter.has_density_state() {
+        return Err(ScenarioError::invalid(
+            format!("{field}.density_sigma"),
+            format!(
+                "= {} needs a density state to drive: add \"density-bias\" or \"rho0\" to \
+                 filter.augment (or filter.consider)",
+                a.density_sigma
+            ),
+        ));
+    }
     for (k, f) in a.fraction.iter().enumerate() {
         let range = Range::ge(0.0)
             .le(super::config::MAX_AERO_FRACTION)
@@ -249,6 +273,10 @@ fn check_process_noise(field: &str, m: &ProcessNoiseModel, c: &mut Checker) -> R
     }
     let range = Range::ge(0.0).le(10.0).unit("m/s²");
     c.range(format!("{field}.floor_mps2"), a.floor_mps2, range)?;
+    let range = Range::ge(0.0)
+        .le(crate::estimation::MAX_DENSITY_SIGMA)
+        .note("1-sigma of the relative density error");
+    c.range(format!("{field}.density_sigma"), a.density_sigma, range)?;
     match (a.correlation_time_s, a.correlation_length_m) {
         (Some(t), None) => {
             let range = Range::gt(0.0).le(1000.0).unit("s");

@@ -15,8 +15,10 @@
 //! result is written as that filter's own tuning: tuning the UKF never changes the EKF.
 
 use crate::error::{StudyError, StudyResult};
+pub use crate::tune::groups::ParameterGroup;
 use crate::tune::search::{Measured, THETA_BOUND, TuningProblem};
 use crate::tune::verdict::{rmse_avg, rmse_final};
+use entrynav::estimation::MAX_DENSITY_SIGMA;
 use entrynav::estimation::Onboard;
 use entrynav::estimation::ProcessNoiseModel;
 use entrynav::estimation::nav::FilterKind;
@@ -26,44 +28,6 @@ use entrynav::sensors::Channel;
 use entrynav::sim::monte_carlo::report::FilterReport;
 use entrynav::sim::monte_carlo::tuning::TuningRuns;
 use std::sync::Arc;
-
-/// One tuned factor.
-#[derive(Debug, Clone, PartialEq)]
-pub enum ParameterGroup {
-    /// Process-noise entries (state indices) scaled together.
-    Process {
-        /// Name in reports, e.g. `q[v_mps]`.
-        name: String,
-        /// State indices.
-        states: Vec<usize>,
-    },
-    /// Fractions of the aerodynamic-load-scaled process noise (`[filter.process_noise]`,
-    /// `model = "aero-scaled"`) scaled together: the drag axis, or the side and lift axes.
-    Aero {
-        /// Name in reports, e.g. `aero[drag]`.
-        name: String,
-        /// Wind axes (0 drag, 1 side, 2 lift plane).
-        axes: Vec<usize>,
-    },
-    /// The assumed noise of every channel of one kind (e.g. all ranges).
-    Noise {
-        /// Name in reports, e.g. `r[range]`.
-        name: String,
-        /// A representative channel of the kind.
-        kind: Channel,
-    },
-}
-
-impl ParameterGroup {
-    /// Its name in reports.
-    pub fn name(&self) -> &str {
-        match self {
-            ParameterGroup::Process { name, .. }
-            | ParameterGroup::Aero { name, .. }
-            | ParameterGroup::Noise { name, .. } => name,
-        }
-    }
-}
 
 /// The entry filter `kind` of the scenario of `runs`, tuned by group factors.
 pub struct EntryTuning<'a> {
@@ -120,6 +84,9 @@ impl<'a> EntryTuning<'a> {
                     });
                 }
             }
+            if a.density_sigma > 0.0 {
+                groups.push(ParameterGroup::Density);
+            }
         }
         if tune_noise {
             let mut kinds_seen: Vec<Channel> = Vec::new();
@@ -150,24 +117,7 @@ impl<'a> EntryTuning<'a> {
             .unwrap_or_default();
         let bounds = groups
             .iter()
-            .map(|g| match g {
-                ParameterGroup::Process { .. } => (-THETA_BOUND, THETA_BOUND),
-                ParameterGroup::Aero { axes, .. } => {
-                    // A scenario accepts fractions up to MAX_AERO_FRACTION.
-                    let largest = match onboard.tuning.process_noise {
-                        ProcessNoiseModel::AeroScaled(a) => {
-                            axes.iter().map(|&k| a.fraction[k]).fold(0.0, f64::max)
-                        }
-                        ProcessNoiseModel::Constant => 1.0,
-                    };
-                    let room = (MAX_AERO_FRACTION / largest).log10();
-                    (-THETA_BOUND, room.min(THETA_BOUND))
-                }
-                ParameterGroup::Noise { kind, .. } => {
-                    let room = (MAX_NOISE_INFLATION / current.factor(*kind)).log10();
-                    (-THETA_BOUND, room.min(THETA_BOUND))
-                }
-            })
+            .map(|g| g.bounds(&onboard.tuning.process_noise, &current))
             .collect();
         Ok(EntryTuning {
             runs,
@@ -207,6 +157,11 @@ impl<'a> EntryTuning<'a> {
                         for &k in axes {
                             a.fraction[k] = (a.fraction[k] * f).min(MAX_AERO_FRACTION);
                         }
+                    }
+                }
+                ParameterGroup::Density => {
+                    if let ProcessNoiseModel::AeroScaled(a) = &mut model {
+                        a.density_sigma = (a.density_sigma * f).min(MAX_DENSITY_SIGMA);
                     }
                 }
                 ParameterGroup::Noise { kind, .. } => {

@@ -69,6 +69,7 @@ pub fn rounded(config: &FilterRetuneConfig) -> FilterRetuneConfig {
         process_noise: config.process_noise.map(|m| match m {
             ProcessNoiseModel::AeroScaled(mut a) => {
                 a.fraction = a.fraction.map(round6);
+                a.density_sigma = round6(a.density_sigma);
                 ProcessNoiseModel::AeroScaled(a)
             }
             constant => constant,
@@ -92,6 +93,9 @@ fn aero_inline(a: &AeroScaledNoise) -> StudyResult<toml_edit::InlineTable> {
     }
     if let Some(l) = a.correlation_length_m {
         inline.insert("correlation_length_m", number(l)?);
+    }
+    if a.density_sigma > 0.0 {
+        inline.insert("density_sigma", number(a.density_sigma)?);
     }
     Ok(inline)
 }

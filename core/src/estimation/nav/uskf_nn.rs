@@ -28,7 +28,7 @@
 //! level-and-slope correction `exp(a + b (h − h_k))` refitted before step 2 at every epoch to the
 //! log-densities the last `slope_window` epochs' measurements imply at their prior states
 //! ([`crate::estimation::adaptive::local_fit`]); Algorithm 2 then adapts the network to what the
-//! correction leaves.
+//! correction leaves. `msl-airdata` uses 2 epochs.
 
 use super::nav_filter::{FilterCore, NavFilter};
 use super::start::FilterStart;

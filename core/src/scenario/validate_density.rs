@@ -57,6 +57,16 @@ impl DensityFilterConfig {
         c.range(f("loss_threshold"), self.loss_threshold, threshold)?;
         c.range(f("max_iterations"), self.max_iterations, count(1, 100_000))?;
         c.range(f("window"), self.window, count(1, 1_000))?;
+        if let Some(w) = self.slope_window {
+            c.range(f("slope_window"), w, count(1, 1_000))?;
+        }
+        let slope = Range::gt(0.0).le(100.0).unit("1/km");
+        c.range(f("slope_sigma_per_km"), self.slope_sigma_per_km, slope)?;
+        c.range(
+            f("slope_log_density_sigma"),
+            self.slope_log_density_sigma,
+            open_fraction(),
+        )?;
         self.training.check(&f("training"), c)
     }
 }

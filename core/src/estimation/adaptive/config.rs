@@ -52,6 +52,12 @@ fn d_max_iter() -> usize {
 fn d_window() -> usize {
     1
 }
+fn d_slope_sigma() -> f64 {
+    0.1
+}
+fn d_slope_u_sigma() -> f64 {
+    3.3333e-3
+}
 
 /// Settings of the density-adaptation filters of seed 001 (`[filter.density]`); every key is
 /// optional and defaults to the paper's value (§V.B, Table 4) or, where the paper gives none,
@@ -119,6 +125,16 @@ pub struct DensityFilterConfig {
     /// eq. 52; more is the window extension of seed 001 §VI).
     #[serde(default = "d_window")]
     pub window: usize,
+    /// USKF-NN: epochs in the local level-and-slope correction of the network density (ours,
+    /// `adaptive::local_fit`); absent = no correction (seed 001).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slope_window: Option<usize>,
+    /// USKF-NN: a priori σ of the correction's log-slope \[1/km\] (ours).
+    #[serde(default = "d_slope_sigma")]
+    pub slope_sigma_per_km: f64,
+    /// USKF-NN: σ of one epoch's log-density in the correction's fit (ours).
+    #[serde(default = "d_slope_u_sigma")]
+    pub slope_log_density_sigma: f64,
     /// Offline training (seed 001 Algorithm 1) for `entrynav train-density`.
     #[serde(default)]
     pub training: DensityTrainingConfig,
@@ -144,6 +160,9 @@ impl Default for DensityFilterConfig {
             loss_threshold: d_threshold(),
             max_iterations: d_max_iter(),
             window: d_window(),
+            slope_window: None,
+            slope_sigma_per_km: d_slope_sigma(),
+            slope_log_density_sigma: d_slope_u_sigma(),
             training: DensityTrainingConfig::default(),
         }
     }

@@ -93,17 +93,20 @@ impl<A: Atmosphere> LossContext<'_, A> {
             let net = &set.nets[b];
             let r = term.altitude + set.planet_radius_m;
             let i = net.input(r);
+            // The local correction (identity without `slope_window`) multiplies ρ, so
+            // ∂ρ/∂o keeps its form with the corrected ρ.
+            let f = set.correction.factor(term.altitude);
             match grad.as_deref_mut() {
                 Some(g) if b == band => {
                     let o = net.forward(i, act);
                     let varrho = net.norm.out_std * o + net.norm.out_mean;
-                    let rho = net.norm.untransform(varrho);
+                    let rho = net.norm.untransform(varrho) * f;
                     let (l, dl_drho) = self.term_loss(term, rho);
                     total += l;
                     let drho_do = -2.0 * std::f64::consts::LN_10 * rho * varrho * net.norm.out_std;
                     net.backward_output(i, dl_drho * drho_do, g, act);
                 }
-                _ => total += self.term_loss(term, net.density(r)).0,
+                _ => total += self.term_loss(term, net.density(r) * f).0,
             }
         }
         total
@@ -111,6 +114,51 @@ impl<A: Atmosphere> LossContext<'_, A> {
 
     /// One term's loss νᵀR⁻¹ν and its derivative with respect to the density.
     pub fn term_loss<const N: usize>(&self, term: &LossTerm<N>, rho: f64) -> (f64, f64) {
+        let (mut l, mut dl) = (0.0, 0.0);
+        self.for_each_residual(term, rho, |nu, dh_drho, ri| {
+            l += nu * nu * ri;
+            dl += -2.0 * nu * ri * dh_drho;
+        });
+        (l, dl)
+    }
+
+    /// The log-density the term's measurements imply at its prior state: `u = ln ρ` minimising
+    /// the term's loss (eq. 52 with the density free), by Gauss–Newton from `rho0`
+    /// (`u ← u + Σ Jᵢ rᵢ νᵢ / Σ Jᵢ² rᵢ`, `Jᵢ = ∂hᵢ/∂u = ρ ∂hᵢ/∂ρ`). `None` when no measurement
+    /// depends on the density or the iteration does not settle.
+    pub fn measured_log_density<const N: usize>(
+        &self,
+        term: &LossTerm<N>,
+        rho0: f64,
+    ) -> Option<f64> {
+        let mut u = rho0.ln();
+        for _ in 0..20 {
+            let rho = u.exp();
+            let (mut g, mut info) = (0.0, 0.0);
+            self.for_each_residual(term, rho, |nu, dh_drho, ri| {
+                let j = rho * dh_drho;
+                g += j * ri * nu;
+                info += j * j * ri;
+            });
+            if !(info > 0.0 && g.is_finite()) {
+                return None;
+            }
+            let du = (g / info).clamp(-2.0, 2.0);
+            u += du;
+            if du.abs() < 1e-9 {
+                return Some(u);
+            }
+        }
+        None
+    }
+
+    /// Calls `each(ν, ∂h/∂ρ, 1/σ²)` for every measured value of `term` with density `rho`.
+    fn for_each_residual<const N: usize>(
+        &self,
+        term: &LossTerm<N>,
+        rho: f64,
+        mut each: impl FnMut(f64, f64, f64),
+    ) {
         let xd: SVector<Dual64, N> = term.x.map(Dual64::from);
         let lift = |v: &V3<f64>| v.map(Dual64::from);
         let kin = Kinematics {
@@ -119,7 +167,6 @@ impl<A: Atmosphere> LossContext<'_, A> {
             airspeed: Dual64::from(term.kin.airspeed),
             density: Dual64::new(rho, 1.0),
         };
-        let (mut l, mut dl) = (0.0, 0.0);
         let mut triad = None;
         for ((&ch, &z), &ri) in term.channels.iter().zip(&term.z).zip(&term.r_inv) {
             let h = self.measurement.evaluate_sharing_triad(
@@ -131,11 +178,8 @@ impl<A: Atmosphere> LossContext<'_, A> {
                 ch,
                 &mut triad,
             );
-            let nu = z - h.re;
-            l += nu * nu * ri;
-            dl += -2.0 * nu * ri * h.eps;
+            each(z - h.re, h.eps, ri);
         }
-        (l, dl)
     }
 }
 

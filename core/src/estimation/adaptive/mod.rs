@@ -23,6 +23,7 @@ pub mod adam;
 pub mod config;
 pub mod covariance_matching;
 pub mod error;
+pub mod local_fit;
 pub mod mlo;
 pub mod network;
 pub mod nn;
@@ -33,6 +34,7 @@ pub use adam::Adam;
 pub use config::{DensityFilterConfig, DensityTrainingConfig};
 pub use covariance_matching::CovarianceMatching;
 pub use error::NetworkError;
+pub use local_fit::{LocalSlopeFit, LogLinearCorrection};
 pub use mlo::{LossContext, LossTerm, MloOutcome, MloSettings, OnlineAdam, maximise_likelihood};
 pub use network::{
     BUILTIN_NETWORKS, DensityNetworkSet, NETWORK_FORMAT, NetworkFile, NetworkRecord, NnAtmosphere,

@@ -9,6 +9,7 @@
 //! bands is that extension ([`DensityNetworkSet`]).
 
 use super::error::NetworkError;
+use super::local_fit::LogLinearCorrection;
 use super::nn::{Activations, DensityNetwork, Normalisation};
 use crate::atmosphere::Atmosphere;
 use crate::math::Real;
@@ -211,6 +212,7 @@ impl NetworkFile {
             nets,
             tops_m: tops,
             planet_radius_m: self.planet_radius_m,
+            correction: LogLinearCorrection::default(),
         })
     }
 }
@@ -225,6 +227,9 @@ pub struct DensityNetworkSet {
     pub tops_m: Vec<f64>,
     /// Planet radius: altitude h = r − R \[m\].
     pub planet_radius_m: f64,
+    /// The local level-and-slope correction every density of the set is multiplied by
+    /// (identity without `slope_window`, [`super::local_fit`]).
+    pub correction: LogLinearCorrection,
 }
 
 impl DensityNetworkSet {
@@ -238,16 +243,25 @@ impl DensityNetworkSet {
             .unwrap_or(n - 1)
     }
 
-    /// Density [kg/m³] at altitude `h_m`.
+    /// Density [kg/m³] at altitude `h_m`: the serving network's, times the correction.
     #[inline]
     pub fn density_at_altitude(&self, h_m: f64) -> f64 {
+        self.network_density(h_m) * self.correction.factor(h_m)
+    }
+
+    /// The serving network's density [kg/m³] at altitude `h_m`, without the correction.
+    #[inline]
+    pub fn network_density(&self, h_m: f64) -> f64 {
         self.nets[self.band(h_m)].density(h_m + self.planet_radius_m)
     }
 
-    /// Density and dρ/dh at altitude `h_m`.
+    /// Density and dρ/dh at altitude `h_m` (correction included).
     #[inline]
     pub fn density_and_slope(&self, h_m: f64) -> (f64, f64) {
-        self.nets[self.band(h_m)].density_and_slope(h_m + self.planet_radius_m)
+        let (rho, slope) = self.nets[self.band(h_m)].density_and_slope(h_m + self.planet_radius_m);
+        let c = &self.correction;
+        let f = c.factor(h_m);
+        (rho * f, (slope + rho * c.slope_per_m) * f)
     }
 
     /// Density at altitude `h_m` and `grad_band += weight·∂ρ/∂ξ_band` for the serving network;
@@ -259,15 +273,16 @@ impl DensityNetworkSet {
         grads: &mut [Vec<f64>],
         act: &mut Activations,
     ) -> (f64, usize) {
-        let b = self.band(h_m);
-        let rho =
-            self.nets[b].density_gradient(h_m + self.planet_radius_m, weight, &mut grads[b], act);
-        (rho, b)
+        let (b, f) = (self.band(h_m), self.correction.factor(h_m));
+        let r = h_m + self.planet_radius_m;
+        let rho = self.nets[b].density_gradient(r, weight * f, &mut grads[b], act);
+        (rho * f, b)
     }
 }
 
 /// The onboard atmosphere of the USKF-NN: ρ(h) = NN(R + h, ξ) of the serving band (seed 001
-/// eq. 28, 45, 53, 62; the consider factor c multiplies it through the dynamics' density scale).
+/// eq. 28, 45, 53, 62; the consider factor c multiplies it through the dynamics' density scale),
+/// times the set's local correction (identity without `slope_window`).
 ///
 /// Generic evaluation: the value and dρ/dh are computed in `f64` and a dual argument gets the
 /// first-order expansion `ρ(h₀) + ρ'(h₀)(h − h₀)`, exact for first derivatives (every AD use in

@@ -23,6 +23,12 @@
 //! Options (seed 001 §VI, future work): `filter.density.window > 1` puts the last `window`
 //! measurement epochs (each at its own prior mean) in the loss; a network file with several
 //! altitude bands uses one network per band and adapts the one serving the prior altitude.
+//!
+//! Option (ours): `filter.density.slope_window` (epochs) multiplies the network density by a local
+//! level-and-slope correction `exp(a + b (h − h_k))` refitted before step 2 at every epoch to the
+//! log-densities the last `slope_window` epochs' measurements imply at their prior states
+//! ([`crate::estimation::adaptive::local_fit`]); Algorithm 2 then adapts the network to what the
+//! correction leaves. `msl-airdata` uses 2 epochs.
 
 use super::nav_filter::{FilterCore, NavFilter};
 use super::start::FilterStart;
@@ -30,6 +36,7 @@ use super::step_info::StepInfo;
 use super::ukf_ac::augment_start;
 use super::ukf_common::{UkfCore, epoch_measurements};
 use crate::dynamics::EntryModel;
+use crate::estimation::adaptive::local_fit::LocalSlopeFit;
 use crate::estimation::adaptive::mlo::{
     LossContext, LossTerm, MloOutcome, MloSettings, OnlineAdam, maximise_likelihood,
 };
@@ -75,6 +82,8 @@ pub struct UskfNnNav<const N: usize, const L: usize> {
     window: usize,
     terms: VecDeque<LossTerm<N>>,
     adam: Vec<OnlineAdam>,
+    /// The local level-and-slope correction's window (`slope_window` given).
+    slope: Option<LocalSlopeFit>,
     act: Activations,
     stats: AdaptationStats,
 }
@@ -128,6 +137,9 @@ impl<const N: usize, const L: usize> UskfNnNav<N, L> {
             window: cfg.window.max(1),
             terms: VecDeque::with_capacity(cfg.window.max(1) + 1),
             adam: vec![OnlineAdam::default(); nb],
+            slope: cfg.slope_window.map(|w| {
+                LocalSlopeFit::new(w, cfg.slope_sigma_per_km, cfg.slope_log_density_sigma)
+            }),
             act: Activations::default(),
             stats: AdaptationStats::default(),
         })
@@ -212,6 +224,17 @@ impl<const N: usize, const L: usize> NavFilter<N> for UskfNnNav<N, L> {
             model: &sc.model,
             bank,
         };
+        // The local level-and-slope correction (option), from this epoch's implied density.
+        if let Some(fit) = &mut self.slope {
+            let set = &mut self.core.model.atmosphere.set;
+            let rho0 = set.density_at_altitude(altitude);
+            if let Some(u) =
+                ctx.measured_log_density(self.terms.back().expect("pushed above"), rho0)
+            {
+                fit.push(altitude, u);
+            }
+            set.correction = fit.fit(|h| set.network_density(h).ln(), altitude);
+        }
         let outcome = maximise_likelihood(
             &ctx,
             &mut self.core.model.atmosphere.set,

@@ -222,13 +222,17 @@ mod tests {
         let period = s.config.guidance.as_ref().unwrap().period_s();
         assert_eq!((stop, step), (s.config.timing.duration_s, period));
         // Without the section (and with msl-airdata's name, description and constant bank) it
-        // is msl-airdata again.
+        // is msl-airdata again, but for USKF-NN's level-and-slope correction (issue 49 item 4):
+        // msl-guided keeps seed 001's adaptation until its delivery numbers are measured with it.
         let base = ScenarioConfig::builtin("msl-airdata").unwrap();
         let mut cfg = s.config.clone();
         cfg.guidance = None;
         cfg.name = base.name.clone();
         cfg.description = base.description.clone();
         cfg.truth.bank_deg = base.truth.bank_deg;
+        let slope = |c: &ScenarioConfig| c.filter.density.as_ref().and_then(|d| d.slope_window);
+        assert_eq!((slope(&cfg), slope(&base)), (None, Some(2)));
+        cfg.filter.density.as_mut().unwrap().slope_window = slope(&base);
         assert_eq!(cfg.to_toml_string(), base.to_toml_string());
     }
 }

@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{entrynav, scratch_dir};
+use common::{entrynav, num, scratch_dir, trade_filters};
 use serde_json::Value;
 use std::path::Path;
 
@@ -34,31 +34,7 @@ fn aero_input(dir: &Path) -> std::path::PathBuf {
 
 /// The EKF block of a 200-run trade on seed 7 (not the tuning's seed).
 fn trade(scenario: &Path) -> Value {
-    let json = scenario.with_extension("json");
-    let (code, _, err) = entrynav(&[
-        "trade",
-        "--scenario",
-        scenario.to_str().unwrap(),
-        "--filters",
-        "ekf",
-        "--runs",
-        "200",
-        "--seed",
-        "7",
-        "--no-pcrlb",
-        "--quiet",
-        "--json",
-        json.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 0, "{err}");
-    let v: Value = serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
-    v["filters"][0].clone()
-}
-
-fn num(f: &Value, key: &str) -> f64 {
-    f[key]
-        .as_f64()
-        .unwrap_or_else(|| panic!("{key} missing in {f}"))
+    trade_filters(scenario, "ekf", 200, 7, &scenario.with_extension("json")).remove(0)
 }
 
 #[test]

@@ -16,7 +16,7 @@
 
 mod common;
 
-use common::{entrynav, scratch_dir};
+use common::{num, scratch_dir, trade_filters, tune_defaults};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -46,48 +46,14 @@ fn polar_input(dir: &Path) -> PathBuf {
 
 /// The filters' blocks of a 200-run trade on seed 7 (not the tuning's seed).
 fn trade(scenario: &Path, json: &Path, filters: &str) -> Vec<Value> {
-    let (code, _, err) = entrynav(&[
-        "trade",
-        "--scenario",
-        scenario.to_str().unwrap(),
-        "--filters",
-        filters,
-        "--runs",
-        "200",
-        "--seed",
-        "7",
-        "--no-pcrlb",
-        "--quiet",
-        "--json",
-        json.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 0, "{err}");
-    let v: Value = serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
-    v["filters"].as_array().unwrap().clone()
-}
-
-fn num(f: &Value, key: &str) -> f64 {
-    f[key]
-        .as_f64()
-        .unwrap_or_else(|| panic!("{key} missing in {f}"))
+    trade_filters(scenario, filters, 200, 7, json)
 }
 
 #[test]
 fn tune_writes_a_tuning_better_on_every_primary_figure_and_it_holds_on_fresh_runs() {
     let dir = scratch_dir("tune", "heldout");
     let out = dir.join("tuned.toml");
-    let (code, stdout, err) = entrynav(&[
-        "tune",
-        "--scenario",
-        input().to_str().unwrap(),
-        "--filter",
-        "ekf,ukf",
-        "--threads",
-        "2",
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let (code, stdout, err) = tune_defaults(&input(), "ekf,ukf", &out);
     // Never refused: written, with a warning and exit code 1 while a target is still missed.
     assert!(!err.contains("not written"), "{err}");
     assert!(code == 0 || code == 1, "{stdout}\n{err}");
@@ -146,18 +112,7 @@ fn a_density_error_in_altitude_brings_the_ukf_into_its_band() {
     let mut ukf_rmse = Vec::new();
     for (name, scenario) in [("constant", input()), ("density", density)] {
         let out = dir.join(format!("{name}-tuned.toml"));
-        let (code, stdout, err) = entrynav(&[
-            "tune",
-            "--scenario",
-            scenario.to_str().unwrap(),
-            "--filter",
-            "ukf",
-            "--threads",
-            "2",
-            "--out",
-            out.to_str().unwrap(),
-            "--quiet",
-        ]);
+        let (code, stdout, err) = tune_defaults(&scenario, "ukf", &out);
         assert!(code == 0 || code == 1, "{name}: {stdout}\n{err}");
         let f = trade(&out, &dir.join(format!("{name}.json")), "ukf").remove(0);
         assert_eq!(num(&f, "diverged") + num(&f, "failed"), 0.0, "{name}");
@@ -190,18 +145,7 @@ fn a_tuning_still_inconsistent_is_written_with_the_channel_and_cause_and_exit_1(
     let dir = scratch_dir("tune", "heldout-polar");
     let input = polar_input(&dir);
     let out = dir.join("tuned.toml");
-    let (code, stdout, err) = entrynav(&[
-        "tune",
-        "--scenario",
-        input.to_str().unwrap(),
-        "--filter",
-        "ekf,ukf",
-        "--threads",
-        "2",
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let (code, stdout, err) = tune_defaults(&input, "ekf,ukf", &out);
     assert_eq!(code, 1, "{stdout}\n{err}");
     assert!(
         err.contains("written, but not consistent yet: ekf is still inconsistent"),

@@ -2,7 +2,7 @@
 
 #![allow(dead_code)]
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// Run `entrynav args…`; returns (exit code, stdout, stderr).
@@ -154,4 +154,59 @@ pub fn progress_runs(line: &str) -> Option<u64> {
     let rest = line.trim_end().strip_prefix("progress: ")?;
     let (done, _) = rest.strip_suffix(" runs")?.split_once('/')?;
     done.parse().ok()
+}
+
+/// The filters' blocks of `trade --scenario SCENARIO --filters FILTERS --runs RUNS --seed SEED
+/// --no-pcrlb --json JSON` (which must succeed).
+pub fn trade_filters(
+    scenario: &Path,
+    filters: &str,
+    runs: u32,
+    seed: u64,
+    json: &Path,
+) -> Vec<serde_json::Value> {
+    let (runs, seed) = (runs.to_string(), seed.to_string());
+    let (code, _, err) = entrynav(&[
+        "trade",
+        "--scenario",
+        scenario.to_str().unwrap(),
+        "--filters",
+        filters,
+        "--runs",
+        &runs,
+        "--seed",
+        &seed,
+        "--no-pcrlb",
+        "--quiet",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
+    v["filters"].as_array().unwrap().clone()
+}
+
+/// A number of a filter's JSON block.
+pub fn num(f: &serde_json::Value, key: &str) -> f64 {
+    f[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("{key} missing in {f}"))
+}
+
+/// `tune --scenario SCENARIO --filter FILTERS --threads 2 --out OUT --quiet` with every other
+/// option at its default: (exit code, stdout, stderr).
+pub fn tune_defaults(scenario: &Path, filters: &str, out: &Path) -> (i32, String, String) {
+    entrynav(&[
+        "tune",
+        "--scenario",
+        scenario.to_str().unwrap(),
+        "--filter",
+        filters,
+        "--threads",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ])
 }

@@ -539,7 +539,13 @@ fn consider_parameter_is_an_unupdated_ecrv_and_ukf_ac_starts_from_the_mean_ratio
     let (xa, pa) = nn.augmented();
     assert!((xa[8] - 1.0).abs() < 1e-12, "c = {}", xa[8]);
     let t = truth.epochs[79].t;
-    let expected = 1e-3 + (1e-10 - 1e-3) * (-2.0 * t / 5.0).exp();
+    let d = ScenarioConfig::builtin("msl-airdata")
+        .unwrap()
+        .filter
+        .density
+        .unwrap();
+    let (pss, p0) = (d.consider_pss, d.consider_p0);
+    let expected = pss + (p0 - pss) * (-2.0 * t / d.consider_tau_s).exp();
     assert!(
         (pa[(8, 8)] / expected - 1.0).abs() < 1e-9,
         "{} vs {expected}",
@@ -612,8 +618,8 @@ fn density_settings_are_validated_with_the_field_name() {
             "filter.density.adam_beta1",
         ),
         (
-            "consider_tau_s = 5.0",
-            "consider_tau_s = -5.0",
+            "consider_tau_s = 60.0",
+            "consider_tau_s = -60.0",
             "filter.density.consider_tau_s",
         ),
         (

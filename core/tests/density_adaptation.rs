@@ -34,6 +34,16 @@ fn scenario_with(name: &str, edit: impl Fn(&mut ScenarioConfig)) -> Arc<Scenario
     Arc::new(Scenario::build(cfg, &entrynav::files::no_files).unwrap())
 }
 
+/// Table 2's Q and Table 4's consider parameter: `msl-airdata-paper`'s filter noise.
+fn with_paper_noise(c: &mut ScenarioConfig) {
+    let paper = ScenarioConfig::builtin("msl-airdata-paper").unwrap().filter;
+    let (d, p) = (c.filter.density.as_mut().unwrap(), paper.density.unwrap());
+    (d.consider_tau_s, d.consider_pss, d.consider_p0) =
+        (p.consider_tau_s, p.consider_pss, p.consider_p0);
+    c.filter.q_diag = paper.q_diag;
+    c.filter.process_noise = paper.process_noise;
+}
+
 fn builtin_set(name: &str) -> DensityNetworkSet {
     NetworkFile::from_toml_str(builtin_network_toml(name).unwrap(), name)
         .unwrap()
@@ -585,9 +595,17 @@ fn short_monte_carlo_reproduces_the_papers_ranking() {
         r_rmse(1)
     );
     assert_eq!(trade.filters[2].diverged, 0);
-    // The §VI options: a window of measurements and one network per altitude band.
+    // The §VI options: a window of measurements and one network per altitude band. The window is
+    // checked with the paper's filter noise (Table 2's Q, Table 4's consider parameter, as
+    // `msl-airdata-paper`; 2.83 % on these 2 runs), as before issue 49: with msl-airdata's re-sized
+    // consider parameter (P_c0 = P_ss = 1e-4 over 60 s) it is 3.80 %, not re-tuned for it
+    // (Table 4's c with the load-scaled Q: 0.94 %; the issue-49 c with Table 2's Q: 19 %). The
+    // band networks keep msl-airdata's settings (0.14 %; 0.19 % with the paper's noise).
     for edit in [
-        |c: &mut ScenarioConfig| c.filter.density.as_mut().unwrap().window = 4,
+        |c: &mut ScenarioConfig| {
+            with_paper_noise(c);
+            c.filter.density.as_mut().unwrap().window = 4;
+        },
         |c: &mut ScenarioConfig| c.filter.density.as_mut().unwrap().network = MSL_BANDS.into(),
     ] {
         let s2 = scenario_with("msl-airdata", edit);

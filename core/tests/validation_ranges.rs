@@ -63,6 +63,13 @@ const GUIDED: &[&str] = &[
     "guidance.fnpeg.iterations=4",
 ];
 
+/// Load-scaled process noise on a scenario with a density state (ρ0) for `density_sigma` to drive.
+const AERO_SCALED: &[&str] = &[
+    "filter.process_noise.model=\"aero-scaled\"",
+    "filter.process_noise.fraction=[0.01, 0.0, 0.01]",
+    "filter.process_noise.correlation_time_s=5.0",
+];
+
 /// `[guidance]` with a dynamic-pressure trigger.
 const GUIDED_Q: &[&str] = &[
     "guidance.algorithm=\"fnpeg\"",
@@ -177,6 +184,11 @@ const CASES: &[Case] = &[
     // filter: covariances and start values of augmented and consider states
     case("filter.p0_diag[0]", FUSION, &[], "must be > 0 and finite (a variance)"),
     case("filter.q_diag[0]", FUSION, &[], "must be >= 0 and finite (a variance)"),
+    // msl-airdata's load-scaled process noise (issue 49) is the first built-in to list these.
+    case("filter.process_noise.fraction[0]", AIR, &[], "must be >= 0 and <= 10 (1-sigma of the unmodelled specific force over |a_aero|)"),
+    case("filter.process_noise.correlation_time_s", AIR, &[], "must be > 0 and <= 1000 s"),
+    case("filter.process_noise.density_sigma", FUSION, AERO_SCALED, "must be >= 0 and <= 1 (1-sigma of the relative density error)"),
+    case("filter.process_noise.floor_mps2", AIR, &[], "must be >= 0 and <= 10 m/s²"),
     case("filter.initial_augmented[0]", FUSION, &[], "ρ0 must be > 0 and < 1 kg/m³"),
     case("filter.initial_augmented[1]", FUSION, &[], "L/D must be >= 0 and < 3"),
     case("filter.initial_augmented[2]", FUSION, &[], "an accelerometer bias must be >= -10 and <= 10 m/s²"),

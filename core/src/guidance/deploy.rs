@@ -116,11 +116,14 @@ impl DeployBox {
         dynamic_pressure_pa: f64,
     ) -> BoxViolations {
         BoxViolations {
-            altitude_low: !(altitude_m >= self.altitude_min_m),
-            speed_low: !(speed_mps >= self.speed_min_mps),
-            speed_high: !(speed_mps <= self.speed_max_mps),
-            pressure_low: !(dynamic_pressure_pa >= self.dynamic_pressure_min_pa),
-            pressure_high: !(dynamic_pressure_pa <= self.dynamic_pressure_max_pa),
+            // A NaN breaks every limit it is compared with.
+            altitude_low: altitude_m.is_nan() || altitude_m < self.altitude_min_m,
+            speed_low: speed_mps.is_nan() || speed_mps < self.speed_min_mps,
+            speed_high: speed_mps.is_nan() || speed_mps > self.speed_max_mps,
+            pressure_low: dynamic_pressure_pa.is_nan()
+                || dynamic_pressure_pa < self.dynamic_pressure_min_pa,
+            pressure_high: dynamic_pressure_pa.is_nan()
+                || dynamic_pressure_pa > self.dynamic_pressure_max_pa,
         }
     }
 }

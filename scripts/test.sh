@@ -49,6 +49,7 @@ echo "== FMU: shared library, packed FMUs (MarsEntryNav, MarsEntryNavFilter, Mar
 # before the tests).
 target/release/entrynav fmu pack --out target/fmu
 target/release/entrynav fmu pack --out target/fmu --fmi 3
+target/release/entrynav fmu pack --out target/fmu/fmi3-arrays --fmi 3 --arrays
 
 echo "== Python package: build the wheel (maturin) and install it into .venv (the Dask engine path uses it)"
 bash scripts/build_python.sh
@@ -70,8 +71,8 @@ for fmu in target/fmu/MarsEntryNav.fmu target/fmu/MarsEntryNavFilter.fmu target/
   target/release/entrynav-dev fmu check "$fmu"
 done
 target/release/entrynav-dev fmu check target/fmu/MarsEntryNav.fmu --bench
-echo "== FMU: the fuzzer through the fmi3 functions, 100,000 calls per FMI 3.0 FMU (exit 2 on any call the model does not predict; FMI 2.0: tests/python)"
-for fmu in target/fmu/MarsEntryNav-fmi3.fmu target/fmu/MarsEntryNavFilter-fmi3.fmu target/fmu/MarsEntryTruth-fmi3.fmu target/fmu/MarsEntryNavGuided-fmi3.fmu; do
+echo "== FMU: the fuzzer through the fmi3 functions, 100,000 calls per FMI 3.0 FMU with its arrays (exit 2 on any call the model does not predict; FMI 2.0: tests/python)"
+for fmu in target/fmu/fmi3-arrays/MarsEntryNav-fmi3.fmu target/fmu/fmi3-arrays/MarsEntryNavFilter-fmi3.fmu target/fmu/fmi3-arrays/MarsEntryTruth-fmi3.fmu target/fmu/fmi3-arrays/MarsEntryNavGuided-fmi3.fmu; do
   target/release/entrynav-dev fmu fuzz "$fmu" --calls 100000
 done
 

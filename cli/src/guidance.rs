@@ -47,7 +47,7 @@ pub struct DeliverArgs {
     #[command(flatten)]
     pub overrides: crate::args::SetArgs,
     /// Comma-separated filters flown in the loop: ekf, ukf, ci, dcifaif, mmae, mmae-moe, ukf-cm,
-    /// ukf-ac, uskf-nn.
+    /// ukf-ac, uskf-nn; `none` flies perfect navigation and the unguided bank only.
     #[arg(long, visible_alias = "filter", default_value = "ekf")]
     pub filters: String,
     /// Monte Carlo runs (default: the scenario's monte_carlo.runs).
@@ -132,7 +132,7 @@ pub(crate) fn print_table(r: &DeliveryReport) {
         r.scenario, r.algorithm, r.runs, r.seed, r.bank_rate_limit_deg_s
     );
     println!(
-        "{:<12} {:>8} {:>6} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>24} {:>9} {:>10}",
+        "{:<12} {:>8} {:>6} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>24} {:>9} {:>10} {:>7}",
         "row",
         "deployed",
         "failed",
@@ -144,7 +144,8 @@ pub(crate) fn print_table(r: &DeliveryReport) {
         "mean CR",
         "99% ellipse a x b @ deg",
         "max rate",
-        "nav [m]"
+        "nav [m]",
+        "in box"
     );
     for row in &r.rows {
         print_row(row);
@@ -183,7 +184,7 @@ fn print_row(x: &DeliveryRow) {
         },
     );
     println!(
-        "{:<12} {:>8} {:>6} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>24} {:>9} {:>10}",
+        "{:<12} {:>8} {:>6} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>24} {:>9} {:>10} {:>7}",
         x.name,
         x.deployed,
         x.failures,
@@ -196,5 +197,6 @@ fn print_row(x: &DeliveryRow) {
         ellipse,
         opt(x.max_bank_rate_deg_s, 2),
         opt(x.rms_nav_position_error_m, 1),
+        x.inside_box,
     );
 }

@@ -1,4 +1,4 @@
-//! `entrynav fmu pack --ssp --fmi 3` is refused, and `entrynav fmu pack --help` says why (issue 52):
+//! `entrynav fmu pack --ssp --fmi 3` and `--arrays` without `--fmi 3` are refused, and `entrynav fmu pack --help` says why (issue 52):
 //! the SSP packages are SSP 1.0, whose connector types describe FMI 1.0/2.0 variables only; FMI 3.0
 //! components need SSP 2.0, which OMSimulator 3 does not read
 //! (`entrynav_studies::fmu_pack::SSP_FMI3_REFUSAL` cites the clauses).
@@ -51,4 +51,29 @@ fn ssp_with_fmi_3_is_refused_with_the_reason() {
     // Refused before anything is written.
     assert!(!out.join("MarsEntrySplit.ssp").exists());
     assert!(!out.join("MarsEntryNav-fmi3.fmu").exists());
+}
+
+/// `--arrays` (FMI 3.0's est_x, est_sigma, est_covariance, which OMSimulator 3.0 cannot load) is
+/// refused without `--fmi 3`, naming the option and both values, before anything is written.
+#[test]
+fn arrays_without_fmi_3_are_refused() {
+    let dir = common::scratch_dir("fmu_pack_ssp", "arrays");
+    let out = dir.join("fmus");
+    let (code, stdout, err) =
+        entrynav(&["fmu", "pack", "--arrays", "--out", out.to_str().unwrap()]);
+    assert_ne!(code, 0, "{stdout}");
+    assert!(
+        folded(&err)
+            .contains("arrays = true needs fmi = 3 (fmi = 2): FMI 2.0 has no array variables"),
+        "{err}"
+    );
+    assert!(!out.join("MarsEntryNav.fmu").exists());
+    let (code, help, _) = entrynav(&["fmu", "pack", "--help"]);
+    assert_eq!(code, 0);
+    assert!(
+        folded(&help).contains(
+            "Off by default because OMSimulator 3.0 cannot load an FMU with a structural parameter"
+        ),
+        "{help}"
+    );
 }

@@ -85,6 +85,7 @@ fn fly(s: &Scenario, truth: &TruthDraw, constant: bool) -> GuidedFlight {
             guidance_period_s: cfg.period_s(),
             max_time_s: 1500.0,
             trigger: cfg.trigger,
+            deploy_box: cfg.deploy_box,
         },
     )
     .unwrap();

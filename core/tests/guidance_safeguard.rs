@@ -54,6 +54,7 @@ fn fly_nominal(
             guidance_period_s: cfg.period_s(),
             max_time_s: 1500.0,
             trigger: cfg.trigger,
+            deploy_box: cfg.deploy_box,
         },
     )
 }

@@ -70,6 +70,18 @@ const AERO_SCALED: &[&str] = &[
     "filter.process_noise.correlation_time_s=5.0",
 ];
 
+/// `[guidance]` with its deployment box written out.
+const GUIDED_BOX: &[&str] = &[
+    "guidance.algorithm=\"apollo\"",
+    "guidance.reference_bank_deg=60.0",
+    "guidance.trigger.speed_mps=450.0",
+    "guidance.deploy_box.speed_min_mps=380.0",
+    "guidance.deploy_box.speed_max_mps=540.0",
+    "guidance.deploy_box.dynamic_pressure_min_pa=250.0",
+    "guidance.deploy_box.dynamic_pressure_max_pa=850.0",
+    "guidance.deploy_box.altitude_min_m=5000.0",
+];
+
 /// `[guidance]` with a dynamic-pressure trigger.
 const GUIDED_Q: &[&str] = &[
     "guidance.algorithm=\"fnpeg\"",
@@ -288,6 +300,11 @@ const CASES: &[Case] = &[
     case("guidance.fnpeg.iterations", AIR, GUIDED, "must be >= 1 and <= 50"),
     case("guidance.fnpeg.density_gain", AIR, GUIDED, "must be >= 0 and <= 1 (0 = trust the onboard atmosphere)"),
     case("guidance.fnpeg.hold_speed_mps", AIR, GUIDED, "must be >= 0 and < 30000 m/s"),
+    case("guidance.deploy_box.speed_min_mps", AIR, GUIDED_BOX, "must be >= 0 and < 30000 m/s"),
+    case("guidance.deploy_box.speed_max_mps", AIR, GUIDED_BOX, "must be > guidance.deploy_box.speed_min_mps = 380 and < 30000 m/s"),
+    case("guidance.deploy_box.dynamic_pressure_min_pa", AIR, GUIDED_BOX, "must be >= 0 and < 1000000 Pa"),
+    case("guidance.deploy_box.dynamic_pressure_max_pa", AIR, GUIDED_BOX, "must be > guidance.deploy_box.dynamic_pressure_min_pa = 250 and <= 1000000 Pa"),
+    case("guidance.deploy_box.altitude_min_m", AIR, GUIDED_BOX, "must be >= -10000 and <= 100000 m"),
 ];
 
 /// The built-in `base` with `sets` applied, as a TOML table (what `--set` edits).

@@ -9,7 +9,7 @@ use entrynav_fmu::binding::{Binding, read_library};
 use entrynav_fmu::instance::resolve_spec;
 use entrynav_fmu::vars::{Model, ModelSpec};
 use entrynav_fmu::xml::description_of;
-use entrynav_fmu::xml3::description3_of;
+use entrynav_fmu::xml3::{Arrays, description3_of};
 use std::fs::File;
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -130,11 +130,15 @@ fn check_model(
                 .ok_or_else(|| ArchiveError::StaleModelDescription(id.to_string()))?,
         )),
     };
+    // An FMI 3.0 archive holds either description (with or without the arrays).
     let expected = match version {
-        3 => description3_of(&spec),
-        _ => description_of(&spec),
+        3 => vec![
+            description3_of(&spec, Arrays::Omitted),
+            description3_of(&spec, Arrays::Declared),
+        ],
+        _ => vec![description_of(&spec)],
     };
-    if expected != xml {
+    if !expected.iter().any(|e| e == xml) {
         return Err(ArchiveError::StaleModelDescription(id.to_string()));
     }
     if spec.specific().is_none() {

@@ -33,4 +33,4 @@ pub mod xml3;
 
 pub use vars::{Model, ModelSpec, guid_of};
 pub use xml::{description_of, model_description};
-pub use xml3::description3_of;
+pub use xml3::{Arrays, description3_of};

@@ -7,6 +7,11 @@
 //! as `EnumerationType`; the independent variable `time`; arrays with a `<Dimension>` referring
 //! to the structural parameter; `ModelStructure` by value reference; the instantiation token is
 //! the model's GUID (the FMU's library accepts the same token through either interface).
+//!
+//! The arrays are optional ([`Arrays`]): OMSimulator 3.0 cannot load an FMU with a structural
+//! parameter and reads arrays as scalars (OpenModelica/OMSimulator#1310, #1418), so the default
+//! description declares the scalars only, which every FMI 3.0 tool reads. The library answers
+//! the arrays' value references either way; only the description differs.
 
 use crate::vars::fmi3::{Extra, Var3, extras, state_slots};
 use crate::vars::{Causality, ENUM_TYPES, EnumType, ModelSpec, TABLE_DATE, Type, Var};
@@ -15,15 +20,30 @@ use quick_xml::Writer;
 use quick_xml::events::{BytesDecl, Event};
 use std::io;
 
-/// The FMI 3.0 `modelDescription.xml` text of `spec`.
-pub fn description3_of(spec: &ModelSpec) -> String {
-    // Writing to a Vec cannot fail and the bytes are UTF-8 (every piece is a Rust string).
-    write(spec).unwrap_or_default()
+/// Whether an FMI 3.0 description declares the filter's arrays.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Arrays {
+    /// The scalars of the FMI 2.0 table and `time` only: loads in every FMI 3.0 tool,
+    /// OMSimulator 3.0 included (the default of `entrynav fmu pack --fmi 3`).
+    #[default]
+    Omitted,
+    /// Also `est_x`, `est_sigma` (slots) and `est_covariance` (slots x slots), sized by the
+    /// structural parameter `n_state_slots` (`entrynav fmu pack --fmi 3 --arrays`).
+    Declared,
 }
 
-fn write(spec: &ModelSpec) -> io::Result<String> {
+/// The FMI 3.0 `modelDescription.xml` text of `spec`, with or without the arrays.
+pub fn description3_of(spec: &ModelSpec, arrays: Arrays) -> String {
+    // Writing to a Vec cannot fail and the bytes are UTF-8 (every piece is a Rust string).
+    write(spec, arrays).unwrap_or_default()
+}
+
+fn write(spec: &ModelSpec, arrays: Arrays) -> io::Result<String> {
     let vars = spec.vars();
-    let x = extras(spec);
+    let mut x = extras(spec);
+    if arrays == Arrays::Omitted {
+        x.retain(|v| v.extra == Extra::Time);
+    }
     let slots = state_slots(spec);
     let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
     w.write_event(Event::Decl(BytesDecl::new("1.0", Some("UTF-8"), None)))?;
@@ -43,7 +63,13 @@ fn write(spec: &ModelSpec) -> io::Result<String> {
         .with_attribute(("author", "entrynav"))
         .with_attribute(("version", env!("CARGO_PKG_VERSION")))
         .with_attribute(("license", "MIT OR Apache-2.0"))
-        .with_attribute(("generationTool", "entrynav fmu pack --fmi 3"))
+        .with_attribute((
+            "generationTool",
+            match arrays {
+                Arrays::Omitted => "entrynav fmu pack --fmi 3",
+                Arrays::Declared => "entrynav fmu pack --fmi 3 --arrays",
+            },
+        ))
         .with_attribute(("generationDateAndTime", TABLE_DATE))
         .with_attribute(("variableNamingConvention", "flat"))
         .write_inner_content(|w| {
@@ -263,7 +289,8 @@ mod tests {
     fn every_scalar_keeps_its_name_and_reference_and_the_arrays_have_dimensions() {
         for m in Model::ALL {
             let spec = ModelSpec::generic(m);
-            let xml = description3_of(&spec);
+            let xml = description3_of(&spec, Arrays::Declared);
+            let scalars = description3_of(&spec, Arrays::Omitted);
             assert!(xml.contains("fmiVersion=\"3.0\""));
             assert!(xml.contains(&format!("instantiationToken=\"{}\"", spec.guid())));
             for v in spec.vars() {
@@ -276,6 +303,13 @@ mod tests {
             assert_eq!(xml.matches("causality=\"independent\"").count(), 1);
             let dims = xml.matches("<Dimension ").count();
             assert_eq!(dims, if m.has_filter() { 4 } else { 0 });
+            assert!(!scalars.contains("<Dimension ") && !scalars.contains("structuralParameter"));
+            for v in spec.vars() {
+                assert!(
+                    scalars.contains(&format!("name=\"{}\" valueReference=\"{}\"", v.name, v.vr))
+                );
+            }
+            assert_eq!(scalars.matches("causality=\"independent\"").count(), 1);
         }
     }
 }

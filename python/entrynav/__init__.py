@@ -557,9 +557,11 @@ def optimize_orbiters(scenario: Union[Scenario, str], **options: Any) -> DesignR
 
 def fmu_pack(out: Union[str, Path], scenario: Optional[Union[Scenario, str]] = None, filter: Optional[str] = None,
              fmi: int = 2, library: Optional[Union[str, Path]] = None, ssp: bool = False,
-             keep_symbols: bool = False) -> List[Path]:
+             keep_symbols: bool = False, arrays: bool = False) -> List[Path]:
     """`entrynav fmu pack`: the FMUs into `out` (FMI 2.0, or 3.0 with `fmi=3`; with `ssp` also the
     SSP packages); with `scenario` the combined FMU specific to it, `filter` its default filter.
+    `arrays` (FMI 3.0 only) also declares the arrays est_x, est_sigma, est_covariance, which
+    OMSimulator 3.0 cannot load.
     `library` is the FMU shared library (target/release/libentrynav_fmu.so; default
     $ENTRYNAV_FMU_LIB). Returns the paths written, sorted."""
     out = _text("out", out, "a folder path")
@@ -576,5 +578,5 @@ def fmu_pack(out: Union[str, Path], scenario: Optional[Union[Scenario, str]] = N
             builtin = sc.name
         else:
             toml, folder = sc.to_toml(), sc.folder
-    options = _options(filter=filter, fmi=fmi, ssp=ssp, keep_symbols=keep_symbols)
+    options = _options(filter=filter, fmi=fmi, ssp=ssp, keep_symbols=keep_symbols, arrays=arrays)
     return sorted(Path(p) for p in _entrynav.fmu_pack(str(out), str(lib), builtin, toml, folder, options))

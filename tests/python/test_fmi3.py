@@ -1,4 +1,5 @@
-"""Our FMI 3.0 co-simulation FMUs (`entrynav fmu pack --fmi 3`) in tools we did not write:
+"""Our FMI 3.0 co-simulation FMUs with their arrays (`entrynav fmu pack --fmi 3 --arrays`) in tools
+we did not write (the default pack, scalars only, runs alone in every tool: test_fmu_alone.py):
 
 - fmpy validates each description (schema and rules) without a problem;
 - fmpy simulates each FMI 3.0 FMU with every scalar output bitwise equal to the same FMU packed
@@ -22,14 +23,15 @@ import test_fmusim
 from conftest import ENTRYNAV, ENTRYNAV_DEV, FMU_DIR, MODELS, run
 
 PARAMS = {"seed": 4, "dispersed": True}
+ARRAYS_DIR = FMU_DIR / "fmi3-arrays"
 
 
 @pytest.fixture(scope="session")
 def fmus3(fmus):
-    """Paths of the three FMI 3.0 .fmu files (packed next to the FMI 2.0 ones)."""
-    paths = {m: FMU_DIR / f"{m}-fmi3.fmu" for m in MODELS}
+    """Paths of the three FMI 3.0 .fmu files with arrays (in fmi3-arrays/ beside the FMI 2.0 ones)."""
+    paths = {m: ARRAYS_DIR / f"{m}-fmi3.fmu" for m in MODELS}
     if not all(p.exists() for p in paths.values()):
-        r = run([ENTRYNAV, "fmu", "pack", "--fmi", "3", "--out", FMU_DIR])
+        r = run([ENTRYNAV, "fmu", "pack", "--fmi", "3", "--arrays", "--out", ARRAYS_DIR])
         assert r.returncode == 0, r.stderr
     return paths
 
@@ -210,29 +212,12 @@ def test_omsimulator_runs_the_fmi3_truth_with_a_2_s_step_equal_to_the_library(fm
     t.assert_bitwise(res["series"]["truth"], names, ref, "FMI 3.0 truth in OMSimulator, 2 s")
 
 
-@pytest.mark.skipif(not _oms_available(), reason="OMSimulator is not installed (scripts/setup.sh installs the wheel)")
-@pytest.mark.xfail(
-    strict=True,
-    reason="OMSimulator 3.0.0.post114's description parser has no causality 'structuralParameter' "
-    "(KeyError in OMSimulator/variable.py), which FMI 3.0 arrays need; strict, so a fixed OMSimulator shows up",
-)
-def test_omsimulator_loads_the_fmi3_filter_fmus(fmus3, tmp_path):
-    import test_omsimulator as t
-
-    spec = {
-        "components": {"nav": {"fmu": str(fmus3["MarsEntryNav"]), "params": PARAMS}},
-        "step": 1.0,
-        "stop": 10.0,
-        "observe": {"nav": ["est_r", "nis"]},
-    }
-    t.oms(spec, tmp_path)
-
-
 def test_a_scenario_specific_fmi3_fmu_equals_its_fmi2_twin(tmp_path):
     """`fmu pack --fmi 3 --scenario msl-airdata`: arrays sized by the scenario's state dimension,
     every output bitwise equal to the FMI 2.0 pack of the same scenario."""
     for fmi in ("2", "3"):
-        r = run([ENTRYNAV, "fmu", "pack", "--fmi", fmi, "--scenario", "msl-airdata", "--out", tmp_path])
+        extra = ["--arrays"] if fmi == "3" else []
+        r = run([ENTRYNAV, "fmu", "pack", "--fmi", fmi, *extra, "--scenario", "msl-airdata", "--out", tmp_path])
         assert r.returncode == 0, r.stderr
     f2, f3 = tmp_path / "MarsEntryNav_msl_airdata.fmu", tmp_path / "MarsEntryNav_msl_airdata-fmi3.fmu"
     assert validate_fmu(str(f3)) == []

@@ -10,11 +10,13 @@ and no [Error]/[Warning]; fmuCheck, FMI 2.0 only: "0 Error(s)" in "Checker repor
 "0 warning(s) and error(s)" in "FMU reported"; OMSimulator: no error or warning line, no result
 row dropped). A tool that is missing skips with a message.
 
-OMSimulator 3.0.0.post114 cannot load an FMI 3.0 FMU with a structural parameter (its Python
-layer's `Causality` enum has no `structuralParameter`: KeyError) and reads FMI 3.0 arrays as
-scalars; MarsEntryNav, MarsEntryNavFilter and MarsEntryNavGuided declare `n_state_slots` and the
-`est_x`/`est_sigma`/`est_covariance` arrays in FMI 3.0, so those three are strict xfails that fail
-the day OMSimulator loads them (OpenModelica/OMSimulator#1310, #1418: FMI 3.0 arrays open)."""
+The FMI 3.0 FMUs are packed twice: as `fmu pack --fmi 3` writes them (the FMI 2.0 scalars and
+`time`) and with `--arrays` (MarsEntryNav, MarsEntryNavFilter and MarsEntryNavGuided also declare
+the structural parameter `n_state_slots` and the arrays `est_x`, `est_sigma`, `est_covariance`).
+OMSimulator 3.0.0.post114 cannot load an FMU with a structural parameter (its Python layer's
+`Causality` enum has no `structuralParameter`: KeyError) and reads arrays as scalars, which is why
+the default pack has none; the three array packs are strict xfails there, which fail the day
+OMSimulator loads them (OpenModelica/OMSimulator#1310, #1418: FMI 3.0 arrays open)."""
 
 import csv
 import json
@@ -34,8 +36,10 @@ TOOLS = Path(os.environ.get("ENTRYNAV_TOOLS", ROOT.parent / "shared" / "tools"))
 FMUSIM = TOOLS / "fmusim"
 FMUCHECK = TOOLS / "fmuCheck.linux64"
 MODELS = ["MarsEntryNav", "MarsEntryNavFilter", "MarsEntryTruth", "MarsEntryGuidance", "MarsEntryNavGuided"]
-# FMI 3.0 models with the structural parameter n_state_slots and arrays (a model with a filter).
-WITH_ARRAYS = {"MarsEntryNav", "MarsEntryNavFilter", "MarsEntryNavGuided"}
+# FMI 3.0 models with the structural parameter n_state_slots and arrays (a model with a filter)
+# when packed with --arrays, into this folder.
+WITH_ARRAYS = ["MarsEntryNav", "MarsEntryNavFilter", "MarsEntryNavGuided"]
+ARRAYS_DIR = FMU_DIR / "fmi3-arrays"
 STOP = 300
 TIMES = [float(k) for k in range(STOP + 1)]
 
@@ -57,18 +61,33 @@ def _runs(tool, *args):
 
 
 def fmu_file(model, fmi):
+    """fmi: 2, 3 (the default FMI 3.0 pack) or "3a" (FMI 3.0 with --arrays)."""
+    if fmi == "3a":
+        return ARRAYS_DIR / f"{model}-fmi3.fmu"
     return FMU_DIR / (f"{model}.fmu" if fmi == 2 else f"{model}-fmi3.fmu")
 
 
 @pytest.fixture(scope="module")
 def packed():
-    """Both versions of every generic FMU in $ENTRYNAV_FMU_DIR (packed by this build if missing)."""
-    for fmi in (2, 3):
+    """Both versions of every generic FMU in $ENTRYNAV_FMU_DIR, and the FMI 3.0 ones with arrays in
+    its fmi3-arrays/ (packed by this build if missing)."""
+    for fmi, out, extra in ((2, FMU_DIR, []), (3, FMU_DIR, []), ("3a", ARRAYS_DIR, ["--arrays"])):
         if not all(fmu_file(m, fmi).exists() for m in MODELS):
             assert ENTRYNAV.exists(), f"{ENTRYNAV} missing: run cargo build --release --workspace first"
-            r = run([ENTRYNAV, "fmu", "pack", "--out", FMU_DIR, "--fmi", fmi], timeout=300)
+            version = 2 if fmi == 2 else 3
+            r = run([ENTRYNAV, "fmu", "pack", "--out", out, "--fmi", version, *extra], timeout=300)
             assert r.returncode == 0, r.stdout + r.stderr
+    for m in MODELS:
+        declared = "n_state_slots" in _description(fmu_file(m, 3))
+        assert not declared, f"{fmu_file(m, 3)} declares arrays: a stale pack? remove {FMU_DIR}"
     return FMU_DIR
+
+
+def _description(fmu):
+    import zipfile
+
+    with zipfile.ZipFile(fmu) as z:
+        return z.read("modelDescription.xml").decode()
 
 
 def real_outputs(fmu):
@@ -94,7 +113,7 @@ def read_csv(path):
     return header, body
 
 
-CASES = [(m, fmi) for fmi in (2, 3) for m in MODELS]
+CASES = [(m, fmi) for fmi in (2, 3) for m in MODELS] + [(m, "3a") for m in WITH_ARRAYS]
 IDS = [f"{m}-fmi{fmi}" for m, fmi in CASES]
 
 
@@ -157,7 +176,7 @@ def test_fmucheck_fmi2(packed, model, tmp_path):
 
 
 def _oms_case(model, fmi):
-    if fmi == 3 and model in WITH_ARRAYS:
+    if fmi == "3a":
         return pytest.param(model, fmi, id=f"{model}-fmi{fmi}", marks=pytest.mark.xfail(
             strict=True, raises=AssertionError,
             reason="OMSimulator 3.0.0.post114 cannot load an FMI 3.0 FMU with a structural parameter "
@@ -177,7 +196,7 @@ def test_omsimulator(packed, model, fmi, tmp_path):
     r = subprocess.run([sys.executable, HERE / "oms_run.py", json.dumps(spec)], capture_output=True,
                        text=True, timeout=600)
     log = r.stdout + r.stderr
-    if fmi == 3 and model in WITH_ARRAYS:
+    if fmi == "3a":
         assert "KeyError: 'structuralParameter'" not in log, "OMSimulator refuses the structural parameter"
     assert r.returncode == 0, log[-3000:]
     bad = re.findall(r"^(?:error|warning):.*$", log, re.M)

@@ -297,6 +297,18 @@ def test_fmu_pack_from_python(tmp_path):
                                        "MarsEntryNavGuided-fmi3.fmu", "MarsEntryTruth-fmi3.fmu"]
     spec = entrynav.fmu_pack(tmp_path, scenario="msl-airdata", library=lib)
     assert [p.name for p in spec] == ["MarsEntryNav_msl_airdata.fmu"]
+    # FMI 3.0 declares the arrays only when asked (OMSimulator 3.0 cannot load them), never in FMI 2.0.
+    import zipfile
+
+    def declares_arrays(fmu):
+        with zipfile.ZipFile(fmu) as z:
+            return "n_state_slots" in z.read("modelDescription.xml").decode()
+
+    assert not declares_arrays(tmp_path / "MarsEntryNav-fmi3.fmu")
+    arrays = entrynav.fmu_pack(tmp_path / "arrays", fmi=3, arrays=True, library=lib)
+    assert declares_arrays(tmp_path / "arrays" / "MarsEntryNav-fmi3.fmu") and len(arrays) == 5
+    with pytest.raises(ValueError, match=r"arrays = true needs fmi = 3 \(fmi = 2\)"):
+        entrynav.fmu_pack(tmp_path / "fmi2", arrays=True, library=lib)
 
 
 def test_the_html_report_from_python(tmp_path):

@@ -36,11 +36,16 @@ pub(super) struct PackArgs {
     #[arg(long, conflicts_with = "scenario")]
     ssp: bool,
     /// FMI version of the packed FMUs: 2 (FMI 2.0, `<id>.fmu`) or 3 (FMI 3.0, `<id>-fmi3.fmu`:
-    /// the same variables and value references, plus `time`, the structural parameter
-    /// `n_state_slots` and the arrays `est_x`, `est_sigma`, `est_covariance`). The library is
-    /// the same and exports both interfaces.
+    /// the same variables and value references, plus `time`; with `--arrays` also the arrays).
+    /// The library is the same and exports both interfaces.
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
     fmi: u8,
+    /// FMI 3.0 only: also declare the arrays `est_x`, `est_sigma` and `est_covariance`, sized by
+    /// the structural parameter `n_state_slots`. Off by default because OMSimulator 3.0 cannot
+    /// load an FMU with a structural parameter and reads arrays as scalars
+    /// (OpenModelica/OMSimulator#1310, #1418); fmpy and fmusim read them.
+    #[arg(long)]
+    arrays: bool,
     /// Ship the library with its symbols and debug information (by default it is stripped with
     /// binutils' `strip --strip-all`).
     #[arg(long)]
@@ -53,6 +58,7 @@ pub(super) fn pack(a: &PackArgs) -> Result<()> {
         filter: a.filter.clone(),
         ssp: a.ssp,
         fmi: a.fmi,
+        arrays: a.arrays,
         keep_symbols: a.keep_symbols,
     };
     options.validate()?;

@@ -3,6 +3,7 @@
 
 use super::algorithm::Guidance;
 use super::apollo::{ApolloConfig, ApolloGuidance};
+use super::deploy::DeployBox;
 use super::error::GuidanceError;
 use super::fnpeg::{Fnpeg, FnpegConfig};
 use super::lateral::{Lateral, LateralConfig};
@@ -70,8 +71,14 @@ pub struct GuidanceConfig {
     /// entry heading's great circle).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub target: Option<TargetConfig>,
-    /// Deployment trigger, `{ speed_mps = … }` or `{ dynamic_pressure_pa = … }`.
+    /// Deployment trigger, `{ speed_mps = … }`, `{ dynamic_pressure_pa = … }` or the Mars 2020
+    /// range trigger `{ range = { nominal_speed_mps = …, backstop_speed_mps = … } }`
+    /// (`guidance::deploy`).
     pub trigger: Trigger,
+    /// The box every deployment must meet (speed, dynamic pressure, altitude on the truth at
+    /// deployment; the range trigger's speed and pressure window).
+    #[serde(default)]
+    pub deploy_box: DeployBox,
     /// Smallest commanded bank magnitude \[deg\].
     #[serde(default)]
     pub bank_min_deg: f64,

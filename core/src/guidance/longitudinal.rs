@@ -15,6 +15,7 @@
 //! with g = μ/r² and D = ½ κ ρ(r − R) v² C_D S/m, κ the guidance's density scale (1: the onboard
 //! model itself; the predictor–corrector estimates it from the sensed drag).
 
+use super::deploy::RangeTrigger;
 use crate::atmosphere::Atmosphere;
 use crate::dynamics::EntryModel;
 use crate::dynamics::rk4_step_generic;
@@ -44,14 +45,21 @@ pub enum Trigger {
     SpeedMps(f64),
     /// Dynamic pressure ½ρv² falls to this value \[Pa\] after having exceeded it.
     DynamicPressurePa(f64),
+    /// The Mars 2020 range trigger ([`RangeTrigger`]): deploy where the range-to-go reaches
+    /// zero inside the deployment box, with a speed backstop. Onboard predictions end at its
+    /// nominal speed.
+    Range(RangeTrigger),
 }
 
 impl Trigger {
-    /// The trigger function c: positive before deployment, zero at deployment.
+    /// The trigger function c of onboard predictions: positive before deployment, zero at
+    /// deployment (for the range trigger: at its nominal speed; the deployment itself is
+    /// decided by [`RangeTrigger::function`]).
     pub fn function<T: Real>(&self, density: T, v: T) -> T {
         match *self {
             Trigger::SpeedMps(vf) => v - vf,
             Trigger::DynamicPressurePa(qf) => density * v * v * 0.5 - qf,
+            Trigger::Range(rt) => v - rt.nominal_speed_mps,
         }
     }
 }

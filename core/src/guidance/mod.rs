@@ -20,12 +20,14 @@
 pub mod algorithm;
 pub mod apollo;
 pub mod config;
+pub mod deploy;
 pub mod error;
 pub mod fnpeg;
 pub mod lateral;
 pub mod limits;
 pub mod longitudinal;
 pub mod nav_state;
+pub mod onboard_trigger;
 pub mod reference;
 pub mod safeguard;
 pub mod target;
@@ -35,8 +37,10 @@ pub use config::{
     BuiltGuidance, GuidanceAlgorithm, GuidanceAtmosphere, GuidanceConfig, TargetConfig,
     build_guidance,
 };
+pub use deploy::{BoxViolations, DeployBox, OnboardDeploy, RangeTrigger, along_track_range_to_go};
 pub use error::GuidanceError;
 pub use limits::{BankActuator, BankLimits};
 pub use longitudinal::Trigger;
 pub use nav_state::NavState;
+pub use onboard_trigger::onboard_trigger;
 pub use target::{Target, bearing, central_angle, destination, range_crossrange};

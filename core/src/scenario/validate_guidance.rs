@@ -75,7 +75,47 @@ fn check_trigger(g: &GuidanceConfig, c: &mut Checker) -> R {
             let range = Range::gt(0.0).le(1e6).unit("Pa");
             c.range("guidance.trigger.dynamic_pressure_pa", q, range)
         }
-    }
+        Trigger::Range(rt) => {
+            let range = Range::gt(0.0).lt(MAX_SPEED_MPS).unit("m/s");
+            c.range(
+                "guidance.trigger.range.nominal_speed_mps",
+                rt.nominal_speed_mps,
+                range,
+            )?;
+            let backstop = Range::gt(0.0)
+                .le(named(
+                    "guidance.trigger.range.nominal_speed_mps",
+                    rt.nominal_speed_mps,
+                ))
+                .unit("m/s");
+            c.range(
+                "guidance.trigger.range.backstop_speed_mps",
+                rt.backstop_speed_mps,
+                backstop,
+            )
+        }
+    }?;
+    check_box(g, c)
+}
+
+fn check_box(g: &GuidanceConfig, c: &mut Checker) -> R {
+    let b = &g.deploy_box;
+    let vmin = Range::ge(0.0).lt(MAX_SPEED_MPS).unit("m/s");
+    c.range("guidance.deploy_box.speed_min_mps", b.speed_min_mps, vmin)?;
+    let vmax = Range::gt(named("guidance.deploy_box.speed_min_mps", b.speed_min_mps))
+        .lt(MAX_SPEED_MPS)
+        .unit("m/s");
+    c.range("guidance.deploy_box.speed_max_mps", b.speed_max_mps, vmax)?;
+    let qmin = Range::ge(0.0).lt(1e6).unit("Pa");
+    let qmin_v = b.dynamic_pressure_min_pa;
+    c.range("guidance.deploy_box.dynamic_pressure_min_pa", qmin_v, qmin)?;
+    let qmax = Range::gt(named("guidance.deploy_box.dynamic_pressure_min_pa", qmin_v))
+        .le(1e6)
+        .unit("Pa");
+    let qmax_v = b.dynamic_pressure_max_pa;
+    c.range("guidance.deploy_box.dynamic_pressure_max_pa", qmax_v, qmax)?;
+    let h = Range::ge(-1e4).le(1e5).unit("m");
+    c.range("guidance.deploy_box.altitude_min_m", b.altitude_min_m, h)
 }
 
 fn check_target(t: &TargetConfig, c: &mut Checker) -> R {

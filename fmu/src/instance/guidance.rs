@@ -18,7 +18,7 @@
 //!
 //! **Deployment** is judged on the navigation estimate (the vehicle has nothing else): the
 //! trigger function with the estimated speed and the guidance model's density at the estimated
-//! altitude; once it has been positive and reaches 0, `deployed` latches, cycles stop and the
+//! altitude (the range trigger: `RangeTrigger::on_estimate`); once it has been positive and reaches 0, `deployed` latches, cycles stop and the
 //! actuator settles on the last command. (The in-process loop judges deployment on the truth,
 //! which only it holds.)
 //!
@@ -30,7 +30,8 @@ use entrynav::dynamics::EntryModel;
 use entrynav::estimation::Onboard;
 use entrynav::guidance::longitudinal::LongModel;
 use entrynav::guidance::{
-    BankActuator, BuiltGuidance, GuidanceError, NavState, Trigger, range_crossrange,
+    BankActuator, BuiltGuidance, DeployBox, GuidanceError, NavState, OnboardDeploy, Trigger,
+    onboard_trigger, range_crossrange,
 };
 use entrynav::scenario::Scenario;
 use entrynav::sim::guided;
@@ -112,6 +113,7 @@ pub struct GuidanceEngine {
     model: EntryModel<AtmosphereModel>,
     onboard: Arc<Onboard>,
     trigger: Trigger,
+    deploy: (DeployBox, OnboardDeploy),
     dt: f64,
     every: usize,
     max_steps: usize,
@@ -172,12 +174,19 @@ impl GuidanceEngine {
         // Checked against the run bound by `limits::check_scenario` before this is called.
         let max_steps = (timing.duration_s / dt).round() as usize;
         let bank0 = cfg.reference_bank_deg.to_radians();
+        let onboard_deploy = OnboardDeploy {
+            target: built.target,
+            radius: model.planet.radius,
+            mu: model.planet.mu,
+            cd_s_over_m: model.vehicle.cd_s_over_m,
+        };
         Ok(GuidanceEngine {
             actuator: BankActuator::new(built.limits, bank0),
             built,
             model,
             onboard: Arc::clone(&scenario.onboard),
             trigger: cfg.trigger,
+            deploy: (cfg.deploy_box, onboard_deploy),
             dt,
             every,
             max_steps,
@@ -309,9 +318,8 @@ impl GuidanceEngine {
             density_scale: 1.0,
             trigger: self.trigger,
         };
-        let c = self
-            .trigger
-            .function(lm.density(nav.spherical[0]), nav.speed());
+        let ((window, onboard), rho) = (&self.deploy, lm.density(nav.spherical[0]));
+        let c = onboard_trigger(&self.trigger, window, &nav, nav.t, rho, onboard);
         let (d, xr) = range_crossrange(&nav, &self.built.target);
         let radius = self.model.planet.radius;
         self.trigger_value = c;

@@ -5,9 +5,11 @@
 
 pub mod archive_error;
 pub mod library;
+pub mod options;
 pub mod pack;
 pub mod ssp;
 
 pub use library::{LIB_ENV, LIB_NAME, Search};
-pub use pack::{PackOptions, Packed, PackedFmu, pack_fmus};
+pub use options::PackOptions;
+pub use pack::{Packed, PackedFmu, pack_fmus};
 pub use ssp::SSP_FMI3_REFUSAL;

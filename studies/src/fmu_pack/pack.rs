@@ -5,8 +5,8 @@
 
 use crate::error::{StudyError, StudyResult};
 use crate::fmu_pack::archive_error::ZipOrStudy;
+use crate::fmu_pack::options::PackOptions;
 use crate::fmu_pack::ssp::write_ssps;
-use crate::options::check_count;
 use crate::output::atomic_file::AtomicFile;
 use crate::scenario::ScenarioInput;
 use entrynav::estimation::nav::FilterKind;
@@ -20,47 +20,6 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Arc;
-
-/// The options of the packer (the output folder and the library are arguments of their own).
-#[derive(Debug, Clone, serde::Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct PackOptions {
-    /// Default filter of the scenario-specific FMU (default: dcifaif if it fits the scenario,
-    /// else the first filter that does).
-    pub filter: Option<String>,
-    /// Also write SSP 1.0 packages of the generic FMUs (FMI 2.0 only).
-    pub ssp: bool,
-    /// FMI version of the packed FMUs: 2 (`<id>.fmu`) or 3 (`<id>-fmi3.fmu`).
-    pub fmi: u8,
-    /// Ship the library with its symbols and debug information (by default it is stripped with
-    /// binutils' `strip --strip-all`).
-    pub keep_symbols: bool,
-}
-
-impl Default for PackOptions {
-    fn default() -> Self {
-        PackOptions {
-            filter: None,
-            ssp: false,
-            fmi: 2,
-            keep_symbols: false,
-        }
-    }
-}
-
-impl PackOptions {
-    /// Refuse an FMI version other than 2 or 3, and SSP packages of FMI 3.0 FMUs.
-    pub fn validate(&self) -> StudyResult<()> {
-        check_count("fmi", self.fmi as usize, 2, 3)?;
-        if let Some(f) = &self.filter {
-            crate::options::filter("filter", f)?;
-        }
-        if self.ssp && self.fmi == 3 {
-            return Err(StudyError::Refused(super::ssp::SSP_FMI3_REFUSAL.into()));
-        }
-        Ok(())
-    }
-}
 
 /// One packed FMU.
 #[derive(Debug, Clone)]
@@ -218,7 +177,7 @@ fn write_fmu(
     spec: &ModelSpec,
     so: &[u8],
     resources: &Resources,
-    fmi: u8,
+    options: &PackOptions,
 ) -> StudyResult<PathBuf> {
     let id = spec.identifier();
     let binding = Binding {
@@ -230,10 +189,10 @@ fn write_fmu(
             .map(|s| (s.scenario_file.clone(), s.filter.name().to_string())),
     };
     let bound = patch(so, &binding).map_err(|e| StudyError::Refused(e.to_string()))?;
-    let (path, xml, platform) = match fmi {
+    let (path, xml, platform) = match options.fmi {
         3 => (
             out.join(format!("{id}-fmi3.fmu")),
-            description3_of(spec),
+            description3_of(spec, options.fmi3_arrays()),
             "x86_64-linux",
         ),
         _ => (
@@ -280,7 +239,7 @@ pub fn pack_fmus(
     };
     let mut packed = Packed::default();
     for (spec, resources) in &models {
-        let path = write_fmu(out, spec, &so, resources, options.fmi)?;
+        let path = write_fmu(out, spec, &so, resources, options)?;
         packed.fmus.push(read_back(&path, spec, options.fmi)?);
     }
     if options.ssp {

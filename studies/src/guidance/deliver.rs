@@ -18,7 +18,7 @@ use serde::Serialize;
 #[serde(default, deny_unknown_fields)]
 pub struct DeliverOptions {
     /// Comma-separated filters flown in the loop: ekf, ukf, ci, dcifaif, mmae, mmae-moe, ukf-cm,
-    /// ukf-ac, uskf-nn.
+    /// ukf-ac, uskf-nn; `none`: perfect navigation and the unguided bank only.
     pub filters: String,
     /// Monte Carlo runs (`None`: the scenario's `monte_carlo.runs`).
     pub runs: Option<usize>,
@@ -46,8 +46,15 @@ impl DeliverOptions {
             check_count("runs", runs, 1, MAX_RUNS)?;
         }
         check_threads(self.threads)?;
-        crate::options::filter_list("filters", &self.filters)?;
+        if !self.no_filters() {
+            crate::options::filter_list("filters", &self.filters)?;
+        }
         Ok(())
+    }
+
+    /// Whether `filters` is `none` (perfect navigation and the unguided bank only).
+    pub fn no_filters(&self) -> bool {
+        self.filters.trim() == "none"
     }
 }
 
@@ -118,7 +125,11 @@ pub fn run_deliver(
     progress: Progress<'_>,
 ) -> StudyResult<DeliveryStudy> {
     options.validate()?;
-    let filters = crate::filters::fitting_filters("filters", &options.filters, &scenario.onboard)?;
+    let filters = if options.no_filters() {
+        Vec::new()
+    } else {
+        crate::filters::fitting_filters("filters", &options.filters, &scenario.onboard)?
+    };
     let runs = options.runs.unwrap_or(scenario.config.monte_carlo.runs);
     let report = with_threads(options.threads, || {
         let progress = |done: usize| progress(Step::of("runs", "", done as u64, runs as u64));

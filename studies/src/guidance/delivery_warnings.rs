@@ -7,6 +7,9 @@
 //!   χ²(6N)/N (Bar-Shalom, Li & Kirubarajan 2001 §5.4).
 //! * **Navigation-limited**: the filter's RMS miss exceeds perfect navigation's by more than
 //!   [`NAV_LIMITED_RATIO`]; the line gives the navigation error at deployment beside both misses.
+//! * **Outside the box** (every row): deployed runs whose true altitude, speed or dynamic
+//!   pressure at deployment broke `guidance.deploy_box`, by limit — a deployment the parachute
+//!   cannot take is a failure by cause "outside the box", though its miss is in the statistics.
 
 use entrynav::estimation::chi_square::chi_square_quantile;
 use entrynav::sim::guided::delivery::{DeliveryReport, DeliveryRow};
@@ -24,7 +27,7 @@ pub fn delivery_warnings(report: &DeliveryReport) -> Vec<String> {
         .iter()
         .find(|r| r.name == "perfect-nav")
         .and_then(|r| r.rms_miss_m);
-    let mut out = Vec::new();
+    let mut out: Vec<String> = report.rows.iter().filter_map(outside_box).collect();
     for row in report
         .rows
         .iter()
@@ -34,6 +37,27 @@ pub fn delivery_warnings(report: &DeliveryReport) -> Vec<String> {
         out.extend(navigation_limited(row, perfect));
     }
     out
+}
+
+fn outside_box(row: &DeliveryRow) -> Option<String> {
+    let outside = row
+        .deployed
+        .checked_sub(row.inside_box)
+        .filter(|&n| n > 0)?;
+    let limits: Vec<String> = row
+        .outside_box_by_limit
+        .iter()
+        .map(|(limit, n)| format!("{n} {limit}"))
+        .collect();
+    Some(format!(
+        "{}: {outside} of {} deployed runs outside the deployment box ({}): failures by cause \
+         \"outside the box\"; {} of {} runs deployed inside it",
+        row.name,
+        row.deployed,
+        limits.join(", "),
+        row.inside_box,
+        row.deployed + row.failures
+    ))
 }
 
 fn inconsistent(row: &DeliveryRow) -> Option<String> {
@@ -121,6 +145,8 @@ mod tests {
             rms_nav_position_error_m: nav,
             mean_nees_kinematic: nees,
             failures_by_cause: BTreeMap::new(),
+            inside_box: 38,
+            outside_box_by_limit: BTreeMap::new(),
         }
     }
 
@@ -158,6 +184,26 @@ mod tests {
             w[1].starts_with("ekf's miss is navigation-limited: RMS miss 8.42 km against 5.26 km with perfect navigation (1.60×)"),
             "{}",
             w[1]
+        );
+    }
+
+    #[test]
+    fn deployments_outside_the_box_are_counted_by_limit() {
+        let mut pn = row("perfect-nav", 5258.6, None, None);
+        pn.inside_box = 35;
+        pn.failures = 2;
+        pn.outside_box_by_limit = BTreeMap::from([
+            ("altitude below the floor".to_string(), 3),
+            ("dynamic pressure above the box".to_string(), 2),
+        ]);
+        let w = delivery_warnings(&report(vec![pn, row("unguided", 55150.7, None, None)]));
+        assert_eq!(
+            w,
+            [
+                "perfect-nav: 3 of 38 deployed runs outside the deployment box (3 altitude below \
+              the floor, 2 dynamic pressure above the box): failures by cause \"outside the \
+              box\"; 35 of 40 runs deployed inside it"
+            ]
         );
     }
 }

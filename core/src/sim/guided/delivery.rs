@@ -105,6 +105,10 @@ pub struct DeliveryRow {
     pub mean_nees_kinematic: Option<f64>,
     /// The failed runs by cause (`GuidedRunError::cause`), in name order.
     pub failures_by_cause: std::collections::BTreeMap<String, usize>,
+    /// Runs that deployed inside the deployment box (`guidance.deploy_box`, judged on the truth).
+    pub inside_box: usize,
+    /// The deployed runs outside the box, by broken limit (a run may break two), in name order.
+    pub outside_box_by_limit: std::collections::BTreeMap<String, usize>,
 }
 
 /// A delivery study's results.
@@ -182,9 +186,10 @@ fn reference_run(
             guidance_period_s: cfg.period_s(),
             max_time_s: timing.duration_s,
             trigger: cfg.trigger,
+            deploy_box: cfg.deploy_box,
         },
     )?;
-    Ok(Delivery::from_flight(&flight))
+    Ok(Delivery::from_flight(&flight, &cfg.deploy_box))
 }
 
 /// Run a delivery study: `runs` runs from `seed`, perfect navigation, unguided and `filters`;
@@ -297,6 +302,12 @@ fn row_stats<'a>(
         }
     }
     let n = ok.len();
+    let mut outside_box_by_limit = std::collections::BTreeMap::new();
+    for d in &ok {
+        for limit in d.outside_box.names() {
+            *outside_box_by_limit.entry(limit.to_string()).or_insert(0) += 1;
+        }
+    }
     let mean =
         |f: &dyn Fn(&Delivery) -> f64| (n > 0).then(|| ok.iter().map(f).sum::<f64>() / n as f64);
     let md = mean(&|d| d.downrange_m);
@@ -351,6 +362,8 @@ fn row_stats<'a>(
         mean_nees_kinematic: (!nees.is_empty())
             .then(|| nees.iter().sum::<f64>() / nees.len() as f64),
         failures_by_cause,
+        inside_box: ok.iter().filter(|d| !d.outside_box.any()).count(),
+        outside_box_by_limit,
     }
 }
 

@@ -3,7 +3,9 @@
 //! between the two truth samples around its crossing.
 
 use super::guided_flight::GuidedFlight;
-use crate::guidance::{BankLimits, Target, Trigger, bearing, central_angle};
+use crate::guidance::{
+    BankLimits, BoxViolations, DeployBox, Target, Trigger, bearing, central_angle,
+};
 use crate::sim::engine::TruthSample;
 use serde::{Deserialize, Serialize};
 
@@ -37,6 +39,16 @@ pub struct Delivery {
     pub lon_deg: f64,
     /// Deployment altitude \[m\].
     pub altitude_m: f64,
+    /// Planet-relative speed at deployment \[m/s\] (0 in shards written before it was recorded).
+    #[serde(default)]
+    pub speed_mps: f64,
+    /// True dynamic pressure at deployment \[Pa\] (0 in shards written before it was recorded).
+    #[serde(default)]
+    pub dynamic_pressure_pa: f64,
+    /// The limits of the deployment box (`guidance.deploy_box`) the true conditions at
+    /// deployment broke (none: deployed inside the box).
+    #[serde(default)]
+    pub outside_box: BoxViolations,
     /// Surface distance from the deployment point to the target \[m\].
     pub miss_m: f64,
     /// Along-track part of the miss, positive when the vehicle overflew the target \[m\].
@@ -51,8 +63,8 @@ pub struct Delivery {
 
 impl Delivery {
     /// The delivery of a flight of [`super::guided_flight`] (perfect navigation or a constant
-    /// bank), with the largest bank rate over its samples.
-    pub fn from_flight(f: &GuidedFlight) -> Delivery {
+    /// bank), with the largest bank rate over its samples, judged against `deploy_box`.
+    pub fn from_flight(f: &GuidedFlight, deploy_box: &DeployBox) -> Delivery {
         let max_rate = f
             .samples
             .windows(2)
@@ -63,6 +75,13 @@ impl Delivery {
             lat_deg: f.deploy_lat_lon[0].to_degrees(),
             lon_deg: f.deploy_lat_lon[1].to_degrees(),
             altitude_m: f.deploy_altitude_m,
+            speed_mps: f.deploy_speed_mps,
+            dynamic_pressure_pa: f.deploy_dynamic_pressure_pa,
+            outside_box: deploy_box.check(
+                f.deploy_altitude_m,
+                f.deploy_speed_mps,
+                f.deploy_dynamic_pressure_pa,
+            ),
             miss_m: f.miss_m,
             downrange_m: f.downrange_error_m,
             crossrange_m: f.crossrange_error_m,
@@ -84,25 +103,29 @@ pub(super) fn trigger_on(trigger: &Trigger, s: &TruthSample) -> f64 {
 }
 
 /// The deployment point between the truth samples `prev` (trigger `c_prev > 0`) and `s`
-/// (`c ≤ 0`), and its miss to `target` on a sphere of `radius`.
+/// (`c ≤ 0`), and its miss to `target` on a sphere of `radius`, judged against `deploy_box`.
 pub(super) fn deployment(
-    prev: &TruthSample,
-    s: &TruthSample,
-    c_prev: f64,
-    c: f64,
+    (prev, s): (&TruthSample, &TruthSample),
+    (c_prev, c): (f64, f64),
     target: &Target,
     radius: f64,
+    deploy_box: &DeployBox,
 ) -> Delivery {
     let w = c_prev / (c_prev - c);
     let lerp = |i: usize| prev.spherical[i] + w * (s.spherical[i] - prev.spherical[i]);
     let (lat, lon, psi) = (lerp(2), lerp(1), lerp(5));
+    let altitude = lerp(0) - radius;
+    let q = prev.dynamic_pressure + w * (s.dynamic_pressure - prev.dynamic_pressure);
     let dist = central_angle(lat, lon, target.lat, target.lon);
     let b = bearing(lat, lon, target.lat, target.lon);
     Delivery {
         t_deploy_s: prev.t + w * (s.t - prev.t),
         lat_deg: lat.to_degrees(),
         lon_deg: lon.to_degrees(),
-        altitude_m: lerp(0) - radius,
+        altitude_m: altitude,
+        speed_mps: lerp(3),
+        dynamic_pressure_pa: q,
+        outside_box: deploy_box.check(altitude, lerp(3), q),
         miss_m: radius * dist,
         downrange_m: -radius * dist * (b - psi).cos(),
         crossrange_m: radius * (dist.sin() * (b - psi).sin()).asin(),

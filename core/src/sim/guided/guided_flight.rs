@@ -19,7 +19,8 @@ use crate::dynamics::EntryModel;
 use crate::dynamics::aero::drag_lift;
 use crate::frames::inertial_to_spherical;
 use crate::guidance::{
-    BankActuator, Guidance, GuidanceError, NavState, Target, Trigger, bearing, central_angle,
+    BankActuator, DeployBox, Guidance, GuidanceError, NavState, Target, Trigger,
+    along_track_range_to_go, bearing, central_angle,
 };
 use crate::sim::engine::{SimError, TruthPropagator};
 use nalgebra::SVector;
@@ -66,8 +67,10 @@ pub struct GuidedFlightSettings {
     pub guidance_period_s: f64,
     /// Longest flight \[s\].
     pub max_time_s: f64,
-    /// Deployment trigger, on the truth.
+    /// Deployment trigger, on the truth (the truth is the onboard view here).
     pub trigger: Trigger,
+    /// The deployment box: the range trigger's window.
+    pub deploy_box: DeployBox,
 }
 
 /// One truth step of a guided flight.
@@ -81,6 +84,8 @@ pub struct GuidedSample {
     pub command: f64,
     /// Planet-relative spherical truth state `[r, lon, lat, v, fpa, heading]`.
     pub spherical: [f64; 6],
+    /// True dynamic pressure \[Pa\].
+    pub dynamic_pressure: f64,
 }
 
 /// The outcome of a guided flight.
@@ -94,6 +99,10 @@ pub struct GuidedFlight {
     pub deploy_lat_lon: [f64; 2],
     /// Deployment altitude \[m\].
     pub deploy_altitude_m: f64,
+    /// Planet-relative speed at deployment \[m/s\].
+    pub deploy_speed_mps: f64,
+    /// Dynamic pressure at deployment \[Pa\].
+    pub deploy_dynamic_pressure_pa: f64,
     /// Surface distance from the deployment point to the target \[m\].
     pub miss_m: f64,
     /// Along-track part of the miss, positive when the vehicle overflew the target \[m\].
@@ -157,13 +166,18 @@ pub fn fly_perfect_navigation<A: Atmosphere>(
         bank: actuator.bank,
         command: actuator.bank,
         spherical: s0,
+        dynamic_pressure: 0.5 * kin0.density * kin0.airspeed * kin0.airspeed,
     }];
+    let radius = truth.planet.radius;
+    let trigger_fn = |s: &[f64; 6], density: f64, airspeed: f64| {
+        truth_trigger(settings, target, radius, s, density, airspeed)
+    };
     let mut nav = NavState {
         t: 0.0,
         spherical: s0,
         drag_mps2: d0,
     };
-    let mut c_prev = settings.trigger.function(kin0.density, kin0.airspeed);
+    let mut c_prev = trigger_fn(&s0, kin0.density, kin0.airspeed);
     let mut armed = c_prev > 0.0;
     let mut command = actuator.bank;
     for k in 0.. {
@@ -183,17 +197,16 @@ pub fn fly_perfect_navigation<A: Atmosphere>(
             &step.kin.pos,
             &step.kin.vel,
         );
+        let (rho, va) = (step.kin.density, step.kin.airspeed);
         samples.push(GuidedSample {
             t: step.t,
             bank,
             command,
             spherical: s,
+            dynamic_pressure: 0.5 * rho * va * va,
         });
-        let c = settings
-            .trigger
-            .function(step.kin.density, step.kin.airspeed);
+        let c = trigger_fn(&s, rho, va);
         if armed && c <= 0.0 {
-            let radius = truth.planet.radius;
             return Ok(deployed(samples, (c_prev, c), step.t, dt, target, radius));
         }
         armed |= c > 0.0;
@@ -215,6 +228,32 @@ pub fn fly_perfect_navigation<A: Atmosphere>(
     })
 }
 
+/// The trigger function of a flight whose onboard view is the truth: the scenario trigger on the
+/// true density and airspeed, or the range trigger on the true position, speed and dynamic
+/// pressure.
+fn truth_trigger(
+    settings: &GuidedFlightSettings,
+    target: &Target,
+    radius: f64,
+    s: &[f64; 6],
+    density: f64,
+    airspeed: f64,
+) -> f64 {
+    match settings.trigger {
+        Trigger::Range(rt) => {
+            let nav = NavState {
+                t: 0.0,
+                spherical: *s,
+                drag_mps2: 0.0,
+            };
+            let range = along_track_range_to_go(&nav, target, radius);
+            let q = 0.5 * density * airspeed * airspeed;
+            rt.function(&settings.deploy_box, range, airspeed, q)
+        }
+        t => t.function(density, airspeed),
+    }
+}
+
 /// The flight that deployed on its last truth step (from `t − dt` to `t`), where the trigger
 /// function went from `c_prev > 0` to `c ≤ 0`: the deployment point interpolated linearly in the
 /// trigger function between the last two samples, and its miss to `target` on a sphere of
@@ -227,8 +266,8 @@ fn deployed(
     target: &Target,
     radius: f64,
 ) -> GuidedFlight {
-    let prev = samples[samples.len() - 2].spherical;
-    let s = samples[samples.len() - 1].spherical;
+    let (p0, p1) = (samples[samples.len() - 2], samples[samples.len() - 1]);
+    let (prev, s) = (p0.spherical, p1.spherical);
     let w = c_prev / (c_prev - c);
     let lerp = |i: usize| prev[i] + w * (s[i] - prev[i]);
     let (lat, lon, psi) = (lerp(2), lerp(1), lerp(5));
@@ -238,6 +277,9 @@ fn deployed(
         t_deploy: t - dt + w * dt,
         deploy_lat_lon: [lat, lon],
         deploy_altitude_m: lerp(0) - radius,
+        deploy_speed_mps: lerp(3),
+        deploy_dynamic_pressure_pa: p0.dynamic_pressure
+            + w * (p1.dynamic_pressure - p0.dynamic_pressure),
         miss_m: radius * dist,
         downrange_error_m: -radius * dist * (b - psi).cos(),
         crossrange_error_m: radius * (dist.sin() * (b - psi).sin()).asin(),

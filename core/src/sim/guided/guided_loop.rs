@@ -23,7 +23,7 @@ use super::guided_run_error::GuidedRunError;
 use super::loop_inputs::{accel_slots, guidance_every, triad};
 use crate::estimation::Onboard;
 use crate::estimation::nav::FilterKind;
-use crate::guidance::{BankActuator, BuiltGuidance, NavState, Trigger};
+use crate::guidance::{BankActuator, BuiltGuidance, DeployBox, NavState, OnboardDeploy, Trigger};
 use crate::scenario::Scenario;
 use crate::sim::engine::{EntryCoSim, NavStatus, TruthSample};
 use std::sync::Arc;
@@ -59,6 +59,7 @@ pub struct GuidedLoop {
     cosim: EntryCoSim,
     built: BuiltGuidance,
     trigger: Trigger,
+    deploy_box: DeployBox,
     slots: [usize; 3],
     onboard: Arc<Onboard>,
     dt: f64,
@@ -136,6 +137,7 @@ impl GuidedLoop {
             command: actuator.bank,
             actuator,
             trigger: cfg.trigger,
+            deploy_box: cfg.deploy_box,
             built,
             slots,
             onboard,
@@ -234,15 +236,14 @@ impl GuidedLoop {
             self.drag = self.onboard.measurement.imu_frame.drag_from(&a);
         }
         let s = self.cosim.truth().outputs().sample.clone();
-        let c = trigger_on(&self.trigger, &s);
+        let c = self.trigger_value(&s);
         if report.truth_steps > 0 && self.armed && c <= 0.0 {
             let mut d = deployment(
-                &self.prev,
-                &s,
-                self.c_prev,
-                c,
+                (&self.prev, &s),
+                (self.c_prev, c),
                 &self.built.target,
                 self.radius,
+                &self.deploy_box,
             );
             d.max_bank_rate_deg_s = self.max_rate.to_degrees();
             let j = self.cosim.judgement();
@@ -266,6 +267,33 @@ impl GuidedLoop {
             self.prev = s;
         }
         Ok(step)
+    }
+
+    /// The trigger function after a step: the speed or dynamic-pressure trigger on the truth
+    /// sample `s`, or the range trigger on the onboard view (the filter's latest estimate
+    /// carried to the sample's time, the sensed drag; [`crate::guidance::RangeTrigger::on_estimate`]).
+    fn trigger_value(&self, s: &TruthSample) -> f64 {
+        let Trigger::Range(rt) = self.trigger else {
+            return trigger_on(&self.trigger, s);
+        };
+        let est = self.cosim.nav().estimate();
+        let model = &self.onboard.model;
+        let onboard = OnboardDeploy {
+            target: self.built.target,
+            radius: model.planet.radius,
+            mu: model.planet.mu,
+            cd_s_over_m: model.vehicle.cd_s_over_m,
+        };
+        NavState::from_estimate(
+            &est.x,
+            model.kind.is_cartesian(),
+            est.t,
+            model.omega(),
+            self.drag,
+        )
+        .map_or(self.c_prev, |nav| {
+            rt.on_estimate(&self.deploy_box, &nav, s.t, &onboard)
+        })
     }
 
     /// How the run ended (`None` while it flies): the delivery at deployment, or why it stopped.

@@ -4,7 +4,7 @@
 Usage: scripts/consistency_table.py [RUNS] [OUT_DIR]   (defaults: 200 runs, docs/results/consistency)
 The entrynav binary is $ENTRYNAV or target/release/entrynav. Each scenario's trade JSON is written
 to OUT_DIR/<scenario>.json; the table (docs/results.md, "Consistency of every built-in") goes to
-stdout. A filter "fits" a scenario when a one-run trade accepts it (e.g. fusion needs several
+stdout. $SCENARIOS (comma-separated names) limits it to those built-ins. A filter "fits" a scenario when a one-run trade accepts it (e.g. fusion needs several
 beacons, the banks need a density-bias grid, ukf-ac/uskf-nn need density measurements).
 """
 import json
@@ -33,6 +33,9 @@ def pct(v):
 def main():
     os.makedirs(OUT, exist_ok=True)
     scenarios = [line.split()[0] for line in run("scenarios", check=True).stdout.splitlines() if line.strip()]
+    only = os.environ.get("SCENARIOS")
+    if only:
+        scenarios = [sc for sc in scenarios if sc in only.split(",")]
     rows = []
     for sc in scenarios:
         fits = [f for f in FILTERS

@@ -1,5 +1,5 @@
 //! Issue 49: the recommended filter of `msl-airdata` (USKF-NN) with the load-scaled process noise
-//! and the re-sized consider parameter (scenario file, `[filter.process_noise]` and
+//! and the re-sized consider parameter (scenario file, `[filter.tuned.uskf-nn]` and
 //! `filter.density.consider_*`). With Table 2's constant Q and Table 4's consider settings it was
 //! conservative everywhere: ANEES/dof 0.46, no epoch in the NEES band, position RMSE 48 / 62 m
 //! (200 runs, seeds 1 and 2). This holds what the change bought, on a seed it was not chosen on,

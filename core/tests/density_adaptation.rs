@@ -34,7 +34,8 @@ fn scenario_with(name: &str, edit: impl Fn(&mut ScenarioConfig)) -> Arc<Scenario
     Arc::new(Scenario::build(cfg, &entrynav::files::no_files).unwrap())
 }
 
-/// Table 2's Q and Table 4's consider parameter: `msl-airdata-paper`'s filter noise.
+/// Table 2's Q and Table 4's consider parameter: `msl-airdata-paper`'s filter noise (USKF-NN's own
+/// load-scaled noise, `[filter.tuned.uskf-nn]`, dropped).
 fn with_paper_noise(c: &mut ScenarioConfig) {
     let paper = ScenarioConfig::builtin("msl-airdata-paper").unwrap().filter;
     let (d, p) = (c.filter.density.as_mut().unwrap(), paper.density.unwrap());
@@ -42,6 +43,7 @@ fn with_paper_noise(c: &mut ScenarioConfig) {
         (p.consider_tau_s, p.consider_pss, p.consider_p0);
     c.filter.q_diag = paper.q_diag;
     c.filter.process_noise = paper.process_noise;
+    c.filter.tuned = paper.tuned;
 }
 
 fn builtin_set(name: &str) -> DensityNetworkSet {

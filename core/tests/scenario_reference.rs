@@ -12,8 +12,10 @@ fn leaves(v: &Value, path: &str, out: &mut BTreeSet<String>) {
     match v {
         Value::Object(m) => {
             for (k, x) in m {
+                // A map's entries (`filter.tuned.<filter name>`) share one row.
+                let k = if path == "filter.tuned" { "<name>" } else { k };
                 let p = if path.is_empty() {
-                    k.clone()
+                    k.to_string()
                 } else {
                     format!("{path}.{k}")
                 };

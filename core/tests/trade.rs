@@ -343,28 +343,13 @@ fn shards_merge_to_exactly_the_single_process_result() {
 /// profile at the true altitude with the truth, so the adapted network (USKF-NN) must beat the
 /// corrected exponential (UKF-AC) by a wide margin, while at the filters' own estimates both
 /// match the measured dynamic pressure closely (the reading that cannot separate them).
-/// With the paper's filter noise (Table 2's Q, Table 4's consider parameter, as
-/// `msl-airdata-paper`): msl-airdata's issue-49 load-scaled Q takes UKF-AC's profile error on these
-/// 12 runs from above 20 % to 10.3 % (docs/process-noise.md), which is no longer Table 6's setting.
 #[test]
 fn density_rmspe_reads_the_onboard_profile_at_the_true_altitude() {
-    let mut cfg = ScenarioConfig::builtin("msl-airdata").unwrap();
-    let paper = ScenarioConfig::builtin("msl-airdata-paper").unwrap().filter;
-    let (d, p) = (cfg.filter.density.as_mut().unwrap(), paper.density.unwrap());
-    (d.consider_tau_s, d.consider_pss, d.consider_p0) =
-        (p.consider_tau_s, p.consider_pss, p.consider_p0);
-    cfg.filter.q_diag = paper.q_diag;
-    cfg.filter.process_noise = paper.process_noise;
-    let s = Scenario::build(cfg, &entrynav::files::no_files).unwrap();
+    let s = scenario("msl-airdata");
     let r = trade(&s, &[FilterKind::UkfAc, FilterKind::UskfNn], 12, 1, 64, 2);
     let (ac, nn) = (&r.filters[0], &r.filters[1]);
     let profile = |f: &entrynav::sim::FilterReport| f.density_rmspe_pct.unwrap();
     let at_est = |f: &entrynav::sim::FilterReport| f.density_at_estimate_rmspe_pct.unwrap();
-    eprintln!(
-        "profile RMSPE: UKF-AC {} %, USKF-NN {} %",
-        profile(ac),
-        profile(nn)
-    );
     assert!(profile(ac) > 20.0, "UKF-AC profile error {}", profile(ac));
     assert!(profile(nn) < 3.0, "USKF-NN profile error {}", profile(nn));
     assert!(profile(ac) > 10.0 * profile(nn));

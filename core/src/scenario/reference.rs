@@ -192,8 +192,16 @@ pub fn field_reference() -> Vec<FieldDoc> {
         if let Ok(checks) = ScenarioConfig::builtin(name).and_then(|c| c.range_checks()) {
             for c in checks {
                 let mut key = general(&c.field);
-                if key.starts_with("filter.tuned.") {
-                    continue;
+                // A filter's own tuning is checked as the shared field it replaces.
+                if let Some((_, field)) = key
+                    .strip_prefix("filter.tuned.")
+                    .and_then(|rest| rest.split_once('.'))
+                {
+                    let range = c.range.to_string();
+                    ranges
+                        .entry(format!("filter.tuned.<name>.{field}"))
+                        .or_insert_with(|| range.clone());
+                    key = format!("filter.{field}");
                 }
                 if !out.iter().any(|f| f.path == key) {
                     key = key.replace("[]", "");

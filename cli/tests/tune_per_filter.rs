@@ -44,26 +44,7 @@ fn tune(input: &Path, filters: &str, out: &Path) -> String {
 
 /// The per-filter JSON blocks of a 100-run trade on seed 7 (not the tuning's 1 or validation's).
 fn trade(scenario: &Path, filters: &str) -> Vec<Value> {
-    let json = scenario.with_extension("json");
-    let (code, _, err) = entrynav(&[
-        "trade",
-        "--scenario",
-        scenario.to_str().unwrap(),
-        "--filters",
-        filters,
-        "--runs",
-        "100",
-        "--seed",
-        "7",
-        "--quiet",
-        "--threads",
-        "2",
-        "--json",
-        json.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 0, "{err}");
-    let v: Value = serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
-    v["filters"].as_array().unwrap().clone()
+    common::trade_filters(scenario, filters, 100, 7, &scenario.with_extension("json"))
 }
 
 fn num(f: &Value, path: &[&str]) -> f64 {

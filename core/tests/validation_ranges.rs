@@ -82,6 +82,14 @@ const GUIDED_BOX: &[&str] = &[
     "guidance.deploy_box.altitude_min_m=5000.0",
 ];
 
+/// `[guidance]` with the Mars 2020 range trigger.
+const GUIDED_RANGE_TRIGGER: &[&str] = &[
+    "guidance.algorithm=\"apollo\"",
+    "guidance.reference_bank_deg=60.0",
+    "guidance.trigger.range.nominal_speed_mps=450.0",
+    "guidance.trigger.range.backstop_speed_mps=420.0",
+];
+
 /// `[guidance]` with a dynamic-pressure trigger.
 const GUIDED_Q: &[&str] = &[
     "guidance.algorithm=\"fnpeg\"",
@@ -300,6 +308,8 @@ const CASES: &[Case] = &[
     case("guidance.fnpeg.iterations", AIR, GUIDED, "must be >= 1 and <= 50"),
     case("guidance.fnpeg.density_gain", AIR, GUIDED, "must be >= 0 and <= 1 (0 = trust the onboard atmosphere)"),
     case("guidance.fnpeg.hold_speed_mps", AIR, GUIDED, "must be >= 0 and < 30000 m/s"),
+    case("guidance.trigger.range.nominal_speed_mps", AIR, GUIDED_RANGE_TRIGGER, "must be > 0 and < 30000 m/s"),
+    case("guidance.trigger.range.backstop_speed_mps", AIR, GUIDED_RANGE_TRIGGER, "must be > 0 and <= guidance.trigger.range.nominal_speed_mps = 450 m/s"),
     case("guidance.deploy_box.speed_min_mps", AIR, GUIDED_BOX, "must be >= 0 and < 30000 m/s"),
     case("guidance.deploy_box.speed_max_mps", AIR, GUIDED_BOX, "must be > guidance.deploy_box.speed_min_mps = 380 and < 30000 m/s"),
     case("guidance.deploy_box.dynamic_pressure_min_pa", AIR, GUIDED_BOX, "must be >= 0 and < 1000000 Pa"),

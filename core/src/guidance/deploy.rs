@@ -2,8 +2,10 @@
 //!
 //! **The box** (`[guidance.deploy_box]`): the conditions a supersonic parachute can be deployed in
 //! — a speed (Mach) window, a dynamic-pressure window and an altitude floor. Every trigger is
-//! judged against it at deployment (on the truth: the parachute meets the real air), and a
-//! deployment outside it is a failure by cause "outside the box". The defaults are our choice: a
+//! judged against it at deployment (on the truth: the parachute meets the real air); a
+//! deployment outside it still counts as deployed (its miss stays in the statistics) and is
+//! reported apart, by broken limit (`guidance deliver`'s `in box` column, `outside_box_by_limit`
+//! and a warning). The defaults are our choice: a
 //! 5 km altitude floor (the acceptance), 250–850 Pa and 380–540 m/s (our reading of the
 //! disk-gap-band parachute envelope MSL and Mars 2020 flew, about Mach 1.1–2.3 and 250–850 Pa,
 //! with the speed of sound near 230–240 m/s at 5–12 km on Mars; we have not checked these numbers

@@ -9,7 +9,7 @@
 //!   [`NAV_LIMITED_RATIO`]; the line gives the navigation error at deployment beside both misses.
 //! * **Outside the box** (every row): deployed runs whose true altitude, speed or dynamic
 //!   pressure at deployment broke `guidance.deploy_box`, by limit — a deployment the parachute
-//!   cannot take is a failure by cause "outside the box", though its miss is in the statistics.
+//!   cannot take; it still counts as deployed and its miss stays in the statistics.
 
 use entrynav::estimation::chi_square::chi_square_quantile;
 use entrynav::sim::guided::delivery::{DeliveryReport, DeliveryRow};
@@ -50,8 +50,8 @@ fn outside_box(row: &DeliveryRow) -> Option<String> {
         .map(|(limit, n)| format!("{n} {limit}"))
         .collect();
     Some(format!(
-        "{}: {outside} of {} deployed runs outside the deployment box ({}): failures by cause \
-         \"outside the box\"; {} of {} runs deployed inside it",
+        "{}: {outside} of {} deployed runs outside the deployment box ({}), counted as deployed \
+         and in the miss statistics; {} of {} runs deployed inside it",
         row.name,
         row.deployed,
         limits.join(", "),
@@ -201,8 +201,8 @@ mod tests {
             w,
             [
                 "perfect-nav: 3 of 38 deployed runs outside the deployment box (3 altitude below \
-              the floor, 2 dynamic pressure above the box): failures by cause \"outside the \
-              box\"; 35 of 40 runs deployed inside it"
+              the floor, 2 dynamic pressure above the box), counted as deployed and in the miss \
+              statistics; 35 of 40 runs deployed inside it"
             ]
         );
     }

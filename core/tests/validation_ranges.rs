@@ -70,6 +70,13 @@ const AERO_SCALED: &[&str] = &[
     "filter.process_noise.correlation_time_s=5.0",
 ];
 
+/// A filter's own load-scaled process noise on a scenario with a density state (ρ0).
+const AERO_SCALED_OWN: &[&str] = &[
+    "filter.tuned.uskf-nn.process_noise.model=\"aero-scaled\"",
+    "filter.tuned.uskf-nn.process_noise.fraction=[0.01, 0.0, 0.01]",
+    "filter.tuned.uskf-nn.process_noise.correlation_time_s=5.0",
+];
+
 /// `[guidance]` with its deployment box written out.
 const GUIDED_BOX: &[&str] = &[
     "guidance.algorithm=\"apollo\"",
@@ -204,11 +211,16 @@ const CASES: &[Case] = &[
     // filter: covariances and start values of augmented and consider states
     case("filter.p0_diag[0]", FUSION, &[], "must be > 0 and finite (a variance)"),
     case("filter.q_diag[0]", FUSION, &[], "must be >= 0 and finite (a variance)"),
-    // msl-airdata's load-scaled process noise (issue 49) is the first built-in to list these.
-    case("filter.process_noise.fraction[0]", AIR, &[], "must be >= 0 and <= 10 (1-sigma of the unmodelled specific force over |a_aero|)"),
-    case("filter.process_noise.correlation_time_s", AIR, &[], "must be > 0 and <= 1000 s"),
+    case("filter.process_noise.fraction[0]", AIR, AERO_SCALED, "must be >= 0 and <= 10 (1-sigma of the unmodelled specific force over |a_aero|)"),
+    case("filter.process_noise.correlation_time_s", AIR, AERO_SCALED, "must be > 0 and <= 1000 s"),
     case("filter.process_noise.density_sigma", FUSION, AERO_SCALED, "must be >= 0 and <= 1 (1-sigma of the relative density error)"),
-    case("filter.process_noise.floor_mps2", AIR, &[], "must be >= 0 and <= 10 m/s²"),
+    case("filter.process_noise.floor_mps2", AIR, AERO_SCALED, "must be >= 0 and <= 10 m/s²"),
+    // msl-airdata's USKF-NN has its own load-scaled process noise (issue 49).
+    case("filter.tuned.uskf-nn.q_diag[0]", AIR, &[], "must be >= 0 and finite (a variance)"),
+    case("filter.tuned.uskf-nn.process_noise.fraction[0]", AIR, &[], "must be >= 0 and <= 10 (1-sigma of the unmodelled specific force over |a_aero|)"),
+    case("filter.tuned.uskf-nn.process_noise.correlation_time_s", AIR, &[], "must be > 0 and <= 1000 s"),
+    case("filter.tuned.uskf-nn.process_noise.density_sigma", FUSION, AERO_SCALED_OWN, "must be >= 0 and <= 1 (1-sigma of the relative density error)"),
+    case("filter.tuned.uskf-nn.process_noise.floor_mps2", AIR, &[], "must be >= 0 and <= 10 m/s²"),
     case("filter.initial_augmented[0]", FUSION, &[], "ρ0 must be > 0 and < 1 kg/m³"),
     case("filter.initial_augmented[1]", FUSION, &[], "L/D must be >= 0 and < 3"),
     case("filter.initial_augmented[2]", FUSION, &[], "an accelerometer bias must be >= -10 and <= 10 m/s²"),

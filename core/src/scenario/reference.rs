@@ -197,10 +197,9 @@ pub fn field_reference() -> Vec<FieldDoc> {
                     .strip_prefix("filter.tuned.")
                     .and_then(|rest| rest.split_once('.'))
                 {
-                    let range = c.range.to_string();
                     ranges
                         .entry(format!("filter.tuned.<name>.{field}"))
-                        .or_insert_with(|| range.clone());
+                        .or_insert_with(|| c.range.to_string());
                     key = format!("filter.{field}");
                 }
                 if !out.iter().any(|f| f.path == key) {

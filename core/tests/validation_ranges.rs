@@ -264,6 +264,7 @@ const CASES: &[Case] = &[
     case("filter.density.slope_window", AIR, &[], "must be >= 1 and <= 1000"),
     case("filter.density.slope_sigma_per_km", AIR, &[], "must be > 0 and <= 100 1/km"),
     case("filter.density.slope_log_density_sigma", AIR, &[], "must be > 0 and < 1"),
+    case("filter.density.consider_match_epochs", AIR, &["filter.density.consider_match_epochs=10"], "must be >= 1 and <= 1000"),
     case("filter.density.training.trajectories", AIR, &[], "must be >= 1 and <= 1000000"),
     case("filter.density.training.hidden", AIR, &[], "must be >= 1 and <= 10000"),
     case("filter.density.training.epochs", AIR, &[], "must be >= 1 and <= 1000000"),

@@ -67,6 +67,15 @@ impl DensityFilterConfig {
             self.slope_log_density_sigma,
             open_fraction(),
         )?;
+        if let Some(n) = self.consider_match_epochs {
+            c.range(f("consider_match_epochs"), n, count(1, 1_000))?;
+            if self.slope_window.is_none() {
+                return Err(ScenarioError::invalid(
+                    f("consider_match_epochs"),
+                    "needs filter.density.slope_window: the prediction error it matches is the level-and-slope correction's",
+                ));
+            }
+        }
         self.training.check(&f("training"), c)
     }
 }

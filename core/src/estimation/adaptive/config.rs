@@ -135,6 +135,12 @@ pub struct DensityFilterConfig {
     /// USKF-NN: σ of one epoch's log-density in the correction's fit (ours).
     #[serde(default = "d_slope_u_sigma")]
     pub slope_log_density_sigma: f64,
+    /// USKF-NN with `slope_window`: the consider parameter's variance at each update becomes
+    /// the larger of `consider_pss` and the correction's one-step prediction-error variance,
+    /// averaged over about this many epochs (covariance matching, ours; `nav::uskf_nn`);
+    /// absent = c keeps its ECRV variance (seed 001 eq. 51).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub consider_match_epochs: Option<usize>,
     /// Offline training (seed 001 Algorithm 1) for `entrynav train-density`.
     #[serde(default)]
     pub training: DensityTrainingConfig,
@@ -163,6 +169,7 @@ impl Default for DensityFilterConfig {
             slope_window: None,
             slope_sigma_per_km: d_slope_sigma(),
             slope_log_density_sigma: d_slope_u_sigma(),
+            consider_match_epochs: None,
             training: DensityTrainingConfig::default(),
         }
     }

@@ -124,13 +124,14 @@ impl<A: Atmosphere> LossContext<'_, A> {
 
     /// The log-density the term's measurements imply at its prior state: `u = ln ρ` minimising
     /// the term's loss (eq. 52 with the density free), by Gauss–Newton from `rho0`
-    /// (`u ← u + Σ Jᵢ rᵢ νᵢ / Σ Jᵢ² rᵢ`, `Jᵢ = ∂hᵢ/∂u = ρ ∂hᵢ/∂ρ`). `None` when no measurement
-    /// depends on the density or the iteration does not settle.
+    /// (`u ← u + Σ Jᵢ rᵢ νᵢ / Σ Jᵢ² rᵢ`, `Jᵢ = ∂hᵢ/∂u = ρ ∂hᵢ/∂ρ`), and its information
+    /// `Σ Jᵢ² rᵢ` at the solution (1/σ_u² from the measurement noise alone). `None` when no
+    /// measurement depends on the density or the iteration does not settle.
     pub fn measured_log_density<const N: usize>(
         &self,
         term: &LossTerm<N>,
         rho0: f64,
-    ) -> Option<f64> {
+    ) -> Option<(f64, f64)> {
         let mut u = rho0.ln();
         for _ in 0..20 {
             let rho = u.exp();
@@ -146,7 +147,7 @@ impl<A: Atmosphere> LossContext<'_, A> {
             let du = (g / info).clamp(-2.0, 2.0);
             u += du;
             if du.abs() < 1e-9 {
-                return Some(u);
+                return Some((u, info));
             }
         }
         None

@@ -29,6 +29,18 @@
 //! log-densities the last `slope_window` epochs' measurements imply at their prior states
 //! ([`crate::estimation::adaptive::local_fit`]); Algorithm 2 then adapts the network to what the
 //! correction leaves. `msl-airdata` uses 2 epochs.
+//!
+//! Option (ours, with the correction): `filter.density.consider_match_epochs = n` sets the
+//! consider parameter's variance at each update to the larger of P_ss and the variance of the
+//! correction's one-step prediction error, `e_k = u_k − ln ρ̂(h_k)` (the log-density epoch k's
+//! measurements imply against the density the last correction predicts there), less the
+//! measurement noise's share, averaged with weight 1/n: covariance matching (Myers & Tapley,
+//! "Adaptive sequential estimation with unknown noise statistics", IEEE TAC 21(4), 1976) applied
+//! to c. The row and column of c in P are rescaled (a congruence, so P stays positive
+//! definite). Why: high in the entry a rough truth atmosphere changes the density by ~10 % between
+//! epochs that the correction cannot predict, and c's P_ss = 1e-4 let the update read the
+//! radius from the density's slope: σ_r fell from 10.6 to 6.9 m while the error stayed at 11 m
+//! (msl-airdata, docs/process-noise.md).
 
 use super::nav_filter::{FilterCore, NavFilter};
 use super::start::FilterStart;
@@ -84,6 +96,10 @@ pub struct UskfNnNav<const N: usize, const L: usize> {
     adam: Vec<OnlineAdam>,
     /// The local level-and-slope correction's window (`slope_window` given).
     slope: Option<LocalSlopeFit>,
+    /// Covariance matching of c: the average's weight 1/n (`consider_match_epochs` given) and
+    /// the running mean of the correction's squared one-step prediction error.
+    match_weight: Option<f64>,
+    prediction_var: Option<f64>,
     act: Activations,
     stats: AdaptationStats,
 }
@@ -140,6 +156,11 @@ impl<const N: usize, const L: usize> UskfNnNav<N, L> {
             slope: cfg.slope_window.map(|w| {
                 LocalSlopeFit::new(w, cfg.slope_sigma_per_km, cfg.slope_log_density_sigma)
             }),
+            match_weight: cfg
+                .slope_window
+                .and(cfg.consider_match_epochs)
+                .map(|n| 1.0 / n.max(1) as f64),
+            prediction_var: None,
             act: Activations::default(),
             stats: AdaptationStats::default(),
         })
@@ -228,12 +249,21 @@ impl<const N: usize, const L: usize> NavFilter<N> for UskfNnNav<N, L> {
         if let Some(fit) = &mut self.slope {
             let set = &mut self.core.model.atmosphere.set;
             let rho0 = set.density_at_altitude(altitude);
-            if let Some(u) =
+            if let Some((u, info)) =
                 ctx.measured_log_density(self.terms.back().expect("pushed above"), rho0)
             {
+                // rho0 is what the last correction predicts here: its error, less the noise's.
+                if let (Some(w), false) = (self.match_weight, fit.is_empty()) {
+                    let v = (u - rho0.ln()).powi(2) - 1.0 / info;
+                    self.prediction_var =
+                        Some(self.prediction_var.map_or(v, |p| (1.0 - w) * p + w * v));
+                }
                 fit.push(altitude, u);
             }
             set.correction = fit.fit(|h| set.network_density(h).ln(), altitude);
+        }
+        if let Some(var) = self.prediction_var {
+            rescale_variance(&mut self.core.ukf.p, N, var.max(self.pss));
         }
         let outcome = maximise_likelihood(
             &ctx,
@@ -267,5 +297,51 @@ impl<const N: usize, const L: usize> NavFilter<N> for UskfNnNav<N, L> {
     /// ĉ·NN(R + h, ξ_k); at the posterior estimate's altitude it is the density estimate.
     fn density_profile(&self, altitude_m: f64) -> Option<f64> {
         Some(Self::density_profile(self, altitude_m))
+    }
+}
+
+/// Scales row and column `i` of `p` so that `p[(i, i)] = target` (a congruence D·P·D with one
+/// diagonal entry of D not 1: P stays positive definite). Nothing when either variance is not
+/// positive and finite.
+fn rescale_variance<const L: usize>(p: &mut SMatrix<f64, L, L>, i: usize, target: f64) {
+    let now = p[(i, i)];
+    if !(now > 0.0 && now.is_finite() && target > 0.0 && target.is_finite()) {
+        return;
+    }
+    let f = (target / now).sqrt();
+    for j in 0..L {
+        p[(i, j)] *= f;
+        p[(j, i)] *= f;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::rescale_variance;
+    use nalgebra::Matrix3;
+
+    #[test]
+    fn rescaling_a_variance_keeps_the_correlations_and_positive_definiteness() {
+        let p0 = Matrix3::new(4.0, 1.2, -0.3, 1.2, 9.0, 0.5, -0.3, 0.5, 0.25);
+        let corr =
+            |p: &Matrix3<f64>, i: usize, j: usize| p[(i, j)] / (p[(i, i)] * p[(j, j)]).sqrt();
+        for target in [1e-8, 3e-3, 2.0] {
+            let mut p = p0;
+            rescale_variance(&mut p, 2, target);
+            assert!((p[(2, 2)] / target - 1.0).abs() < 1e-12);
+            assert_eq!((p[(0, 0)], p[(1, 1)], p[(0, 1)]), (4.0, 9.0, 1.2));
+            for (i, j) in [(0, 2), (1, 2)] {
+                assert!((corr(&p, i, j) - corr(&p0, i, j)).abs() < 1e-12);
+                assert_eq!(p[(i, j)], p[(j, i)]);
+            }
+            assert!(p.cholesky().is_some());
+        }
+        assert!(p0.cholesky().is_some());
+        // A non-positive or non-finite target leaves P as it was.
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let mut p = p0;
+            rescale_variance(&mut p, 2, bad);
+            assert_eq!(p, p0);
+        }
     }
 }

@@ -567,3 +567,23 @@ fn every_range_check_has_a_case() {
         "cases no validation check reaches: {unused:?}"
     );
 }
+
+/// A field that only means something with another is refused by name when that one is absent:
+/// `consider_match_epochs` matches the level-and-slope correction's prediction error, so it needs
+/// `slope_window` (msl-guided has none).
+#[test]
+fn consider_matching_without_the_correction_is_refused_by_name() {
+    let set = ["filter.density.consider_match_epochs=10"];
+    let mut doc = table("msl-guided", &set);
+    let text = toml::to_string(&doc).unwrap();
+    let err = ScenarioConfig::from_toml_str(&text, "probe")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("filter.density.consider_match_epochs")
+            && err.contains("needs filter.density.slope_window"),
+        "{err}"
+    );
+    *slot(&mut doc, "filter.density.slope_window") = toml::Value::Integer(2);
+    assert!(ScenarioConfig::from_toml_str(&toml::to_string(&doc).unwrap(), "probe").is_ok());
+}

@@ -156,10 +156,8 @@ impl<const N: usize, const L: usize> UskfNnNav<N, L> {
             slope: cfg.slope_window.map(|w| {
                 LocalSlopeFit::new(w, cfg.slope_sigma_per_km, cfg.slope_log_density_sigma)
             }),
-            match_weight: cfg
-                .slope_window
-                .and(cfg.consider_match_epochs)
-                .map(|n| 1.0 / n.max(1) as f64),
+            // Used only with the correction (validation refuses it without).
+            match_weight: cfg.consider_match_epochs.map(|n| 1.0 / n.max(1) as f64),
             prediction_var: None,
             act: Activations::default(),
             stats: AdaptationStats::default(),

@@ -309,15 +309,37 @@ fn a_guided_trade_plots_and_reports_the_delivery_footprint() {
     assert_eq!(again, footprint);
 }
 
+/// msl-guided as it was before issue 50: seed 001's Table 1 dispersions and filter P0, the 60°
+/// reference bank, the 450 m/s speed trigger, no altitude safeguard (on these dispersions some
+/// runs reach the ground before the trigger; docs/guidance.md).
+const SEED001_GUIDED: [&str; 5] = [
+    "guidance={algorithm=\"apollo\",reference_bank_deg=60.0,trigger={speed_mps=450.0}}",
+    "truth.bank_deg=60.0",
+    "dispersions.cd_s_over_m_m2kg=1.6e-3",
+    "dispersions.lift_to_drag=5.0593e-2",
+    "filter.p0_diag=[114.25, 2.0645e-11, 4.5588e-12, 7.5452e-5, 5.4154e-12, 2.4311e-12, 2.56e-6, 2.5597e-3]",
+];
+
 #[test]
 fn deliver_names_failures_by_cause_and_warns_of_an_inconsistent_navigation_limited_filter() {
-    // msl-guided with the EKF in the loop (40 runs, seed 1): two runs reach the ground before the
-    // speed trigger, and the EKF's σ at deployment is far below its 4 km error.
+    // msl-guided as it was before issue 50 (SEED001_GUIDED) with the EKF in the loop (40 runs,
+    // seed 1): two runs reach the ground before the speed trigger, and the EKF's σ at deployment
+    // is far below its 4 km error.
     let (code, out, err) = entrynav(&[
         "guidance",
         "deliver",
         "--scenario",
         "msl-guided",
+        "--set",
+        SEED001_GUIDED[0],
+        "--set",
+        SEED001_GUIDED[1],
+        "--set",
+        SEED001_GUIDED[2],
+        "--set",
+        SEED001_GUIDED[3],
+        "--set",
+        SEED001_GUIDED[4],
         "--filters",
         "ekf",
         "--runs",
@@ -359,6 +381,16 @@ fn deliver_names_failures_by_cause_and_warns_of_an_inconsistent_navigation_limit
         "deliver",
         "--scenario",
         "msl-guided",
+        "--set",
+        SEED001_GUIDED[0],
+        "--set",
+        SEED001_GUIDED[1],
+        "--set",
+        SEED001_GUIDED[2],
+        "--set",
+        SEED001_GUIDED[3],
+        "--set",
+        SEED001_GUIDED[4],
         "--filters",
         "ekf",
         "--runs",

@@ -6,7 +6,7 @@
 //! was not chosen on, so that it cannot silently regress.
 //!
 //! Not yet the issue's goal (≥ 80 % of epochs in band at 200 runs): at 200 runs it is 24–73 % on
-//! seeds 1–4 for msl-airdata, 42–44 % on seeds 1–2 for msl-guided (docs/process-noise.md). The
+//! seeds 1–4 for msl-airdata, 22 % on seed 1 for msl-guided since issue 50 (docs/process-noise.md). The
 //! floors below are for 60 runs, whose band is √(200/60) ≈ 1.8× wider than at 200 runs.
 
 use entrynav::estimation::nav::FilterKind;
@@ -18,8 +18,10 @@ use entrynav::sim::{McOptions, run_trade};
 const IN_BAND_FLOOR: f64 = 0.5;
 
 /// msl-guided (no level-and-slope correction, c at 3 % over 60 s), measured at 60 runs: seed 11
-/// 50 %, seed 12 71 %; before issue 49's noise 0 %.
-const GUIDED_IN_BAND_FLOOR: f64 = 0.35;
+/// 50 %, seed 12 71 %; before issue 49's noise 0 %. Since issue 50's defaults (MSL-class
+/// dispersions, 45° reference bank; the longer entry adds late epochs where the flight-path
+/// angle is optimistic, docs/process-noise.md): seed 11 35 %.
+const GUIDED_IN_BAND_FLOOR: f64 = 0.25;
 
 /// USKF-NN on built-in `name`, 60 runs of seed 11: (ANEES/dof, share of epochs in the NEES band,
 /// time-averaged position RMSE [m], failed + diverged runs).

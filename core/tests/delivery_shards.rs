@@ -4,16 +4,20 @@
 //! messages included; shards of different studies, a run in two shards and a missing run are
 //! refused.
 
+#[path = "support/seed001_guided.rs"]
+mod seed001_guided;
+
 use entrynav::estimation::nav::FilterKind;
-use entrynav::scenario::{Scenario, ScenarioConfig};
+use entrynav::scenario::Scenario;
 use entrynav::sim::guided::delivery::run_delivery;
 use entrynav::sim::guided::delivery_shard::{
     DeliveryShard, DeliveryShardError, deliver_runs, merge_delivery_shards,
 };
 
+/// `msl-guided` on seed 001's dispersions, whose failures the shards must carry.
 fn msl_guided() -> Scenario {
     Scenario::build(
-        ScenarioConfig::builtin("msl-guided").unwrap(),
+        seed001_guided::seed001_guided_config(),
         &entrynav::files::no_files,
     )
     .unwrap()

@@ -4,16 +4,20 @@
 //! perfect navigation, the safeguarded guidance fails (reaches the ground above the trigger speed)
 //! no more often than the unguided reference bank and less often than without it.
 
+#[path = "support/seed001_guided.rs"]
+mod seed001_guided;
+
 use entrynav::guidance::safeguard::AltitudeSafeguard;
 use entrynav::guidance::{BankActuator, Guidance, GuidanceError, NavState};
-use entrynav::scenario::{Scenario, ScenarioConfig};
+use entrynav::scenario::Scenario;
 use entrynav::sim::guided::delivery::{DeliveryRow, run_delivery};
 use entrynav::sim::guided::guided_flight::{
     GuidedFlight, GuidedFlightError, GuidedFlightSettings, fly_perfect_navigation,
 };
 
+/// `msl-guided` on seed 001's dispersions (the safeguard's measurements were made on them).
 fn msl(floor_m: Option<f64>) -> Scenario {
-    let mut cfg = ScenarioConfig::builtin("msl-guided").unwrap();
+    let mut cfg = seed001_guided::seed001_guided_config();
     cfg.guidance.as_mut().unwrap().min_deploy_altitude_m = floor_m;
     Scenario::build(cfg, &entrynav::files::no_files).unwrap()
 }

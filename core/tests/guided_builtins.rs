@@ -5,7 +5,7 @@
 //! `core/tests/guidance.rs`, its delivery statistics in `core/tests/guided_loop.rs`.)
 
 use entrynav::estimation::nav::FilterKind;
-use entrynav::guidance::GuidanceAlgorithm;
+use entrynav::guidance::{GuidanceAlgorithm, Trigger};
 use entrynav::scenario::{Scenario, ScenarioConfig};
 use entrynav::sim::guided::delivery::{DeliveryRow, run_delivery};
 
@@ -69,5 +69,38 @@ fn msl_guided_flies_apollo_and_every_filter_it_lists_flies_in_the_loop() {
         );
         assert!(r.rate_limit_held, "{}", r.name);
         assert_eq!(r.deployed + r.failures, 2, "{}", r.name);
+    }
+}
+
+/// Issue 50's acceptance with perfect navigation, as `guidance deliver --scenario msl-guided
+/// --runs 1000 --seed 3 --filters none` flies it: with its defaults (range trigger, 7 km altitude
+/// safeguard, MSL-class aerodynamic dispersions) at least 999 of 1000 runs deploy inside the box
+/// (altitude ≥ 5 km), with a 99 % ellipse of at most 7.7 × 6.6 km full axes; with the speed
+/// trigger selected, the same count and at most 20 × 7 km.
+#[test]
+fn msl_guided_deploys_inside_the_box_in_999_of_1000_runs_with_either_trigger() {
+    let range = builtin("msl-guided");
+    let g = range.config.guidance.as_ref().unwrap();
+    assert!(matches!(g.trigger, Trigger::Range(_)), "{:?}", g.trigger);
+    let mut cfg = range.config.clone();
+    cfg.guidance.as_mut().unwrap().trigger = Trigger::SpeedMps(450.0);
+    let speed = Scenario::build(cfg, &entrynav::files::no_files).unwrap();
+    for (sc, full_axes_m) in [(&range, [7700.0, 6600.0]), (&speed, [20000.0, 7000.0])] {
+        let report = run_delivery(sc, &[], 1000, 3, &|_| ()).unwrap();
+        let r = row(&report.rows, "perfect-nav");
+        let e = r.ellipse_99.as_ref().unwrap();
+        println!(
+            "{:?}: deployed {} failed {} inside the box {} ({:?}) ellipse {:.0} x {:.0} m full",
+            sc.config.guidance.as_ref().unwrap().trigger,
+            r.deployed,
+            r.failures,
+            r.inside_box,
+            r.outside_box_by_limit,
+            2.0 * e.semi_major_m,
+            2.0 * e.semi_minor_m
+        );
+        assert!(r.inside_box >= 999, "{:?}", r.outside_box_by_limit);
+        assert!(2.0 * e.semi_major_m <= full_axes_m[0], "{e:?}");
+        assert!(2.0 * e.semi_minor_m <= full_axes_m[1], "{e:?}");
     }
 }

@@ -2,6 +2,9 @@
 //! `[guidance]`, flown with the filter's estimate and the sensed drag fed to guidance, against
 //! perfect navigation and the unguided reference bank on the same dispersion draws.
 
+#[path = "support/seed001_guided.rs"]
+mod seed001_guided;
+
 use entrynav::estimation::nav::FilterKind;
 use entrynav::guidance::GuidanceAlgorithm;
 use entrynav::scenario::{Scenario, ScenarioConfig};
@@ -10,10 +13,10 @@ use entrynav::sim::guided::delivery::{DeliveryReport, run_delivery};
 use entrynav::sim::run_seed;
 use std::sync::Arc;
 
-/// The built-in `msl-guided` (`msl-airdata` with `[guidance]`: reference bank 60°, deployment at
-/// 450 m/s, every other setting its default) flown by `algorithm` (as `core/tests/guidance.rs`).
+/// The built-in `msl-guided` as it was before issue 50 (seed 001's dispersions, reference bank
+/// 60°, deployment at 450 m/s, no safeguard; `support/seed001_guided.rs`), flown by `algorithm`.
 fn msl(algorithm: &str) -> Arc<Scenario> {
-    let mut cfg = ScenarioConfig::builtin("msl-guided").unwrap();
+    let mut cfg = seed001_guided::seed001_guided_config();
     let g = cfg.guidance.as_mut().unwrap();
     g.algorithm = match algorithm {
         "apollo" => GuidanceAlgorithm::Apollo,

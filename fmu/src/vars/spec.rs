@@ -222,14 +222,29 @@ mod tests {
         let period = s.config.guidance.as_ref().unwrap().period_s();
         assert_eq!((stop, step), (s.config.timing.duration_s, period));
         // Without the section (and with msl-airdata's name, description and constant bank) it
-        // is msl-airdata again, but for USKF-NN's density adaptation: msl-guided has no
-        // level-and-slope correction, so its consider parameter stays at 3 % (issue 49).
+        // is msl-airdata again, but for its MSL-class aerodynamic dispersions and the filter
+        // prior that matches them (issue 50), and for USKF-NN's density adaptation: msl-guided
+        // has no level-and-slope correction, so its consider parameter stays at 3 % (issue 49).
         let base = ScenarioConfig::builtin("msl-airdata").unwrap();
         let mut cfg = s.config.clone();
         cfg.guidance = None;
         cfg.name = base.name.clone();
         cfg.description = base.description.clone();
         cfg.truth.bank_deg = base.truth.bank_deg;
+        assert_eq!(
+            (
+                cfg.dispersions.cd_s_over_m_m2kg,
+                cfg.dispersions.lift_to_drag
+            ),
+            (2.34e-4, 1.0e-2)
+        );
+        assert_eq!(
+            (cfg.filter.p0_diag[6], cfg.filter.p0_diag[7]),
+            (5.4756e-8, 1.0e-4)
+        );
+        cfg.dispersions.cd_s_over_m_m2kg = base.dispersions.cd_s_over_m_m2kg;
+        cfg.dispersions.lift_to_drag = base.dispersions.lift_to_drag;
+        cfg.filter.p0_diag = base.filter.p0_diag.clone();
         let slope = |c: &ScenarioConfig| c.filter.density.as_ref().and_then(|d| d.slope_window);
         assert_eq!((slope(&cfg), slope(&base)), (None, Some(2)));
         let pss = |c: &ScenarioConfig| c.filter.density.as_ref().unwrap().consider_pss;

@@ -132,13 +132,29 @@ fn after_the_trigger_on_the_estimate_the_bank_settles_and_holds() {
             ));
         }
     }
-    let (t_deploy, cycles, command) = at.expect("the estimate reached the 450 m/s trigger");
+    // The in-process loop's last recorded step is the one on which it deployed, deciding the
+    // range trigger (msl-guided's default) on the estimate at every truth step; the FMU decides
+    // it at its guidance cycles (1 Hz), on the estimate carried to the cycle's time: hold the
+    // last inputs for up to one guidance period.
+    let last = steps.last().unwrap();
+    let period = (1.0 / guided_scenario().unwrap().config.guidance.unwrap().rate_hz / dt).round();
+    let mut t = last.t + dt;
+    for _ in 0..period as usize {
+        if at.is_some() {
+            break;
+        }
+        assert_eq!(i.step(t, dt), 0, "{:?}", i.messages());
+        if i.boolean(Key::Deployed) {
+            at = Some((t, i.int(Key::GuidanceCycles), i.real(Key::GuidanceCommand)));
+        }
+        t += dt;
+    }
+    let (t_deploy, cycles, command) = at.expect("the estimate reached the deployment trigger");
     assert!(i.real(Key::DeployTrigger) <= 0.0);
     // No cycle after deployment: the command and the cycle count are frozen.
     assert_eq!(i.int(Key::GuidanceCycles), cycles);
     assert_eq!(i.real(Key::GuidanceCommand), command);
     // Keep stepping with the last inputs for 30 s: the actuator reaches the command and stays.
-    let mut t = steps.last().unwrap().t + dt;
     for _ in 0..600 {
         assert_eq!(i.step(t, dt), 0);
         t += dt;

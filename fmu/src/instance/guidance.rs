@@ -18,9 +18,10 @@
 //!
 //! **Deployment** is judged on the navigation estimate (the vehicle has nothing else): the
 //! trigger function with the estimated speed and the guidance model's density at the estimated
-//! altitude (the range trigger: `RangeTrigger::on_estimate`); once it has been positive and reaches 0, `deployed` latches, cycles stop and the
-//! actuator settles on the last command. (The in-process loop judges deployment on the truth,
-//! which only it holds.)
+//! altitude (the range trigger: `RangeTrigger::on_estimate` from `nav_time` to the cycle's time,
+//! as the in-process loop decides it); once it has been positive and reaches 0, `deployed`
+//! latches, cycles stop and the actuator settles on the last command. (The in-process loop
+//! judges the speed and pressure triggers on the truth, which only it holds.)
 //!
 //! The engine keeps the onboard view only ([`Onboard`], the guidance model and the built
 //! guidance): it never holds the truth.
@@ -319,7 +320,8 @@ impl GuidanceEngine {
             trigger: self.trigger,
         };
         let ((window, onboard), rho) = (&self.deploy, lm.density(nav.spherical[0]));
-        let c = onboard_trigger(&self.trigger, window, &nav, nav.t, rho, onboard);
+        let now = (self.steps as f64 * self.dt).max(nav.t); // the range trigger carries to now
+        let c = onboard_trigger(&self.trigger, window, &nav, now, rho, onboard);
         let (d, xr) = range_crossrange(&nav, &self.built.target);
         let radius = self.model.planet.radius;
         self.trigger_value = c;
@@ -391,10 +393,8 @@ impl GuidanceEngine {
     pub fn status(&self) -> i32 {
         if self.deployed {
             2
-        } else if self.cycles > 0 {
-            1
         } else {
-            0
+            i32::from(self.cycles > 0)
         }
     }
 }

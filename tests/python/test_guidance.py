@@ -30,7 +30,7 @@ from conftest import ENTRYNAV, ENTRYNAV_DEV, ROOT, run
 HERE = Path(__file__).resolve().parent
 FMUSIM = Path(os.environ.get("ENTRYNAV_TOOLS", ROOT.parent / "shared" / "tools")) / "fmusim"
 RATE_LIMIT = math.radians(20.0)  # msl-guided.toml: the [guidance] default bank_rate_limit_deg_s
-TRIGGER_MPS = 450.0  # msl-guided.toml: trigger = { speed_mps = 450.0 }
+TRIGGER_MPS = 450.0  # msl-guided.toml: the range trigger's nominal speed (trigger = { range = { nominal_speed_mps = 450.0, … } })
 
 try:
     import OMSimulator  # noqa: F401

@@ -10,7 +10,8 @@ pub const DEFAULT_SEED: i32 = 1;
 
 /// The scenario file (in every generic FMU's `resources/`, as every built-in is) that the
 /// guidance FMU's `scenario` parameter names by default: the built-in `msl-guided` (`msl-airdata`
-/// with Apollo final-phase guidance on the 60° reference, deployment at 450 m/s).
+/// with Apollo final-phase guidance on the 45° reference, the Mars 2020 range trigger at 450 m/s and
+/// a 7 km altitude safeguard).
 pub const GUIDED_SCENARIO_FILE: &str = "msl-guided.toml";
 
 /// The default filter of the guided FMU `MarsEntryNavGuided` (one that fits its default

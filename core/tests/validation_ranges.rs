@@ -105,6 +105,14 @@ const GUIDED_FLOOR: &[&str] = &[
     "guidance.min_deploy_altitude_m=7000.0",
 ];
 
+/// `[guidance]` with Apollo's heading alignment.
+const GUIDED_HA: &[&str] = &[
+    "guidance.algorithm=\"apollo\"",
+    "guidance.reference_bank_deg=45.0",
+    "guidance.trigger.speed_mps=450.0",
+    "guidance.apollo.heading_alignment_speed_mps=1100.0",
+];
+
 /// `[guidance]` with a dynamic-pressure trigger.
 const GUIDED_Q: &[&str] = &[
     "guidance.algorithm=\"fnpeg\"",
@@ -314,6 +322,9 @@ const CASES: &[Case] = &[
     case("guidance.bank_accel_limit_deg_s2", AIR, GUIDED, "must be > 0 and <= 360 deg/s²"),
     case("guidance.trigger.speed_mps", AIR, GUIDED, "must be > 0 and < 30000 m/s"),
     case("guidance.min_deploy_altitude_m", AIR, GUIDED_FLOOR, "must be >= 0 and <= 50000 m"),
+    case("guidance.apollo.heading_alignment_speed_mps", AIR, GUIDED_HA, "must be > 0 and < 30000 m/s"),
+    case("guidance.apollo.heading_alignment_gain", AIR, GUIDED, "must be > 0 and <= 1000"),
+    case("guidance.apollo.heading_alignment_max_bank_deg", AIR, GUIDED, "must be > 0 and <= 180°"),
     case("guidance.trigger.dynamic_pressure_pa", AIR, GUIDED_Q, "must be > 0 and <= 1000000 Pa"),
     case("guidance.target.lat_deg", AIR, GUIDED_POINT, "must be >= -90 and <= 90°"),
     case("guidance.target.lon_deg", AIR, GUIDED_POINT, "must be >= -360 and <= 360°"),

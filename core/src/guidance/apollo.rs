@@ -20,8 +20,18 @@
 //! `start_drag_mps2` the reference bank is flown (MSL's pre-entry and pre-bank phases); from
 //! then on range is controlled until the speed falls below `hold_speed_mps`, where the gains
 //! (F3 → 0 at the trigger) stop being useful and the last bank magnitude is held with the
-//! lateral logic still active. MSL instead switches to a heading-alignment phase there; we do not
-//! implement it.
+//! lateral logic still active. With `heading_alignment_speed_mps` set, MSL's last phase replaces
+//! the hold below that speed: **heading alignment** (Mendeck & Craig §III: range is no longer
+//! controlled; the bank steers the velocity toward the target). Our law: with Δψ = β − ψ the
+//! bearing of the target minus the heading (positive: target to the right),
+//!
+//! ```text
+//! σ = clamp(K_ha Δψ, −σ_ha, σ_ha)
+//! ```
+//!
+//! (positive bank = lift to the right), K_ha `heading_alignment_gain` and σ_ha
+//! `heading_alignment_max_bank_deg`: near lift-up, so the vehicle also keeps its altitude. The
+//! proportional form and its two constants are our choice; the paper does not print MSL's.
 
 use super::algorithm::Guidance;
 use super::error::GuidanceError;
@@ -29,7 +39,7 @@ use super::lateral::Lateral;
 use super::limits::BankLimits;
 use super::nav_state::NavState;
 use super::reference::ReferenceTrajectory;
-use super::target::{Target, range_crossrange};
+use super::target::{Target, bearing, range_crossrange};
 use serde::{Deserialize, Serialize};
 
 /// `[guidance.apollo]`.
@@ -45,6 +55,16 @@ pub struct ApolloConfig {
     /// Below this speed the bank magnitude is held \[m/s\].
     #[serde(default = "default_hold_speed")]
     pub hold_speed_mps: f64,
+    /// Heading alignment (module documentation) below this speed \[m/s\], in place of the
+    /// hold; absent: no heading alignment.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub heading_alignment_speed_mps: Option<f64>,
+    /// Heading alignment's gain K_ha \[deg of bank per deg of heading error\].
+    #[serde(default = "default_ha_gain")]
+    pub heading_alignment_gain: f64,
+    /// Heading alignment's largest bank magnitude σ_ha \[deg\].
+    #[serde(default = "default_ha_bank")]
+    pub heading_alignment_max_bank_deg: f64,
 }
 
 fn default_gain() -> f64 {
@@ -58,6 +78,12 @@ fn default_start_drag() -> f64 {
 fn default_hold_speed() -> f64 {
     800.0
 }
+fn default_ha_gain() -> f64 {
+    30.0
+}
+fn default_ha_bank() -> f64 {
+    30.0
+}
 
 impl Default for ApolloConfig {
     fn default() -> Self {
@@ -65,6 +91,9 @@ impl Default for ApolloConfig {
             overcontrol_gain: default_gain(),
             start_drag_mps2: default_start_drag(),
             hold_speed_mps: default_hold_speed(),
+            heading_alignment_speed_mps: None,
+            heading_alignment_gain: default_ha_gain(),
+            heading_alignment_max_bank_deg: default_ha_bank(),
         }
     }
 }
@@ -129,6 +158,18 @@ impl ApolloGuidance {
     }
 }
 
+impl ApolloGuidance {
+    /// The heading-alignment bank at `nav` (module documentation) \[rad\].
+    pub fn heading_alignment(&self, nav: &NavState) -> f64 {
+        let [_, lon, lat, _, _, psi] = nav.spherical;
+        let beta = bearing(lat, lon, self.target.lat, self.target.lon);
+        let err = (beta - psi).sin().atan2((beta - psi).cos());
+        let max = self.config.heading_alignment_max_bank_deg.to_radians();
+        let sigma = (self.config.heading_alignment_gain * err).clamp(-max, max);
+        sigma.signum() * self.limits.clamp_magnitude(sigma.abs())
+    }
+}
+
 impl Guidance for ApolloGuidance {
     fn command(&mut self, nav: &NavState) -> Result<f64, GuidanceError> {
         let v = nav.speed();
@@ -139,6 +180,12 @@ impl Guidance for ApolloGuidance {
             });
         }
         self.started |= nav.drag_mps2 >= self.config.start_drag_mps2;
+        if let Some(v_ha) = self.config.heading_alignment_speed_mps
+            && self.started
+            && v < v_ha
+        {
+            return Ok(self.heading_alignment(nav));
+        }
         if self.started && v >= self.config.hold_speed_mps {
             let (_, ld) = self.law(nav);
             let c = (ld / self.lift_to_drag).clamp(-1.0, 1.0);

@@ -168,6 +168,19 @@ fn check_algorithms(g: &GuidanceConfig, c: &mut Checker) -> R {
     let drag = Range::ge(0.0).le(1000.0).unit("m/s²");
     c.range("guidance.apollo.start_drag_mps2", a.start_drag_mps2, drag)?;
     c.range("guidance.apollo.hold_speed_mps", a.hold_speed_mps, speed())?;
+    if let Some(v) = a.heading_alignment_speed_mps {
+        let vh = Range::gt(0.0).lt(MAX_SPEED_MPS).unit("m/s");
+        c.range("guidance.apollo.heading_alignment_speed_mps", v, vh)?;
+    }
+    let k = Range::gt(0.0).le(1000.0);
+    c.range(
+        "guidance.apollo.heading_alignment_gain",
+        a.heading_alignment_gain,
+        k,
+    )?;
+    let ha_bank = Range::gt(0.0).le(180.0).unit("°");
+    let b = a.heading_alignment_max_bank_deg;
+    c.range("guidance.apollo.heading_alignment_max_bank_deg", b, ha_bank)?;
     let f = &g.fnpeg;
     let bank = Range::ge(named("guidance.bank_min_deg", g.bank_min_deg))
         .le(named("guidance.bank_max_deg", g.bank_max_deg))

@@ -320,33 +320,23 @@ const SEED001_GUIDED: [&str; 5] = [
     "filter.p0_diag=[114.25, 2.0645e-11, 4.5588e-12, 7.5452e-5, 5.4154e-12, 2.4311e-12, 2.56e-6, 2.5597e-3]",
 ];
 
+/// `guidance deliver` of SEED001_GUIDED with the EKF in the loop, 40 runs, then `extra`.
+fn seed001_ekf_deliver<'a>(extra: &[&'a str]) -> Vec<&'a str> {
+    let mut args = vec!["guidance", "deliver", "--scenario", "msl-guided"];
+    for set in SEED001_GUIDED {
+        args.extend(["--set", set]);
+    }
+    args.extend(["--filters", "ekf", "--runs", "40"]);
+    args.extend_from_slice(extra);
+    args
+}
+
 #[test]
 fn deliver_names_failures_by_cause_and_warns_of_an_inconsistent_navigation_limited_filter() {
     // msl-guided as it was before issue 50 (SEED001_GUIDED) with the EKF in the loop (40 runs,
     // seed 1): two runs reach the ground before the speed trigger, and the EKF's σ at deployment
     // is far below its 4 km error.
-    let (code, out, err) = entrynav(&[
-        "guidance",
-        "deliver",
-        "--scenario",
-        "msl-guided",
-        "--set",
-        SEED001_GUIDED[0],
-        "--set",
-        SEED001_GUIDED[1],
-        "--set",
-        SEED001_GUIDED[2],
-        "--set",
-        SEED001_GUIDED[3],
-        "--set",
-        SEED001_GUIDED[4],
-        "--filters",
-        "ekf",
-        "--runs",
-        "40",
-        "--json",
-        "-",
-    ]);
+    let (code, out, err) = entrynav(&seed001_ekf_deliver(&["--json", "-"]));
     assert_eq!(code, 0, "{err}");
     let v: Value = serde_json::from_str(&out).unwrap();
     let ekf = &v["delivery"]["rows"][2];
@@ -376,26 +366,7 @@ fn deliver_names_failures_by_cause_and_warns_of_an_inconsistent_navigation_limit
         "{warnings:?}"
     );
     // The table says the same.
-    let (code, out, err) = entrynav(&[
-        "guidance",
-        "deliver",
-        "--scenario",
-        "msl-guided",
-        "--set",
-        SEED001_GUIDED[0],
-        "--set",
-        SEED001_GUIDED[1],
-        "--set",
-        SEED001_GUIDED[2],
-        "--set",
-        SEED001_GUIDED[3],
-        "--set",
-        SEED001_GUIDED[4],
-        "--filters",
-        "ekf",
-        "--runs",
-        "40",
-    ]);
+    let (code, out, err) = entrynav(&seed001_ekf_deliver(&[]));
     assert_eq!(code, 0, "{err}");
     assert!(
         out.contains("failed run(s): 2 ground impact before the trigger; first: run"),

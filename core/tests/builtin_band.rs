@@ -20,7 +20,7 @@ const IN_BAND_FLOOR: f64 = 0.5;
 /// msl-guided (no level-and-slope correction, c at 3 % over 60 s), measured at 60 runs: seed 11
 /// 50 %, seed 12 71 %; before issue 49's noise 0 %. Since issue 50's defaults (MSL-class
 /// dispersions, 45° reference bank; the longer entry adds late epochs where the flight-path
-/// angle is optimistic, docs/process-noise.md): seed 11 35 %.
+/// angle is optimistic, docs/process-noise.md): seed 11 just under 35 % (the old floor).
 const GUIDED_IN_BAND_FLOOR: f64 = 0.25;
 
 /// USKF-NN on built-in `name`, 60 runs of seed 11: (ANEES/dof, share of epochs in the NEES band,

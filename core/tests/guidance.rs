@@ -7,6 +7,9 @@
 //! flight. It never sees the truth model; `sim::guided::guided_flight` hands it the truth state as a
 //! navigation solution (perfect navigation).
 
+#[path = "support/seed001_guided.rs"]
+mod seed001_guided;
+
 use entrynav::dynamics::EntryModel;
 use entrynav::guidance::longitudinal::{GAMMA, LongModel, R, THETA, U};
 use entrynav::guidance::reference::ReferenceTrajectory;
@@ -23,10 +26,13 @@ use nalgebra::SVector;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
-/// The built-in `msl-guided` (seed 001's MSL entry with `[guidance]`: reference bank 60°,
-/// deployment at 450 m/s, every other setting its default) flown by `algorithm`.
+/// The built-in `msl-guided` with its guidance settings from before issue 50 (seed 001's MSL
+/// entry and dispersions, reference bank 60°, deployment at 450 m/s by the speed trigger, no
+/// safeguard; `support/seed001_guided.rs`), on which docs/guidance.md's gain tables and misses
+/// were measured, flown by `algorithm`. The current defaults are checked in
+/// `core/tests/guided_builtins.rs`.
 fn msl(algorithm: &str) -> Scenario {
-    let mut cfg = ScenarioConfig::builtin("msl-guided").unwrap();
+    let mut cfg = seed001_guided::seed001_guided_config();
     let g = cfg.guidance.as_mut().unwrap();
     g.algorithm = match algorithm {
         "apollo" => GuidanceAlgorithm::Apollo,

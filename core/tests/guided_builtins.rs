@@ -1,8 +1,10 @@
 //! The guided built-ins of issue 28 against its acceptance: `four-beacon-fusion-guided` with the
 //! EKF in the loop misses by at most twice what perfect navigation misses, with the bank rate
 //! limit held in every run; `msl-guided` is flown by the guidance its `[guidance]` names and every
-//! filter it lists can fly in the loop. (The no-dispersion misses of `msl-guided` are checked in
-//! `core/tests/guidance.rs`, its delivery statistics in `core/tests/guided_loop.rs`.)
+//! filter it lists can fly in the loop, deploys inside the box (issue 50) and gains from heading
+//! alignment. (The no-dispersion misses and the delivery statistics on `msl-guided`'s guidance
+//! settings from before issue 50 are checked in `core/tests/guidance.rs` and
+//! `core/tests/guided_loop.rs`.)
 
 use entrynav::estimation::nav::FilterKind;
 use entrynav::guidance::{GuidanceAlgorithm, Trigger};

@@ -161,7 +161,10 @@ fn after_the_trigger_on_the_estimate_the_bank_settles_and_holds() {
     }
     assert_eq!(i.real(Key::GuidanceBank), command);
     assert_eq!(i.real(Key::GuidanceBankRate), 0.0);
-    eprintln!("deployed on the estimate at t = {t_deploy} s after {cycles} cycles");
+    eprintln!(
+        "deployed on the estimate at t = {t_deploy} s after {cycles} cycles (the in-process loop at {} s)",
+        last.t
+    );
     assert!(t_deploy > 100.0, "deployed at {t_deploy} s");
 }
 

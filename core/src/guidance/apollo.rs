@@ -156,9 +156,7 @@ impl ApolloGuidance {
             self.reference.vertical_ld + self.config.overcontrol_gain * (range - predicted) / p.f3;
         (predicted, ld)
     }
-}
 
-impl ApolloGuidance {
     /// The heading-alignment bank at `nav` (module documentation) \[rad\].
     pub fn heading_alignment(&self, nav: &NavState) -> f64 {
         let [_, lon, lat, _, _, psi] = nav.spherical;

@@ -276,3 +276,31 @@ proptest! {
         prop_assert!(diffs[1] < diffs[0] / 50.0 + 1e-12, "no convergence in h: {diffs:?}");
     }
 }
+
+/// What the range trigger reads the onboard dynamic pressure with: the filter's C_D S/m where it
+/// estimates one (whatever its place among the augmented states), the vehicle's constant where
+/// it does not or the estimate is not a usable coefficient.
+#[test]
+fn the_estimated_cd_s_over_m_is_the_augmented_state_else_the_vehicle_constant() {
+    let x = [3.4e6, 0.1, 0.2, 5000.0, -0.2, 1.0, 0.25, 7.3e-3];
+    let constant = model(DynamicsKind::Spherical, vec![]).vehicle.cd_s_over_m;
+    let with = |augmented| model(DynamicsKind::Spherical, augmented);
+    use AugmentedParam::{CdSOverM, LiftToDrag, Rho0};
+    assert_eq!(with(vec![LiftToDrag, CdSOverM]).cd_s_over_m_of(&x), 7.3e-3);
+    assert_eq!(with(vec![CdSOverM, LiftToDrag]).cd_s_over_m_of(&x), 0.25);
+    assert_eq!(with(vec![LiftToDrag, Rho0]).cd_s_over_m_of(&x), constant);
+    // Not carried by this estimate, non-positive or not finite: the constant.
+    assert_eq!(
+        with(vec![LiftToDrag, CdSOverM]).cd_s_over_m_of(&x[..7]),
+        constant
+    );
+    for bad in [0.0, -1e-3, f64::NAN, f64::INFINITY] {
+        let mut y = x;
+        y[7] = bad;
+        assert_eq!(
+            with(vec![LiftToDrag, CdSOverM]).cd_s_over_m_of(&y),
+            constant
+        );
+    }
+    assert_ne!(constant, 7.3e-3);
+}

@@ -95,6 +95,7 @@ const GUIDED_RANGE_TRIGGER: &[&str] = &[
     "guidance.reference_bank_deg=60.0",
     "guidance.trigger.range.nominal_speed_mps=450.0",
     "guidance.trigger.range.backstop_speed_mps=420.0",
+    "guidance.trigger.range.window_margin=0.01",
 ];
 
 /// `[guidance]` with the altitude safeguard (as msl-guided ships it).
@@ -343,6 +344,7 @@ const CASES: &[Case] = &[
     case("guidance.fnpeg.hold_speed_mps", AIR, GUIDED, "must be >= 0 and < 30000 m/s"),
     case("guidance.trigger.range.nominal_speed_mps", AIR, GUIDED_RANGE_TRIGGER, "must be > 0 and < 30000 m/s"),
     case("guidance.trigger.range.backstop_speed_mps", AIR, GUIDED_RANGE_TRIGGER, "must be > 0 and <= guidance.trigger.range.nominal_speed_mps = 450 m/s"),
+    case("guidance.trigger.range.window_margin", AIR, GUIDED_RANGE_TRIGGER, "must be >= 0 and <= 0.5"),
     case("guidance.deploy_box.speed_min_mps", AIR, GUIDED_BOX, "must be >= 0 and < 30000 m/s"),
     case("guidance.deploy_box.speed_max_mps", AIR, GUIDED_BOX, "must be > guidance.deploy_box.speed_min_mps = 380 and < 30000 m/s"),
     case("guidance.deploy_box.dynamic_pressure_min_pa", AIR, GUIDED_BOX, "must be >= 0 and < 1000000 Pa"),

@@ -8,7 +8,7 @@ use common::Inst;
 use entrynav::estimation::nav::FilterKind;
 use entrynav::sim::guided::{GuidedStep, fly_with_filter_recorded};
 use entrynav_fmu::vars::guided_scenario_toml;
-use entrynav_fmu::vars::{GUIDED_SCENARIO_FILE, Key, Model, Slot, guided_scenario};
+use entrynav_fmu::vars::{GUIDED_SCENARIO_FILE, Key, MAX_STATES, Model, Slot, guided_scenario};
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -30,8 +30,11 @@ fn guidance(tag: &str) -> Inst {
 
 /// Set the inputs a recorded step of the in-process loop gave its guidance.
 fn set_inputs(i: &Inst, s: &GuidedStep) {
+    for k in 0..MAX_STATES {
+        let x = s.est_x.get(k).copied().unwrap_or(0.0);
+        assert_eq!(i.set_real(Key::EstX(k), x), 0, "{}", i.last());
+    }
     for k in 0..6 {
-        assert_eq!(i.set_real(Key::EstX(k), s.est_x[k]), 0, "{}", i.last());
         assert_eq!(
             i.set_real(Key::EstSigma(k), s.est_sigma[k]),
             0,

@@ -8,8 +8,8 @@ mod common;
 
 use common::Inst;
 use entrynav_fmu::vars::{
-    GUIDED_SCENARIO_FILE, Key, Model, Value, entry_estimate, guided_scenario, guided_scenario_toml,
-    variables,
+    GUIDED_SCENARIO_FILE, Key, MAX_STATES, Model, Value, entry_estimate, guided_scenario,
+    guided_scenario_toml, variables,
 };
 
 fn guidance(tag: &str, logging_on: bool) -> Inst {
@@ -33,14 +33,12 @@ fn start(key: Key) -> Option<Value> {
 fn the_estimate_starts_at_the_default_scenarios_nominal_entry_at_nav_time_0() {
     let s = guided_scenario().unwrap();
     let entry = &s.onboard.initial_estimate;
-    assert_eq!(&entry_estimate()[..], &entry[..6]);
-    for (k, x) in entry.iter().take(6).enumerate() {
-        assert_eq!(
-            start(Key::EstX(k)),
-            Some(Value::Real(*x)),
-            "est_x_{}",
-            k + 1
-        );
+    // Every slot: the kinematic states, msl-guided's augmented C_D S/m and L/D, then 0.
+    assert_eq!(entry.len(), 8);
+    assert_eq!(&entry_estimate()[..8], &entry[..]);
+    for k in 0..MAX_STATES {
+        let x = entry.get(k).copied().unwrap_or(0.0);
+        assert_eq!(start(Key::EstX(k)), Some(Value::Real(x)), "est_x_{}", k + 1);
     }
     assert_eq!(start(Key::NavTime), Some(Value::Real(0.0)));
     assert_eq!(start(Key::NavStatusCode), Some(Value::Integer(0)));

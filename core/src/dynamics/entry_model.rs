@@ -98,6 +98,19 @@ impl<A: Atmosphere> EntryModel<A> {
         p
     }
 
+    /// The C_D S/m the estimate `x` carries \[m²/kg\]: its augmented C_D S/m state when the model
+    /// has one, `x` holds it and it is finite and positive, else the vehicle's constant. What the
+    /// range trigger divides the sensed drag by to read the dynamic pressure onboard
+    /// ([`crate::guidance::RangeTrigger::on_estimate`]).
+    pub fn cd_s_over_m_of(&self, x: &[f64]) -> f64 {
+        self.augmented
+            .iter()
+            .position(|a| *a == AugmentedParam::CdSOverM)
+            .and_then(|k| x.get(6 + k).copied())
+            .filter(|c| c.is_finite() && *c > 0.0)
+            .unwrap_or(self.vehicle.cd_s_over_m)
+    }
+
     /// The accelerometer bias the state `x` carries on IMU axis `axis`, if it has such a state.
     pub fn accel_bias<T: Real, const N: usize>(&self, x: &SVector<T, N>, axis: u8) -> Option<T> {
         self.augmented

@@ -20,11 +20,13 @@
 //! function, positive before deployment:
 //!
 //! ```text
-//! c = min( max(R_togo, v − v_max, q − q_max), v − v_backstop )
+//! c = min( max(R_togo, v − (1 − m)·v_max, q − (1 − m)·q_max), v − v_backstop )
 //! ```
 //!
 //! R_togo \[m\] the along-track range to the target (negative past it), v \[m/s\] and q \[Pa\]
-//! the onboard speed and dynamic pressure; the terms mix units, which only matters for where
+//! the onboard speed and dynamic pressure, m the window's margin inside the box (1 %, our
+//! choice: with none, 3 of 1000 FNPEG runs with USKF-NN in the loop that waited at the window's
+//! edge deployed 0.1 Pa above the box); the terms mix units, which only matters for where
 //! between two samples the zero is interpolated (within one step). Onboard predictions (the
 //! reference trajectory, FNPEG, the safeguard) end at the trigger's `nominal_speed_mps`.
 
@@ -42,6 +44,17 @@ pub struct RangeTrigger {
     pub nominal_speed_mps: f64,
     /// Deploy at this speed when the range-to-go has not reached zero \[m/s\].
     pub backstop_speed_mps: f64,
+    /// The fraction by which the trigger's window keeps clear of the box's speed and pressure
+    /// maxima: it waits for v ≤ (1 − m)·v_max and q ≤ (1 − m)·q_max, so that a vehicle waiting
+    /// at the window's edge is not deployed outside the box by the onboard speed and pressure's
+    /// errors (default [`RangeTrigger::DEFAULT_WINDOW_MARGIN`], our choice: 8.5 Pa and 5.4 m/s
+    /// on the default box; 0 puts the window on the box).
+    #[serde(default = "default_window_margin")]
+    pub window_margin: f64,
+}
+
+fn default_window_margin() -> f64 {
+    RangeTrigger::DEFAULT_WINDOW_MARGIN
 }
 
 /// The deployment box (`[guidance.deploy_box]`, module documentation).
@@ -140,6 +153,9 @@ pub fn along_track_range_to_go(nav: &NavState, target: &Target, radius: f64) -> 
 }
 
 impl RangeTrigger {
+    /// The default [`RangeTrigger::window_margin`]: 1 %.
+    pub const DEFAULT_WINDOW_MARGIN: f64 = 0.01;
+
     /// The range trigger function (module documentation) at along-track range-to-go `range_m`,
     /// speed `speed_mps` and dynamic pressure `dynamic_pressure_pa`: positive before deployment.
     pub fn function(
@@ -149,9 +165,10 @@ impl RangeTrigger {
         speed_mps: f64,
         dynamic_pressure_pa: f64,
     ) -> f64 {
+        let keep = 1.0 - self.window_margin;
         let at_target = range_m
-            .max(speed_mps - window.speed_max_mps)
-            .max(dynamic_pressure_pa - window.dynamic_pressure_max_pa);
+            .max(speed_mps - keep * window.speed_max_mps)
+            .max(dynamic_pressure_pa - keep * window.dynamic_pressure_max_pa);
         at_target.min(speed_mps - self.backstop_speed_mps)
     }
 
@@ -203,6 +220,7 @@ mod tests {
         let rt = RangeTrigger {
             nominal_speed_mps: 450.0,
             backstop_speed_mps: 400.0,
+            window_margin: 0.0,
         };
         let b = DeployBox::default();
         // Target ahead, fast: not yet.
@@ -214,6 +232,27 @@ mod tests {
         assert!(rt.function(&b, -5000.0, 500.0, 900.0) > 0.0);
         // Short of the target at the backstop: deploy.
         assert!(rt.function(&b, 5000.0, 399.0, 600.0) <= 0.0);
+    }
+
+    #[test]
+    fn the_window_margin_keeps_the_trigger_inside_the_box() {
+        let b = DeployBox::default();
+        let with = |window_margin| RangeTrigger {
+            nominal_speed_mps: 450.0,
+            backstop_speed_mps: 400.0,
+            window_margin,
+        };
+        // Past the target at 845 Pa: on the box's edge it deploys, 1 % inside it (841.5 Pa) waits.
+        assert!(with(0.0).function(&b, -100.0, 450.0, 845.0) <= 0.0);
+        assert!(with(0.01).function(&b, -100.0, 450.0, 845.0) > 0.0);
+        assert!(with(0.01).function(&b, -100.0, 450.0, 841.0) <= 0.0);
+        // The same on speed: 540 m/s box, 534.6 m/s window.
+        assert!(with(0.01).function(&b, -100.0, 536.0, 600.0) > 0.0);
+        assert!(with(0.01).function(&b, -100.0, 534.0, 600.0) <= 0.0);
+        // A scenario that does not name it gets the default.
+        let rt: RangeTrigger =
+            toml::from_str("nominal_speed_mps = 450.0\nbackstop_speed_mps = 400.0").unwrap();
+        assert_eq!(rt.window_margin, RangeTrigger::DEFAULT_WINDOW_MARGIN);
     }
 
     #[test]

@@ -92,6 +92,12 @@ fn check_trigger(g: &GuidanceConfig, c: &mut Checker) -> R {
                 "guidance.trigger.range.backstop_speed_mps",
                 rt.backstop_speed_mps,
                 backstop,
+            )?;
+            let margin = Range::ge(0.0).le(0.5);
+            c.range(
+                "guidance.trigger.range.window_margin",
+                rt.window_margin,
+                margin,
             )
         }
     }?;

@@ -44,7 +44,8 @@ pub(super) fn guided_rows(
 pub(super) fn guided_input(key: Key, s: &GuidedStep) -> Option<Value> {
     let accel = |k: u8| s.accel.map(|a| a[k as usize]);
     Some(match key {
-        Key::EstX(i) => Value::Real(*s.est_x.get(i)?),
+        // Slots past the filter's dimension read 0, as the navigation FMUs' do.
+        Key::EstX(i) => Value::Real(s.est_x.get(i).copied().unwrap_or(0.0)),
         Key::EstSigma(i) => Value::Real(*s.est_sigma.get(i)?),
         Key::NavTime => Value::Real(s.est_t),
         Key::NavStatusCode => Value::Integer(s.nav_status),

@@ -19,78 +19,35 @@
 //! **Deployment** is judged on the navigation estimate (the vehicle has nothing else): the
 //! trigger function with the estimated speed and the guidance model's density at the estimated
 //! altitude (the range trigger: `RangeTrigger::on_estimate` from `nav_time` to the cycle's time,
-//! as the in-process loop decides it); once it has been positive and reaches 0, `deployed`
+//! the dynamic pressure read with the filter's C_D S/m from `est_x_7..` when the scenario's filter
+//! estimates it, as the in-process loop decides it); once it has been positive and reaches 0, `deployed`
 //! latches, cycles stop and the actuator settles on the last command. (The in-process loop
 //! judges the speed and pressure triggers on the truth, which only it holds.)
 //!
 //! The engine keeps the onboard view only ([`Onboard`], the guidance model and the built
 //! guidance): it never holds the truth.
 
+use crate::vars::MAX_STATES;
 use entrynav::atmosphere::AtmosphereModel;
 use entrynav::dynamics::EntryModel;
 use entrynav::estimation::Onboard;
 use entrynav::guidance::longitudinal::LongModel;
 use entrynav::guidance::{
-    BankActuator, BuiltGuidance, DeployBox, GuidanceError, NavState, OnboardDeploy, Trigger,
-    onboard_trigger, range_crossrange,
+    BankActuator, BuiltGuidance, DeployBox, NavState, OnboardDeploy, Trigger, onboard_trigger,
+    range_crossrange,
 };
 use entrynav::scenario::Scenario;
 use entrynav::sim::guided;
 use std::sync::Arc;
-use thiserror::Error;
 
-/// Why the guidance FMU cannot be built or refuses or fails a step.
-#[derive(Debug, Error)]
-pub enum GuidanceStepError {
-    /// The scenario has no `[guidance]`.
-    #[error(
-        "scenario '{0}' has no [guidance] section: the guidance FMU needs one (the default {file} is the built-in msl-guided: msl-airdata with Apollo guidance)",
-        file = crate::vars::GUIDED_SCENARIO_FILE
-    )]
-    NoGuidance(String),
-    /// No accelerometer triad among the onboard channels.
-    #[error(
-        "scenario '{0}' has no accelerometer triad (accel_x/y/z): guidance needs the sensed drag; give [sensors.imu]"
-    )]
-    NoAccelerometers(String),
-    /// The guidance period is not a multiple of the truth step.
-    #[error("guidance period {period_s} s is not a positive multiple of the truth step {step_s} s")]
-    Period {
-        /// Guidance period \[s\].
-        period_s: f64,
-        /// Truth step \[s\].
-        step_s: f64,
-    },
-    /// Building the guidance or a guidance cycle failed.
-    #[error(transparent)]
-    Guidance(#[from] GuidanceError),
-    /// The navigation filter reports a failure (`nav_status_code` = 2).
-    #[error(
-        "nav_status_code = 2: the navigation filter failed (at nav_time = {0} s); guidance will not fly its frozen estimate"
-    )]
-    NavFailed(f64),
-    /// The guidance law returned a command that is not finite.
-    #[error(
-        "the guidance law returned a bank command that is not finite (estimate at nav_time = {0} s)"
-    )]
-    NonFiniteCommand(f64),
-    /// A navigation state outside the bounds guidance accepts.
-    #[error(
-        "the navigation estimate at nav_time = {t} s is not a state guidance can fly: {what} (connect the navigation FMU's est_x_1..6 and nav_time)"
-    )]
-    Estimate {
-        /// nav_time \[s\].
-        t: f64,
-        /// What is wrong, with the value and the bound.
-        what: String,
-    },
-}
+pub use super::guidance_error::GuidanceStepError;
 
 /// The inputs of one communication step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GuidanceInputs {
-    /// `est_x_1..6`.
-    pub est_x: [f64; 6],
+    /// `est_x_1..`[`MAX_STATES`]: the kinematic states, then the filter's augmented states
+    /// (slots past its dimension read 0).
+    pub est_x: [f64; MAX_STATES],
     /// `nav_time`.
     pub est_t: f64,
     /// `nav_status_code`.
@@ -319,9 +276,10 @@ impl GuidanceEngine {
             density_scale: 1.0,
             trigger: self.trigger,
         };
-        let ((window, onboard), rho) = (&self.deploy, lm.density(nav.spherical[0]));
+        let ((window, mut onboard), rho) = (self.deploy, lm.density(nav.spherical[0]));
+        onboard.cd_s_over_m = self.onboard.model.cd_s_over_m_of(&inputs.est_x);
         let now = (self.steps as f64 * self.dt).max(nav.t); // the range trigger carries to now
-        let c = onboard_trigger(&self.trigger, window, &nav, now, rho, onboard);
+        let c = onboard_trigger(&self.trigger, &window, &nav, now, rho, &onboard);
         let (d, xr) = range_crossrange(&nav, &self.built.target);
         let radius = self.model.planet.radius;
         self.trigger_value = c;

@@ -13,6 +13,7 @@ mod allowed;
 mod engine;
 mod fmi3;
 mod guidance;
+mod guidance_error;
 mod guided;
 mod lifecycle;
 mod machine;

@@ -8,7 +8,7 @@
 //!   with, one step late, and its estimate is the combined FMU's one step late.
 //! * `MarsEntryNav.ssp` — the combined FMU alone with the same system inputs.
 //! * `MarsEntryGuided.ssp` — the closed guidance loop on `msl-guided.toml`: `truth` → `navfilter`
-//!   (EKF) as in the split pair, the filter's `est_x_1..6`, `est_sigma_1..6`, `nav_time`,
+//!   (EKF) as in the split pair, the filter's `est_x_1..12`, `est_sigma_1..6`, `nav_time`,
 //!   `nav_status_code` and the truth's accelerometer triad → `guidance` (MarsEntryGuidance), whose
 //!   `bank_command` → the truth's `bank_angle`. System inputs `beacon_available_*` only.
 //!

@@ -271,7 +271,8 @@ impl GuidedLoop {
 
     /// The trigger function after a step: the speed or dynamic-pressure trigger on the truth
     /// sample `s`, or the range trigger on the onboard view (the filter's latest estimate
-    /// carried to the sample's time, the sensed drag; [`crate::guidance::RangeTrigger::on_estimate`]).
+    /// carried to the sample's time, the sensed drag over the filter's C_D S/m where it estimates
+    /// one; [`crate::guidance::RangeTrigger::on_estimate`]).
     fn trigger_value(&self, s: &TruthSample) -> f64 {
         let Trigger::Range(rt) = self.trigger else {
             return trigger_on(&self.trigger, s);
@@ -282,7 +283,7 @@ impl GuidedLoop {
             target: self.built.target,
             radius: model.planet.radius,
             mu: model.planet.mu,
-            cd_s_over_m: model.vehicle.cd_s_over_m,
+            cd_s_over_m: model.cd_s_over_m_of(est.x.as_slice()),
         };
         NavState::from_estimate(
             &est.x,

@@ -2,11 +2,13 @@
 //! generic FMU ships in `resources/`.
 //!
 //! Inputs carry the names of the outputs they connect to, so a system connects them 1:1: the
-//! navigation FMUs' `est_x_1..6`, `est_sigma_1..6`, `nav_time`, `nav_status_code`, and the truth
-//! FMU's accelerometer triad `meas_accel_{x,y,z}` with its `_valid` flags (the sensed drag).
+//! navigation FMUs' `est_x_1..12` (the kinematic states, then the augmented states),
+//! `est_sigma_1..6`, `nav_time`, `nav_status_code`, and the truth FMU's accelerometer triad
+//! `meas_accel_{x,y,z}` with its `_valid` flags (the sensed drag).
 
 use super::builder::{Builder, SPH};
 use super::params::allow_external_files;
+use crate::vars::MAX_STATES;
 use crate::vars::defaults::GUIDED_SCENARIO_FILE;
 use crate::vars::enums::GUIDANCE_STATUS;
 use crate::vars::slot::{Key, Slot};
@@ -26,18 +28,18 @@ pub fn guided_scenario() -> Result<Scenario, entrynav::scenario::ScenarioError> 
     Scenario::build(cfg, &entrynav::files::no_files)
 }
 
-/// The start values of `est_x_1..6`: the kinematic states of the default scenario's onboard
-/// nominal entry (`msl-guided`'s filter start, `Onboard::initial_estimate`, in the filter
+/// The start values of `est_x_1..`[`MAX_STATES`]: the default scenario's onboard nominal entry
+/// (its kinematic states, then its filter's augmented states, 0 past its state dimension) (`msl-guided`'s filter start, `Onboard::initial_estimate`, in the filter
 /// model's coordinates), the state [`Scenario::build_guidance`] builds the guidance from and the
-/// navigation FMUs' `est_x_1..6` before their first measurement epoch. With these start values
+/// navigation FMUs' `est_x_*` before their first measurement epoch. With these start values
 /// (and `nav_time` = 0, `nav_status_code` = 0) the FMU simulates alone: every cycle flies the
 /// entry state, a valid operating point, instead of refusing the radius 0 of all-zero inputs.
 ///
 /// The guided scenario builds (tested in `vars::spec`), so the all-zero fallback is never taken.
 /// Computed on each call (a built-in's parse, well under a millisecond), not cached: the library
 /// keeps no global state.
-pub fn entry_estimate() -> [f64; 6] {
-    let mut x = [0.0; 6];
+pub fn entry_estimate() -> [f64; MAX_STATES] {
+    let mut x = [0.0; MAX_STATES];
     if let Ok(s) = guided_scenario() {
         for (xi, e) in x.iter_mut().zip(&s.onboard.initial_estimate) {
             *xi = *e;
@@ -93,18 +95,27 @@ fn guidance_inputs(b: &mut Builder) {
         "Navigation filter status, 0 initial, 1 running, 2 failed (connect nav_status_code); guidance refuses to fly a failed filter's estimate",
         Key::NavStatusCode,
     );
-    let entry = entry_estimate();
-    for (i, (n, _, _)) in SPH.iter().enumerate() {
+    for (i, start) in entry_estimate().into_iter().enumerate() {
+        let what = match SPH.get(i) {
+            Some((n, _, _)) => format!(
+                "kinematic filter state {} (connect est_x_{}): spherical {n} when the scenario's filter model is spherical, else inertial Cartesian x y z vx vy vz",
+                i + 1,
+                i + 1
+            ),
+            None => format!(
+                "filter state {} (connect est_x_{}), an augmented state: the range trigger reads the dynamic pressure with the filter's C_D S/m when the scenario's filter estimates it (cd-s-over-m in [filter] augment), else the onboard constant; other augmented states are not used",
+                i + 1,
+                i + 1
+            ),
+        };
         b.add(
             format!("est_x_{}", i + 1),
             Real,
             Input,
             None,
-            Some(Value::Real(entry[i])),
+            Some(Value::Real(start)),
             format!(
-                "Navigation estimate, kinematic filter state {} (connect est_x_{}): spherical {n} when the scenario's filter model is spherical, else inertial Cartesian x y z vx vy vz; starts at the default scenario's nominal entry (msl-guided's filter start)",
-                i + 1,
-                i + 1
+                "Navigation estimate, {what}; starts at the default scenario's nominal entry (msl-guided's filter start, 0 past its state dimension)"
             ),
             Key::EstX(i),
         );

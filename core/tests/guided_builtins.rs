@@ -107,41 +107,75 @@ fn msl_guided_deploys_inside_the_box_in_999_of_1000_runs_with_either_trigger() {
     }
 }
 
-/// Apollo's heading alignment (`guidance.apollo.heading_alignment_speed_mps`, opt-in): on
-/// msl-guided with perfect navigation (200 runs, seed 3) below 1100 m/s it steers the velocity
-/// onto the target and flies near lift-up, so the crossrange miss collapses and every run deploys
-/// higher than the lowest run without it (1000 runs: RMS miss 43 → 1.5 m, lowest deployment
-/// 6.2 → 8.6 km; docs/guidance.md).
+/// Apollo's heading alignment (`guidance.apollo.heading_alignment_speed_mps`, msl-guided's
+/// default at 1100 m/s): on msl-guided with perfect navigation (200 runs, seed 3) it steers the
+/// velocity onto the target and flies near lift-up, so against the same entry without it the
+/// crossrange miss collapses, every run deploys higher than the lowest run without it, and the
+/// median run deploys near 10 km, the altitude margin issue 50 asks of the nominal (1000 runs:
+/// RMS miss 43 → 1.5 m, lowest deployment 6.2 → 8.6 km, median 8.4 → 10.4 km; docs/guidance.md).
 #[test]
-fn heading_alignment_nulls_the_crossrange_and_keeps_altitude() {
-    let hold = builtin("msl-guided");
-    let mut cfg = hold.config.clone();
-    cfg.guidance
-        .as_mut()
-        .unwrap()
-        .apollo
-        .heading_alignment_speed_mps = Some(1100.0);
-    let aligned = Scenario::build(cfg, &entrynav::files::no_files).unwrap();
+fn heading_alignment_nulls_the_crossrange_and_deploys_near_10_km() {
+    let aligned = builtin("msl-guided");
+    let mut cfg = aligned.config.clone();
+    let apollo = &mut cfg.guidance.as_mut().unwrap().apollo;
+    assert_eq!(apollo.heading_alignment_speed_mps, Some(1100.0));
+    apollo.heading_alignment_speed_mps = None;
+    let hold = Scenario::build(cfg, &entrynav::files::no_files).unwrap();
     let fly = |sc: &Scenario| {
         let report = run_delivery(sc, &[], 200, 3, &|_| ()).unwrap();
         let r = row(&report.rows, "perfect-nav").clone();
-        let lowest = report
+        let mut altitudes: Vec<f64> = report
             .per_run
             .iter()
             .filter_map(|rows| rows[0].as_ref().ok())
             .map(|d| d.altitude_m)
-            .fold(f64::INFINITY, f64::min);
-        (r, lowest)
+            .collect();
+        altitudes.sort_by(f64::total_cmp);
+        (r, altitudes[0], altitudes[altitudes.len() / 2])
     };
-    let ((before, low_before), (after, low_after)) = (fly(&hold), fly(&aligned));
+    let ((before, low_before, med_before), (after, low_after, med_after)) =
+        (fly(&hold), fly(&aligned));
     let (m0, m1) = (before.rms_miss_m.unwrap(), after.rms_miss_m.unwrap());
     println!(
-        "RMS miss {m0:.1} -> {m1:.1} m, lowest deployment {low_before:.0} -> {low_after:.0} m"
+        "RMS miss {m0:.1} -> {m1:.1} m, deployment lowest {low_before:.0} -> {low_after:.0} m, median {med_before:.0} -> {med_after:.0} m"
     );
     assert_eq!((before.inside_box, after.inside_box), (200, 200));
     assert!(m1 < 0.2 * m0, "RMS miss {m0} -> {m1} m");
     assert!(
         low_after > low_before + 1000.0,
         "{low_before} -> {low_after} m"
+    );
+    assert!(
+        (9500.0..11500.0).contains(&med_after),
+        "median {med_after} m"
+    );
+    assert!(
+        med_after > med_before + 1000.0,
+        "median {med_before} -> {med_after} m"
+    );
+}
+
+/// FNPEG with the recommended filter in the loop (issue 50: "FNPEG meets the same deployment
+/// count"): every run deploys inside the box. FNPEG often reaches the target early and waits for
+/// the pressure window, so it deploys at the window's edge; there the onboard dynamic pressure is
+/// read with USKF-NN's C_D S/m estimate, not the dispersed onboard constant (which put 84 of 1000
+/// runs above 850 Pa), and the window keeps 1 % inside the box (without it, 3 of 1000 at 850.1 Pa).
+/// 100 runs, seed 3 (1000 runs: docs/guidance.md).
+#[test]
+fn fnpeg_with_uskf_nn_in_the_loop_deploys_inside_the_box() {
+    let mut cfg = builtin("msl-guided").config;
+    cfg.guidance.as_mut().unwrap().algorithm = GuidanceAlgorithm::Fnpeg;
+    let sc = Scenario::build(cfg, &entrynav::files::no_files).unwrap();
+    let report = run_delivery(&sc, &[FilterKind::UskfNn], 100, 3, &|_| ()).unwrap();
+    let r = row(&report.rows, "uskf-nn");
+    println!(
+        "deployed {} inside the box {} ({:?})",
+        r.deployed, r.inside_box, r.outside_box_by_limit
+    );
+    assert_eq!(
+        (r.deployed, r.inside_box),
+        (100, 100),
+        "{:?}",
+        r.outside_box_by_limit
     );
 }

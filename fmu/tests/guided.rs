@@ -139,6 +139,11 @@ fn the_nominal_entry_deploys_near_the_target_and_the_bank_rate_limit_holds() {
     assert_eq!(i.int(Key::GuidedStatus), 1, "{:?}", i.messages());
     // The EKF in the loop on the undispersed entry (Apollo guidance): within a few km.
     let miss = i.real(Key::MissDistance);
+    println!(
+        "nominal entry, EKF: deployed at t = {:.2} s at {:.0} m, miss {miss:.0} m",
+        i.real(Key::DeployTime),
+        i.real(Key::DeployAltitude)
+    );
     assert!(miss > 0.0 && miss < 5000.0, "miss {miss} m");
 }
 

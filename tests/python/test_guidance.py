@@ -6,10 +6,10 @@
   fmpy's repository validator, and fmpy (FMI 2.0 and FMI 3.0) and fmusim reproduce the reference
   exactly; the reference itself flies within the 20 deg/s rate limit, reverses the bank and
   deploys on the estimate;
-* `MarsEntryGuided.ssp` (truth -> navfilter -> guidance -> truth) in OMSimulator: the truth reaches
-  the 450 m/s deployment trigger above the ground, the guidance FMU deploys on its estimate within
-  a step of it, the truth flies the guidance's bank one step late, and the bank rate stays within
-  the limit.
+* `MarsEntryGuided.ssp` (truth -> navfilter -> guidance -> truth) in OMSimulator: the guidance FMU
+  deploys on its estimate by the range trigger (range to go near zero) with the truth inside the
+  deployment box and within a few seconds of the 450 m/s nominal speed, the truth flies the
+  guidance's bank one step late, and the bank rate stays within the limit.
 
 fmusim and OMSimulator skip with a message where they are not installed (as test_fmusim.py and
 test_omsimulator.py)."""
@@ -175,13 +175,17 @@ def test_the_guided_ssp_closes_the_loop_in_omsimulator(packed, tmp_path):
     assert len(t) == round(stop / step) + 1
     v, alt, flown, stop_code = truth.T
     bank, deployed = g[:, 0], g[:, 1].astype(bool)
-    # The truth reaches the deployment trigger above the ground (then flies on to the ground).
+    # The truth reaches the range trigger's nominal speed above the ground (then flies on to the ground).
     k = int(np.argmax(v <= TRIGGER_MPS))
     assert v[k] <= TRIGGER_MPS < v[k - 1] and alt[k] > 0.0, (t[k], v[k], alt[k])
-    # The guidance FMU deploys on its estimate within a step of the truth crossing the trigger.
+    # The guidance FMU deploys on its estimate (range trigger: where its range to go reaches zero,
+    # inside the window) and latches; the truth is then inside the default deployment box
+    # (380-540 m/s, at or above 5 km) and near the nominal speed, within a few seconds of it.
     j = int(np.argmax(deployed))
-    assert deployed[j] and np.all(deployed[j:]) and abs(t[j] - t[k]) <= 2 * step, (t[j], t[k])
-    assert g[j, 2] < 5e3, g[j, 2]
+    assert deployed[j] and np.all(deployed[j:]), "the guidance FMU never deployed"
+    assert 380.0 <= v[j] <= 540.0 and alt[j] >= 5000.0, (t[j], v[j], alt[j])
+    assert abs(t[j] - t[k]) <= 5.0, (t[j], t[k])
+    assert g[j, 2] < 2e3, g[j, 2]
     # The filter never failed; the truth flew the guidance's bank, one step late.
     assert np.all(nav[:, 0] != 2)
     assert np.array_equal(flown[1:], bank[:-1])
@@ -189,5 +193,5 @@ def test_the_guided_ssp_closes_the_loop_in_omsimulator(packed, tmp_path):
     assert np.all(np.abs(np.diff(bank)) <= RATE_LIMIT * step * (1 + 1e-9))
     assert np.sum(np.diff(np.sign(bank[bank != 0])) != 0) >= 2
     print(f"OMSimulator guided SSP: truth at {TRIGGER_MPS} m/s at t = {t[k]} s, altitude {alt[k]:.0f} m; "
-          f"guidance deployed at t = {t[j]} s with range to go {g[j, 2]:.1f} m; "
+          f"guidance deployed at t = {t[j]} s (truth {v[j]:.1f} m/s at {alt[j]:.0f} m) with range to go {g[j, 2]:.1f} m; "
           f"largest bank rate {math.degrees(np.abs(np.diff(bank)).max() / step):.3f} deg/s")

@@ -1,6 +1,6 @@
 //! `msl-guided` as it was before issue 50 changed its defaults: seed 001's Table 1 dispersions
 //! (C_D S/m 22.5 %, L/D 21 %, 1σ) with the matching filter P0, the 60° reference bank, the
-//! 450 m/s speed trigger and no altitude safeguard. On these dispersions some runs reach the
+//! 450 m/s speed trigger, no altitude safeguard and no heading alignment. On these dispersions some runs reach the
 //! ground before the trigger (docs/guidance.md), which the tests of failure handling need.
 
 use entrynav::guidance::Trigger;
@@ -18,5 +18,6 @@ pub fn seed001_guided_config() -> ScenarioConfig {
     g.reference_bank_deg = 60.0;
     g.trigger = Trigger::SpeedMps(450.0);
     g.min_deploy_altitude_m = None;
+    g.apollo.heading_alignment_speed_mps = None;
     cfg
 }

@@ -8,9 +8,9 @@
 
 use super::builder::{Builder, SPH};
 use super::params::allow_external_files;
-use crate::vars::MAX_STATES;
 use crate::vars::defaults::GUIDED_SCENARIO_FILE;
 use crate::vars::enums::GUIDANCE_STATUS;
+use crate::vars::sizes::MAX_STATES;
 use crate::vars::slot::{Key, Slot};
 use crate::vars::var::{Causality, Type, Value};
 use entrynav::scenario::{Scenario, ScenarioConfig};
